@@ -1,0 +1,199 @@
+//! Exact edge-function setup with the Direct3D top-left fill rule.
+//!
+//! For the edge from vertex `a` to vertex `b` the edge function at a point `p` (sub-pixel units) is
+//!
+//! `E(p) = (x_b − x_a)(p_y − y_a) − (y_b − y_a)(p_x − x_a)`.
+//!
+//! Vertices are reordered so that the doubled signed area `E_01(v2)` is positive; then the interior
+//! is where all three edge functions are positive (on screen, with y down, that is clockwise order).
+//!
+//! At the centre of pixel `(i, j)`, `p = (256 i + 128, 256 j + 128)` and
+//! `E = 256 (A i + B j) + C` with `A = y_a − y_b`, `B = x_b − x_a`. Writing `C = 256 q + r`
+//! (`0 ≤ r < 256`), the test "`E > 0`, or `E = 0` on a top or left edge" becomes exactly
+//! `K(i, j) = A i + B j + q − t ≥ 0`, where `t = 1` only when `r = 0` and the edge is neither top
+//! nor left. `K` is what the traversal steps: it changes by `A` per pixel and `B` per row, and its
+//! sign is the exact coverage decision — no rounding anywhere.
+//!
+//! ```
+//! use embedded_raster::{edge::TriangleSetup, Coord};
+//!
+//! let c = |x: f32, y: f32| (Coord::from_num(x), Coord::from_num(y));
+//! let setup = TriangleSetup::new([c(0.0, 0.0), c(4.0, 0.0), c(0.0, 4.0)]).unwrap();
+//! // Pixel (0, 0) is inside, pixel (3, 3) is outside.
+//! assert!(setup.covers(0, 0));
+//! assert!(!setup.covers(3, 3));
+//! // Collinear vertices have no interior.
+//! assert!(TriangleSetup::new([c(0.0, 0.0), c(1.0, 1.0), c(2.0, 2.0)]).is_none());
+//! ```
+
+use crate::fixed_point::{raw, Coord, HALF_PIXEL, SUBPIXEL_BITS};
+
+/// One edge function, reduced to pixel-centre lattice form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EdgeFunction {
+    /// Change of the edge function per pixel step in x (`y_a − y_b`, sub-pixel units).
+    pub a: i64,
+    /// Change of the edge function per pixel step in y (`x_b − x_a`, sub-pixel units).
+    pub b: i64,
+    /// Exact edge function at the centre of pixel (0, 0), in squared sub-pixel units.
+    pub c: i128,
+    /// Coverage offset: pixel (i, j) is inside this edge iff `a·i + b·j + k ≥ 0`.
+    pub k: i128,
+}
+
+impl EdgeFunction {
+    fn new(va: (i64, i64), vb: (i64, i64)) -> Self {
+        let a = va.1 - vb.1;
+        let b = vb.0 - va.0;
+        let c = i128::from(a) * i128::from(HALF_PIXEL - va.0)
+            + i128::from(b) * i128::from(HALF_PIXEL - va.1);
+        let top_left = a > 0 || (a == 0 && b > 0);
+        let on_lattice = c & ((1 << SUBPIXEL_BITS) - 1) == 0;
+        let t = i128::from(on_lattice && !top_left);
+        EdgeFunction {
+            a,
+            b,
+            c,
+            k: (c >> SUBPIXEL_BITS) - t,
+        }
+    }
+
+    /// The reduced coverage value `K` at pixel `(i, j)`: the pixel is inside this edge iff it is `≥ 0`.
+    #[inline]
+    pub fn value_at(&self, i: i64, j: i64) -> i128 {
+        i128::from(self.a) * i128::from(i) + i128::from(self.b) * i128::from(j) + self.k
+    }
+
+    /// The exact edge function at the centre of pixel `(i, j)` (squared sub-pixel units).
+    #[inline]
+    pub fn exact_at(&self, i: i64, j: i64) -> i128 {
+        ((i128::from(self.a) * i128::from(i) + i128::from(self.b) * i128::from(j)) << SUBPIXEL_BITS)
+            + self.c
+    }
+}
+
+/// Edge functions of a non-degenerate triangle, in positive orientation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TriangleSetup {
+    /// `edges[k]` is the edge opposite vertex `order[k]`; it evaluates to `area2` at that vertex.
+    pub edges: [EdgeFunction; 3],
+    /// Twice the triangle's area in squared sub-pixel units; always positive.
+    pub area2: i128,
+    /// Which input vertex each of the oriented vertices is (`[0, 1, 2]` or `[0, 2, 1]`).
+    pub order: [usize; 3],
+    /// Raw sub-pixel vertex positions, in input order.
+    pub vertices: [(i64, i64); 3],
+}
+
+impl TriangleSetup {
+    /// Sets up the edge functions of a triangle, or `None` if its vertices are collinear.
+    ///
+    /// Every `Coord` value is accepted; all products are formed in `i128`.
+    pub fn new(v: [(Coord, Coord); 3]) -> Option<Self> {
+        let vertices = v.map(|(x, y)| (raw(x), raw(y)));
+        let [p0, p1, p2] = vertices;
+        let area2 = i128::from(p1.0 - p0.0) * i128::from(p2.1 - p0.1)
+            - i128::from(p2.0 - p0.0) * i128::from(p1.1 - p0.1);
+        let (order, area2) = match area2 {
+            0 => return None,
+            a if a > 0 => ([0, 1, 2], a),
+            a => ([0, 2, 1], -a),
+        };
+        let [o0, o1, o2] = order.map(|k| vertices[k]);
+        Some(TriangleSetup {
+            edges: [
+                EdgeFunction::new(o1, o2),
+                EdgeFunction::new(o2, o0),
+                EdgeFunction::new(o0, o1),
+            ],
+            area2,
+            order,
+            vertices,
+        })
+    }
+
+    /// Whether the centre of pixel `(i, j)` is covered under the top-left rule.
+    pub fn covers(&self, i: i32, j: i32) -> bool {
+        self.edges
+            .iter()
+            .all(|e| e.value_at(i64::from(i), i64::from(j)) >= 0)
+    }
+
+    /// The inclusive pixel bounding box `(i_min, j_min, i_max, j_max)` of all pixel centres that lie
+    /// within the triangle's bounding box (possibly empty: `i_min > i_max`).
+    pub fn pixel_bounds(&self) -> (i64, i64, i64, i64) {
+        let xs = self.vertices.map(|v| v.0);
+        let ys = self.vertices.map(|v| v.1);
+        let lo = |v: [i64; 3]| {
+            (v[0].min(v[1]).min(v[2]) - HALF_PIXEL + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS
+        };
+        let hi = |v: [i64; 3]| (v[0].max(v[1]).max(v[2]) - HALF_PIXEL) >> SUBPIXEL_BITS;
+        (lo(xs), lo(ys), hi(xs), hi(ys))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn setup(v: [(i32, i32); 3]) -> Option<TriangleSetup> {
+        TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))
+    }
+
+    #[test]
+    fn top_left_rule_on_axis_aligned_square_halves() {
+        // A 2×2-pixel square split along its diagonal, corners on pixel corners (0,0)-(512,512):
+        // every centre of the four pixels is strictly inside one half except (0,0) and (1,1),
+        // which lie exactly on the diagonal and must go to exactly one of the halves.
+        let upper = setup([(0, 0), (512, 0), (512, 512)]).unwrap();
+        let lower = setup([(0, 0), (512, 512), (0, 512)]).unwrap();
+        for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            assert_eq!(
+                u8::from(upper.covers(i, j)) + u8::from(lower.covers(i, j)),
+                1,
+                "pixel ({i},{j})"
+            );
+        }
+        // The upper half's interior lies to the right of the diagonal: it is that half's left edge,
+        // so the upper half owns both centres on it.
+        assert!(upper.covers(0, 0) && upper.covers(1, 1));
+    }
+
+    #[test]
+    fn top_edge_includes_bottom_edge_excludes() {
+        // Horizontal edge through pixel centres y = 128: rectangle rows.
+        // Triangle with top edge on y=128 (third vertex below) covers centres on that edge.
+        let t = setup([(0, 128), (2048, 128), (0, 2048)]).unwrap();
+        assert!(t.covers(1, 0));
+        // Triangle with its bottom edge on y = 128 + 256 (third vertex above) excludes them.
+        let b = setup([(0, 0), (2048, 384), (0, 384)]).unwrap();
+        assert!(!b.covers(0, 1));
+        assert!(b.covers(0, 0));
+    }
+
+    #[test]
+    fn winding_does_not_matter_and_degenerate_is_none() {
+        let a = setup([(10, 20), (3000, 700), (900, 2500)]).unwrap();
+        let b = setup([(10, 20), (900, 2500), (3000, 700)]).unwrap();
+        for j in -2..12 {
+            for i in -2..14 {
+                assert_eq!(a.covers(i, j), b.covers(i, j));
+            }
+        }
+        assert!(setup([(0, 0), (256, 256), (-512, -512)]).is_none());
+        assert!(setup([(5, 5), (5, 5), (9, 1)]).is_none());
+    }
+
+    #[test]
+    fn extreme_coordinates_do_not_overflow() {
+        let m = i32::MIN;
+        let x = i32::MAX;
+        // Hypotenuse x + y = -1 (sub-pixel units): pixel (-1, 0) (centre sum 0) is outside, (-2, 0) inside.
+        let t = setup([(m, m), (x, m), (m, x)]).unwrap();
+        assert!(!t.covers(-1, 0));
+        assert!(t.covers(-2, 0));
+        assert!(t.covers(-8_000_000, 8_000_000 - 1000));
+        let (i0, j0, i1, j1) = t.pixel_bounds();
+        assert!(i0 <= -8_388_607 && i1 >= 8_388_606 && j0 <= -8_388_607 && j1 >= 8_388_606);
+    }
+}

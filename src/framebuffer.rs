@@ -1,0 +1,163 @@
+//! A framebuffer over a caller-owned slice, with span fast paths.
+//!
+//! embedded-graphics' own `Framebuffer` only implements `draw_iter`, so every span the rasterizer
+//! emits would be drawn pixel by pixel with a bounds check each. [`SliceFramebuffer`] overrides
+//! `fill_contiguous` and `fill_solid` with plain slice writes: one bounds check per row.
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle};
+//!
+//! let mut pixels = [Rgb565::BLACK; 32 * 24];
+//! let mut fb = SliceFramebuffer::new(&mut pixels, 32, 24).unwrap();
+//! let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
+//! SolidTriangle::new([c(0, 0), c(32, 0), c(0, 24)], Rgb565::RED).draw(&mut fb).unwrap();
+//! assert_eq!(fb.get(0, 0), Some(Rgb565::RED));
+//! assert_eq!(fb.get(31, 23), Some(Rgb565::BLACK));
+//! ```
+
+use core::convert::Infallible;
+
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::Pixel;
+
+/// A `width × height` framebuffer stored row-major in a borrowed slice of colours.
+#[derive(Debug)]
+pub struct SliceFramebuffer<'a, C> {
+    pixels: &'a mut [C],
+    width: u32,
+    height: u32,
+}
+
+impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
+    /// Wraps `pixels` (row-major, at least `width · height` long) or returns `None` if too short
+    /// or if a dimension does not fit an `i32` coordinate.
+    pub fn new(pixels: &'a mut [C], width: u32, height: u32) -> Option<Self> {
+        let len = (width as usize).checked_mul(height as usize)?;
+        if width > i32::MAX as u32 || height > i32::MAX as u32 || pixels.len() < len {
+            return None;
+        }
+        let pixels = pixels.get_mut(..len)?;
+        Some(SliceFramebuffer {
+            pixels,
+            width,
+            height,
+        })
+    }
+
+    /// The pixels, row-major, exactly `width · height` of them.
+    pub fn pixels(&self) -> &[C] {
+        self.pixels
+    }
+
+    /// Mutable access to the pixels.
+    pub fn pixels_mut(&mut self) -> &mut [C] {
+        self.pixels
+    }
+
+    /// The pixel at `(x, y)`, or `None` outside the buffer.
+    pub fn get(&self, x: i32, y: i32) -> Option<C> {
+        self.index(x, y).and_then(|i| self.pixels.get(i)).copied()
+    }
+
+    fn index(&self, x: i32, y: i32) -> Option<usize> {
+        let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
+        (x < self.width && y < self.height).then(|| y as usize * self.width as usize + x as usize)
+    }
+
+    /// The `len` pixels of row `y` starting at column `x`, if they are all inside the buffer.
+    #[inline]
+    pub fn row_mut(&mut self, x: i32, y: i32, len: u32) -> Option<&mut [C]> {
+        let start = self.index(x, y)?;
+        if (x as u32).checked_add(len)? > self.width {
+            return None;
+        }
+        self.pixels.get_mut(start..start + len as usize)
+    }
+}
+
+impl<C: PixelColor> OriginDimensions for SliceFramebuffer<'_, C> {
+    fn size(&self) -> Size {
+        Size::new(self.width, self.height)
+    }
+}
+
+impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
+    type Color = C;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        for Pixel(p, c) in pixels {
+            if let Some(px) = self.index(p.x, p.y).and_then(|i| self.pixels.get_mut(i)) {
+                *px = c;
+            }
+        }
+        Ok(())
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        let inside = area.intersection(&self.bounding_box());
+        if inside != *area {
+            // Partly outside: skip the colours of clipped pixels one by one.
+            return self.draw_iter(area.points().zip(colors).map(|(p, c)| Pixel(p, c)));
+        }
+        let mut colors = colors.into_iter();
+        let Size { width, height } = area.size;
+        for dy in 0..height {
+            let Some(row) = self.row_mut(area.top_left.x, area.top_left.y + dy as i32, width)
+            else {
+                break;
+            };
+            for (dst, c) in row.iter_mut().zip(&mut colors) {
+                *dst = c;
+            }
+        }
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        let area = area.intersection(&self.bounding_box());
+        let Size { width, height } = area.size;
+        for dy in 0..height {
+            if let Some(row) = self.row_mut(area.top_left.x, area.top_left.y + dy as i32, width) {
+                row.fill(color);
+            }
+        }
+        Ok(())
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Infallible> {
+        self.pixels.fill(color);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::Gray8;
+
+    #[test]
+    fn clipped_fills_stay_inside() {
+        let mut px = [Gray8::BLACK; 12];
+        let mut fb = SliceFramebuffer::new(&mut px, 4, 3).unwrap();
+        let area = Rectangle::new(Point::new(-2, 1), Size::new(4, 3));
+        fb.fill_contiguous(&area, (0..12).map(|v| Gray8::new(v + 1)))
+            .unwrap();
+        fb.fill_solid(
+            &Rectangle::new(Point::new(3, -5), Size::new(9, 6)),
+            Gray8::WHITE,
+        )
+        .unwrap();
+        let luma: [u8; 12] = core::array::from_fn(|i| px[i].luma());
+        assert_eq!(luma, [0, 0, 0, 255, 3, 4, 0, 0, 7, 8, 0, 0]);
+        assert!(SliceFramebuffer::new(&mut [Gray8::BLACK; 5], 2, 3).is_none());
+    }
+}

@@ -1,0 +1,63 @@
+//! A `no_std` fixed-point triangle rasterizer for [embedded-graphics].
+//!
+//! * **Exact coverage.** Vertices are sub-pixel fixed point ([`Coord`], 8 fractional bits). Integer
+//!   edge functions with the Direct3D top-left rule decide coverage exactly: a pixel on an edge
+//!   shared by two triangles is drawn once, and the result matches an exact evaluation on the same
+//!   vertices bit for bit.
+//! * **Gouraud shading** within 1 LSB of the exact barycentric interpolation, in the target's own
+//!   channel depth ([`GouraudColor`]: `Rgb565`, `Rgb888`, `Gray8`, `BinaryColor`, …).
+//! * **No floats, no heap, no panics** on the drawing path. Every [`Coord`] is a valid vertex; far
+//!   off-screen and huge triangles are clipped exactly, degenerate ones draw nothing.
+//! * **Spans, not pixels**: each covered row is one `fill_contiguous`/`fill_solid` call, and
+//!   [`SliceFramebuffer`] turns those into slice writes.
+//!
+//! # Coordinate range
+//!
+//! Any `Coord` (±2²³ pixels with 1/256-pixel precision) is accepted for vertices. Setup is done in
+//! `i128`, traversal in `i64` over the triangle's pixel bounding box clipped to the target. The
+//! target's bounding box may be anywhere in `i32`. Gouraud values are stepped from a 64-bit row
+//! accumulator for regions up to 2¹⁶ pixels (`width + height`) and computed exactly per row beyond
+//! that or for extreme slivers, so the 1-LSB bound holds everywhere.
+//!
+//! # Example
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+//!
+//! let mut pixels = [Rgb565::BLACK; 320 * 240];
+//! let mut display = SliceFramebuffer::new(&mut pixels, 320, 240).unwrap();
+//! let v = |x: f32, y: f32, c| Vertex::new(Coord::from_num(x), Coord::from_num(y), c);
+//!
+//! GouraudTriangle::new([
+//!     v(10.0, 10.0, Rgb565::RED),
+//!     v(300.5, 40.25, Rgb565::GREEN),
+//!     v(120.75, 230.0, Rgb565::BLUE),
+//! ])
+//! .draw(&mut display)?;
+//!
+//! let p = |x: f32, y: f32| (Coord::from_num(x), Coord::from_num(y));
+//! SolidTriangle::new([p(-5000.0, 0.0), p(5.0, 0.0), p(5.0, 240.0)], Rgb565::WHITE)
+//!     .draw(&mut display)?;
+//! # Ok::<(), core::convert::Infallible>(())
+//! ```
+//!
+//! [embedded-graphics]: https://docs.rs/embedded-graphics
+#![no_std]
+#![deny(missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+pub mod color;
+pub mod drawable;
+pub mod edge;
+pub mod fixed_point;
+pub mod framebuffer;
+pub mod interpolation;
+pub mod traversal;
+
+pub use color::GouraudColor;
+pub use drawable::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};
+pub use fixed_point::Coord;
+pub use framebuffer::SliceFramebuffer;
