@@ -30,6 +30,7 @@ use embedded_graphics::primitives::Rectangle;
 use crate::color::GouraudColor;
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
+use crate::framebuffer::SliceFramebuffer;
 use crate::interpolation::{AttributePlane, MAX_CHUNK};
 use crate::traversal::{Region, Span, Spans};
 
@@ -74,6 +75,16 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         GouraudTriangle { vertices }
     }
 
+    /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
+    /// loop: the fastest path, with the same pixels as [`Drawable::draw`].
+    pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
+        for (span, colors) in self.shaded_spans(&framebuffer.bounding_box()) {
+            if let Some(row) = framebuffer.row_mut(span.x_start, span.y, span.len()) {
+                colors.fill(row);
+            }
+        }
+    }
+
     /// The covered spans inside `clip` with their colours, each at most
     /// [`MAX_CHUNK`] pixels long.
     pub fn shaded_spans(&self, clip: &Rectangle) -> ShadedSpans<C> {
@@ -111,6 +122,16 @@ impl<C: PixelColor> SolidTriangle<C> {
     /// A triangle with corners `points` filled with `color`.
     pub const fn new(points: [(Coord, Coord); 3], color: C) -> Self {
         SolidTriangle { points, color }
+    }
+
+    /// Draws into a [`SliceFramebuffer`] with one slice fill per span; the same pixels as
+    /// [`Drawable::draw`].
+    pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
+        for span in self.spans(&framebuffer.bounding_box()) {
+            if let Some(row) = framebuffer.row_mut(span.x_start, span.y, span.len()) {
+                row.fill(self.color);
+            }
+        }
     }
 
     /// The covered spans inside `clip`.
@@ -235,13 +256,11 @@ impl<C: GouraudColor> Iterator for SpanColors<C> {
             return None;
         }
         self.left -= 1;
-        let f = AttributePlane::FRACTION_BITS;
-        let [v0, v1, v2] = self.value;
-        let color = C::from_channels([(v0 >> f) as u8, (v1 >> f) as u8, (v2 >> f) as u8]);
-        self.value[0] = v0.wrapping_add(self.step[0]);
+        let color = C::from_stepped(self.value);
+        self.value[0] = self.value[0].wrapping_add(self.step[0]);
         if C::CHANNELS > 1 {
-            self.value[1] = v1.wrapping_add(self.step[1]);
-            self.value[2] = v2.wrapping_add(self.step[2]);
+            self.value[1] = self.value[1].wrapping_add(self.step[1]);
+            self.value[2] = self.value[2].wrapping_add(self.step[2]);
         }
         Some(color)
     }
@@ -253,3 +272,15 @@ impl<C: GouraudColor> Iterator for SpanColors<C> {
 }
 
 impl<C: GouraudColor> ExactSizeIterator for SpanColors<C> {}
+
+impl<C: GouraudColor> SpanColors<C> {
+    /// Writes the remaining colours to the start of `dst` (as many as fit) with the colour
+    /// format's fastest loop ([`GouraudColor::fill_span`]).
+    #[inline]
+    pub fn fill(self, dst: &mut [C]) {
+        let n = dst.len().min(self.left as usize);
+        if let Some(dst) = dst.get_mut(..n) {
+            C::fill_span(dst, self.value, self.step);
+        }
+    }
+}
