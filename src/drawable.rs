@@ -222,7 +222,7 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
             x_start: span.x_start.wrapping_add(offset as i32),
             x_end: span.x_start.wrapping_add(done as i32),
         };
-        let step = self.planes.map(|p| p.step() as u32);
+        let step = self.planes.map(|p| p.step());
         Some((chunk, SpanColors::new(start, step, len)))
     }
 }

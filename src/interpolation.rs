@@ -27,6 +27,7 @@
 //! let start = plane.row_start(10, 20);
 //! assert_eq!(start >> AttributePlane::FRACTION_BITS, 21); // 2 × 10.5
 //! assert_eq!(plane.step(), 2 << AttributePlane::FRACTION_BITS);
+//! // Values are fixed point with 16 fractional bits; steps are added with `wrapping_add`.
 //! ```
 
 use crate::edge::TriangleSetup;
@@ -78,7 +79,7 @@ pub struct AttributePlane {
     ny: i128,
     n0: i128,
     area2: i128,
-    step: i32,
+    step: u32,
 }
 
 impl AttributePlane {
@@ -98,8 +99,9 @@ impl AttributePlane {
         }
         let area2 = setup.area2;
         let f = Self::FRACTION_BITS;
-        let step = div_round(nx << (f + SUBPIXEL_BITS), area2)
-            .clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
+        // Two's complement, wrapping: adding it steps the value modulo 2^32, which is exact
+        // whenever the stepped values stay in range, as they do inside the triangle.
+        let step = div_round(nx << (f + SUBPIXEL_BITS), area2) as u32;
         let (x, y) = (i64::from(region.x0), i64::from(region.y0));
         let mut plane = AttributePlane {
             mode: Mode::Exact { x, y },
@@ -197,11 +199,11 @@ impl AttributePlane {
         (div_floor(self.numerator(x, y) << f, self.area2) + (1 << (f - 1))) as u32
     }
 
-    /// Per-pixel step in x ([`FRACTION_BITS`](Self::FRACTION_BITS) fractional bits). Saturated
-    /// when the gradient exceeds the attribute range, which happens only when no span is longer
-    /// than one pixel.
+    /// Per-pixel step in x ([`FRACTION_BITS`](Self::FRACTION_BITS) fractional bits), as a
+    /// two's-complement `u32` to be added with `wrapping_add`. Exact modulo 2³² even when the
+    /// gradient exceeds the attribute range (then no span is longer than one pixel).
     #[inline]
-    pub fn step(&self) -> i32 {
+    pub fn step(&self) -> u32 {
         self.step
     }
 
