@@ -31,7 +31,7 @@ use crate::color::GouraudColor;
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::framebuffer::SliceFramebuffer;
-use crate::interpolation::{AttributePlane, MAX_CHUNK};
+use crate::interpolation::{AttributePlane, InverseArea, MAX_CHUNK};
 use crate::traversal::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -174,9 +174,11 @@ impl<C: GouraudColor> ShadedSpans<C> {
         let region = setup.as_ref().and_then(|s| Region::new(s, clip));
         match (setup, region) {
             (Some(setup), Some(region)) => {
+                let inverse = InverseArea::new(setup.area2);
                 let plane = |k: usize| {
                     if k < C::CHANNELS {
-                        AttributePlane::new(&setup, channels.map(|c| u16::from(c[k])), &region)
+                        let values = channels.map(|c| u16::from(c[k]));
+                        AttributePlane::with_inverse(&setup, &inverse, values, &region)
                     } else {
                         AttributePlane::constant(0)
                     }
