@@ -61,3 +61,13 @@ pub use color::GouraudColor;
 pub use drawable::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};
 pub use fixed_point::Coord;
 pub use framebuffer::SliceFramebuffer;
+
+#[cfg(feature = "reference")]
+pub mod reference;
+pub mod math3d;
+pub mod pipeline;
+pub mod shading;
+pub mod geometry;
+pub mod meshes;
+#[cfg(feature = "std")]
+pub mod obj;

@@ -1,0 +1,214 @@
+//! Renders the README pictures into `docs/`:
+//!
+//! * `gouraud.png` — Gouraud triangles on a 320×240 Rgb565 screen, some crossing its edges;
+//! * `fan.png` — a fan of thin triangles around a sub-pixel centre, and next to it how often each
+//!   pixel was drawn (white once, red more than once, black never inside the fan);
+//! * `heatmap.png` — per-pixel colour error against the f64 reference, in LSB of Rgb888.
+//!
+//! Run with `cargo run --release --features reference --example gallery`.
+
+use embedded_graphics::{
+    pixelcolor::{Rgb565, Rgb888},
+    prelude::*,
+    primitives::Rectangle,
+};
+use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use embedded_raster::{reference, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+
+fn coord(v: f64) -> Coord {
+    Coord::from_num(v)
+}
+
+fn vertex<C>(x: f64, y: f64, color: C) -> Vertex<C> {
+    Vertex::new(coord(x), coord(y), color)
+}
+
+fn save<C>(display: &SimulatorDisplay<C>, scale: u32, name: &str)
+where
+    C: PixelColor + Into<Rgb888>,
+{
+    let settings = OutputSettingsBuilder::new().scale(scale).build();
+    let path = format!("docs/{name}");
+    display
+        .to_rgb_output_image(&settings)
+        .save_png(&path)
+        .expect("write PNG");
+    println!("wrote {path}");
+}
+
+fn gouraud() {
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(320, 240));
+    let triangles = [
+        [
+            vertex(20.0, 12.5, Rgb565::RED),
+            vertex(300.25, 60.0, Rgb565::GREEN),
+            vertex(110.75, 228.0, Rgb565::BLUE),
+        ],
+        [
+            vertex(250.0, 120.0, Rgb565::YELLOW),
+            vertex(380.0, 250.0, Rgb565::MAGENTA),
+            vertex(200.5, 300.0, Rgb565::CYAN),
+        ],
+        [
+            vertex(-60.0, 150.0, Rgb565::WHITE),
+            vertex(70.0, 200.0, Rgb565::new(8, 16, 8)),
+            vertex(-10.0, 260.0, Rgb565::RED),
+        ],
+    ];
+    for t in triangles {
+        GouraudTriangle::new(t).draw(&mut display).unwrap();
+    }
+    save(&display, 2, "gouraud.png");
+}
+
+/// A fan of `n` triangles around a sub-pixel centre, alternating winding.
+fn fan(n: usize, cx: f64, cy: f64, r: f64) -> Vec<[(f64, f64); 3]> {
+    let at = |k: usize| {
+        let a = k as f64 * core::f64::consts::TAU / n as f64 + 0.1;
+        (cx + r * a.cos(), cy + r * a.sin())
+    };
+    (0..n)
+        .map(|k| {
+            if k % 2 == 0 {
+                [(cx, cy), at(k), at(k + 1)]
+            } else {
+                [(cx, cy), at(k + 1), at(k)]
+            }
+        })
+        .collect()
+}
+
+fn fan_picture() {
+    let (w, h) = (160u32, 120u32);
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(2 * w + 8, h));
+    let triangles = fan(60, 80.3, 61.7, 56.0);
+    let palette = [
+        Rgb888::CSS_ORANGE,
+        Rgb888::CSS_TEAL,
+        Rgb888::CSS_PURPLE,
+        Rgb888::CSS_GOLD,
+    ];
+    let mut counts = vec![0u8; (w * h) as usize];
+    for (k, t) in triangles.iter().enumerate() {
+        let c = palette[k % palette.len()];
+        let dark = Rgb888::new(c.r() / 4, c.g() / 4, c.b() / 4);
+        let v = [
+            vertex(t[0].0, t[0].1, Rgb888::WHITE),
+            vertex(t[1].0, t[1].1, c),
+            vertex(t[2].0, t[2].1, dark),
+        ];
+        let mut left = display.clipped(&Rectangle::new(Point::zero(), Size::new(w, h)));
+        GouraudTriangle::new(v).draw(&mut left).unwrap();
+        embedded_raster::traversal::for_each_span(
+            t.map(|(x, y)| (coord(x), coord(y))),
+            Rectangle::new(Point::zero(), Size::new(w, h)),
+            |y, x0, x1| {
+                for x in x0..x1 {
+                    counts[(y as u32 * w + x as u32) as usize] += 1;
+                }
+            },
+        );
+    }
+    let (mut gaps, mut overlaps) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let inside = triangles.iter().any(|t| {
+                reference::covers(
+                    t.map(|(x, y)| (coord(x).to_bits(), coord(y).to_bits())),
+                    x as i32,
+                    y as i32,
+                )
+            });
+            let color = match counts[(y * w + x) as usize] {
+                0 if inside => {
+                    gaps += 1;
+                    Rgb888::BLACK
+                }
+                0 => Rgb888::new(40, 40, 48),
+                1 => Rgb888::WHITE,
+                _ => {
+                    overlaps += 1;
+                    Rgb888::RED
+                }
+            };
+            Pixel(Point::new((w + 8 + x) as i32, y as i32), color)
+                .draw(&mut display)
+                .unwrap();
+        }
+    }
+    println!(
+        "fan: {} triangles, {gaps} gaps, {overlaps} pixels drawn twice",
+        triangles.len()
+    );
+    save(&display, 3, "fan.png");
+}
+
+fn heatmap() {
+    let (w, h) = (160u32, 120u32);
+    let mut pixels = vec![Rgb888::BLACK; (w * h) as usize];
+    let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
+    let mut error = vec![f64::NAN; (w * h) as usize];
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    let mut max_err: f64 = 0.0;
+    for _ in 0..40 {
+        let v: [Vertex<Rgb888>; 3] = core::array::from_fn(|_| {
+            let x = (rnd() % (w as u64 * 256 + 4000)) as i32 - 2000;
+            let y = (rnd() % (h as u64 * 256 + 4000)) as i32 - 2000;
+            let c = rnd();
+            Vertex::new(
+                Coord::from_bits(x),
+                Coord::from_bits(y),
+                Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8),
+            )
+        });
+        GouraudTriangle::new(v).draw(&mut fb).unwrap();
+        let raw = v.map(|v| (v.x.to_bits(), v.y.to_bits()));
+        let channels = v.map(|v| [v.color.r(), v.color.g(), v.color.b()].map(f64::from));
+        reference::for_each_covered(raw, 0, 0, w as i32, h as i32, |x, y| {
+            let exact = reference::interpolate(raw, channels, x, y).unwrap();
+            let got = fb.get(x, y).unwrap();
+            let got = [got.r(), got.g(), got.b()].map(f64::from);
+            let e = (0..3)
+                .map(|k| (got[k] - exact[k]).abs())
+                .fold(0.0, f64::max);
+            error[(y as u32 * w + x as u32) as usize] = e;
+            max_err = max_err.max(e);
+        });
+    }
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(w, h));
+    for y in 0..h {
+        for x in 0..w {
+            let e = error[(y * w + x) as usize];
+            let color = if e.is_nan() {
+                Rgb888::new(24, 24, 24)
+            } else {
+                // 0 LSB: blue, 0.5 LSB: green, 1 LSB: red.
+                let t = (e.clamp(0.0, 1.0) * 510.0) as u32;
+                let (r, g, b) = if t < 255 {
+                    (0, t, 255 - t)
+                } else {
+                    (t - 255, 510 - t, 0)
+                };
+                Rgb888::new(r as u8, g as u8, b as u8)
+            };
+            Pixel(Point::new(x as i32, y as i32), color)
+                .draw(&mut display)
+                .unwrap();
+        }
+    }
+    println!("heatmap: max error {max_err:.4} LSB (Rgb888) over 40 random triangles");
+    save(&display, 3, "heatmap.png");
+}
+
+fn main() {
+    std::fs::create_dir_all("docs").expect("create docs/");
+    gouraud();
+    fan_picture();
+    heatmap();
+}
