@@ -28,6 +28,23 @@
 
 use crate::fixed_point::{raw, Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
+/// Vertices with every raw coordinate below this magnitude (2²⁹ sub-pixels, about two million
+/// pixels) are set up in `i64`: differences stay below 2³⁰, so every `a·x + b·y` formed during
+/// setup and at any `i32` pixel stays below 2⁶². Larger ones use `i128`, which on a 32-bit core
+/// costs several times more.
+const NARROW_LIMIT: i64 = 1 << 29;
+
+/// `a·x + b·y`, in `i64` when `narrow` (all operands below 2³¹ in magnitude), else in `i128`.
+#[inline]
+pub(crate) fn dot2(a: i64, x: i64, b: i64, y: i64, narrow: bool) -> i128 {
+    if narrow {
+        // Cannot overflow under the caller's bound (debug builds check it).
+        i128::from(a * x + b * y)
+    } else {
+        i128::from(a) * i128::from(x) + i128::from(b) * i128::from(y)
+    }
+}
+
 /// One edge function, reduced to pixel-centre lattice form.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EdgeFunction {
@@ -39,14 +56,15 @@ pub struct EdgeFunction {
     pub c: i128,
     /// Coverage offset: pixel (i, j) is inside this edge iff `a·i + b·j + k ≥ 0`.
     pub k: i128,
+    /// Whether products of `a`, `b` and pixel coordinates fit `i64` (see [`TriangleSetup`]).
+    pub narrow: bool,
 }
 
 impl EdgeFunction {
-    fn new(va: (i64, i64), vb: (i64, i64)) -> Self {
+    fn new(va: (i64, i64), vb: (i64, i64), narrow: bool) -> Self {
         let a = va.1 - vb.1;
         let b = vb.0 - va.0;
-        let c = i128::from(a) * i128::from(HALF_PIXEL - va.0)
-            + i128::from(b) * i128::from(HALF_PIXEL - va.1);
+        let c = dot2(a, HALF_PIXEL - va.0, b, HALF_PIXEL - va.1, narrow);
         let top_left = a > 0 || (a == 0 && b > 0);
         let on_lattice = c & ((1 << SUBPIXEL_BITS) - 1) == 0;
         let t = i128::from(on_lattice && !top_left);
@@ -55,20 +73,22 @@ impl EdgeFunction {
             b,
             c,
             k: (c >> SUBPIXEL_BITS) - t,
+            narrow,
         }
     }
 
     /// The reduced coverage value `K` at pixel `(i, j)`: the pixel is inside this edge iff it is `≥ 0`.
     #[inline]
     pub fn value_at(&self, i: i64, j: i64) -> i128 {
-        i128::from(self.a) * i128::from(i) + i128::from(self.b) * i128::from(j) + self.k
+        let narrow = self.narrow && i.unsigned_abs() < 1 << 31 && j.unsigned_abs() < 1 << 31;
+        dot2(self.a, i, self.b, j, narrow) + self.k
     }
 
     /// The exact edge function at the centre of pixel `(i, j)` (squared sub-pixel units).
     #[inline]
     pub fn exact_at(&self, i: i64, j: i64) -> i128 {
-        ((i128::from(self.a) * i128::from(i) + i128::from(self.b) * i128::from(j)) << SUBPIXEL_BITS)
-            + self.c
+        let narrow = self.narrow && i.unsigned_abs() < 1 << 31 && j.unsigned_abs() < 1 << 31;
+        (dot2(self.a, i, self.b, j, narrow) << SUBPIXEL_BITS) + self.c
     }
 }
 
@@ -83,17 +103,22 @@ pub struct TriangleSetup {
     pub order: [usize; 3],
     /// Raw sub-pixel vertex positions, in input order.
     pub vertices: [(i64, i64); 3],
+    /// All raw coordinates are below 2²⁹ in magnitude, so setup products fit `i64`.
+    pub narrow: bool,
 }
 
 impl TriangleSetup {
     /// Sets up the edge functions of a triangle, or `None` if its vertices are collinear.
     ///
-    /// Every `Coord` value is accepted; all products are formed in `i128`.
+    /// Every `Coord` value is accepted; products are formed in `i64` for vertices within about
+    /// two million pixels of the origin and in `i128` beyond.
     pub fn new(v: [(Coord, Coord); 3]) -> Option<Self> {
         let vertices = v.map(|(x, y)| (raw(x), raw(y)));
+        let narrow = vertices
+            .iter()
+            .all(|&(x, y)| x.abs() < NARROW_LIMIT && y.abs() < NARROW_LIMIT);
         let [p0, p1, p2] = vertices;
-        let area2 = i128::from(p1.0 - p0.0) * i128::from(p2.1 - p0.1)
-            - i128::from(p2.0 - p0.0) * i128::from(p1.1 - p0.1);
+        let area2 = dot2(p1.0 - p0.0, p2.1 - p0.1, p0.0 - p2.0, p1.1 - p0.1, narrow);
         let (order, area2) = match area2 {
             0 => return None,
             a if a > 0 => ([0, 1, 2], a),
@@ -102,13 +127,14 @@ impl TriangleSetup {
         let [o0, o1, o2] = order.map(|k| vertices[k]);
         Some(TriangleSetup {
             edges: [
-                EdgeFunction::new(o1, o2),
-                EdgeFunction::new(o2, o0),
-                EdgeFunction::new(o0, o1),
+                EdgeFunction::new(o1, o2, narrow),
+                EdgeFunction::new(o2, o0, narrow),
+                EdgeFunction::new(o0, o1, narrow),
             ],
             area2,
             order,
             vertices,
+            narrow,
         })
     }
 
@@ -182,6 +208,46 @@ mod tests {
         }
         assert!(setup([(0, 0), (256, 256), (-512, -512)]).is_none());
         assert!(setup([(5, 5), (5, 5), (9, 1)]).is_none());
+    }
+
+    #[test]
+    fn narrow_and_wide_setups_agree_at_the_limit() {
+        // Just inside the i64 limit, queried at the ends of the i32 pixel range; debug builds
+        // (overflow checks on) would panic if the i64 bound were wrong.
+        let l = (NARROW_LIMIT - 1) as i32;
+        for v in [[(-l, -l), (l, -l), (-l, l)], [(l, l), (-l, 3), (5, -l)]] {
+            let narrow = setup(v).unwrap();
+            assert!(narrow.narrow);
+            // The i64 setup equals the i128 formula.
+            let area2 = |p: [(i32, i32); 3]| {
+                let d =
+                    |k: usize, m: usize| (i128::from(p[k].0 - p[m].0), i128::from(p[k].1 - p[m].1));
+                let ((x1, y1), (x2, y2)) = (d(1, 0), d(2, 0));
+                (x1 * y2 - x2 * y1).abs()
+            };
+            assert_eq!(narrow.area2, area2(v));
+            let mut wide = narrow;
+            wide.narrow = false;
+            wide.edges.iter_mut().for_each(|e| e.narrow = false);
+            for (i, j) in [
+                (0, 0),
+                (i32::MIN, i32::MAX),
+                (i32::MAX, i32::MIN),
+                (-1 << 21, 1 << 21),
+            ] {
+                for (n, w) in narrow.edges.iter().zip(&wide.edges) {
+                    assert_eq!(
+                        n.value_at(i.into(), j.into()),
+                        w.value_at(i.into(), j.into())
+                    );
+                    assert_eq!(
+                        n.exact_at(i.into(), j.into()),
+                        w.exact_at(i.into(), j.into())
+                    );
+                }
+            }
+        }
+        assert!(!setup([(1 << 29, 0), (0, 5), (7, 7)]).unwrap().narrow);
     }
 
     #[test]

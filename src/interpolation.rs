@@ -30,7 +30,7 @@
 //! // Values are fixed point with 16 fractional bits; steps are added with `wrapping_add`.
 //! ```
 
-use crate::edge::TriangleSetup;
+use crate::edge::{dot2, TriangleSetup};
 use crate::fixed_point::SUBPIXEL_BITS;
 use crate::traversal::Region;
 
@@ -115,8 +115,9 @@ enum Mode {
 #[derive(Debug, Clone, Copy)]
 pub struct AttributePlane {
     mode: Mode,
-    nx: i128,
-    ny: i128,
+    nx: i64,
+    ny: i64,
+    /// `Σ c_k·C_k`, needed by the exact path only.
     n0: i128,
     area2: i128,
     step: u32,
@@ -140,53 +141,76 @@ impl AttributePlane {
         values: [u16; 3],
         region: &Region,
     ) -> Self {
-        let (mut nx, mut ny, mut n0) = (0i128, 0i128, 0i128);
-        for (edge, &vertex) in setup.edges.iter().zip(setup.order.iter()) {
-            let c = i128::from(values.get(vertex).copied().unwrap_or(0));
-            nx += c * i128::from(edge.a);
-            ny += c * i128::from(edge.b);
-            n0 += c * edge.c;
-        }
-        let area2 = setup.area2;
-        let dx = inverse.scale(nx, ROW_BITS + SUBPIXEL_BITS);
+        // Oriented vertex values; Σ a_k = Σ b_k = 0, so Σ c_k·a_k = (c₁−c₀)·a₁ + (c₂−c₀)·a₂,
+        // below 2⁵⁰ in magnitude for 16-bit values: exact in i64.
+        let c = setup
+            .order
+            .map(|v| i64::from(values.get(v).copied().unwrap_or(0)));
+        let [_, e1, e2] = &setup.edges;
+        let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
+        let nx = d1 * e1.a + d2 * e2.a;
+        let ny = d1 * e1.b + d2 * e2.b;
+        let dx = inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS);
         // Two's complement, wrapping: adding it steps the value modulo 2^32, which is exact
         // whenever the stepped values stay in range, as they do inside the triangle.
         let step = ((dx + (1 << (ROW_BITS - Self::FRACTION_BITS - 1)))
             >> (ROW_BITS - Self::FRACTION_BITS)) as u32;
         let (x, y) = (i64::from(region.x0), i64::from(region.y0));
-        let mut plane = AttributePlane {
+        let extent = region.width() + region.height() + 2;
+        if extent <= MAX_STEPPED_EXTENT {
+            let dy = inverse.scale(i128::from(ny), ROW_BITS + SUBPIXEL_BITS);
+            // c(p) = c₀ + (nx·(p_x − x₀) + ny·(p_y − y₀)) / area2 with vertex 0 of the oriented
+            // order: a small numerator for on-screen triangles, so no division is needed.
+            let (vx, vy) = setup
+                .vertices
+                .get(setup.order[0])
+                .copied()
+                .unwrap_or((0, 0));
+            let half = 1 << (SUBPIXEL_BITS - 1);
+            let (px, py) = (
+                (x << SUBPIXEL_BITS) + half - vx,
+                (y << SUBPIXEL_BITS) + half - vy,
+            );
+            let small =
+                (nx.unsigned_abs() | ny.unsigned_abs() | px.unsigned_abs() | py.unsigned_abs())
+                    < 1 << 31;
+            let offset = dot2(nx, px, ny, py, small);
+            let value = (i128::from(c[0]) << ROW_BITS)
+                + inverse.scale(offset, ROW_BITS)
+                + (1 << (ROW_BITS - 1));
+            // Anywhere the traversal can ask for, |value| ≤ |value₀| + (|dx| + |dy|)·extent.
+            let bound = value.abs() + (dx.abs() + dy.abs()) * i128::from(extent);
+            if bound < 1 << 62 {
+                return AttributePlane {
+                    mode: Mode::Stepped {
+                        dx: dx as i64,
+                        dy: dy as i64,
+                        value: value as i64,
+                        x,
+                        y,
+                    },
+                    nx,
+                    ny,
+                    n0: 0,
+                    area2: setup.area2,
+                    step,
+                };
+            }
+        }
+        let n0 = setup
+            .edges
+            .iter()
+            .zip(c)
+            .map(|(e, c)| i128::from(c) * e.c)
+            .sum();
+        AttributePlane {
             mode: Mode::Exact { x, y },
             nx,
             ny,
             n0,
-            area2,
+            area2: setup.area2,
             step,
-        };
-        let extent = region.width() + region.height() + 2;
-        if extent <= MAX_STEPPED_EXTENT {
-            let dy = inverse.scale(ny, ROW_BITS + SUBPIXEL_BITS);
-            // c(p) = c_v + (nx·(p_x − x_v) + ny·(p_y − y_v)) / area2 for the first oriented
-            // vertex v: a small numerator for on-screen triangles, so no division is needed.
-            let first = setup.order[0];
-            let (vx, vy) = setup.vertices.get(first).copied().unwrap_or((0, 0));
-            let c_v = i128::from(values.get(first).copied().unwrap_or(0));
-            let half = 1 << (SUBPIXEL_BITS - 1);
-            let offset = nx * i128::from((x << SUBPIXEL_BITS) + half - vx)
-                + ny * i128::from((y << SUBPIXEL_BITS) + half - vy);
-            let value = (c_v << ROW_BITS) + inverse.scale(offset, ROW_BITS) + (1 << (ROW_BITS - 1));
-            // Anywhere the traversal can ask for, |value| ≤ |value₀| + (|dx| + |dy|)·extent.
-            let bound = value.abs() + (dx.abs() + dy.abs()) * i128::from(extent);
-            if bound < 1 << 62 {
-                plane.mode = Mode::Stepped {
-                    dx: dx as i64,
-                    dy: dy as i64,
-                    value: value as i64,
-                    x,
-                    y,
-                };
-            }
         }
-        plane
     }
 
     /// A plane with the same `value` everywhere.
@@ -204,7 +228,7 @@ impl AttributePlane {
     /// `Σ c_k E_k` at the centre of pixel `(x, y)`.
     #[inline]
     fn numerator(&self, x: i64, y: i64) -> i128 {
-        ((self.nx * i128::from(x) + self.ny * i128::from(y)) << SUBPIXEL_BITS) + self.n0
+        (dot2(self.nx, x, self.ny, y, false) << SUBPIXEL_BITS) + self.n0
     }
 
     /// The value (+½, [`FRACTION_BITS`](Self::FRACTION_BITS) fractional bits) at pixel `(x, y)`,

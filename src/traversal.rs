@@ -28,7 +28,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use crate::edge::TriangleSetup;
+use crate::edge::{dot2, TriangleSetup};
 use crate::fixed_point::Coord;
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
@@ -154,8 +154,8 @@ impl Spans {
         };
         for e in &setup.edges {
             let k00 = e.value_at(x0, y0);
-            let da = i128::from(e.a) * i128::from(x1 - x0);
-            let db = i128::from(e.b) * i128::from(y1 - y0);
+            let da = dot2(e.a, x1 - x0, 0, 0, e.narrow);
+            let db = dot2(e.b, y1 - y0, 0, 0, e.narrow);
             let corners = [k00, k00 + da, k00 + db, k00 + da + db];
             let min = corners.iter().copied().min().unwrap_or(0);
             let max = corners.iter().copied().max().unwrap_or(0);
