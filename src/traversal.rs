@@ -1,15 +1,18 @@
-//! Span traversal: exact covered spans per row, found by walking the edge functions.
+//! Span traversal: exact covered spans per row, by stepping each edge's boundary column.
 //!
-//! For every row of the triangle's pixel bounding box (clipped to the target), each edge keeps the
-//! column where its edge function changes sign. Moving to the next row adds `B` to the edge value;
-//! the boundary is then walked a pixel at a time (adding or subtracting `A`) until the sign flips.
-//! Walking costs a few additions per boundary pixel, so a triangle costs O(width + height) of
-//! traversal work plus the span fills — there is no per-pixel edge test and no division.
+//! Each edge's reduced function `K(i, j) = a·i + b·j + k` (see [`edge`](crate::edge)) is `≥ 0`
+//! on one side of a boundary column per row. For an edge that bounds the span's start (`a > 0`)
+//! that column is `⌈−K(0, j)/a⌉`; for one that bounds its end (`a < 0`) it is `⌊K(0, j)/|a|⌋`.
+//! Both are stepped from row to row like a Bresenham line: the column moves by the precomputed
+//! quotient of `b / |a|`, the remainder accumulates, and one comparison carries it. So each row
+//! costs two additions and a compare per edge, whatever the slope, and the decision is exact —
+//! no rounding anywhere. Quotients below 4 are found by subtraction, so small triangles need no
+//! division at all (Cortex-M0 has no divider).
 //!
-//! Edge functions are first tested at the corners of the clipped region in `i128`: an edge that
-//! excludes the whole region rejects the triangle, an edge that includes all of it is dropped. The
-//! edges that remain cross the region, so their values inside it are bounded by
-//! `|A|·(W+2) + |B|·H < 2^58` and are stepped exactly in `i64`.
+//! Edge functions are first tested at the corners of the clipped region: an edge that excludes
+//! the whole region rejects the triangle, an edge that includes all of it is dropped. The edges
+//! that remain cross the region, so their values there are below `|a|·(W+2) + |b|·H < 2^58` and
+//! every stepped quantity fits `i64`.
 //!
 //! ```
 //! use embedded_graphics::{prelude::*, primitives::Rectangle};
@@ -54,27 +57,84 @@ impl Span {
     }
 }
 
-/// Which side of the span an edge bounds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Side {
-    /// `a > 0`: the edge value grows to the right; it bounds the span's start.
-    Left,
-    /// `a < 0`: it bounds the span's end.
-    Right,
-    /// `a = 0`: the whole row is in or out.
-    Horizontal,
+/// `(⌊n / d⌋, n mod d)` for `d > 0`. Quotients of magnitude below 4 are found by subtraction.
+#[inline]
+fn div_mod_floor(n: i64, d: i64) -> (i64, i64) {
+    if n >= 0 && n < 4 * d {
+        let (mut q, mut r) = (0, n);
+        while r >= d {
+            r -= d;
+            q += 1;
+        }
+        (q, r)
+    } else if n < 0 && n >= -4 * d {
+        let (mut q, mut r) = (0, n);
+        while r < 0 {
+            r += d;
+            q -= 1;
+        }
+        (q, r)
+    } else {
+        let q = n.checked_div_euclid(d).unwrap_or(0);
+        (q, n.wrapping_sub(q.wrapping_mul(d)))
+    }
 }
 
-/// One crossing edge being walked down the rows.
+/// The boundary column of one edge, stepped exactly from row to row.
+///
+/// `rem` is the edge's reduced value at the boundary column, kept in `[0, m)` with `m = |a|`.
 #[derive(Debug, Clone, Copy)]
-struct WalkEdge {
-    a: i64,
-    b: i64,
-    side: Side,
-    /// Boundary column: first inside column (left) or last inside column (right).
+struct Boundary {
+    /// Boundary column: first inside column (start edges) or last one (end edges); unclamped.
     x: i64,
-    /// Reduced edge value at `(x, current row)`.
-    k: i64,
+    rem: i64,
+    m: i64,
+    /// Column change per row before the carry, and remainder change per row.
+    step: i64,
+    rem_step: i64,
+    /// Column change of the carry: −1 for start edges, +1 for end edges.
+    carry: i64,
+}
+
+impl Boundary {
+    /// For edge coefficients `a ≠ 0`, `b` and value `k` at `(x0, row)`.
+    fn new(a: i64, b: i64, k: i64, x0: i64) -> Self {
+        let m = a.abs();
+        let (q, rem) = div_mod_floor(k, m);
+        let (step, rem_step) = div_mod_floor(b, m);
+        if a > 0 {
+            // First x with k + a·(x − x0) ≥ 0; moving one column left subtracts m.
+            Boundary {
+                x: x0 - q,
+                rem,
+                m,
+                step: -step,
+                rem_step,
+                carry: -1,
+            }
+        } else {
+            // Last x with k − m·(x − x0) ≥ 0; moving one column right subtracts m.
+            Boundary {
+                x: x0 + q,
+                rem,
+                m,
+                step,
+                rem_step,
+                carry: 1,
+            }
+        }
+    }
+
+    /// Moves to the next row: the value at the old column grows by `b`.
+    #[inline(always)]
+    fn advance(&mut self) {
+        self.x += self.step;
+        self.rem += self.rem_step;
+        if self.rem >= self.m {
+            self.rem -= self.m;
+            self.x += self.carry;
+        }
+    }
 }
 
 /// The pixel rectangle a triangle is traversed over: its pixel bounding box clipped to a target.
@@ -123,13 +183,16 @@ impl Region {
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom.
 #[derive(Debug, Clone)]
 pub struct Spans {
-    edges: [WalkEdge; 3],
-    count: usize,
+    /// The first `starts` bound the span's start, the last `ends` its end.
+    edges: [Boundary; 3],
+    starts: usize,
+    ends: usize,
+    /// A horizontal crossing edge: `(b, value in the current row)`; the row is in iff value ≥ 0.
+    horizontal: Option<(i64, i64)>,
     x0: i64,
     x1: i64,
     y: i64,
     y1: i64,
-    first: bool,
 }
 
 impl Spans {
@@ -137,54 +200,56 @@ impl Spans {
     pub fn new(setup: &TriangleSetup, region: Region) -> Spans {
         let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
         let (x1, y1) = (i64::from(region.x1), i64::from(region.y1));
-        let mut spans = Spans {
-            edges: [WalkEdge {
-                a: 0,
-                b: 0,
-                side: Side::Horizontal,
-                x: 0,
-                k: 0,
-            }; 3],
-            count: 0,
-            x0,
-            x1,
-            y: y0,
-            y1,
-            first: true,
-        };
+        let mut spans = Spans::empty();
+        let (w, h) = (x1 - x0, y1 - y0);
         for e in &setup.edges {
-            let k00 = e.value_at(x0, y0);
-            let da = dot2(e.a, x1 - x0, 0, 0, e.narrow);
-            let db = dot2(e.b, y1 - y0, 0, 0, e.narrow);
-            let corners = [k00, k00 + da, k00 + db, k00 + da + db];
-            let min = corners.iter().copied().min().unwrap_or(0);
-            let max = corners.iter().copied().max().unwrap_or(0);
+            // The edge's value at the region's top-left pixel and its range over the region.
+            let (k, min, max) = if e.narrow {
+                // |a|, |b| < 2^30 and |x0|, |y0|, w, h < 2^24: well inside i64.
+                let k = e.a * x0 + e.b * y0 + e.k as i64;
+                let (da, db) = (e.a * w, e.b * h);
+                let min = k + da.min(0) + db.min(0);
+                (k, i128::from(min), i128::from(k + da.max(0) + db.max(0)))
+            } else {
+                let k = e.value_at(x0, y0);
+                let (da, db) = (dot2(e.a, w, 0, 0, false), dot2(e.b, h, 0, 0, false));
+                (
+                    k as i64,
+                    k + da.min(0) + db.min(0),
+                    k + da.max(0) + db.max(0),
+                )
+            };
             if max < 0 {
                 // No pixel of the region is inside this edge.
-                spans.y = y1 + 1;
-                spans.count = 0;
-                return spans;
+                return Spans::empty();
             }
             if min >= 0 {
                 continue;
             }
-            // The edge crosses the region: |K| ≤ |a|·W + |b|·H there, well inside i64.
-            let (side, x, k) = match e.a {
-                a if a > 0 => (Side::Left, x0, k00),
-                a if a < 0 => (Side::Right, x1, k00 + da),
-                _ => (Side::Horizontal, x0, k00),
+            // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2^58: the i64 above is exact.
+            // Start edges fill `edges` from the front, end edges from the back.
+            let slot = match e.a {
+                0 => {
+                    spans.horizontal = Some((e.b, k));
+                    continue;
+                }
+                a if a > 0 => {
+                    spans.starts += 1;
+                    spans.starts - 1
+                }
+                _ => {
+                    spans.ends += 1;
+                    3 - spans.ends
+                }
             };
-            if let Some(slot) = spans.edges.get_mut(spans.count) {
-                *slot = WalkEdge {
-                    a: e.a,
-                    b: e.b,
-                    side,
-                    x,
-                    k: k as i64,
-                };
-                spans.count += 1;
+            if let Some(slot) = spans.edges.get_mut(slot) {
+                *slot = Boundary::new(e.a, e.b, k, x0);
             }
         }
+        spans.x0 = x0;
+        spans.x1 = x1;
+        spans.y = y0;
+        spans.y1 = y1;
         spans
     }
 
@@ -197,72 +262,24 @@ impl Spans {
 
     /// An iterator with no spans.
     pub fn empty() -> Spans {
-        let edge = WalkEdge {
-            a: 0,
-            b: 0,
-            side: Side::Horizontal,
+        let none = Boundary {
             x: 0,
-            k: 0,
+            rem: 0,
+            m: 1,
+            step: 0,
+            rem_step: 0,
+            carry: 1,
         };
         Spans {
-            edges: [edge; 3],
-            count: 0,
+            edges: [none; 3],
+            starts: 0,
+            ends: 0,
+            horizontal: None,
             x0: 0,
             x1: -1,
             y: 1,
             y1: 0,
-            first: false,
         }
-    }
-
-    /// Walks every crossing edge to the current row; returns the covered columns `[start, end]`.
-    #[inline]
-    fn walk_row(&mut self) -> (i64, i64) {
-        let (x0, x1) = (self.x0, self.x1);
-        let advance = !self.first;
-        self.first = false;
-        let (mut start, mut end) = (x0, x1);
-        for e in self.edges.iter_mut().take(self.count) {
-            if advance {
-                e.k += e.b;
-            }
-            match e.side {
-                Side::Left => {
-                    if e.k < 0 {
-                        while e.k < 0 && e.x <= x1 {
-                            e.x += 1;
-                            e.k += e.a;
-                        }
-                    } else {
-                        while e.x > x0 && e.k - e.a >= 0 {
-                            e.x -= 1;
-                            e.k -= e.a;
-                        }
-                    }
-                    start = start.max(e.x);
-                }
-                Side::Right => {
-                    if e.k < 0 {
-                        while e.k < 0 && e.x >= x0 {
-                            e.x -= 1;
-                            e.k -= e.a;
-                        }
-                    } else {
-                        while e.x < x1 && e.k + e.a >= 0 {
-                            e.x += 1;
-                            e.k += e.a;
-                        }
-                    }
-                    end = end.min(e.x);
-                }
-                Side::Horizontal => {
-                    if e.k < 0 {
-                        end = x0 - 1;
-                    }
-                }
-            }
-        }
-        (start, end)
     }
 }
 
@@ -272,7 +289,22 @@ impl Iterator for Spans {
     #[inline]
     fn next(&mut self) -> Option<Span> {
         while self.y <= self.y1 {
-            let (start, end) = self.walk_row();
+            let (mut start, mut end) = (self.x0, self.x1);
+            let (starts, ends) = (self.starts, self.ends);
+            for e in self.edges.iter_mut().take(starts) {
+                start = start.max(e.x);
+                e.advance();
+            }
+            for e in self.edges.iter_mut().skip(3 - ends) {
+                end = end.min(e.x);
+                e.advance();
+            }
+            if let Some((b, k)) = &mut self.horizontal {
+                if *k < 0 {
+                    end = start - 1;
+                }
+                *k += *b;
+            }
             let y = self.y;
             self.y += 1;
             if start <= end {
@@ -312,6 +344,33 @@ mod tests {
             }
         }
         m
+    }
+
+    #[test]
+    fn div_mod_floor_matches_euclid() {
+        for d in [1i64, 2, 3, 7, 256, 1 << 33] {
+            for n in [
+                -9 * d - 1,
+                -4 * d - 1,
+                -4 * d,
+                -3 * d + 1,
+                -1,
+                0,
+                1,
+                d - 1,
+                d,
+                4 * d - 1,
+                4 * d,
+                1 << 57,
+                -(1 << 57),
+            ] {
+                assert_eq!(
+                    div_mod_floor(n, d),
+                    (n.div_euclid(d), n.rem_euclid(d)),
+                    "{n} / {d}"
+                );
+            }
+        }
     }
 
     #[test]
