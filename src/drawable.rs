@@ -2,7 +2,7 @@
 //!
 //! Both implement [`Drawable`] for any [`DrawTarget`] of their colour. They clip to the target's
 //! `bounding_box()` before traversal, so no pixel outside it is ever emitted, and they emit whole
-//! spans (`fill_contiguous`, `fill_solid`), which [`SliceFramebuffer`](crate::SliceFramebuffer)
+//! spans (`fill_contiguous`, `fill_solid`), which [`SliceFramebuffer`]
 //! turns into plain slice writes.
 //!
 //! ```

@@ -62,12 +62,12 @@ pub use drawable::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vert
 pub use fixed_point::Coord;
 pub use framebuffer::SliceFramebuffer;
 
-#[cfg(feature = "reference")]
-pub mod reference;
-pub mod math3d;
-pub mod pipeline;
-pub mod shading;
 pub mod geometry;
+pub mod math3d;
 pub mod meshes;
 #[cfg(feature = "std")]
 pub mod obj;
+pub mod pipeline;
+#[cfg(feature = "reference")]
+pub mod reference;
+pub mod shading;

@@ -1,0 +1,155 @@
+//! Renders a lit icosphere and torus three ways side by side into `docs/lit_mesh.png`:
+//! flat (one Lambert intensity per face), Gouraud (per vertex, interpolated) and per-pixel
+//! lighting of quadratically interpolated normals. The meshes are the coarse ones stored in
+//! flash for firmware (`meshes::icosphere::ICOSPHERE`, 80 faces; `meshes::torus::TORUS`,
+//! 192 faces), drawn by the fixed-point pipeline into an `Rgb888` framebuffer with a 16-bit
+//! z-buffer.
+//!
+//! Run with `cargo run --release --features std --example lit_mesh`.
+//!
+//! `--interactive` would open a rotating SDL window, but that needs the simulator's `with-sdl`
+//! feature and the SDL2 library; the example explains how to enable it instead (see
+//! [`interactive`]).
+
+use embedded_graphics::{
+    mono_font::{ascii::FONT_6X10, MonoTextStyle},
+    pixelcolor::Rgb888,
+    prelude::*,
+    primitives::Rectangle,
+    text::Text,
+};
+use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
+use embedded_raster::meshes::{icosphere::ICOSPHERE, torus::TORUS};
+use embedded_raster::pipeline::{DepthTarget, Mesh, Pipeline};
+use embedded_raster::shading::{Light, Material, Shading};
+
+const PANEL_W: u32 = 220;
+const PANEL_H: u32 = 200;
+const LABEL_H: u32 = 14;
+
+fn s(v: f64) -> Scalar {
+    Scalar::from_num(v)
+}
+
+/// Draws `mesh` rotated by `yaw`/`pitch`/`roll` into the panel at `(column, row)`.
+#[allow(clippy::too_many_arguments)]
+fn draw_panel(
+    target: &mut DepthTarget<'_, Rgb888>,
+    mesh: &Mesh<'_>,
+    shading: Shading,
+    color: Rgb888,
+    column: u32,
+    row: u32,
+    rotation: Mat4,
+    distance: f64,
+) {
+    let viewport = Rectangle::new(
+        Point::new(
+            (column * PANEL_W) as i32,
+            (row * (PANEL_H + LABEL_H) + LABEL_H) as i32,
+        ),
+        Size::new(PANEL_W, PANEL_H),
+    );
+    let aspect = Scalar::from_num(PANEL_W) / Scalar::from_num(PANEL_H);
+    let projection = Mat4::perspective(Angle::from_degrees(40), aspect, s(0.5), s(20.0));
+    let view = Mat4::translation(Vec3::new(s(0.0), s(0.0), s(-distance)));
+    // World-space light from the upper left, slightly in front.
+    let light = Light::new(Vec3::new(s(-0.5), s(0.7), s(0.6)), s(0.12));
+    let pipeline = Pipeline::new(rotation, projection * view, viewport, light);
+    pipeline.draw_mesh(mesh, &Material::new(color, shading), target);
+}
+
+fn render() -> SimulatorDisplay<Rgb888> {
+    let (w, h) = (3 * PANEL_W, 2 * (PANEL_H + LABEL_H));
+    let mut pixels = vec![Rgb888::new(24, 26, 32); (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    let mut target = DepthTarget::new(&mut pixels, &mut depth, w, h).expect("buffers fit");
+    target.clear(Rgb888::new(24, 26, 32));
+
+    let sphere_rotation =
+        Mat4::rotation_y(Angle::from_degrees(20)) * Mat4::rotation_x(Angle::from_degrees(-15));
+    let torus_rotation =
+        Mat4::rotation_x(Angle::from_degrees(-60)) * Mat4::rotation_z(Angle::from_degrees(10));
+    let modes = [
+        (Shading::Flat, "flat"),
+        (Shading::Gouraud, "Gouraud"),
+        (Shading::Quadratic, "quadratic normals"),
+    ];
+    let style = MonoTextStyle::new(&FONT_6X10, Rgb888::new(220, 220, 220));
+    for (column, (shading, name)) in modes.iter().enumerate() {
+        let column = column as u32;
+        draw_panel(
+            &mut target,
+            &ICOSPHERE,
+            *shading,
+            Rgb888::new(250, 190, 110),
+            column,
+            0,
+            sphere_rotation,
+            3.6,
+        );
+        draw_panel(
+            &mut target,
+            &TORUS,
+            *shading,
+            Rgb888::new(120, 190, 250),
+            column,
+            1,
+            torus_rotation,
+            4.4,
+        );
+        for row in 0..2 {
+            let faces = [ICOSPHERE.indices.len(), TORUS.indices.len()][row];
+            let label = format!("{name}, {faces} faces");
+            let at = Point::new(
+                (column * PANEL_W + 6) as i32,
+                (row as u32 * (PANEL_H + LABEL_H) + 10) as i32,
+            );
+            Text::new(&label, at, style)
+                .draw(&mut target)
+                .expect("infallible");
+        }
+    }
+
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(w, h));
+    display
+        .fill_contiguous(&Rectangle::new(Point::zero(), Size::new(w, h)), pixels)
+        .expect("infallible");
+    display
+}
+
+/// What to do for the rotating window: it cannot be switched on by a feature of this crate.
+///
+/// The simulator is a (target-specific) dev-dependency, and Cargo features cannot turn on
+/// features of dev-dependencies; CI also builds with `--all-features` on machines without SDL2.
+/// To try it locally: install SDL2 (`apt-get install libsdl2-dev`), change the dev-dependency to
+/// `embedded-graphics-simulator = { version = "0.8", features = ["with-sdl"] }`, and replace
+/// the body of this function with a loop that advances the model rotation each frame, calls
+/// [`draw_panel`] on a `DepthTarget` and shows it in an `embedded_graphics_simulator::Window`
+/// (`window.update(&display)`, leaving on `SimulatorEvent::Quit`).
+fn interactive() {
+    println!(
+        "The interactive window needs SDL2 and embedded-graphics-simulator's `with-sdl` feature."
+    );
+    println!("It is off here so that builds and CI never need SDL2. To enable it locally:");
+    println!("  1. apt-get install libsdl2-dev");
+    println!("  2. in Cargo.toml: embedded-graphics-simulator = {{ version = \"0.8\", features = [\"with-sdl\"] }}");
+    println!("  3. see `interactive()` in examples/lit_mesh.rs for the render loop to add.");
+    println!("Rendering the still image instead.");
+}
+
+fn main() {
+    if std::env::args().any(|a| a == "--interactive") {
+        interactive();
+    }
+    let display = render();
+    let settings = OutputSettingsBuilder::new().scale(2).build();
+    let path = "docs/lit_mesh.png";
+    std::fs::create_dir_all("docs").expect("create docs/");
+    display
+        .to_rgb_output_image(&settings)
+        .save_png(path)
+        .expect("write PNG");
+    println!("wrote {path}");
+}

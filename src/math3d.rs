@@ -1,0 +1,623 @@
+//! Fixed-point 3D maths for the [`pipeline`](crate::pipeline): vectors, 4×4 matrices, binary
+//! angles with sine and cosine, and an inverse square root — all integer, for cores without an FPU.
+//!
+//! * Scalars are [`Scalar`] (`I16F16`: 16 fractional bits, range ±32768). Products are formed in
+//!   `i64` and rounded back; results that leave the `I16F16` range saturate instead of panicking
+//!   (as do sums of products beyond `i64`, which only extreme inputs reach).
+//! * Angles are [`Angle`]s: a `u16` fraction of a full turn (65536 steps), so they wrap for free.
+//!   [`Angle::sin`] evaluates a degree-11 odd polynomial in `i64` with 30 fractional bits (error
+//!   below 2⁻²³ before the final rounding to `I16F16`).
+//! * [`inv_sqrt`] is a 24-entry table plus two Newton steps in `u64`: relative error below 2⁻¹⁸,
+//!   no division.
+//!
+//! Matrices act on column vectors (`p' = M·p`) and are stored row by row, as written on paper.
+//!
+//! ```
+//! use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
+//!
+//! let quarter = Angle::from_degrees(90);
+//! let r = Mat4::rotation_z(quarter);
+//! let p = r.transform_vector(Vec3::new(Scalar::ONE, Scalar::ZERO, Scalar::ZERO));
+//! assert_eq!(p, Vec3::new(Scalar::ZERO, Scalar::ONE, Scalar::ZERO));
+//! let n = Vec3::from_bits(3 << 16, 0, 4 << 16).normalize();
+//! assert!((n.x.to_bits() - 39322).abs() <= 1 && (n.z.to_bits() - 52429).abs() <= 1);
+//! ```
+
+use core::ops::{Add, Mul, Neg, Sub};
+
+use fixed::types::I16F16;
+
+/// The scalar type of the 3D pipeline: signed fixed point with 16 fractional bits.
+pub type Scalar = I16F16;
+
+/// Fractional bits of [`Scalar`].
+pub const SCALAR_BITS: u32 = 16;
+
+/// Saturates a wide value to `i32`.
+#[inline]
+pub(crate) fn sat32(v: i64) -> i32 {
+    v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+}
+
+/// `round(a·b / 2^16)` of raw `I16F16` values, saturating.
+#[inline]
+fn mul_raw(a: i32, b: i32) -> i32 {
+    sat32((i64::from(a) * i64::from(b) + (1 << 15)) >> SCALAR_BITS)
+}
+
+/// `round(n / d)`, saturated to `i32`; `0` if `d = 0`.
+fn div_round(n: i64, d: i64) -> i32 {
+    if d == 0 {
+        return 0;
+    }
+    let (n, d) = (i128::from(n), i128::from(d));
+    let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+    let q = (2 * n + d).div_euclid(2 * d);
+    q.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32
+}
+
+/// `round(a / b)` of raw `I16F16` values (the quotient in `I16F16`), saturating; `0` if `b = 0`.
+#[inline]
+fn div_raw(a: i32, b: i32) -> i32 {
+    div_round(i64::from(a) << SCALAR_BITS, i64::from(b))
+}
+
+/// A binary angle: `turns / 65536` of a full turn. Arithmetic on it wraps around the circle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Angle(pub u16);
+
+/// Odd Taylor coefficients of `sin(π/2 · t)` (t in [0, 1]), 30 fractional bits, highest first.
+const SIN_COEFFICIENTS: [i64; 6] = [
+    -3864,
+    172_272,
+    -5_026_995,
+    85_569_306,
+    -693_598_668,
+    1_686_629_713,
+];
+
+impl Angle {
+    /// No rotation.
+    pub const ZERO: Angle = Angle(0);
+    /// A quarter turn (90°).
+    pub const QUARTER: Angle = Angle(1 << 14);
+    /// A half turn (180°).
+    pub const HALF: Angle = Angle(1 << 15);
+
+    /// The angle of `degrees` (any integer; rounded to the nearest 1/65536 turn).
+    pub fn from_degrees(degrees: i32) -> Angle {
+        let t = (i64::from(degrees) * 65536 * 2 + 360).div_euclid(720);
+        Angle(t.rem_euclid(65536) as u16)
+    }
+
+    /// The angle of `numerator / denominator` turns (`Angle::ZERO` if the denominator is 0).
+    pub fn from_turns(numerator: i32, denominator: i32) -> Angle {
+        if denominator == 0 {
+            return Angle::ZERO;
+        }
+        let (n, d) = (i64::from(numerator) * 65536, i64::from(denominator));
+        let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+        Angle((2 * n + d).div_euclid(2 * d).rem_euclid(65536) as u16)
+    }
+
+    /// This angle plus `other`, wrapping around the circle.
+    pub const fn wrapping_add(self, other: Angle) -> Angle {
+        Angle(self.0.wrapping_add(other.0))
+    }
+
+    /// Half of this angle, in `[0°, 180°)`.
+    pub const fn half(self) -> Angle {
+        Angle(self.0 >> 1)
+    }
+
+    /// The sine, within 1 LSB of `I16F16`.
+    pub fn sin(self) -> Scalar {
+        Scalar::from_bits(sin_raw(self.0))
+    }
+
+    /// The cosine, within 1 LSB of `I16F16`.
+    pub fn cos(self) -> Scalar {
+        Scalar::from_bits(sin_raw(self.0.wrapping_add(1 << 14)))
+    }
+}
+
+/// `sin(2π · a / 65536)` as raw `I16F16`, rounded to nearest.
+fn sin_raw(a: u16) -> i32 {
+    let quadrant = a >> 14;
+    let mut t = i64::from(a & 0x3fff);
+    if quadrant & 1 == 1 {
+        t = (1 << 14) - t;
+    }
+    // t in [0, 1] with 30 fractional bits.
+    let x = t << 16;
+    let x2 = (x * x) >> 30;
+    let mut p = 0i64;
+    for c in SIN_COEFFICIENTS {
+        p = c + ((p * x2) >> 30);
+    }
+    let s = (p * x) >> 30;
+    let r = ((s + (1 << 13)) >> 14).clamp(0, 1 << 16) as i32;
+    if quadrant >= 2 {
+        -r
+    } else {
+        r
+    }
+}
+
+/// Initial guesses of `1/√M` for `M` in `[(i + 8)/32, (i + 9)/32)`, at the middle of each bucket,
+/// with 30 fractional bits: `⌊√(2^66 / (2i + 17))⌋`.
+const INV_SQRT_TABLE: [u32; 24] = {
+    let mut t = [0u32; 24];
+    let mut i = 0;
+    while i < 24 {
+        t[i] = ((1u128 << 66) / (2 * i as u128 + 17)).isqrt() as u32;
+        i += 1;
+    }
+    t
+};
+
+/// The inverse square root of `x > 0` as `(r, s)` with `1/√x ≈ r / 2^s`; `r` lies in `(2^30, 2^31]`
+/// and `s` in `[30, 62]`. Relative error below 2⁻¹⁸. `x = 0` gives `(0, 0)`.
+///
+/// Normalises `x` by an even shift to `M·2^k` with `M` in `[1/4, 1)`, looks up a first guess of
+/// `1/√M` and refines it with two Newton steps `r ← r·(3 − M·r²)/2` in `u64`.
+pub fn inv_sqrt(x: u64) -> (u32, u32) {
+    if x == 0 {
+        return (0, 0);
+    }
+    let e = x.leading_zeros() & !1;
+    let m = x << e;
+    // M with 32 fractional bits, in [2^30, 2^32).
+    let m32 = m >> 32;
+    let index = ((m32 >> 27) as usize).saturating_sub(8);
+    let mut r = u64::from(INV_SQRT_TABLE.get(index).copied().unwrap_or(1 << 30));
+    for _ in 0..2 {
+        let r2 = (r * r) >> 30;
+        let mr2 = (m32 * r2) >> 32;
+        r = (r * ((3u64 << 30).saturating_sub(mr2))) >> 31;
+    }
+    // x = M·2^(64−e): 1/√x = r·2^-30 · 2^(e/2 − 32).
+    (r.min(1 << 31) as u32, 62 - e / 2)
+}
+
+/// A 3D vector of [`Scalar`]s.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Vec3 {
+    /// x component.
+    pub x: Scalar,
+    /// y component.
+    pub y: Scalar,
+    /// z component.
+    pub z: Scalar,
+}
+
+impl Vec3 {
+    /// The zero vector.
+    pub const ZERO: Vec3 = Vec3::from_bits(0, 0, 0);
+
+    /// A vector from its components.
+    pub const fn new(x: Scalar, y: Scalar, z: Scalar) -> Self {
+        Vec3 { x, y, z }
+    }
+
+    /// A vector from raw `I16F16` bits (`65536` is `1.0`); usable in `const` mesh data.
+    pub const fn from_bits(x: i32, y: i32, z: i32) -> Self {
+        Vec3 {
+            x: Scalar::from_bits(x),
+            y: Scalar::from_bits(y),
+            z: Scalar::from_bits(z),
+        }
+    }
+
+    /// The raw components.
+    pub const fn to_bits(self) -> [i32; 3] {
+        [self.x.to_bits(), self.y.to_bits(), self.z.to_bits()]
+    }
+
+    /// The dot product with 32 fractional bits: exact unless it exceeds the `i64` range, where it
+    /// saturates.
+    #[inline]
+    pub fn dot_wide(self, o: Vec3) -> i64 {
+        let (a, b) = (self.to_bits(), o.to_bits());
+        (i64::from(a[0]) * i64::from(b[0]))
+            .saturating_add(i64::from(a[1]) * i64::from(b[1]))
+            .saturating_add(i64::from(a[2]) * i64::from(b[2]))
+    }
+
+    /// The dot product, rounded and saturated to a [`Scalar`].
+    pub fn dot(self, o: Vec3) -> Scalar {
+        Scalar::from_bits(sat32(
+            self.dot_wide(o).saturating_add(1 << 15) >> SCALAR_BITS,
+        ))
+    }
+
+    /// The exact cross product with 32 fractional bits.
+    pub fn cross_wide(self, o: Vec3) -> [i64; 3] {
+        let (a, b) = (self.to_bits().map(i64::from), o.to_bits().map(i64::from));
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+
+    /// The cross product, rounded and saturated.
+    pub fn cross(self, o: Vec3) -> Vec3 {
+        let c = self
+            .cross_wide(o)
+            .map(|v| sat32((v + (1 << 15)) >> SCALAR_BITS));
+        Vec3::from_bits(c[0], c[1], c[2])
+    }
+
+    /// Each component multiplied by `s`, rounded and saturated.
+    pub fn scale(self, s: Scalar) -> Vec3 {
+        let [x, y, z] = self.to_bits().map(|c| mul_raw(c, s.to_bits()));
+        Vec3::from_bits(x, y, z)
+    }
+
+    /// The squared length with 32 fractional bits (saturating, like
+    /// [`dot_wide`](Self::dot_wide)).
+    pub fn length_squared_wide(self) -> i64 {
+        self.dot_wide(self)
+    }
+
+    /// The unit vector in this direction (the zero vector stays zero).
+    pub fn normalize(self) -> Vec3 {
+        normalize_wide(self.to_bits().map(i64::from))
+    }
+
+    /// The component-wise sum, saturating.
+    pub fn saturating_add(self, o: Vec3) -> Vec3 {
+        Vec3::new(
+            self.x.saturating_add(o.x),
+            self.y.saturating_add(o.y),
+            self.z.saturating_add(o.z),
+        )
+    }
+}
+
+/// The unit vector in the direction of a vector with components of any fixed-point format (all
+/// three in the same one), as `I16F16`. The zero vector gives the zero vector.
+pub fn normalize_wide(v: [i64; 3]) -> Vec3 {
+    let m = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+    if m == 0 {
+        return Vec3::ZERO;
+    }
+    // Bring the largest component to [2^28, 2^29): squares then sum below 2^60.
+    let top = 63 - m.leading_zeros() as i32;
+    let shift = 28 - top;
+    let c = v.map(|x| if shift >= 0 { x << shift } else { x >> -shift });
+    let ss = c.iter().map(|x| x * x).sum::<i64>() as u64;
+    let (r, s) = inv_sqrt(ss);
+    let [x, y, z] = c.map(|x| {
+        let p = x * i64::from(r);
+        sat32((p + (1 << (s - 17))) >> (s - SCALAR_BITS))
+    });
+    Vec3::from_bits(x, y, z)
+}
+
+impl Add for Vec3 {
+    type Output = Vec3;
+    fn add(self, o: Vec3) -> Vec3 {
+        self.saturating_add(o)
+    }
+}
+
+impl Sub for Vec3 {
+    type Output = Vec3;
+    fn sub(self, o: Vec3) -> Vec3 {
+        Vec3::new(
+            self.x.saturating_sub(o.x),
+            self.y.saturating_sub(o.y),
+            self.z.saturating_sub(o.z),
+        )
+    }
+}
+
+impl Neg for Vec3 {
+    type Output = Vec3;
+    fn neg(self) -> Vec3 {
+        Vec3::new(
+            self.x.saturating_neg(),
+            self.y.saturating_neg(),
+            self.z.saturating_neg(),
+        )
+    }
+}
+
+/// A homogeneous 4D vector of [`Scalar`]s (clip-space positions).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Vec4 {
+    /// x component.
+    pub x: Scalar,
+    /// y component.
+    pub y: Scalar,
+    /// z component.
+    pub z: Scalar,
+    /// w component.
+    pub w: Scalar,
+}
+
+impl Vec4 {
+    /// A vector from its components.
+    pub const fn new(x: Scalar, y: Scalar, z: Scalar, w: Scalar) -> Self {
+        Vec4 { x, y, z, w }
+    }
+
+    /// The point `p` with `w = 1`.
+    pub const fn from_point(p: Vec3) -> Self {
+        Vec4::new(p.x, p.y, p.z, Scalar::ONE)
+    }
+
+    /// The raw components `[x, y, z, w]`.
+    pub const fn to_bits(self) -> [i32; 4] {
+        [
+            self.x.to_bits(),
+            self.y.to_bits(),
+            self.z.to_bits(),
+            self.w.to_bits(),
+        ]
+    }
+
+    /// A vector from raw `I16F16` components `[x, y, z, w]`.
+    pub const fn from_bits(v: [i32; 4]) -> Self {
+        Vec4::new(
+            Scalar::from_bits(v[0]),
+            Scalar::from_bits(v[1]),
+            Scalar::from_bits(v[2]),
+            Scalar::from_bits(v[3]),
+        )
+    }
+}
+
+/// A 4×4 matrix of [`Scalar`]s acting on column vectors, stored row by row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Mat4 {
+    /// `rows[r][c]` is the entry in row `r`, column `c`.
+    pub rows: [[Scalar; 4]; 4],
+}
+
+impl Default for Mat4 {
+    fn default() -> Self {
+        Mat4::IDENTITY
+    }
+}
+
+impl Mat4 {
+    /// The identity.
+    pub const IDENTITY: Mat4 = Mat4::from_bits([
+        [1 << 16, 0, 0, 0],
+        [0, 1 << 16, 0, 0],
+        [0, 0, 1 << 16, 0],
+        [0, 0, 0, 1 << 16],
+    ]);
+
+    /// A matrix from raw `I16F16` entries, row by row.
+    pub const fn from_bits(m: [[i32; 4]; 4]) -> Self {
+        let mut rows = [[Scalar::ZERO; 4]; 4];
+        let mut r = 0;
+        while r < 4 {
+            let mut c = 0;
+            while c < 4 {
+                rows[r][c] = Scalar::from_bits(m[r][c]);
+                c += 1;
+            }
+            r += 1;
+        }
+        Mat4 { rows }
+    }
+
+    /// The raw entries, row by row.
+    pub fn to_bits(&self) -> [[i32; 4]; 4] {
+        self.rows.map(|r| r.map(|v| v.to_bits()))
+    }
+
+    /// A translation by `t`.
+    pub fn translation(t: Vec3) -> Self {
+        let mut m = Mat4::IDENTITY;
+        m.rows[0][3] = t.x;
+        m.rows[1][3] = t.y;
+        m.rows[2][3] = t.z;
+        m
+    }
+
+    /// A uniform scaling by `s`.
+    pub fn scaling(s: Scalar) -> Self {
+        let mut m = Mat4::IDENTITY;
+        m.rows[0][0] = s;
+        m.rows[1][1] = s;
+        m.rows[2][2] = s;
+        m
+    }
+
+    /// A rotation by `a` about the x axis (y towards z).
+    pub fn rotation_x(a: Angle) -> Self {
+        let (s, c) = (a.sin(), a.cos());
+        let mut m = Mat4::IDENTITY;
+        m.rows[1][1] = c;
+        m.rows[1][2] = -s;
+        m.rows[2][1] = s;
+        m.rows[2][2] = c;
+        m
+    }
+
+    /// A rotation by `a` about the y axis (z towards x).
+    pub fn rotation_y(a: Angle) -> Self {
+        let (s, c) = (a.sin(), a.cos());
+        let mut m = Mat4::IDENTITY;
+        m.rows[0][0] = c;
+        m.rows[0][2] = s;
+        m.rows[2][0] = -s;
+        m.rows[2][2] = c;
+        m
+    }
+
+    /// A rotation by `a` about the z axis (x towards y).
+    pub fn rotation_z(a: Angle) -> Self {
+        let (s, c) = (a.sin(), a.cos());
+        let mut m = Mat4::IDENTITY;
+        m.rows[0][0] = c;
+        m.rows[0][1] = -s;
+        m.rows[1][0] = s;
+        m.rows[1][1] = c;
+        m
+    }
+
+    /// An OpenGL-style perspective projection: the camera looks down −z, `fov_y` is the full
+    /// vertical field of view, `aspect` is width / height, and `near < far` are positive
+    /// distances. Visible points end up with `−w ≤ x, y, z ≤ w`; `z = −w` on the near plane.
+    pub fn perspective(fov_y: Angle, aspect: Scalar, near: Scalar, far: Scalar) -> Self {
+        // cot(θ/2) = (1 + cos θ) / sin θ: no rounding of the half angle.
+        let f = div_raw((Scalar::ONE + fov_y.cos()).to_bits(), fov_y.sin().to_bits());
+        let (n, fa) = (near.to_bits(), far.to_bits());
+        let d = n.saturating_sub(fa);
+        let mut m = Mat4::from_bits([[0; 4]; 4]);
+        m.rows[0][0] = Scalar::from_bits(div_raw(f, aspect.to_bits()));
+        m.rows[1][1] = Scalar::from_bits(f);
+        m.rows[2][2] = Scalar::from_bits(div_raw(n.saturating_add(fa), d));
+        // 2·n·f / (n − f): the product has 32 fractional bits, the quotient 16.
+        let num = (i64::from(n) * i64::from(fa)).saturating_mul(2);
+        m.rows[2][3] = Scalar::from_bits(div_round(num, i64::from(d)));
+        m.rows[3][2] = -Scalar::ONE;
+        m
+    }
+
+    /// The transpose.
+    pub fn transpose(&self) -> Self {
+        let mut t = *self;
+        for (r, row) in self.rows.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                t.rows[c][r] = *v;
+            }
+        }
+        t
+    }
+
+    /// `self · v`, with `i64` accumulation, rounded and saturated.
+    pub fn transform(&self, v: Vec4) -> Vec4 {
+        let v = v.to_bits().map(i64::from);
+        let out = self.rows.map(|row| {
+            let acc: i64 = row
+                .iter()
+                .zip(v.iter())
+                .map(|(m, x)| i64::from(m.to_bits()) * x)
+                .fold(0, i64::saturating_add);
+            sat32(acc.saturating_add(1 << 15) >> SCALAR_BITS)
+        });
+        Vec4::from_bits(out)
+    }
+
+    /// `self · (p, 1)`.
+    pub fn transform_point(&self, p: Vec3) -> Vec4 {
+        self.transform(Vec4::from_point(p))
+    }
+
+    /// The upper-left 3×3 block times `v` (a direction: no translation).
+    pub fn transform_vector(&self, v: Vec3) -> Vec3 {
+        let r = self.transform(Vec4::new(v.x, v.y, v.z, Scalar::ZERO));
+        Vec3::new(r.x, r.y, r.z)
+    }
+}
+
+impl Mul for Mat4 {
+    type Output = Mat4;
+
+    /// The matrix product with `i64` accumulation, rounded and saturated.
+    fn mul(self, rhs: Mat4) -> Mat4 {
+        let (a, b) = (self.to_bits(), rhs.to_bits());
+        let mut out = [[0i32; 4]; 4];
+        for (r, row) in out.iter_mut().enumerate() {
+            for (c, v) in row.iter_mut().enumerate() {
+                let acc: i64 = (0..4)
+                    .map(|k| i64::from(a[r][k]) * i64::from(b[k][c]))
+                    .fold(0, i64::saturating_add);
+                *v = sat32(acc.saturating_add(1 << 15) >> SCALAR_BITS);
+            }
+        }
+        Mat4::from_bits(out)
+    }
+}
+
+impl Mul<Vec4> for Mat4 {
+    type Output = Vec4;
+    fn mul(self, v: Vec4) -> Vec4 {
+        self.transform(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    #[test]
+    fn sine_and_cosine_within_one_lsb() {
+        for a in 0..=u16::MAX {
+            let t = f64::from(a) / 65536.0 * core::f64::consts::TAU;
+            let s = f64::from(Angle(a).sin().to_bits()) / 65536.0;
+            let c = f64::from(Angle(a).cos().to_bits()) / 65536.0;
+            assert!((s - t.sin()).abs() <= 1.0 / 65536.0, "sin {a}");
+            assert!((c - t.cos()).abs() <= 1.0 / 65536.0, "cos {a}");
+        }
+        assert_eq!(Angle::from_degrees(90), Angle::QUARTER);
+        assert_eq!(Angle::from_degrees(-90), Angle(49152));
+        assert_eq!(Angle::from_turns(1, 3), Angle(21845));
+    }
+
+    #[test]
+    fn inverse_square_root_is_accurate() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        for k in 0..200_000u64 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let x = (seed >> (k % 64)).max(1);
+            let (r, s) = inv_sqrt(x);
+            let got = f64::from(r) / (s as f64).exp2();
+            let want = 1.0 / (x as f64).sqrt();
+            assert!(
+                ((got - want) / want).abs() < 1.0 / 262_144.0,
+                "{x}: {got} vs {want}"
+            );
+        }
+        assert_eq!(inv_sqrt(0), (0, 0));
+    }
+
+    #[test]
+    fn normalize_any_magnitude() {
+        for v in [
+            [1i64, 0, 0],
+            [3, 4, 0],
+            [-7, 1 << 40, 12345],
+            [i64::MAX / 2, -(i64::MAX / 2), 1],
+            [0, 0, -1],
+        ] {
+            let n = normalize_wide(v);
+            let f = v.map(|c| c as f64);
+            let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+            for (got, want) in n.to_bits().iter().zip(f.iter()) {
+                assert!((f64::from(*got) - want / l * 65536.0).abs() <= 1.5, "{v:?}");
+            }
+        }
+        assert_eq!(normalize_wide([0; 3]), Vec3::ZERO);
+    }
+
+    #[test]
+    fn matrices_compose() {
+        let a = Angle::from_degrees(45);
+        let r = Mat4::rotation_x(a) * Mat4::rotation_x(a);
+        let q = Mat4::rotation_x(Angle::QUARTER);
+        for (x, y) in r
+            .to_bits()
+            .iter()
+            .flatten()
+            .zip(q.to_bits().iter().flatten())
+        {
+            assert!((x - y).abs() <= 2);
+        }
+        let t = Mat4::translation(Vec3::from_bits(1 << 16, 2 << 16, 3 << 16));
+        let p = t.transform_point(Vec3::ZERO);
+        assert_eq!(p.to_bits(), [1 << 16, 2 << 16, 3 << 16, 1 << 16]);
+        assert_eq!(t.transpose().transpose(), t);
+    }
+}

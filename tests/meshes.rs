@@ -1,0 +1,196 @@
+//! Procedural meshes, the OBJ loader/writer and the Rust-source emitter.
+//!
+//! The flash meshes in `src/meshes/*.rs` must be what the generators and the emitter produce
+//! (compared ignoring whitespace, since the files are rustfmt-formatted). Set
+//! `REGENERATE_MESHES=1` to rewrite them after changing either.
+
+use embedded_raster::math3d::Vec3;
+use embedded_raster::meshes::{icosphere, to_f64, torus, MeshData};
+use embedded_raster::obj;
+use embedded_raster::pipeline::Mesh;
+
+fn squeeze(s: &str) -> String {
+    s.chars().filter(|c| !c.is_whitespace()).collect()
+}
+
+fn check_generated(mesh: &MeshData, name: &str, file: &str) {
+    let source = mesh.to_rust_source(name, "crate");
+    let path = format!("{}/src/meshes/{file}", env!("CARGO_MANIFEST_DIR"));
+    if std::env::var_os("REGENERATE_MESHES").is_some() {
+        std::fs::write(&path, &source).unwrap();
+        let _ = std::process::Command::new("rustfmt")
+            .args(["--edition", "2021", &path])
+            .status();
+    }
+    let stored = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        squeeze(&stored) == squeeze(&source),
+        "{path} is stale: rerun with REGENERATE_MESHES=1"
+    );
+}
+
+fn same_mesh(a: &Mesh<'_>, b: &MeshData) {
+    assert_eq!(a.vertices, &b.vertices[..]);
+    assert_eq!(a.normals, &b.normals[..]);
+    assert_eq!(a.indices, &b.indices[..]);
+}
+
+#[test]
+fn flash_meshes_match_generators() {
+    let ico = icosphere(1.0, 1);
+    let tor = torus(1.0, 0.4, 12, 8);
+    check_generated(&ico, "ICOSPHERE", "icosphere.rs");
+    check_generated(&tor, "TORUS", "torus.rs");
+    // The generated statics compile into the crate (no_std) and hold the same data.
+    same_mesh(&embedded_raster::meshes::icosphere::ICOSPHERE, &ico);
+    same_mesh(&embedded_raster::meshes::torus::TORUS, &tor);
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Every face is counter-clockwise seen from outside: its geometric normal agrees with its
+/// vertex normals; every normal is unit length; every edge is shared by exactly two faces in
+/// opposite directions (a closed, consistently oriented surface).
+fn check_closed_and_oriented(m: &MeshData) {
+    for n in &m.normals {
+        let n = to_f64(*n);
+        assert!((dot(n, n).sqrt() - 1.0).abs() < 1e-4);
+    }
+    check_normals_agree(m);
+    check_closed(m);
+}
+
+/// Every edge is used once in each direction.
+fn check_closed(m: &MeshData) {
+    let mut edges = std::collections::HashMap::new();
+    for f in &m.indices {
+        for k in 0..3 {
+            *edges.entry((f[k], f[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    for (&(a, b), &count) in &edges {
+        assert_eq!(count, 1, "edge {a}-{b} used twice in one direction");
+        assert_eq!(edges.get(&(b, a)), Some(&1), "edge {a}-{b} has no twin");
+    }
+}
+
+#[test]
+fn procedural_meshes_are_closed_and_outward() {
+    for k in 0..4 {
+        let m = icosphere(2.0, k);
+        assert_eq!(m.vertices.len(), 10 * 4usize.pow(k) + 2);
+        assert_eq!(m.indices.len(), 20 * 4usize.pow(k));
+        for v in &m.vertices {
+            let r = dot(to_f64(*v), to_f64(*v)).sqrt();
+            assert!((r - 2.0).abs() < 1e-4);
+        }
+        check_closed_and_oriented(&m);
+    }
+    let t = torus(1.5, 0.5, 16, 10);
+    assert_eq!((t.vertices.len(), t.indices.len()), (160, 320));
+    check_closed_and_oriented(&t);
+}
+
+const CUBE_OBJ: &str = "\
+# a unit cube with per-face normals, quads, comments and noise
+mtllib cube.mtl
+o cube
+v -0.5 -0.5 -0.5
+v 0.5 -0.5 -0.5
+v 0.5 0.5 -0.5
+v -0.5 0.5 -0.5
+v -0.5 -0.5 0.5
+v 0.5 -0.5 0.5
+v 0.5 0.5 0.5
+v -0.5 0.5 0.5
+vt 0 0
+vn 0 0 -1
+vn 0 0 1
+vn 0 -1 0
+vn 0 1 0
+vn -1 0 0
+vn 1 0 0
+usemtl white
+s off
+f 1//1 4//1 3//1 2//1
+f 5//2 6//2 7//2 8//2
+f 1/1/3 2/1/3 6/1/3 5/1/3
+f 4//4 8//4 7//4 3//4
+f -8//5 -4//5 -1//5 -5//5
+f 2//6 3//6 7//6 6//6
+";
+
+#[test]
+fn obj_parses_and_round_trips() {
+    let cube = obj::parse(CUBE_OBJ).unwrap();
+    // 6 faces × 4 distinct (position, normal) corners; each quad fanned into 2 triangles.
+    assert_eq!(cube.vertices.len(), 24);
+    assert_eq!(cube.indices.len(), 12);
+    check_normals_agree(&cube);
+    // Written out and read back: the same mesh, bit for bit, and again the same text.
+    let text = obj::to_obj(&cube);
+    let again = obj::parse(&text).unwrap();
+    assert_eq!(again, cube);
+    assert_eq!(obj::to_obj(&again), text);
+
+    // Without normals: smooth normals from the faces (a tetrahedron's corners point outwards).
+    let tet =
+        obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+            .unwrap();
+    assert_eq!(tet.vertices.len(), 4);
+    let centre = [0.25; 3];
+    for (v, n) in tet.vertices.iter().zip(&tet.normals) {
+        assert!(dot(sub(to_f64(*v), centre), to_f64(*n)) > 0.0);
+    }
+    check_closed(&tet);
+    assert_eq!(obj::parse(&obj::to_obj(&tet)).unwrap(), tet);
+
+    // Errors carry the line number.
+    let e = obj::parse("v 0 0 0\nv 1 0\n").unwrap_err();
+    assert_eq!(e.line, 2);
+    assert_eq!(obj::parse("v 0 0 0\nf 1 2 3\n").unwrap_err().line, 2);
+    assert_eq!(obj::parse("v 0 0 0\nf 1 1\n").unwrap_err().line, 2);
+}
+
+fn check_normals_agree(m: &MeshData) {
+    for f in &m.indices {
+        let p = f.map(|i| to_f64(m.vertices[usize::from(i)]));
+        let g = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+        for &i in f {
+            assert!(dot(g, to_f64(m.normals[usize::from(i)])) > 0.0);
+        }
+    }
+}
+
+#[test]
+fn rust_source_declares_the_arrays() {
+    let tri = obj::parse("v 0 0 0\nv 1.5 0 0\nv 0 -2 0.25\nf 1 3 2\n").unwrap();
+    let src = tri.to_rust_source("TRI", "embedded_raster");
+    assert!(src.contains("use embedded_raster::math3d::Vec3;"));
+    assert!(src.contains("pub static TRI_VERTICES: [Vec3; 3] = ["));
+    assert!(src.contains("Vec3::from_bits(98304, 0, 0),"));
+    assert!(src.contains("Vec3::from_bits(0, -131072, 16384),"));
+    assert!(src.contains("pub static TRI_INDICES: [[u16; 3]; 1] = [\n    [0, 2, 1],\n];"));
+    assert!(src.contains("pub static TRI: Mesh<'static> ="));
+    // The face normal (0, 0.375, 3) normalised.
+    let l = (0.375f64 * 0.375 + 9.0).sqrt();
+    let want = [0.0, 0.375 / l, 3.0 / l];
+    for (got, want) in to_f64(tri.normals[0]).iter().zip(want) {
+        assert!((got - want).abs() < 1e-4);
+    }
+    assert_eq!(tri.normals[0].x, Vec3::ZERO.x);
+}

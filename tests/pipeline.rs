@@ -1,0 +1,683 @@
+//! The fixed-point 3D pipeline against an independent f64 reference.
+//!
+//! The reference does not project, clip or rasterise anything: for every pixel it casts the ray
+//! through the pixel centre in eye space (f64 model-view from the same angles and positions) and
+//! intersects it with every triangle. A triangle covers the pixel if the ray passes inside its
+//! three edge planes (planes through the eye), hits it in front of the eye, and the hit lies
+//! between the near and far planes; its depth there is `(1 + z_ndc)/2 · 65534` with `z_ndc` from
+//! the f64 projection. Each of those conditions is an affine function of the screen position, so
+//! the reference also knows how far (in pixels) the pixel centre is from the boundary of every
+//! triangle.
+//!
+//! The fixed-point vertices differ from the f64 ones by rounding (measured below: well under
+//! 0.01 px), so the comparison leaves out exactly what that rounding can decide:
+//!
+//! * a triangle whose boundary passes within `MARGIN` px of a pixel centre *may* cover it
+//!   (shared edges: either neighbour may own the pixel, but the pipeline must draw one of them —
+//!   holes or background there fail);
+//! * where two candidate triangles' f64 depths are within their depth tolerances of each other
+//!   (`2 LSB` of the 16-bit depth plus what `MARGIN` px of position error moves the depth), either
+//!   may win. Everywhere else exactly one triangle is acceptable: the nearest one.
+//!
+//! Tests also check that those ambiguous pixels are rare, and that the z-buffer holds the drawn
+//! triangle's depth within its tolerance.
+
+use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
+use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
+use embedded_raster::meshes::{icosphere, MeshData};
+use embedded_raster::pipeline::{Cull, DepthTarget, Mesh, Pipeline, DEPTH_CLEAR};
+use embedded_raster::shading::{Light, Material, Shading};
+
+const W: u32 = 128;
+const H: u32 = 96;
+/// Pixel centres closer than this to a triangle's boundary may go either way.
+const MARGIN: f64 = 0.02;
+
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+    fn angle(&mut self) -> Angle {
+        Angle(self.next() as u16)
+    }
+}
+
+type V = [f64; 3];
+type M = [[f64; 4]; 4];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn fl(s: Scalar) -> f64 {
+    s.to_num::<f64>()
+}
+fn fx(v: f64) -> Scalar {
+    Scalar::from_bits((v * 65536.0).round() as i32)
+}
+fn radians(a: Angle) -> f64 {
+    f64::from(a.0) / 65536.0 * std::f64::consts::TAU
+}
+
+fn mul(a: &M, b: &M) -> M {
+    let mut m = [[0.0; 4]; 4];
+    for (r, row) in m.iter_mut().enumerate() {
+        for (c, v) in row.iter_mut().enumerate() {
+            *v = (0..4).map(|k| a[r][k] * b[k][c]).sum();
+        }
+    }
+    m
+}
+fn identity() -> M {
+    let mut m = [[0.0; 4]; 4];
+    for (k, row) in m.iter_mut().enumerate() {
+        row[k] = 1.0;
+    }
+    m
+}
+fn translate(t: V) -> M {
+    let mut m = identity();
+    for k in 0..3 {
+        m[k][3] = t[k];
+    }
+    m
+}
+fn rot_x(a: f64) -> M {
+    let (s, c) = a.sin_cos();
+    let mut m = identity();
+    m[1][1] = c;
+    m[1][2] = -s;
+    m[2][1] = s;
+    m[2][2] = c;
+    m
+}
+fn rot_y(a: f64) -> M {
+    let (s, c) = a.sin_cos();
+    let mut m = identity();
+    m[0][0] = c;
+    m[0][2] = s;
+    m[2][0] = -s;
+    m[2][2] = c;
+    m
+}
+fn apply(m: &M, p: V) -> V {
+    [0, 1, 2].map(|r| m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3])
+}
+
+/// One camera and object placement, in both arithmetics.
+struct Scene {
+    pipeline: Pipeline,
+    /// f64 model-view.
+    model_view: M,
+    /// `f / aspect`, `f` of the f64 projection.
+    p00: f64,
+    p11: f64,
+    /// `z_ndc = −a − b / z_eye`.
+    a: f64,
+    b: f64,
+    viewport: Rectangle,
+}
+
+impl Scene {
+    /// Camera at the origin looking down −z; the object rotated by `yaw`, `pitch` about its
+    /// origin and moved to `position` (eye space).
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        fov: Angle,
+        near: f64,
+        far: f64,
+        yaw: Angle,
+        pitch: Angle,
+        position: V,
+        viewport: Rectangle,
+        cull: Cull,
+    ) -> Scene {
+        let aspect = f64::from(viewport.size.width) / f64::from(viewport.size.height);
+        let (n, f) = (fl(fx(near)), fl(fx(far)));
+        let projection = Mat4::perspective(fov, fx(aspect), fx(near), fx(far));
+        let model = Mat4::translation(Vec3::new(fx(position[0]), fx(position[1]), fx(position[2])))
+            * Mat4::rotation_y(yaw)
+            * Mat4::rotation_x(pitch);
+        let mut pipeline = Pipeline::new(model, projection, viewport, Light::default());
+        pipeline.cull = cull;
+        let pos = [0, 1, 2].map(|k| fl(fx(position[k])));
+        let model_view = mul(
+            &mul(&translate(pos), &rot_y(radians(yaw))),
+            &rot_x(radians(pitch)),
+        );
+        let focal = 1.0 / (radians(fov) / 2.0).tan();
+        Scene {
+            pipeline,
+            model_view,
+            p00: focal / aspect,
+            p11: focal,
+            a: (f + n) / (n - f),
+            b: 2.0 * f * n / (n - f),
+            viewport,
+        }
+    }
+
+    /// Screen position and 16-bit depth of a model-space point (f64).
+    fn project(&self, p: Vec3) -> (f64, f64, f64) {
+        let e = apply(
+            &self.model_view,
+            p.to_bits().map(|c| f64::from(c) / 65536.0),
+        );
+        let (xn, yn) = (self.p00 * e[0] / -e[2], self.p11 * e[1] / -e[2]);
+        let zn = -self.a - self.b / e[2];
+        let (w, h) = (
+            f64::from(self.viewport.size.width),
+            f64::from(self.viewport.size.height),
+        );
+        (
+            f64::from(self.viewport.top_left.x) + w / 2.0 * (1.0 + xn),
+            f64::from(self.viewport.top_left.y) + h / 2.0 * (1.0 - yn),
+            (1.0 + zn) / 2.0 * 65534.0,
+        )
+    }
+
+    /// Eye-space direction through screen point `(sx, sy)` and its derivatives per pixel.
+    fn ray(&self, sx: f64, sy: f64) -> (V, f64, f64) {
+        let (w, h) = (
+            f64::from(self.viewport.size.width),
+            f64::from(self.viewport.size.height),
+        );
+        let xn = 2.0 * (sx - f64::from(self.viewport.top_left.x)) / w - 1.0;
+        let yn = 1.0 - 2.0 * (sy - f64::from(self.viewport.top_left.y)) / h;
+        let dx = 2.0 / (w * self.p00);
+        let dy = -2.0 / (h * self.p11);
+        ([xn / self.p00, yn / self.p11, -1.0], dx, dy)
+    }
+
+    /// The reference's verdict on the convex planar polygon `poly` (eye space; a triangle, say) at
+    /// the centre of pixel `(i, j)`: `None` if it surely does not cover it, else the signed
+    /// distance of the centre to the polygon's visible boundary (positive inside, pixels), its
+    /// depth there and the depth change per pixel (16-bit units).
+    fn hit(&self, poly: &[V], i: i32, j: i32) -> Option<(f64, f64, f64)> {
+        let (d, dx, dy) = self.ray(f64::from(i) + 0.5, f64::from(j) + 0.5);
+        let det = dot(poly[0], cross(poly[1], poly[2]));
+        if det == 0.0 {
+            return None;
+        }
+        let mut margin = f64::INFINITY;
+        for a in 0..poly.len() {
+            // The plane through the eye and the edge: affine in the screen position.
+            let c = cross(poly[a], poly[(a + 1) % poly.len()]);
+            let g = (c[0] * dx).hypot(c[1] * dy);
+            margin = margin.min(det.signum() * dot(c, d) / g);
+        }
+        if margin < -MARGIN {
+            return None;
+        }
+        // 1/z_eye of the hit is affine in the screen position too; it must be negative.
+        let n = cross(sub(poly[1], poly[0]), sub(poly[2], poly[0]));
+        let nv = dot(n, poly[0]);
+        let inv_z = -dot(n, d) / nv;
+        if inv_z >= 0.0 {
+            return None;
+        }
+        let depth = (1.0 - self.a - self.b * inv_z) / 2.0;
+        let grad = (self.b / 2.0 * n[0] * dx / nv).hypot(self.b / 2.0 * n[1] * dy / nv);
+        margin = margin.min(depth / grad).min((1.0 - depth) / grad);
+        (margin >= -MARGIN).then_some((margin, depth * 65534.0, grad * 65534.0))
+    }
+}
+
+fn id_color(k: usize) -> Rgb888 {
+    let k = k + 1;
+    Rgb888::new((k & 0xff) as u8, (k >> 8) as u8, 0x5a)
+}
+
+fn id_of(c: Rgb888) -> Option<usize> {
+    (c != Rgb888::BLACK).then(|| usize::from(c.r()) + (usize::from(c.g()) << 8) - 1)
+}
+
+#[derive(Default, Debug)]
+struct Tally {
+    pixels: u64,
+    exact: u64,
+    covered: u64,
+    worst_depth: f64,
+}
+
+/// Draws `mesh` one triangle at a time (each in its own ID colour, one shared z-buffer) and
+/// checks every pixel of the target against the reference.
+fn check_scene(scene: &Scene, mesh: &MeshData, tally: &mut Tally) {
+    let mut px = vec![Rgb888::BLACK; (W * H) as usize];
+    let mut z = vec![0u16; (W * H) as usize];
+    let mut target = DepthTarget::new(&mut px, &mut z, W, H).unwrap();
+    target.clear(Rgb888::BLACK);
+    for k in 0..mesh.indices.len() {
+        let one = Mesh::new(&mesh.vertices, &mesh.normals, &mesh.indices[k..k + 1]);
+        let material = Material::new(id_color(k), Shading::Unlit);
+        scene.pipeline.draw_mesh(&one, &material, &mut target);
+    }
+    let eye: Vec<[V; 3]> = mesh
+        .indices
+        .iter()
+        .map(|f| {
+            f.map(|i| {
+                let v = mesh.vertices[usize::from(i)].to_bits();
+                apply(&scene.model_view, v.map(|c| f64::from(c) / 65536.0))
+            })
+        })
+        .collect();
+    // Front faces are counter-clockwise seen by the camera: (v1 − v0) × (v2 − v0) points at it.
+    let facing = |t: &[V; 3]| dot(cross(sub(t[1], t[0]), sub(t[2], t[0])), t[0]) < 0.0;
+    for j in 0..H as i32 {
+        for i in 0..W as i32 {
+            tally.pixels += 1;
+            let got = id_of(target.framebuffer().get(i, j).unwrap());
+            let depth = target.depth_at(i, j).unwrap();
+            assert_eq!(got.is_some(), depth != DEPTH_CLEAR);
+            if !scene.viewport.contains(Point::new(i, j)) {
+                assert_eq!(got, None, "drawn outside the viewport at {i},{j}");
+                tally.exact += 1;
+                continue;
+            }
+            // (triangle, margin, depth, depth tolerance)
+            let hits: Vec<(usize, f64, f64, f64)> = eye
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| match scene.pipeline.cull {
+                    Cull::None => true,
+                    Cull::Back => facing(t),
+                    Cull::Front => !facing(t),
+                })
+                .filter_map(|(k, t)| {
+                    scene
+                        .hit(t, i, j)
+                        .map(|(m, d, g)| (k, m, d, 2.0 + 2.0 * MARGIN * g))
+                })
+                .collect();
+            let sure = hits.iter().filter(|h| h.1 > MARGIN);
+            let front = sure.map(|h| h.2 + h.3).fold(f64::INFINITY, f64::min);
+            let acceptable: Vec<&(usize, f64, f64, f64)> =
+                hits.iter().filter(|h| h.2 - h.3 <= front).collect();
+            let background_ok = front.is_infinite();
+            match got {
+                None => assert!(
+                    background_ok,
+                    "pixel {i},{j} empty but covered by {:?}",
+                    hits.iter().filter(|h| h.1 > MARGIN).collect::<Vec<_>>()
+                ),
+                Some(k) => {
+                    let h = acceptable.iter().find(|h| h.0 == k).unwrap_or_else(|| {
+                        panic!("pixel {i},{j}: drew {k}, acceptable {acceptable:?}")
+                    });
+                    let err = (f64::from(depth) - h.2).abs();
+                    assert!(err <= h.3, "pixel {i},{j}: depth {depth} vs {}", h.2);
+                    tally.worst_depth = tally.worst_depth.max(err);
+                    tally.covered += 1;
+                }
+            }
+            if acceptable.len() == 1 && !background_ok || acceptable.is_empty() {
+                tally.exact += 1;
+            }
+        }
+    }
+}
+
+/// Projected vertices agree with f64 to well under the comparison margin.
+#[test]
+fn vertices_project_like_f64() {
+    let mut rng = Rng(0xfeed_0001);
+    let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
+    let sphere = icosphere(1.0, 2);
+    let (mut worst_xy, mut worst_z) = (0.0f64, 0.0f64);
+    for _ in 0..200 {
+        let pos = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-6.0, -2.5),
+        ];
+        let scene = Scene::new(
+            Angle::from_degrees(60),
+            0.5,
+            20.0,
+            rng.angle(),
+            rng.angle(),
+            pos,
+            viewport,
+            Cull::None,
+        );
+        for v in &sphere.vertices {
+            let got = scene
+                .pipeline
+                .project(scene.pipeline.clip_position(*v))
+                .unwrap();
+            let (x, y, z) = scene.project(*v);
+            worst_xy = worst_xy
+                .max((got.x.to_num::<f64>() - x).abs())
+                .max((got.y.to_num::<f64>() - y).abs());
+            worst_z = worst_z.max((f64::from(got.depth) - z).abs());
+        }
+    }
+    println!("worst vertex error {worst_xy:.4} px, depth {worst_z:.3} LSB");
+    assert!(worst_xy < MARGIN / 2.0);
+    // ½ LSB rounding plus the I16F16 rounding of the matrices.
+    assert!(worst_z < 1.5);
+}
+
+/// An icosphere at random rotations and positions, culled and not: every pixel shows the nearest
+/// triangle.
+#[test]
+fn icosphere_matches_f64_reference() {
+    let mut rng = Rng(0xfeed_0002);
+    let sphere = icosphere(1.0, 2);
+    let mut tally = Tally::default();
+    for round in 0..24 {
+        let viewport = if round % 3 == 2 {
+            Rectangle::new(Point::new(9, 5), Size::new(100, 80))
+        } else {
+            Rectangle::new(Point::zero(), Size::new(W, H))
+        };
+        let pos = [
+            rng.range(-1.5, 1.5),
+            rng.range(-1.0, 1.0),
+            rng.range(-5.0, -2.0),
+        ];
+        let cull = [Cull::None, Cull::Back, Cull::Front][round % 3];
+        let scene = Scene::new(
+            Angle::from_degrees(60),
+            0.5,
+            20.0,
+            rng.angle(),
+            rng.angle(),
+            pos,
+            viewport,
+            cull,
+        );
+        check_scene(&scene, &sphere, &mut tally);
+    }
+    println!("{tally:?}");
+    assert!(tally.covered > 50_000);
+    assert!(tally.exact as f64 > 0.9 * tally.pixels as f64);
+}
+
+/// Random triangles in separated, slightly tilted layers (they overlap on screen but never
+/// intersect), both windings, no culling; some scenes put the camera among the layers so the
+/// near plane cuts through them.
+#[test]
+fn layered_triangles_match_f64_reference() {
+    let mut rng = Rng(0xfeed_0003);
+    let mut tally = Tally::default();
+    let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
+    for round in 0..30 {
+        let mut positions = Vec::new();
+        let mut faces = Vec::new();
+        for layer in 0..6 {
+            let z0 = layer as f64 * 0.35 - 0.9;
+            let (tx, ty) = (rng.range(-0.1, 0.1), rng.range(-0.1, 0.1));
+            for _ in 0..8 {
+                let (cx, cy) = (rng.range(-1.5, 1.5), rng.range(-1.5, 1.5));
+                let base = positions.len();
+                for _ in 0..3 {
+                    let (x, y) = (cx + rng.range(-1.0, 1.0), cy + rng.range(-1.0, 1.0));
+                    positions.push([x, y, z0 + tx * x + ty * y]);
+                }
+                faces.push([base, base + 1, base + 2]);
+            }
+        }
+        let normals = vec![[0.0, 0.0, 1.0]; positions.len()];
+        let mut mesh = MeshData::from_f64(&positions, &normals, &faces);
+        // Random windings.
+        for f in &mut mesh.indices {
+            if rng.unit() < 0.5 {
+                f.swap(1, 2);
+            }
+        }
+        let close = round % 3 == 0;
+        let pos = if close {
+            [
+                rng.range(-0.5, 0.5),
+                rng.range(-0.5, 0.5),
+                rng.range(-1.2, -0.6),
+            ]
+        } else {
+            [
+                rng.range(-0.5, 0.5),
+                rng.range(-0.5, 0.5),
+                rng.range(-6.0, -3.5),
+            ]
+        };
+        let scene = Scene::new(
+            Angle::from_degrees(70),
+            0.25,
+            12.0,
+            Angle((rng.next() as u16) / 6),
+            Angle((rng.next() as u16) / 6),
+            pos,
+            viewport,
+            Cull::None,
+        );
+        check_scene(&scene, &mesh, &mut tally);
+    }
+    println!("{tally:?}");
+    assert!(tally.covered > 100_000);
+    assert!(tally.exact as f64 > 0.9 * tally.pixels as f64);
+}
+
+/// A finely tessellated plane far larger than the view, crossing the near plane and the guard
+/// band: drawn triangle by triangle without depth test interference (a fresh z-buffer per
+/// triangle), every pixel inside its visible outline (by more than `MARGIN`) is covered exactly
+/// once, every pixel outside it never, and no pixel twice.
+/// Shared edges, including the ones produced by clipping, leave no gaps and no double hits.
+#[test]
+fn clipped_grid_is_watertight() {
+    let mut rng = Rng(0xfeed_0004);
+    let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
+    let n = 24;
+    let half = 60.0;
+    let mut positions = Vec::new();
+    for r in 0..=n {
+        for c in 0..=n {
+            let x = -half + 2.0 * half * c as f64 / n as f64;
+            let y = -half + 2.0 * half * r as f64 / n as f64;
+            // Interior vertices jittered; the outline stays the exact square.
+            let interior = r > 0 && r < n && c > 0 && c < n;
+            let j = if interior { 0.5 } else { 0.0 };
+            positions.push([x + rng.range(-j, j), y + rng.range(-j, j), 0.0]);
+        }
+    }
+    let at = |r: usize, c: usize| r * (n + 1) + c;
+    let mut faces = Vec::new();
+    for r in 0..n {
+        for c in 0..n {
+            faces.push([at(r, c), at(r, c + 1), at(r + 1, c + 1)]);
+            faces.push([at(r, c), at(r + 1, c + 1), at(r + 1, c)]);
+        }
+    }
+    let normals = vec![[0.0, 0.0, 1.0]; positions.len()];
+    let grid = MeshData::from_f64(&positions, &normals, &faces);
+    let corners = [
+        positions[at(0, 0)],
+        positions[at(0, n)],
+        positions[at(n, n)],
+        positions[at(n, 0)],
+    ];
+    let mut px = vec![Rgb888::BLACK; (W * H) as usize];
+    let mut z = vec![0u16; (W * H) as usize];
+    let (mut inside, mut clipped) = (0u64, 0u32);
+    for _ in 0..12 {
+        // A floor below the camera (the xy plane tipped by about −90° about x), turned about
+        // the vertical: it runs from behind the camera to beyond the far plane.
+        let pitch = Angle::from_degrees(rng.range(-120.0, -60.0) as i32);
+        let pos = [
+            rng.range(-2.0, 2.0),
+            rng.range(-1.5, -0.3),
+            rng.range(-3.0, -1.0),
+        ];
+        let scene = Scene::new(
+            Angle::from_degrees(70),
+            0.2,
+            40.0,
+            rng.angle(),
+            pitch,
+            pos,
+            viewport,
+            Cull::None,
+        );
+        let behind = grid
+            .vertices
+            .iter()
+            .filter(|v| {
+                let e = apply(
+                    &scene.model_view,
+                    v.to_bits().map(|c| f64::from(c) / 65536.0),
+                );
+                e[2] > -0.2
+            })
+            .count();
+        assert!(behind > 0, "the near plane must cut the grid");
+        let mut count = vec![0u8; (W * H) as usize];
+        for k in 0..grid.indices.len() {
+            let mut target = DepthTarget::new(&mut px, &mut z, W, H).unwrap();
+            target.clear(Rgb888::BLACK);
+            let one = Mesh::new(&grid.vertices, &grid.normals, &grid.indices[k..k + 1]);
+            let s = scene.pipeline.draw_mesh(
+                &one,
+                &Material::new(Rgb888::WHITE, Shading::Unlit),
+                &mut target,
+            );
+            clipped += s.clipped;
+            for (c, d) in count.iter_mut().zip(target.depth()) {
+                *c += u8::from(*d != DEPTH_CLEAR);
+            }
+        }
+        // The outline: the square through the grid's corners, cut by the near and far planes.
+        let outline = corners.map(|p| {
+            let v = [0, 1, 2].map(|k| fl(fx(p[k])));
+            apply(&scene.model_view, v)
+        });
+        for j in 0..H as i32 {
+            for i in 0..W as i32 {
+                let c = count[(j as u32 * W + i as u32) as usize];
+                assert!(c <= 1, "pixel {i},{j} drawn {c} times");
+                match scene.hit(&outline, i, j) {
+                    Some((m, _, _)) if m > MARGIN => {
+                        assert_eq!(c, 1, "hole at {i},{j}");
+                        inside += 1;
+                    }
+                    Some(_) => {}
+                    None => assert_eq!(c, 0, "stray pixel at {i},{j}"),
+                }
+            }
+        }
+    }
+    println!("{inside} interior pixels checked, {clipped} clipped triangles");
+    assert!(inside > 50_000 && clipped > 100);
+}
+
+/// Garbage in, nothing out of bounds and no panic (run in the debug test profile too, where
+/// overflow checks are on): extreme vertices, normals and matrices, out-of-range indices,
+/// degenerate and huge triangles, every shading mode.
+#[test]
+fn extreme_inputs_do_not_panic() {
+    use embedded_raster::pipeline::ScreenVertex;
+    use embedded_raster::shading::{draw_quadratic, QuadraticNormals};
+    use embedded_raster::Coord;
+    let mut rng = Rng(0xfeed_0005);
+    let pick = |rng: &mut Rng| -> i32 {
+        match rng.next() % 6 {
+            0 => i32::MIN,
+            1 => i32::MAX,
+            2 => 0,
+            3 => (rng.next() as i32) >> (rng.next() % 31),
+            4 => ((rng.next() % 200_000) as i32) - 100_000,
+            _ => rng.next() as i32,
+        }
+    };
+    let mut px = vec![Rgb888::BLACK; (W * H) as usize];
+    let mut z = vec![0u16; (W * H) as usize];
+    let (mut drawn, mut clipped, mut filled) = (0, 0, 0);
+    for round in 0..3000 {
+        let vertices: Vec<Vec3> = (0..6)
+            .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng)))
+            .collect();
+        let normals: Vec<Vec3> = (0..5)
+            .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng)))
+            .collect();
+        let indices: Vec<[u16; 3]> = (0..4)
+            .map(|_| [0; 3].map(|_| (rng.next() % 7) as u16))
+            .collect();
+        let matrix = |rng: &mut Rng| {
+            if rng.next() % 2 == 0 {
+                Mat4::from_bits([[0; 4]; 4].map(|r| r.map(|_: i32| pick(rng))))
+            } else {
+                Mat4::perspective(
+                    rng.angle(),
+                    fx(rng.range(-2.0, 4.0)),
+                    fx(rng.range(-1.0, 1.0)),
+                    fx(rng.range(-5.0, 50.0)),
+                ) * Mat4::translation(Vec3::from_bits(pick(rng), pick(rng), pick(rng)))
+                    * Mat4::rotation_x(rng.angle())
+            }
+        };
+        let viewport = Rectangle::new(
+            Point::new(pick(&mut rng) % 200, pick(&mut rng) % 200),
+            Size::new((rng.next() % 70_000) as u32, (rng.next() % 300) as u32),
+        );
+        let light = Light::new(
+            Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng)),
+            Scalar::from_bits(pick(&mut rng)),
+        );
+        let mut pipeline = Pipeline::new(matrix(&mut rng), matrix(&mut rng), viewport, light);
+        pipeline.cull = [Cull::None, Cull::Back, Cull::Front][round % 3];
+        let mesh = Mesh::new(&vertices, &normals, &indices);
+        let mut target = DepthTarget::new(&mut px, &mut z, W, H).unwrap();
+        target.clear(Rgb888::BLACK);
+        for shading in [
+            Shading::Unlit,
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Quadratic,
+        ] {
+            let stats =
+                pipeline.draw_mesh(&mesh, &Material::new(Rgb888::WHITE, shading), &mut target);
+            drawn += stats.drawn;
+            clipped += stats.clipped;
+        }
+        filled += target.depth().iter().filter(|d| **d != DEPTH_CLEAR).count();
+        // Screen-space fills with arbitrary vertices and non-unit normal fields.
+        let sv = |rng: &mut Rng| {
+            ScreenVertex::new(
+                Coord::from_bits(pick(rng) >> (rng.next() % 20)),
+                Coord::from_bits(pick(rng) >> (rng.next() % 20)),
+                rng.next() as u16,
+            )
+        };
+        let tri = [sv(&mut rng), sv(&mut rng), sv(&mut rng)];
+        let field = QuadraticNormals {
+            vertices: [0; 3]
+                .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng))),
+            midpoints: [0; 3]
+                .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng))),
+        };
+        let clip = Rectangle::new(Point::zero(), Size::new(W, H));
+        draw_quadratic(&mut target, &clip, &tri, &field, &light, Rgb888::WHITE);
+        let _ = field.at([0; 3].map(|_| Scalar::from_bits(pick(&mut rng))));
+    }
+    println!("{drawn} triangles drawn, {clipped} clipped, {filled} pixels");
+    assert!(drawn > 100 && clipped > 100 && filled > 10_000);
+}
