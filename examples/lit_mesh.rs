@@ -7,9 +7,7 @@
 //!
 //! Run with `cargo run --release --features std --example lit_mesh`.
 //!
-//! `--interactive` would open a rotating SDL window, but that needs the simulator's `with-sdl`
-//! feature and the SDL2 library; the example explains how to enable it instead (see
-//! [`interactive`]).
+//! The rotating, interactive view is `examples/spin.rs` (feature `sdl`, needs SDL2).
 
 use embedded_graphics::{
     mono_font::{ascii::FONT_6X10, MonoTextStyle},
@@ -119,30 +117,7 @@ fn render() -> SimulatorDisplay<Rgb888> {
     display
 }
 
-/// What to do for the rotating window: it cannot be switched on by a feature of this crate.
-///
-/// The simulator is a (target-specific) dev-dependency, and Cargo features cannot turn on
-/// features of dev-dependencies; CI also builds with `--all-features` on machines without SDL2.
-/// To try it locally: install SDL2 (`apt-get install libsdl2-dev`), change the dev-dependency to
-/// `embedded-graphics-simulator = { version = "0.8", features = ["with-sdl"] }`, and replace
-/// the body of this function with a loop that advances the model rotation each frame, calls
-/// [`draw_panel`] on a `DepthTarget` and shows it in an `embedded_graphics_simulator::Window`
-/// (`window.update(&display)`, leaving on `SimulatorEvent::Quit`).
-fn interactive() {
-    println!(
-        "The interactive window needs SDL2 and embedded-graphics-simulator's `with-sdl` feature."
-    );
-    println!("It is off here so that builds and CI never need SDL2. To enable it locally:");
-    println!("  1. apt-get install libsdl2-dev");
-    println!("  2. in Cargo.toml: embedded-graphics-simulator = {{ version = \"0.8\", features = [\"with-sdl\"] }}");
-    println!("  3. see `interactive()` in examples/lit_mesh.rs for the render loop to add.");
-    println!("Rendering the still image instead.");
-}
-
 fn main() {
-    if std::env::args().any(|a| a == "--interactive") {
-        interactive();
-    }
     let display = render();
     let settings = OutputSettingsBuilder::new().scale(2).build();
     let path = "docs/lit_mesh.png";

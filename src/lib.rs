@@ -71,3 +71,8 @@ pub mod pipeline;
 #[cfg(feature = "reference")]
 pub mod reference;
 pub mod shading;
+
+/// The README's code example, compiled and run as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
