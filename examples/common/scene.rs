@@ -1,0 +1,307 @@
+//! The firmware test scene, shared with `#[path]` by the firmware examples (`fw_scene`,
+//! `fw_nopanic`) and by the host test `tests/firmware_checksum.rs`.
+//!
+//! About 220 triangles, generated procedurally with integer arithmetic only (no tables that
+//! differ between targets, no floats): a jittered grid that overhangs every border, a 32-spoke fan
+//! around a sub-pixel centre that crosses the top and bottom edges, a thin band between vertices
+//! at the ends of the `Coord` range, big triangles crossing the borders (one from 50 000
+//! pixels above the screen), off-screen and degenerate ones, and sub-pixel slivers. Shapes
+//! alternate between `Drawable::draw` and the `draw_into` fast path so both are exercised.
+//!
+//! Everything here is panic-free for any size: `fw_nopanic` links it with a panic handler that
+//! does not exist.
+
+use embedded_graphics::pixelcolor::{raw::RawU16, Rgb565};
+use embedded_graphics::prelude::*;
+use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+
+/// Framebuffer size on the MPS2 boards (4 MiB RAM).
+pub const MPS2_SIZE: (u32, u32) = (128, 96);
+/// Framebuffer size on the micro:bit (16 KiB RAM shared with the stack).
+pub const MICROBIT_SIZE: (u32, u32) = (64, 48);
+/// Every size the firmware is run with.
+pub const SIZES: [(u32, u32); 2] = [MPS2_SIZE, MICROBIT_SIZE];
+
+/// The colour the framebuffer is cleared to.
+pub const BACKGROUND: Rgb565 = Rgb565::new(2, 5, 9);
+
+/// One element of the scene.
+#[derive(Debug, Clone, Copy)]
+pub enum Shape {
+    /// A Gouraud-shaded triangle.
+    Gouraud(GouraudTriangle<Rgb565>),
+    /// A solid triangle.
+    Solid(SolidTriangle<Rgb565>),
+}
+
+impl Shape {
+    /// Corner positions in raw sub-pixel units (256 per pixel).
+    pub fn raw_positions(&self) -> [(i32, i32); 3] {
+        match self {
+            Shape::Gouraud(t) => t.vertices.map(|v| (v.x.to_bits(), v.y.to_bits())),
+            Shape::Solid(t) => t.points.map(|(x, y)| (x.to_bits(), y.to_bits())),
+        }
+    }
+}
+
+/// `sin(2π k / 32)` in units of 1/4096, for any `k`.
+fn sin32(k: u32) -> i32 {
+    const QUARTER: [i32; 9] = [0, 799, 1567, 2276, 2896, 3406, 3784, 4017, 4096];
+    let (quadrant, r) = ((k / 8) % 4, (k % 8) as usize);
+    let at = |i: usize| QUARTER.get(i).copied().unwrap_or(0);
+    match quadrant {
+        0 => at(r),
+        1 => at(8 - r),
+        2 => -at(r),
+        _ => -at(8 - r),
+    }
+}
+
+/// A well-mixed 32-bit hash of two integers and a seed.
+fn hash(a: i32, b: i32, seed: u32) -> u32 {
+    let mut h = (a as u32)
+        .wrapping_mul(0x9E37_79B1)
+        .wrapping_add((b as u32).wrapping_mul(0x85EB_CA77))
+        ^ seed.wrapping_mul(0xC2B2_AE3D);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x2C1B_3C6D);
+    h ^= h >> 12;
+    h = h.wrapping_mul(0x297A_2D39);
+    h ^ (h >> 15)
+}
+
+fn color(h: u32) -> Rgb565 {
+    Rgb565::new(
+        (h & 31) as u8,
+        ((h >> 5) & 63) as u8,
+        ((h >> 11) & 31) as u8,
+    )
+}
+
+fn c(raw: i32) -> Coord {
+    Coord::from_bits(raw)
+}
+
+fn v(x: i32, y: i32, color: Rgb565) -> Vertex<Rgb565> {
+    Vertex::new(c(x), c(y), color)
+}
+
+fn gouraud(p: [(i32, i32); 3], colors: [Rgb565; 3]) -> Shape {
+    Shape::Gouraud(GouraudTriangle::new([
+        v(p[0].0, p[0].1, colors[0]),
+        v(p[1].0, p[1].1, colors[1]),
+        v(p[2].0, p[2].1, colors[2]),
+    ]))
+}
+
+fn solid(p: [(i32, i32); 3], color: Rgb565) -> Shape {
+    Shape::Solid(SolidTriangle::new(p.map(|(x, y)| (c(x), c(y))), color))
+}
+
+/// Calls `f` with every shape of the scene for a `width × height` screen (each clamped to
+/// 4096), in drawing order.
+pub fn for_each_shape(width: u32, height: u32, mut f: impl FnMut(Shape)) {
+    // Screen size in sub-pixel units; `fx(n)` is n/100 of the width, `fy(n)` of the height.
+    let w = (width.min(4096) as i32) * 256;
+    let h = (height.min(4096) as i32) * 256;
+    let fx = |n: i32| w / 100 * n;
+    let fy = |n: i32| h / 100 * n;
+
+    // 1. A 10 × 8 grid of jittered cells, one cell beyond every border; diagonals alternate.
+    //    Shared corners keep their position and colour, so neighbouring triangles share edges.
+    let (cols, rows) = (8, 6);
+    let (cw, ch) = (w / cols, h / rows);
+    let corner = |i: i32, j: i32| {
+        let r = hash(i, j, 1);
+        let jx = (r % 256) as i32 * cw / 512 - cw / 4;
+        let jy = ((r >> 8) % 256) as i32 * ch / 512 - ch / 4;
+        // Half-pixel multiples: many edges pass exactly through pixel centres (fill-rule ties).
+        let snap = |v: i32| v & !127;
+        (snap((i - 1) * cw + jx), snap((j - 1) * ch + jy))
+    };
+    for j in 0..rows + 2 {
+        for i in 0..cols + 2 {
+            let [a, b, cc, d] = [
+                corner(i, j),
+                corner(i + 1, j),
+                corner(i + 1, j + 1),
+                corner(i, j + 1),
+            ];
+            let (t1, t2) = if (i + j) % 2 == 0 {
+                ([a, b, cc], [a, cc, d])
+            } else {
+                ([a, b, d], [b, cc, d])
+            };
+            // Every triangle has its own colours, so whoever owns a shared edge is visible.
+            let colors = |t: i32| [0, 1, 2].map(|k| color(hash(i * 2 + t, j, k + 10)));
+            f(gouraud(t1, colors(0)));
+            f(gouraud(t2, colors(1)));
+        }
+    }
+
+    // 2. A 32-spoke elliptic fan around a sub-pixel centre, crossing the top and bottom.
+    let (cx, cy) = (fx(60) + 77, fy(45) + 179);
+    let (rx, ry) = (h / 256 * 102, h / 256 * 154); // 0.4 h and 0.6 h in sub-pixel units
+    let rim = |k: u32| {
+        let along = |r: i32, s: i32| (i64::from(r) * i64::from(s) / 4096) as i32;
+        (cx + along(rx, sin32(k + 8)), cy + along(ry, sin32(k)))
+    };
+    for k in 0..32u32 {
+        f(gouraud(
+            [(cx, cy), rim(k), rim(k + 1)],
+            [
+                Rgb565::WHITE,
+                color(hash(k as i32, 0, 3)),
+                color(hash(k as i32 + 1, 0, 3)),
+            ],
+        ));
+    }
+
+    // 3. A thin band across the screen whose vertices sit at the ends of the Coord range.
+    f(gouraud(
+        [(i32::MIN, fy(75)), (i32::MAX, fy(80)), (i32::MIN, fy(85))],
+        [
+            Rgb565::new(31, 0, 0),
+            Rgb565::new(0, 63, 0),
+            Rgb565::new(0, 0, 31),
+        ],
+    ));
+
+    // 4. Big triangles crossing the borders, off-screen and degenerate ones.
+    f(gouraud(
+        [
+            (fx(-200), fy(90)),
+            (fx(45), fy(190)),
+            (fx(30) + 13, fy(70) + 201),
+        ],
+        [Rgb565::CYAN, Rgb565::MAGENTA, Rgb565::YELLOW],
+    ));
+    f(gouraud(
+        [
+            (fx(85) + 99, -50_000 * 256),
+            (fx(160), fy(50)),
+            (fx(90), fy(55) + 31),
+        ],
+        [
+            Rgb565::new(31, 63, 0),
+            Rgb565::new(0, 20, 31),
+            Rgb565::new(10, 0, 5),
+        ],
+    ));
+    f(gouraud(
+        [
+            (fx(-20), fy(-30)),
+            (fx(35) + 5, fy(-10)),
+            (fx(5), fy(40) + 250),
+        ],
+        [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE],
+    ));
+    f(solid(
+        [
+            (fx(60) + 77, fy(70)),
+            (fx(130), fy(120)),
+            (fx(70), fy(150) + 3),
+        ],
+        Rgb565::new(25, 50, 3),
+    ));
+    f(solid(
+        [(fx(-300), fy(10)), (fx(-100), fy(20)), (fx(-200), fy(90))],
+        Rgb565::WHITE,
+    ));
+    f(gouraud(
+        [(fx(10), fy(10)), (fx(50), fy(50)), (fx(90), fy(90))],
+        [Rgb565::WHITE; 3],
+    ));
+
+    // 5. Rectangles with corners on pixel centres, split along either diagonal: horizontal and
+    //    vertical edges through centres (top-left rule ties), and shared diagonals.
+    for k in 0..4 {
+        let (x0, y0) = ((10 + 7 * k) * 256 + 128, fy(60) / 256 * 256 + 128);
+        let (x1, y1) = (x0 + (3 + k) * 256, y0 + (6 - k) * 256);
+        let (c1, c2) = (color(hash(k, 11, 1)), color(hash(k, 11, 2)));
+        if k % 2 == 0 {
+            f(solid([(x0, y0), (x1, y0), (x1, y1)], c1));
+            f(solid([(x0, y0), (x1, y1), (x0, y1)], c2));
+        } else {
+            f(solid([(x0, y1), (x0, y0), (x1, y0)], c1));
+            f(solid([(x1, y0), (x1, y1), (x0, y1)], c2));
+        }
+    }
+
+    // 6. Sub-pixel slivers and tiny triangles along the top and left.
+    for k in 0..16 {
+        let x = fx(4) + k * w / 17 + (hash(k, 9, 4) % 256) as i32;
+        let y = fy(3) + (hash(k, 9, 5) % 512) as i32;
+        let size = 64 + k * 48; // 0.25 to 3 pixels
+        f(gouraud(
+            [(x, y), (x + size, y + size / 3), (x + size / 4, y + size)],
+            [
+                color(hash(k, 9, 6)),
+                color(hash(k, 9, 7)),
+                color(hash(k, 9, 8)),
+            ],
+        ));
+        let (x, y) = (
+            fx(2) + (hash(k, 10, 4) % 200) as i32,
+            y + fy(5) + k * h / 20,
+        );
+        f(solid(
+            [(x, y), (x + size / 2, y + 11), (x + 29, y + size)],
+            color(hash(k, 10, 6)),
+        ));
+    }
+}
+
+/// Clears `fb` and draws the scene, alternating `Drawable::draw` and `draw_into`.
+pub fn render(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let size = fb.size();
+    let _ = fb.clear(BACKGROUND);
+    let mut n = 0u32;
+    for_each_shape(size.width, size.height, |shape| {
+        // Opaque to the optimiser: the firmware runs the general drawing code, not a version
+        // specialised to these constants (and fw_nopanic proves that code panic-free).
+        match (core::hint::black_box(shape), n % 2) {
+            (Shape::Gouraud(t), 0) => {
+                let _ = t.draw(fb);
+            }
+            (Shape::Gouraud(t), _) => t.draw_into(fb),
+            (Shape::Solid(t), 0) => {
+                let _ = t.draw(fb);
+            }
+            (Shape::Solid(t), _) => t.draw_into(fb),
+        }
+        n = n.wrapping_add(1);
+    });
+}
+
+/// 32-bit FNV-1a over the raw pixels, each as two little-endian bytes.
+pub fn checksum(pixels: &[Rgb565]) -> u32 {
+    let mut h = 0x811C_9DC5_u32;
+    for &p in pixels {
+        let raw = RawU16::from(p).into_inner();
+        for byte in raw.to_le_bytes() {
+            h = (h ^ u32::from(byte)).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
+}
+
+/// The line the firmware prints and the host build of `fw_scene` reproduces.
+pub struct ChecksumLine {
+    /// Framebuffer width.
+    pub width: u32,
+    /// Framebuffer height.
+    pub height: u32,
+    /// [`checksum`] of the rendered pixels.
+    pub checksum: u32,
+}
+
+impl core::fmt::Display for ChecksumLine {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "scene {}x{} fnv1a={:#010x}",
+            self.width, self.height, self.checksum
+        )
+    }
+}

@@ -1,0 +1,638 @@
+//! Firmware benchmark: instructions per covered pixel and per triangle, counted by SysTick under
+//! QEMU's `-icount` (every executed instruction advances the virtual clock by exactly 1 ns, so the
+//! counts are deterministic), plus the stack depth of each draw call.
+//!
+//! ```text
+//! cargo run --release --target thumbv7em-none-eabihf --example fw_bench   # mps2-an386
+//! cargo run --release --target thumbv7m-none-eabi    --example fw_bench   # mps2-an385
+//! cargo run --release --target thumbv6m-none-eabi    --example fw_bench   # micro:bit
+//! ```
+//!
+//! SysTick runs from the core clock as a 24-bit down counter with reload; its exception counts
+//! the wraps. The instructions per tick are calibrated against a loop of known length (40 on
+//! the 25 MHz MPS2 boards, 62.5 on the 16 MHz micro:bit). Each case draws a set of triangles into
+//! a `SliceFramebuffer<Rgb565>`, repeated so that it runs for at least ~10⁵ instructions; the
+//! covered pixels are counted exactly in a separate, untimed pass through a counting draw target.
+//! Vertices sit on pixel centres, so embedded-graphics' integer `Triangle` (filled with
+//! `PrimitiveStyle`) gets the same triangles; it covers a few more pixels (it includes every
+//! edge), which is why every row reports its own pixel count.
+//!
+//! The host build prints the cases and their pixel counts only.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::{PrimitiveStyle, Triangle};
+use embedded_raster::{Coord, GouraudTriangle, SolidTriangle, Vertex};
+
+#[allow(dead_code)]
+#[path = "common/scene.rs"]
+mod scene;
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+/// Most triangles in one set.
+const MAX_SET: usize = 32;
+
+/// A benchmark triangle: corners on pixel centres (pixel indices) and three colours.
+#[derive(Debug, Clone, Copy)]
+struct BenchTriangle {
+    corners: [(i32, i32); 3],
+    colors: [Rgb565; 3],
+}
+
+impl BenchTriangle {
+    fn gouraud(&self) -> GouraudTriangle<Rgb565> {
+        let centre = |i: i32| Coord::from_bits(i * 256 + 128);
+        GouraudTriangle::new([0, 1, 2].map(|k| {
+            let (x, y) = self.corners[k];
+            Vertex::new(centre(x), centre(y), self.colors[k])
+        }))
+    }
+
+    fn solid(&self) -> SolidTriangle<Rgb565> {
+        let centre = |i: i32| Coord::from_bits(i * 256 + 128);
+        SolidTriangle::new(
+            self.corners.map(|(x, y)| (centre(x), centre(y))),
+            self.colors[0],
+        )
+    }
+
+    fn eg(&self) -> Triangle {
+        let [a, b, c] = self.corners.map(|(x, y)| Point::new(x, y));
+        Triangle::new(a, b, c)
+    }
+}
+
+/// A named set of triangles.
+struct Set {
+    name: &'static str,
+    triangles: [BenchTriangle; MAX_SET],
+    len: usize,
+    /// Repetitions per measurement.
+    reps: u32,
+}
+
+impl Set {
+    fn triangles(&self) -> &[BenchTriangle] {
+        self.triangles.get(..self.len).unwrap_or(&[])
+    }
+}
+
+fn palette(k: usize) -> [Rgb565; 3] {
+    let k = k as u8;
+    [
+        Rgb565::new(k.wrapping_mul(7) & 31, 63 - (k & 31), 5),
+        Rgb565::new(31, k.wrapping_mul(11) & 63, 31 - (k & 15)),
+        Rgb565::new(k & 31, 20, k.wrapping_mul(3) & 31),
+    ]
+}
+
+/// Number of triangle sets.
+const SETS: usize = 3;
+
+/// Triangle set `index` (large, small, tiny) for a `w × h` screen. Sets are built one at a
+/// time: all three would not fit the micro:bit's stack next to its framebuffer.
+fn make_set(index: usize, w: i32, h: i32) -> Set {
+    let mut set = Set {
+        name: "",
+        triangles: [BenchTriangle {
+            corners: [(0, 0); 3],
+            colors: [Rgb565::BLACK; 3],
+        }; MAX_SET],
+        len: MAX_SET,
+        reps: 0,
+    };
+    match index {
+        0 => {
+            // The two halves of the screen, and two big rotated triangles.
+            let corners = [
+                [(0, 0), (w - 1, 0), (w - 1, h - 1)],
+                [(0, 0), (w - 1, h - 1), (0, h - 1)],
+                [
+                    (w / 10, h / 20),
+                    (w * 19 / 20, h * 2 / 5),
+                    (w * 3 / 10, h * 19 / 20),
+                ],
+                [
+                    (w * 9 / 10, h * 9 / 10),
+                    (w / 20, h * 3 / 5),
+                    (w * 3 / 5, h / 20),
+                ],
+            ];
+            (set.name, set.len, set.reps) = ("large", corners.len(), 4);
+            for (k, (t, c)) in set.triangles.iter_mut().zip(corners).enumerate() {
+                t.corners = c;
+                t.colors = palette(k);
+            }
+        }
+        _ => {
+            let shapes = if index == 1 {
+                // About 16 px² each (areas 14.5 to 17.5), four orientations.
+                (set.name, set.reps) = ("small", 8);
+                [
+                    [(0, 0), (6, 1), (1, 5)],
+                    [(5, 0), (6, 6), (0, 3)],
+                    [(0, 5), (3, 0), (6, 4)],
+                    [(1, 1), (6, 5), (0, 6)],
+                ]
+            } else {
+                // Half-pixel² triangles between neighbouring pixel centres: 0 or 1 pixel each.
+                (set.name, set.reps) = ("tiny", 16);
+                [
+                    [(0, 0), (1, 0), (0, 1)],
+                    [(1, 0), (1, 1), (0, 1)],
+                    [(0, 0), (1, 1), (0, 1)],
+                    [(0, 0), (1, 0), (1, 1)],
+                ]
+            };
+            // Spread over an 8 × 4 grid of the screen.
+            for (k, t) in set.triangles.iter_mut().enumerate() {
+                let (x, y) = ((k % 8) as i32 * w / 8, (k / 8) as i32 * h / 4);
+                t.corners = shapes[k % 4].map(|(dx, dy)| (x + dx, y + dy));
+                t.colors = palette(k);
+            }
+        }
+    }
+    set
+}
+
+/// The renderers compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Renderer {
+    SolidDraw,
+    SolidDrawInto,
+    GouraudDraw,
+    GouraudDrawInto,
+    EgTriangle,
+}
+
+const RENDERERS: [Renderer; 5] = [
+    Renderer::SolidDraw,
+    Renderer::SolidDrawInto,
+    Renderer::GouraudDraw,
+    Renderer::GouraudDrawInto,
+    Renderer::EgTriangle,
+];
+
+impl Renderer {
+    fn name(self) -> &'static str {
+        match self {
+            Renderer::SolidDraw => "SolidTriangle::draw",
+            Renderer::SolidDrawInto => "SolidTriangle::draw_into",
+            Renderer::GouraudDraw => "GouraudTriangle::draw",
+            Renderer::GouraudDrawInto => "GouraudTriangle::draw_into",
+            Renderer::EgTriangle => "e-g Triangle (fill)",
+        }
+    }
+
+    /// Draws `t` through any draw target (`draw_into` needs a `SliceFramebuffer`; elsewhere it
+    /// falls back to `draw`, which covers the same pixels).
+    fn draw_generic<D: DrawTarget<Color = Rgb565>>(self, t: &BenchTriangle, target: &mut D) {
+        let _ = match self {
+            Renderer::SolidDraw | Renderer::SolidDrawInto => t.solid().draw(target),
+            Renderer::GouraudDraw | Renderer::GouraudDrawInto => t.gouraud().draw(target),
+            Renderer::EgTriangle => t
+                .eg()
+                .into_styled(PrimitiveStyle::with_fill(t.colors[0]))
+                .draw(target),
+        };
+    }
+}
+
+/// A draw target that only counts the pixels it receives inside its bounds.
+struct Counter {
+    size: Size,
+    pixels: u32,
+}
+
+impl OriginDimensions for Counter {
+    fn size(&self) -> Size {
+        self.size
+    }
+}
+
+impl DrawTarget for Counter {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        let bounds = self.bounding_box();
+        for Pixel(p, _) in pixels {
+            self.pixels += u32::from(bounds.contains(p));
+        }
+        Ok(())
+    }
+}
+
+/// Covered pixels of one pass over `set` (untimed). Not inlined: keeps the counting draws' stack
+/// frames out of the benchmark loop's.
+#[inline(never)]
+fn count_pixels(renderer: Renderer, set: &Set, (w, h): (u32, u32)) -> u32 {
+    let mut counter = Counter {
+        size: Size::new(w, h),
+        pixels: 0,
+    };
+    for t in set.triangles() {
+        renderer.draw_generic(t, &mut counter);
+    }
+    counter.pixels
+}
+
+/// `n / d` with two decimals, integers only.
+struct Ratio(u64, u64);
+
+impl core::fmt::Display for Ratio {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if self.1 == 0 {
+            return write!(f, "–");
+        }
+        let hundredths = (self.0 * 100 + self.1 / 2) / self.1;
+        write!(f, "{}.{:02}", hundredths / 100, hundredths % 100)
+    }
+}
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::hint::black_box;
+    use core::sync::atomic::{AtomicU32, Ordering};
+
+    use cortex_m::peripheral::{syst::SystClkSource, SYST};
+    use cortex_m_rt::{entry, exception};
+    use cortex_m_semihosting::hprintln;
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::PrimitiveStyle;
+    use embedded_raster::SliceFramebuffer;
+
+    use super::*;
+    use crate::{board, scene};
+
+    /// SysTick reload: the full 24 bits.
+    const RELOAD: u32 = 0x00FF_FFFF;
+
+    /// SysTick wraps since start.
+    static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+    #[exception]
+    fn SysTick() {
+        // Only this handler writes; thumbv6m has no atomic read-modify-write.
+        WRAPS.store(
+            WRAPS.load(Ordering::Relaxed).wrapping_add(1),
+            Ordering::Relaxed,
+        );
+    }
+
+    /// SysTick ticks since it was started.
+    #[inline(always)]
+    fn now() -> u64 {
+        loop {
+            let wraps = WRAPS.load(Ordering::SeqCst);
+            let current = SYST::get_current();
+            // A wrap between the two reads runs the handler at once; then read again.
+            if WRAPS.load(Ordering::SeqCst) == wraps {
+                return u64::from(wraps) * u64::from(RELOAD + 1) + u64::from(RELOAD - current);
+            }
+        }
+    }
+
+    /// Runs `2 n` instructions (`subs` + `bne` per iteration).
+    #[inline(never)]
+    fn spin(n: u32) {
+        // SAFETY: register-only loop.
+        unsafe {
+            core::arch::asm!(
+                "2:",
+                "subs {0}, #1",
+                "bne 2b",
+                inout(reg) n => _,
+                options(nomem, nostack)
+            );
+        }
+    }
+
+    /// Instructions per SysTick tick as a fraction `(instructions, ticks)`.
+    fn calibrate() -> (u64, u64) {
+        let t0 = now();
+        spin(100_000);
+        let t1 = now();
+        spin(1_100_000);
+        let t2 = now();
+        // The two calls differ by exactly 2 000 000 instructions.
+        (2_000_000, (t2 - t1) - (t1 - t0))
+    }
+
+    /// Ticks of `reps` passes of `f`, minus the ticks of as many empty passes.
+    fn measure(reps: u32, mut f: impl FnMut()) -> u64 {
+        let t0 = now();
+        for _ in 0..black_box(reps) {
+            f();
+        }
+        let t1 = now();
+        for _ in 0..black_box(reps) {
+            black_box(());
+        }
+        let t2 = now();
+        (t1 - t0).saturating_sub(t2 - t1)
+    }
+
+    fn run(renderer: Renderer, set: &Set, fb: &mut SliceFramebuffer<'_, Rgb565>) {
+        let set = black_box(set);
+        match renderer {
+            Renderer::SolidDraw => {
+                for t in set.triangles() {
+                    let _ = t.solid().draw(fb);
+                }
+            }
+            Renderer::SolidDrawInto => {
+                for t in set.triangles() {
+                    t.solid().draw_into(fb);
+                }
+            }
+            Renderer::GouraudDraw => {
+                for t in set.triangles() {
+                    let _ = t.gouraud().draw(fb);
+                }
+            }
+            Renderer::GouraudDrawInto => {
+                for t in set.triangles() {
+                    t.gouraud().draw_into(fb);
+                }
+            }
+            Renderer::EgTriangle => {
+                for t in set.triangles() {
+                    let _ = t
+                        .eg()
+                        .into_styled(PrimitiveStyle::with_fill(t.colors[0]))
+                        .draw(fb);
+                }
+            }
+        }
+    }
+
+    /// Measures every renderer on triangle set `index`, prints a table row for each and returns
+    /// the totals over all passes: (instructions, pixels, triangles). Not inlined, so the set
+    /// lives on the stack only while it is measured.
+    #[inline(never)]
+    fn bench_set(
+        index: usize,
+        fb: &mut SliceFramebuffer<'_, Rgb565>,
+        (cal_instructions, cal_ticks): (u64, u64),
+    ) -> [(u64, u64, u64); RENDERERS.len()] {
+        let size = fb.size();
+        let set = &make_set(index, size.width as i32, size.height as i32);
+        let mut totals = [(0, 0, 0); RENDERERS.len()];
+        for (total, &renderer) in totals.iter_mut().zip(&RENDERERS) {
+            let pixels = count_pixels(renderer, set, (size.width, size.height));
+            run(renderer, set, fb); // warm-up, untimed
+            let ticks = measure(set.reps, || run(renderer, set, fb));
+            let instructions = (ticks * cal_instructions + cal_ticks / 2) / cal_ticks;
+            let passes = u64::from(set.reps);
+            let n = set.triangles().len() as u64;
+            hprintln!(
+                "| {} | {} | {} | {} | {} | {} | {} |",
+                renderer.name(),
+                set.name,
+                n,
+                pixels,
+                (instructions + passes / 2) / passes,
+                Ratio(instructions, u64::from(pixels) * passes),
+                Ratio(instructions, n * passes)
+            );
+            *total = (instructions, u64::from(pixels) * passes, n * passes);
+        }
+        totals
+    }
+
+    // ---- stack depth -------------------------------------------------------------------------
+
+    extern "C" {
+        /// Lowest address the stack may reach (end of .bss/.uninit), from cortex-m-rt's link.x.
+        static _stack_end: u32;
+        /// Initial stack pointer (top of RAM), from cortex-m-rt's link.x.
+        static _stack_start: u32;
+    }
+
+    const PAINT: u32 = 0x5A5A_A5A5;
+    /// Bytes below the current stack pointer that are painted and scanned per draw call.
+    const WINDOW: usize = 6 * 1024;
+
+    /// Lowest stack address to paint and scan: `window` bytes below `sp`, at most down to the
+    /// end of the stack.
+    fn stack_floor(sp: usize, window: usize) -> usize {
+        let end = core::ptr::addr_of!(_stack_end) as usize;
+        end.max(sp.saturating_sub(window))
+    }
+
+    /// Bytes just below the stack pointer left unpainted: the compiler may read the stack
+    /// pointer before this function's own prologue pushes (shrink-wrapping).
+    const MARGIN: usize = 64;
+
+    /// Paints up to `window` bytes of free stack below the caller's stack pointer.
+    #[inline(never)]
+    fn paint_below_sp(window: usize) {
+        let sp = cortex_m::register::msp::read() as usize;
+        let top = sp - MARGIN;
+        let mut p = stack_floor(sp, window);
+        while p + 4 <= top {
+            // SAFETY: free stack between the stack's lower bound and the current stack pointer.
+            unsafe { core::ptr::write_volatile(p as *mut u32, PAINT) };
+            p += 4;
+        }
+    }
+
+    /// The lowest address at or above `floor` and below `sp` that no longer holds the paint.
+    fn lowest_touched(floor: usize, sp: usize) -> usize {
+        let mut p = floor;
+        // SAFETY: reads of the painted region.
+        while p < sp && unsafe { core::ptr::read_volatile(p as *const u32) } == PAINT {
+            p += 4;
+        }
+        p
+    }
+
+    /// Bytes of stack used by `f(fb, t)` below the caller's stack pointer (`None` if it used the
+    /// whole scanned window).
+    #[inline(never)]
+    fn stack_depth(
+        f: DrawCall,
+        fb: &mut SliceFramebuffer<'_, Rgb565>,
+        shape: &scene::Shape,
+    ) -> Option<usize> {
+        paint_below_sp(WINDOW);
+        let sp = cortex_m::register::msp::read() as usize;
+        black_box(f)(fb, shape);
+        let floor = stack_floor(sp, WINDOW);
+        let p = lowest_touched(floor, sp);
+        (p > floor).then_some(sp - p)
+    }
+
+    fn gouraud_of(shape: &scene::Shape) -> embedded_raster::GouraudTriangle<Rgb565> {
+        match *shape {
+            scene::Shape::Gouraud(t) => t,
+            scene::Shape::Solid(t) => embedded_raster::GouraudTriangle::new(
+                t.points
+                    .map(|(x, y)| embedded_raster::Vertex::new(x, y, t.color)),
+            ),
+        }
+    }
+
+    fn solid_of(shape: &scene::Shape) -> embedded_raster::SolidTriangle<Rgb565> {
+        match *shape {
+            scene::Shape::Gouraud(t) => embedded_raster::SolidTriangle::new(
+                t.vertices.map(|v| v.position()),
+                t.vertices[0].color,
+            ),
+            scene::Shape::Solid(t) => t,
+        }
+    }
+
+    /// A draw call whose stack depth is measured.
+    type DrawCall = fn(&mut SliceFramebuffer<'_, Rgb565>, &scene::Shape);
+
+    const STACK_CASES: [(&str, DrawCall); 4] = [
+        ("SolidTriangle::draw", |fb, s| {
+            let _ = solid_of(s).draw(fb);
+        }),
+        ("SolidTriangle::draw_into", |fb, s| {
+            solid_of(s).draw_into(fb)
+        }),
+        ("GouraudTriangle::draw", |fb, s| {
+            let _ = gouraud_of(s).draw(fb);
+        }),
+        ("GouraudTriangle::draw_into", |fb, s| {
+            gouraud_of(s).draw_into(fb)
+        }),
+    ];
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        let (width, height) = board::SIZE;
+        let mut fb = SliceFramebuffer::new(PIXELS, width, height).expect("framebuffer size");
+        // Paint all free stack now; at the end, the deepest point the benchmark reached shows,
+        // and touching the end of the stack (running into .bss) fails the run.
+        paint_below_sp(usize::MAX);
+        let main_sp = cortex_m::register::msp::read() as usize;
+        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
+        cp.SYST.set_clock_source(SystClkSource::Core);
+        cp.SYST.set_reload(RELOAD);
+        cp.SYST.clear_current();
+        cp.SYST.enable_interrupt();
+        cp.SYST.enable_counter();
+        // The counter reads 0 until its first reload: start measuring after that.
+        while SYST::get_current() == 0 {}
+
+        let (cal_instructions, cal_ticks) = calibrate();
+
+        hprintln!("### {}\n", board::BOARD);
+        hprintln!(
+            "Framebuffer {}×{} Rgb565 (`SliceFramebuffer`); SysTick {} instructions/tick \
+             (calibrated); QEMU `-icount shift=0`.\n",
+            width,
+            height,
+            Ratio(cal_instructions, cal_ticks)
+        );
+        hprintln!(
+            "| renderer | set | triangles | pixels | instructions per pass | instr/pixel | instr/triangle |"
+        );
+        hprintln!("|---|---|---:|---:|---:|---:|---:|");
+        // Totals over all passes per set and renderer: (instructions, pixels, triangles).
+        let mut totals = [[(0u64, 0u64, 0u64); RENDERERS.len()]; SETS];
+        for (index, row) in totals.iter_mut().enumerate() {
+            *row = bench_set(index, &mut fb, (cal_instructions, cal_ticks));
+        }
+        let [large, small, tiny] = totals;
+        hprintln!(
+            "\n| renderer | instr/pixel, large | instr/pixel, small (16 px²) | setup: instr/triangle, \
+             tiny (0–1 px) | setup: small minus large per-pixel |"
+        );
+        hprintln!("|---|---:|---:|---:|---:|");
+        for (r, &renderer) in RENDERERS.iter().enumerate() {
+            let (lt, lp, _) = large[r];
+            let (st, sp, sn) = small[r];
+            // Small-set instructions not explained by the large-set per-pixel rate.
+            let explained = (sp * lt).checked_div(lp).unwrap_or(0);
+            hprintln!(
+                "| {} | {} | {} | {} | {} |",
+                renderer.name(),
+                Ratio(lt, lp),
+                Ratio(st, sp),
+                Ratio(tiny[r].0, tiny[r].2),
+                Ratio(st.saturating_sub(explained), sn)
+            );
+        }
+
+        // Stack depth of one draw call, worst case over every shape of the test scene (including
+        // vertices at the ends of the Coord range). SysTick is off so its frames don't count.
+        cp.SYST.disable_interrupt();
+        cp.SYST.disable_counter();
+        hprintln!(
+            "\n| draw call | max stack, bytes (over the {} scene triangles) |",
+            {
+                let mut n = 0;
+                scene::for_each_shape(width, height, |_| n += 1);
+                n
+            }
+        );
+        hprintln!("|---|---:|");
+        for (name, f) in STACK_CASES {
+            let mut worst = Some(0);
+            scene::for_each_shape(width, height, |shape| {
+                worst = match (worst, stack_depth(f, &mut fb, &shape)) {
+                    (Some(a), Some(b)) => Some(a.max(b)),
+                    _ => None,
+                };
+            });
+            match worst {
+                Some(bytes) => hprintln!("| {} | {} |", name, bytes),
+                None => hprintln!("| {} | > {} |", name, WINDOW),
+            }
+        }
+        let end = core::ptr::addr_of!(_stack_end) as usize;
+        let stack_top = core::ptr::addr_of!(_stack_start) as usize;
+        let deepest = lowest_touched(end, main_sp);
+        hprintln!(
+            "\nDeepest stack use of this benchmark firmware: {} of {} bytes.\n",
+            stack_top - deepest,
+            stack_top - end
+        );
+        // The word at the end of the stack was painted; if it changed, the stack overflowed.
+        board::exit(deepest > end)
+    }
+
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo) -> ! {
+        hprintln!("panic: {}", info);
+        board::exit(false)
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    // The host has no instruction counter: list the cases and their exact pixel counts.
+    for (width, height) in scene::SIZES {
+        println!("{width}×{height}:");
+        for index in 0..SETS {
+            let set = make_set(index, width as i32, height as i32);
+            for renderer in RENDERERS {
+                let pixels = count_pixels(renderer, &set, (width, height));
+                println!(
+                    "  {:<28} {:<6} {:>3} triangles {:>6} pixels ({} px/triangle), {} passes in firmware",
+                    renderer.name(),
+                    set.name,
+                    set.triangles().len(),
+                    pixels,
+                    Ratio(u64::from(pixels), set.triangles().len() as u64),
+                    set.reps
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! Firmware that only links if the drawing code has no panic paths left after optimisation.
+//!
+//! Its `#[panic_handler]` calls a function that does not exist, so any reachable call to
+//! `core::panicking::*` (an `unwrap`, a bounds check, a division by zero, ...) makes the release
+//! link fail with `undefined symbol: embedded_raster_drawing_code_can_panic`. (To find the panic
+//! site, disassemble `fw_scene` and look for calls to `core::panicking`.) Everything drawn goes
+//! through `core::hint::black_box` (triangles, colours, framebuffer dimensions, clip rectangles),
+//! so the optimiser cannot prove anything from constants: what links is panic-free for all inputs
+//! the types allow. Debug builds keep their panics, so there the handler just exits with failure.
+//!
+//! It draws the shared scene (checksum printed like `fw_scene`, so the run is checked too), the
+//! same triangles in other colour formats through both `draw` and `draw_into`, and their spans
+//! under arbitrary clip rectangles.
+//!
+//! ```text
+//! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
+//! ```
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[allow(dead_code)]
+#[path = "common/scene.rs"]
+mod scene;
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::hint::black_box;
+
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::hio;
+    use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raster::{
+        traversal::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
+        Vertex,
+    };
+
+    use crate::{board, scene};
+
+    /// Size of the framebuffers for the other colour formats.
+    const SMALL: (u32, u32) = (24, 16);
+    const SMALL_PIXELS: usize = (SMALL.0 * SMALL.1) as usize;
+
+    #[cfg(not(debug_assertions))]
+    extern "C" {
+        /// Deliberately undefined: see the module documentation.
+        fn embedded_raster_drawing_code_can_panic() -> !;
+    }
+
+    #[cfg(not(debug_assertions))]
+    #[panic_handler]
+    fn panic(_: &core::panic::PanicInfo) -> ! {
+        unsafe { embedded_raster_drawing_code_can_panic() }
+    }
+
+    #[cfg(debug_assertions)]
+    #[panic_handler]
+    fn panic(_: &core::panic::PanicInfo) -> ! {
+        board::exit(false)
+    }
+
+    /// Draws a scene shape recoloured to `C` both ways into `fb`, with opaque inputs.
+    fn draw_as<C: GouraudColor>(
+        shape: scene::Shape,
+        fb: &mut SliceFramebuffer<'_, C>,
+        map: fn(Rgb565) -> C,
+    ) {
+        match shape {
+            scene::Shape::Gouraud(t) => {
+                let t = black_box(GouraudTriangle::new(
+                    t.vertices.map(|v| Vertex::new(v.x, v.y, map(v.color))),
+                ));
+                let _ = t.draw(fb);
+                t.draw_into(fb);
+            }
+            scene::Shape::Solid(t) => {
+                let t = black_box(SolidTriangle::new(t.points, map(t.color)));
+                let _ = t.draw(fb);
+                t.draw_into(fb);
+            }
+        }
+    }
+
+    /// Writes `text` to the host's stdout without formatting machinery.
+    fn print(text: &[u8]) {
+        if let Ok(mut out) = hio::hstdout() {
+            let _ = out.write_all(text);
+        }
+    }
+
+    /// `n` in decimal.
+    fn print_decimal(mut n: u32) {
+        let mut digits = [0u8; 10];
+        let mut first = digits.len();
+        while first > 0 {
+            first -= 1;
+            if let Some(d) = digits.get_mut(first) {
+                *d = b'0' + (n % 10) as u8;
+            }
+            n /= 10;
+            if n == 0 {
+                break;
+            }
+        }
+        print(digits.get(first..).unwrap_or(&[]));
+    }
+
+    /// `v` as eight hexadecimal digits.
+    fn print_hex(v: u32) {
+        let digits: [u8; 8] =
+            core::array::from_fn(|k| b"0123456789abcdef"[((v >> (28 - 4 * k)) & 15) as usize]);
+        print(&digits);
+    }
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        static mut RGB888: [Rgb888; SMALL_PIXELS] = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
+        static mut GRAY8: [Gray8; SMALL_PIXELS] = [Gray8::new(0); SMALL_PIXELS];
+        static mut BINARY: [BinaryColor; SMALL_PIXELS] = [BinaryColor::Off; SMALL_PIXELS];
+
+        // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
+        let (width, height) = black_box(board::SIZE);
+        let Some(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
+            board::exit(false)
+        };
+        scene::render(&mut fb);
+        // The same line as fw_scene's `scene::ChecksumLine`.
+        print(b"scene ");
+        print_decimal(width);
+        print(b"x");
+        print_decimal(height);
+        print(b" fnv1a=0x");
+        print_hex(scene::checksum(fb.pixels()));
+        print(b"\n");
+
+        // Other colour formats, both entry points, opaque framebuffer sizes.
+        let (sw, sh) = black_box(SMALL);
+        let mut rgb888 = SliceFramebuffer::new(RGB888, sw, sh);
+        let mut gray8 = SliceFramebuffer::new(GRAY8, sw, sh);
+        let mut binary = SliceFramebuffer::new(BINARY, sw, sh);
+        let mut spans = 0u32;
+        scene::for_each_shape(sw, sh, |shape| {
+            let shape = black_box(shape);
+            if let Some(fb) = rgb888.as_mut() {
+                draw_as(shape, fb, Rgb888::from);
+            }
+            if let Some(fb) = gray8.as_mut() {
+                draw_as(shape, fb, |c| Gray8::new(c.g() << 2));
+            }
+            if let Some(fb) = binary.as_mut() {
+                draw_as(shape, fb, |c| BinaryColor::from(c.r() > 15));
+            }
+            // Spans under an arbitrary clip rectangle.
+            let clip = black_box(Rectangle::new(Point::new(-3, 2), Size::new(40, 9)));
+            for_each_span(
+                black_box(shape.raw_positions()).map(|(x, y)| {
+                    (
+                        embedded_raster::Coord::from_bits(x),
+                        embedded_raster::Coord::from_bits(y),
+                    )
+                }),
+                clip,
+                |_, x0, x1| {
+                    spans = spans.wrapping_add(x1.wrapping_sub(x0) as u32);
+                },
+            );
+        });
+        black_box(spans);
+        black_box((
+            rgb888.as_ref().map(|f| f.pixels()),
+            gray8.as_ref().map(|f| f.pixels()),
+        ));
+        black_box(binary.as_ref().map(|f| f.pixels()));
+        board::exit(true)
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    println!("fw_nopanic is firmware: build it with --target thumbv6m-none-eabi (see .cargo/config.toml)");
+}

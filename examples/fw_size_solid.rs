@@ -1,0 +1,32 @@
+//! Footprint firmware: `SolidTriangle<Rgb565>` through `draw` and `draw_into` (see
+//! `examples/common/size.rs`; `.ci/firmware.sh` reports the sizes).
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+#[cfg(target_os = "none")]
+#[path = "common/size.rs"]
+mod size;
+
+#[cfg(target_os = "none")]
+fn main() -> ! {
+    use core::hint::black_box;
+
+    use embedded_graphics::Drawable;
+    use embedded_raster::SolidTriangle;
+
+    size::run(|fb| {
+        let (points, colors) = size::inputs();
+        let triangle = SolidTriangle::new(points, colors[0]);
+        let _ = black_box(triangle).draw(fb);
+        black_box(triangle).draw_into(fb);
+    })
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    println!("fw_size_solid is firmware: build it with --target thumbv6m-none-eabi");
+}
