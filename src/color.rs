@@ -123,19 +123,58 @@ fn fill_565<C: From<RawU16>>(
     let s1 = (round_shift(st, F - 11) << 16).wrapping_add(round_shift(sg, F - 10));
     let s2 = sb << (27 - F);
     let (mut vt, mut vg, mut vb) = (start[top], start[1], start[bottom]);
+    if dst.len() <= SHORT_SPAN {
+        // Short spans (the common case for small triangles): no chunking and no vector set-up.
+        let w1 = ((vt >> (F - 11)) << 16) | (vg >> (F - 10));
+        let w2 = vb << (27 - F);
+        packed_run_short(dst, w1, w2, s1, s2);
+        return;
+    }
     for run in dst.chunks_mut(PACKED_RUN) {
-        let mut w1 = ((vt >> (F - 11)) << 16) | (vg >> (F - 10));
-        let mut w2 = vb << (27 - F);
-        for px in run.iter_mut() {
-            let raw = ((w1 >> 16) & 0xF800) | ((w1 >> 5) & 0x07E0) | (w2 >> 27);
-            *px = C::from(RawU16::new(raw as u16));
-            w1 = w1.wrapping_add(s1);
-            w2 = w2.wrapping_add(s2);
-        }
+        let w1 = ((vt >> (F - 11)) << 16) | (vg >> (F - 10));
+        let w2 = vb << (27 - F);
+        packed_run(run, w1, w2, s1, s2);
         let n = PACKED_RUN as u32;
         vt = vt.wrapping_add(st.wrapping_mul(n));
         vg = vg.wrapping_add(sg.wrapping_mul(n));
         vb = vb.wrapping_add(sb.wrapping_mul(n));
+    }
+}
+
+/// Spans up to this length take the plain scalar loop.
+const SHORT_SPAN: usize = 16;
+
+/// One packed pixel from the two lane words of [`fill_565`].
+#[inline(always)]
+fn packed_pixel<C: From<RawU16>>(w1: u32, w2: u32) -> C {
+    let raw = ((w1 >> 16) & 0xF800) | ((w1 >> 5) & 0x07E0) | (w2 >> 27);
+    C::from(RawU16::new(raw as u16))
+}
+
+/// The packed loop of [`fill_565`] over one run (at most [`PACKED_RUN`] pixels).
+#[inline(always)]
+fn packed_run<C: From<RawU16>>(run: &mut [C], mut w1: u32, mut w2: u32, s1: u32, s2: u32) {
+    for px in run.iter_mut() {
+        *px = packed_pixel(w1, w2);
+        w1 = w1.wrapping_add(s1);
+        w2 = w2.wrapping_add(s2);
+    }
+}
+
+/// [`packed_run`] for a few pixels, written so that it is not vectorized.
+#[inline(always)]
+fn packed_run_short<C: From<RawU16>>(
+    mut run: &mut [C],
+    mut w1: u32,
+    mut w2: u32,
+    s1: u32,
+    s2: u32,
+) {
+    while let Some((px, rest)) = run.split_first_mut() {
+        *px = packed_pixel(w1, w2);
+        w1 = w1.wrapping_add(s1);
+        w2 = w2.wrapping_add(s2);
+        run = rest;
     }
 }
 

@@ -31,7 +31,7 @@ use crate::color::GouraudColor;
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::framebuffer::SliceFramebuffer;
-use crate::interpolation::{AttributePlane, InverseArea, MAX_CHUNK};
+use crate::interpolation::{AttributePlane, Basis, InverseArea, Stepped, MAX_CHUNK};
 use crate::traversal::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -160,42 +160,171 @@ impl<C: PixelColor> Drawable for SolidTriangle<C> {
 #[derive(Debug, Clone)]
 pub struct ShadedSpans<C> {
     spans: Spans,
-    planes: [AttributePlane; 3],
+    shading: Shading,
+    /// Per-pixel steps of the channels.
+    step: [u32; 3],
     /// The span being handed out in chunks, and how far into it we are.
     current: Option<(Span, u32)>,
     _color: PhantomData<C>,
 }
 
+/// How the channel values at span starts are found.
+// No heap to box the rare large variant in; the iterator was this size before (three planes).
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone)]
+enum Shading {
+    /// All channels stepped from one shared position (the common case): accumulators with
+    /// 32 fractional bits at pixel `(x, y)`, moved by exact multiples of `dx` and `dy`.
+    Stepped {
+        value: [i64; 3],
+        dx: [i64; 3],
+        dy: [i64; 3],
+        x: i64,
+        y: i64,
+    },
+    /// Some channel needs the general plane (huge regions or gradients).
+    Planes([AttributePlane; 3]),
+}
+
 impl<C: GouraudColor> ShadedSpans<C> {
     fn new(triangle: &GouraudTriangle<C>, clip: &Rectangle) -> Self {
         let positions = triangle.vertices.map(|v| v.position());
-        let channels = triangle.vertices.map(|v| v.color.channels());
         let setup = TriangleSetup::new(positions);
-        let region = setup.as_ref().and_then(|s| Region::new(s, clip));
-        match (setup, region) {
-            (Some(setup), Some(region)) => {
-                let inverse = InverseArea::new(setup.area2);
+        // By reference: moving the setup out of the `Option` would copy it.
+        let Some(setup) = setup.as_ref() else {
+            return Self::empty();
+        };
+        let Some(region) = Region::new(setup, clip) else {
+            return Self::empty();
+        };
+
+        let channels = triangle.vertices.map(|v| v.color.channels());
+        let values = |k: usize| channels.map(|c| u16::from(c.get(k).copied().unwrap_or(0)));
+        let inverse = InverseArea::new(setup.area2);
+        let stepped = if C::CHANNELS == 3 {
+            // One basis for all three channels: a few products per channel, no division.
+            Basis::new(setup, &inverse, &region).and_then(|basis| {
+                let plane = |k: usize| basis.plane(AttributePlane::differences(setup, values(k)));
+                Some([plane(0)?, plane(1)?, plane(2)?])
+            })
+        } else {
+            None
+        };
+        let (shading, step) = match stepped {
+            Some(p) => (
+                Shading::Stepped {
+                    value: p.map(|p| p.value),
+                    dx: p.map(|p| p.dx),
+                    dy: p.map(|p| p.dy),
+                    x: i64::from(region.x0),
+                    y: i64::from(region.y0),
+                },
+                p.map(|p| p.step()),
+            ),
+            None => {
                 let plane = |k: usize| {
                     if k < C::CHANNELS {
-                        let values = channels.map(|c| u16::from(c[k]));
-                        AttributePlane::with_inverse(&setup, &inverse, values, &region)
+                        AttributePlane::with_inverse(setup, &inverse, values(k), &region)
                     } else {
                         AttributePlane::constant(0)
                     }
                 };
-                ShadedSpans {
-                    spans: Spans::new(&setup, region),
-                    planes: [plane(0), plane(1), plane(2)],
-                    current: None,
-                    _color: PhantomData,
+                let planes = [plane(0), plane(1), plane(2)];
+                let step = planes.map(|p| p.step());
+                // Planes that all step (grey colours, or slivers too steep for the shared basis)
+                // still get the shared accumulator.
+                let stepped = |k: usize| match planes.get(k) {
+                    Some(p) if k < C::CHANNELS => p.stepped(),
+                    _ => Some(Stepped::ZERO),
+                };
+                match (stepped(0), stepped(1), stepped(2)) {
+                    (Some(a), Some(b), Some(c)) => (
+                        Shading::Stepped {
+                            value: [a.value, b.value, c.value],
+                            dx: [a.dx, b.dx, c.dx],
+                            dy: [a.dy, b.dy, c.dy],
+                            x: i64::from(region.x0),
+                            y: i64::from(region.y0),
+                        },
+                        step,
+                    ),
+                    _ => (Shading::Planes(planes), step),
                 }
             }
-            _ => ShadedSpans {
-                spans: Spans::empty(),
-                planes: [AttributePlane::constant(0); 3],
-                current: None,
-                _color: PhantomData,
-            },
+        };
+        ShadedSpans {
+            spans: Spans::new(setup, region),
+            shading,
+            step,
+            current: None,
+            _color: PhantomData,
+        }
+    }
+
+    /// An iterator with no spans.
+    fn empty() -> Self {
+        ShadedSpans {
+            spans: Spans::empty(),
+            shading: Shading::Planes([AttributePlane::constant(0); 3]),
+            step: [0; 3],
+            current: None,
+            _color: PhantomData,
+        }
+    }
+
+    /// Channel values at the start of `span`, which becomes the reference for [`Self::further`].
+    #[inline]
+    fn row_start(&mut self, span: &Span) -> [u32; 3] {
+        match &mut self.shading {
+            Shading::Stepped {
+                value,
+                dx,
+                dy,
+                x,
+                y,
+            } => {
+                let (sx, sy) = (i64::from(span.x_start), i64::from(span.y));
+                let (mx, my) = (sx.wrapping_sub(*x), sy.wrapping_sub(*y));
+                (*x, *y) = (sx, sy);
+                // Rows come one after another: an addition, not a 64-bit multiplication (a
+                // library call on Cortex-M0).
+                if my == 1 {
+                    for (v, dy) in value.iter_mut().zip(dy.iter()) {
+                        *v = v.wrapping_add(*dy);
+                    }
+                } else if my != 0 {
+                    for (v, dy) in value.iter_mut().zip(dy.iter()) {
+                        *v = v.wrapping_add(dy.wrapping_mul(my));
+                    }
+                }
+                if mx != 0 {
+                    for (v, dx) in value.iter_mut().zip(dx.iter()) {
+                        *v = v.wrapping_add(dx.wrapping_mul(mx));
+                    }
+                }
+                value.map(Stepped::output)
+            }
+            Shading::Planes(planes) => {
+                let mut start = [0; 3];
+                for (s, p) in start.iter_mut().zip(planes.iter_mut()).take(C::CHANNELS) {
+                    *s = p.row_start(span.x_start, span.y);
+                }
+                start
+            }
+        }
+    }
+
+    /// Channel values `offset` pixels right of the last [`Self::row_start`].
+    fn further(&self, offset: u32) -> [u32; 3] {
+        match &self.shading {
+            Shading::Stepped { value, dx, .. } => {
+                let mut start = [0; 3];
+                for ((s, v), dx) in start.iter_mut().zip(value).zip(dx) {
+                    *s = Stepped::output(v.wrapping_add(dx.wrapping_mul(i64::from(offset))));
+                }
+                start
+            }
+            Shading::Planes(planes) => planes.map(|p| p.further(offset)),
         }
     }
 }
@@ -206,13 +335,13 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
     #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         let (span, offset, start) = match self.current {
-            Some((span, offset)) => (span, offset, self.planes.map(|p| p.further(offset))),
+            Some((span, offset)) => (span, offset, self.further(offset)),
             None => {
                 let span = self.spans.next()?;
-                let start = [0, 1, 2].map(|k| match self.planes.get_mut(k) {
-                    Some(p) if k < C::CHANNELS => p.row_start(span.x_start, span.y),
-                    _ => 0,
-                });
+                let start = self.row_start(&span);
+                if span.len() <= MAX_CHUNK {
+                    return Some((span, SpanColors::new(start, self.step, span.len())));
+                }
                 (span, 0, start)
             }
         };
@@ -224,8 +353,7 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
             x_start: span.x_start.wrapping_add(offset as i32),
             x_end: span.x_start.wrapping_add(done as i32),
         };
-        let step = self.planes.map(|p| p.step());
-        Some((chunk, SpanColors::new(start, step, len)))
+        Some((chunk, SpanColors::new(start, self.step, len)))
     }
 }
 

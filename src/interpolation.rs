@@ -4,8 +4,10 @@
 //! `E_k` is the exact edge function opposite vertex `k`. It is evaluated at pixel centres:
 //!
 //! * **Per row** the value at the span start comes from a 64-bit accumulator with 32 fractional
-//!   bits, moved by exact multiples of the per-pixel and per-row gradients. Its error is at most
-//!   2⁻³³ per pixel moved, so under 2⁻¹⁵ over the largest region it is used for.
+//!   bits, moved by exact multiples of the per-pixel and per-row gradients. Its start value and
+//!   gradients are within 0.57 units of 2⁻³² of exact (½ from rounding, the rest when a colour's
+//!   three channels are formed from one shared barycentric basis, see [`Basis`]), so its error is
+//!   below 2⁻³² per pixel moved plus 2⁻³², under 2⁻¹⁵ over the largest region it is used for.
 //! * **Per pixel** a 32-bit value with 16 fractional bits is stepped by one addition. Spans are
 //!   handed out in chunks of at most [`MAX_CHUNK`] pixels, each restarted from the row value, so the
 //!   stepping error stays below 2⁻⁵.
@@ -30,7 +32,7 @@
 //! // Values are fixed point with 16 fractional bits; steps are added with `wrapping_add`.
 //! ```
 
-use crate::edge::{dot2, TriangleSetup};
+use crate::edge::{dot2, EdgeFunction, TriangleSetup};
 use crate::fixed_point::SUBPIXEL_BITS;
 use crate::traversal::Region;
 
@@ -59,13 +61,14 @@ fn div_floor(n: i128, d: i128) -> i128 {
 
 /// `1 / area2`, normalised so that one division per triangle serves every attribute.
 ///
-/// `recip = ⌊2^shift / area2⌋` with `shift = 61 + bitlen(area2)`, so `2^61 < recip ≤ 2^62` and
-/// `num · 2^k / area2` is `num · recip >> (shift − k)` with a relative error below 2⁻⁶¹. Numerators
-/// of 64 bits or more fall back to an exact `i128` division.
+/// `recip = ⌊2^shift / area2⌋` with `shift = 61 + bitlen(area2)`, so `2^61 < recip ≤ 2^62` (a
+/// `u64`) and `num · 2^k / area2` is `|num| · recip >> (shift − k)` with a relative error below
+/// 2⁻⁶¹: one 64 × 64 → 128-bit product. Numerators of 64 bits or more fall back to an exact `i128`
+/// division.
 #[derive(Debug, Clone, Copy)]
 pub struct InverseArea {
     area2: i128,
-    recip: i128,
+    recip: u64,
     shift: u32,
 }
 
@@ -77,7 +80,8 @@ impl InverseArea {
         let recip = 1u128
             .checked_shl(shift)
             .and_then(|n| n.checked_div(area2.unsigned_abs()))
-            .unwrap_or(0) as i128;
+            .and_then(|r| u64::try_from(r).ok())
+            .unwrap_or(0);
         InverseArea {
             area2,
             recip,
@@ -89,11 +93,220 @@ impl InverseArea {
     #[inline]
     pub fn scale(&self, num: i128, k: u32) -> i128 {
         let s = self.shift.saturating_sub(k);
-        if num.unsigned_abs() < 1 << 64 && s > 0 && self.recip > 0 {
-            (num * self.recip + (1 << (s - 1))) >> s
+        let magnitude = num.unsigned_abs();
+        if magnitude < 1 << 64 && s > 0 && s < 128 && self.recip > 0 {
+            // < 2^64 · 2^62: no overflow; rounded half away from zero.
+            let product = u128::from(magnitude as u64) * u128::from(self.recip);
+            let q = ((product >> (s - 1)) + 1) >> 1;
+            // q < 2^126.
+            if num < 0 {
+                -(q as i128)
+            } else {
+                q as i128
+            }
         } else {
             div_round(num << k, self.area2)
         }
+    }
+}
+
+/// The per-pixel step ([`AttributePlane::FRACTION_BITS`] fractional bits) of a per-pixel
+/// gradient with [`ROW_BITS`] fractional bits.
+///
+/// Two's complement, wrapping: adding it steps the value modulo 2^32, which is exact whenever the
+/// stepped values stay in range, as they do inside the triangle.
+#[inline]
+fn step_of(dx: i128) -> u32 {
+    let f = AttributePlane::FRACTION_BITS;
+    ((dx + (1 << (ROW_BITS - f - 1))) >> (ROW_BITS - f)) as u32
+}
+
+/// Per-triangle quantities shared by all stepped planes of a triangle over one region.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StepContext {
+    /// Offset of the region's top-left pixel centre from oriented vertex 0 (sub-pixel units).
+    px: i64,
+    py: i64,
+    /// `width + height + 2` of the region.
+    extent: i64,
+}
+
+impl StepContext {
+    /// The context of `setup` over `region`, or `None` if the region is too large for stepping.
+    #[inline]
+    pub(crate) fn new(setup: &TriangleSetup, region: &Region) -> Option<StepContext> {
+        let extent = region.width() + region.height() + 2;
+        if extent > MAX_STEPPED_EXTENT {
+            return None;
+        }
+        let (vx, vy) = setup
+            .vertices
+            .get(setup.order[0])
+            .copied()
+            .unwrap_or((0, 0));
+        let (x, y) = (i64::from(region.x0), i64::from(region.y0));
+        let half = 1 << (SUBPIXEL_BITS - 1);
+        // |x|, |y| < 2^31 and |vx|, |vy| ≤ 2^31: no overflow.
+        Some(StepContext {
+            px: (x << SUBPIXEL_BITS) + half - vx,
+            py: (y << SUBPIXEL_BITS) + half - vy,
+            extent,
+        })
+    }
+}
+
+/// The row accumulator of a stepped plane ([`ROW_BITS`] fractional bits, +½ included): value at
+/// the region's top-left pixel and gradients per pixel and per row.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stepped {
+    pub(crate) value: i64,
+    pub(crate) dx: i64,
+    pub(crate) dy: i64,
+}
+
+impl Stepped {
+    /// The accumulator of the plane with value `c0` at oriented vertex 0 and numerator gradients
+    /// `nx`, `ny` (see [`AttributePlane::gradient`]), or `None` when the gradients are too large
+    /// for stepping.
+    #[inline]
+    pub(crate) fn new(
+        inverse: &InverseArea,
+        ctx: &StepContext,
+        (c0, nx, ny): (i64, i64, i64),
+    ) -> Option<Stepped> {
+        let dx = i64::try_from(inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS)).ok()?;
+        let dy = i64::try_from(inverse.scale(i128::from(ny), ROW_BITS + SUBPIXEL_BITS)).ok()?;
+        // c(p) = c₀ + (nx·(p_x − x₀) + ny·(p_y − y₀)) / area2 with vertex 0 of the oriented
+        // order: a small numerator for on-screen triangles, so no division is needed.
+        let (px, py) = (ctx.px, ctx.py);
+        let small = (nx.unsigned_abs() | ny.unsigned_abs() | px.unsigned_abs() | py.unsigned_abs())
+            < 1 << 31;
+        let offset = dot2(nx, px, ny, py, small);
+        let value = i64::try_from(
+            (i128::from(c0) << ROW_BITS) + inverse.scale(offset, ROW_BITS) + (1 << (ROW_BITS - 1)),
+        )
+        .ok()?;
+        Stepped::checked(value, dx, dy, ctx.extent)
+    }
+
+    /// The accumulator if every value the traversal can ask for stays below 2⁶² in magnitude.
+    #[inline]
+    fn checked(value: i64, dx: i64, dy: i64, extent: i64) -> Option<Stepped> {
+        // Anywhere the traversal can ask for, |value| ≤ |value₀| + (|dx| + |dy|)·extent.
+        let bound = dx
+            .unsigned_abs()
+            .checked_add(dy.unsigned_abs())?
+            .checked_mul(extent.unsigned_abs())?
+            .checked_add(value.unsigned_abs())?;
+        (bound < 1 << 62).then_some(Stepped { value, dx, dy })
+    }
+
+    /// The accumulator of a constant 0.
+    pub(crate) const ZERO: Stepped = Stepped {
+        value: 0,
+        dx: 0,
+        dy: 0,
+    };
+
+    /// The per-pixel step of [`AttributePlane::step`].
+    #[inline]
+    pub(crate) fn step(&self) -> u32 {
+        step_of(i128::from(self.dx))
+    }
+
+    /// The value (+½, [`AttributePlane::FRACTION_BITS`] fractional bits) of an accumulator.
+    #[inline(always)]
+    pub(crate) fn output(value: i64) -> u32 {
+        (value >> (ROW_BITS - AttributePlane::FRACTION_BITS)) as u32
+    }
+}
+
+/// Extra fractional bits of the barycentric basis ([`Basis`]).
+const BASIS_BITS: u32 = 20;
+
+/// Largest basis entry: keeps the reciprocal's relative error (2⁻⁶¹) below 2⁻⁵ of a unit.
+const BASIS_LIMIT: u64 = 1 << 56;
+
+/// The barycentric coordinates `λ₁`, `λ₂` of oriented vertices 1 and 2 as stepped planes with
+/// [`ROW_BITS`]` + `[`BASIS_BITS`] fractional bits: per-pixel gradients in x and y and values at the
+/// region's top-left pixel centre.
+///
+/// A channel is `c = c₀ + d₁·λ₁ + d₂·λ₂` (`d_k = c_k − c₀`), so its accumulator comes from a few
+/// products instead of three divisions. Each entry is within `½ + 2⁻⁵` of exact (in its last
+/// place), so a channel's gradient or start value, rounded to [`ROW_BITS`] fractional bits, is
+/// within `½ + (|d₁| + |d₂|)·(½ + 2⁻⁵)·2⁻²⁰ < 0.57` units of 2⁻³² of exact for 16-bit values.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Basis {
+    /// `[gradient in x, gradient in y, value at the region's corner]` of `λ₁` and `λ₂`.
+    lambda: [[i64; 3]; 2],
+    extent: i64,
+}
+
+impl Basis {
+    /// The basis of `setup` over `region`, or `None` if the region is too large for stepping or
+    /// an entry exceeds [`BASIS_LIMIT`] (extreme slivers).
+    #[inline]
+    pub(crate) fn new(
+        setup: &TriangleSetup,
+        inverse: &InverseArea,
+        region: &Region,
+    ) -> Option<Basis> {
+        let extent = region.width() + region.height() + 2;
+        if extent > MAX_STEPPED_EXTENT {
+            return None;
+        }
+        let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
+        let [_, e1, e2] = &setup.edges;
+        // round(num · 2^k / area2) = round(|num| · recip / 2^s), s = shift − k, for the two k used.
+        let recip = u128::from(inverse.recip);
+        let sg = inverse
+            .shift
+            .checked_sub(ROW_BITS + SUBPIXEL_BITS + BASIS_BITS + 1)
+            .filter(|&s| s < 127 && recip > 0)?;
+        let sl = sg + SUBPIXEL_BITS;
+        let entry = |num: i128, s: u32| -> Option<i64> {
+            let magnitude = u64::try_from(num.unsigned_abs()).ok()?;
+            // < 2^64 · 2^62, then rounded half away from zero.
+            let q = (((u128::from(magnitude) * recip) >> s) + 1) >> 1;
+            let q = (q < u128::from(BASIS_LIMIT)).then_some(q as i64)?;
+            Some(if num < 0 { -q } else { q })
+        };
+        let lambda = |e: &EdgeFunction| -> Option<[i64; 3]> {
+            Some([
+                entry(i128::from(e.a), sg)?,
+                entry(i128::from(e.b), sg)?,
+                entry(e.exact_at(x0, y0), sl)?,
+            ])
+        };
+        Some(Basis {
+            lambda: [lambda(e1)?, lambda(e2)?],
+            extent,
+        })
+    }
+
+    /// The accumulator of the plane with oriented vertex values `c₀` and differences `d₁`, `d₂`
+    /// (see [`AttributePlane::differences`]), or `None` if it is too large for stepping.
+    #[inline]
+    pub(crate) fn plane(&self, (c0, d1, d2): (i64, i64, i64)) -> Option<Stepped> {
+        let [l1, l2] = &self.lambda;
+        // round((d₁·l₁ + d₂·l₂) / 2^BASIS_BITS) in i64: each entry is split as h·2^28 + l with
+        // 0 ≤ l < 2^28, |h| < 2^28, so with |d| < 2^16 every product and sum stays below 2^46,
+        // and (H·2^28 + L) >> 20 = H·2^8 + (L >> 20) exactly. No 128-bit multiplication (costly
+        // on Cortex-M0).
+        const SPLIT: u32 = 28;
+        let comb = |i: usize| -> Option<i64> {
+            let (e1, e2) = (*l1.get(i)?, *l2.get(i)?);
+            let hi = d1 * (e1 >> SPLIT) + d2 * (e2 >> SPLIT);
+            let lo = d1 * (e1 & ((1 << SPLIT) - 1))
+                + d2 * (e2 & ((1 << SPLIT) - 1))
+                + (1 << (BASIS_BITS - 1));
+            Some((hi << (SPLIT - BASIS_BITS)) + (lo >> BASIS_BITS))
+        };
+        let (dx, dy) = (comb(0)?, comb(1)?);
+        let value = comb(2)?
+            .checked_add(c0.checked_shl(ROW_BITS)?)?
+            .checked_add(1 << (ROW_BITS - 1))?;
+        Stepped::checked(value, dx, dy, self.extent)
     }
 }
 
@@ -141,6 +354,54 @@ impl AttributePlane {
         values: [u16; 3],
         region: &Region,
     ) -> Self {
+        let (c0, nx, ny) = Self::gradient(setup, values);
+        let (x, y) = (i64::from(region.x0), i64::from(region.y0));
+        let stepped = StepContext::new(setup, region)
+            .and_then(|ctx| Stepped::new(inverse, &ctx, (c0, nx, ny)));
+        if let Some(p) = stepped {
+            return AttributePlane {
+                mode: Mode::Stepped {
+                    dx: p.dx,
+                    dy: p.dy,
+                    value: p.value,
+                    x,
+                    y,
+                },
+                nx,
+                ny,
+                n0: 0,
+                area2: setup.area2,
+                step: p.step(),
+            };
+        }
+        let dx = inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS);
+        let c = setup
+            .order
+            .map(|v| i128::from(values.get(v).copied().unwrap_or(0)));
+        let n0 = setup.edges.iter().zip(c).map(|(e, c)| c * e.c).sum();
+        AttributePlane {
+            mode: Mode::Exact { x, y },
+            nx,
+            ny,
+            n0,
+            area2: setup.area2,
+            step: step_of(dx),
+        }
+    }
+
+    /// `(c₀, c₁ − c₀, c₂ − c₀)`: the vertex values in oriented order, as differences.
+    #[inline]
+    pub(crate) fn differences(setup: &TriangleSetup, values: [u16; 3]) -> (i64, i64, i64) {
+        let c = setup
+            .order
+            .map(|v| i64::from(values.get(v).copied().unwrap_or(0)));
+        (c[0], c[1] - c[0], c[2] - c[0])
+    }
+
+    /// `(c₀, nx, ny)`: the value at oriented vertex 0 and the numerator gradients `Σ c_k·a_k`,
+    /// `Σ c_k·b_k`.
+    #[inline]
+    pub(crate) fn gradient(setup: &TriangleSetup, values: [u16; 3]) -> (i64, i64, i64) {
         // Oriented vertex values; Σ a_k = Σ b_k = 0, so Σ c_k·a_k = (c₁−c₀)·a₁ + (c₂−c₀)·a₂,
         // below 2⁵⁰ in magnitude for 16-bit values: exact in i64.
         let c = setup
@@ -148,69 +409,7 @@ impl AttributePlane {
             .map(|v| i64::from(values.get(v).copied().unwrap_or(0)));
         let [_, e1, e2] = &setup.edges;
         let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
-        let nx = d1 * e1.a + d2 * e2.a;
-        let ny = d1 * e1.b + d2 * e2.b;
-        let dx = inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS);
-        // Two's complement, wrapping: adding it steps the value modulo 2^32, which is exact
-        // whenever the stepped values stay in range, as they do inside the triangle.
-        let step = ((dx + (1 << (ROW_BITS - Self::FRACTION_BITS - 1)))
-            >> (ROW_BITS - Self::FRACTION_BITS)) as u32;
-        let (x, y) = (i64::from(region.x0), i64::from(region.y0));
-        let extent = region.width() + region.height() + 2;
-        if extent <= MAX_STEPPED_EXTENT {
-            let dy = inverse.scale(i128::from(ny), ROW_BITS + SUBPIXEL_BITS);
-            // c(p) = c₀ + (nx·(p_x − x₀) + ny·(p_y − y₀)) / area2 with vertex 0 of the oriented
-            // order: a small numerator for on-screen triangles, so no division is needed.
-            let (vx, vy) = setup
-                .vertices
-                .get(setup.order[0])
-                .copied()
-                .unwrap_or((0, 0));
-            let half = 1 << (SUBPIXEL_BITS - 1);
-            let (px, py) = (
-                (x << SUBPIXEL_BITS) + half - vx,
-                (y << SUBPIXEL_BITS) + half - vy,
-            );
-            let small =
-                (nx.unsigned_abs() | ny.unsigned_abs() | px.unsigned_abs() | py.unsigned_abs())
-                    < 1 << 31;
-            let offset = dot2(nx, px, ny, py, small);
-            let value = (i128::from(c[0]) << ROW_BITS)
-                + inverse.scale(offset, ROW_BITS)
-                + (1 << (ROW_BITS - 1));
-            // Anywhere the traversal can ask for, |value| ≤ |value₀| + (|dx| + |dy|)·extent.
-            let bound = value.abs() + (dx.abs() + dy.abs()) * i128::from(extent);
-            if bound < 1 << 62 {
-                return AttributePlane {
-                    mode: Mode::Stepped {
-                        dx: dx as i64,
-                        dy: dy as i64,
-                        value: value as i64,
-                        x,
-                        y,
-                    },
-                    nx,
-                    ny,
-                    n0: 0,
-                    area2: setup.area2,
-                    step,
-                };
-            }
-        }
-        let n0 = setup
-            .edges
-            .iter()
-            .zip(c)
-            .map(|(e, c)| i128::from(c) * e.c)
-            .sum();
-        AttributePlane {
-            mode: Mode::Exact { x, y },
-            nx,
-            ny,
-            n0,
-            area2: setup.area2,
-            step,
-        }
+        (c[0], d1 * e1.a + d2 * e2.a, d1 * e1.b + d2 * e2.b)
     }
 
     /// A plane with the same `value` everywhere.
@@ -289,6 +488,14 @@ impl AttributePlane {
         self.step
     }
 
+    /// The accumulator at the region's top-left pixel, if this plane steps and has not moved.
+    pub(crate) fn stepped(&self) -> Option<Stepped> {
+        match self.mode {
+            Mode::Stepped { dx, dy, value, .. } => Some(Stepped { value, dx, dy }),
+            Mode::Exact { .. } => None,
+        }
+    }
+
     /// Whether the fast stepped path is in use (false: exact per-row division).
     pub fn is_stepped(&self) -> bool {
         matches!(self.mode, Mode::Stepped { .. })
@@ -351,6 +558,71 @@ mod tests {
                 "{num} {k} {area2}"
             );
         }
+    }
+
+    /// The shared-basis accumulator against exact rational values (`i128` cross-multiplication),
+    /// and against the per-channel path.
+    #[test]
+    fn basis_planes_are_within_the_documented_error() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut rnd = move |n: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % n
+        };
+        let clip = Rectangle::new(Point::new(-40, -30), Size::new(400, 300));
+        let mut checked = 0;
+        for i in 0..20_000 {
+            // Sizes from a fraction of a pixel to the whole clip, sub-pixel positions.
+            let scale = 1 << rnd(17);
+            let v = [(); 3].map(|_| {
+                let mut r = |n: u64| (rnd(2 * n + 1) as i64 - n as i64) as i32;
+                (r(scale) + 100 * 256, r(scale) + 80 * 256)
+            });
+            let max = [1, 31, 63, 255, 65535][i % 5];
+            let values = [(); 3].map(|_| rnd(max + 1) as u16);
+            let Some(setup) =
+                TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))
+            else {
+                continue;
+            };
+            let Some(region) = Region::new(&setup, &clip) else {
+                continue;
+            };
+            let inverse = InverseArea::new(setup.area2);
+            let Some(basis) = Basis::new(&setup, &inverse, &region) else {
+                continue;
+            };
+            let Some(p) = basis.plane(AttributePlane::differences(&setup, values)) else {
+                continue;
+            };
+            checked += 1;
+            let (c0, nx, ny) = AttributePlane::gradient(&setup, values);
+            let a = setup.area2;
+            // |got·area2 − exact·area2| ≤ 0.57·area2, i.e. within 0.57 units.
+            let within = |got: i64, exact_times_area: i128| {
+                100 * (i128::from(got) * a - exact_times_area).abs() <= 57 * a
+            };
+            assert!(within(p.dx, i128::from(nx) << 40), "dx {v:?} {values:?}");
+            assert!(within(p.dy, i128::from(ny) << 40), "dy {v:?} {values:?}");
+            let (vx, vy) = setup.vertices[setup.order[0]];
+            let px = (i64::from(region.x0) << 8) + 128 - vx;
+            let py = (i64::from(region.y0) << 8) + 128 - vy;
+            let offset = i128::from(nx) * i128::from(px) + i128::from(ny) * i128::from(py);
+            let base = (c0 << 32) + (1 << 31);
+            assert!(
+                within(p.value - base, offset << 32),
+                "value {v:?} {values:?}"
+            );
+            // The per-channel path rounds each quantity directly: at most one unit apart.
+            let ctx = StepContext::new(&setup, &region).unwrap();
+            if let Some(q) = Stepped::new(&inverse, &ctx, (c0, nx, ny)) {
+                assert!((q.dx - p.dx).abs() <= 1 && (q.dy - p.dy).abs() <= 1);
+                assert!((q.value - p.value).abs() <= 1);
+            }
+        }
+        assert!(checked > 5_000, "{checked}");
     }
 
     #[test]

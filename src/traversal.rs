@@ -255,8 +255,11 @@ impl Spans {
 
     /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
     pub fn of_triangle(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
-        TriangleSetup::new(v)
-            .and_then(|s| Region::new(&s, clip).map(|r| Spans::new(&s, r)))
+        // By reference: moving the setup out of the `Option` would copy it.
+        let setup = TriangleSetup::new(v);
+        setup
+            .as_ref()
+            .and_then(|s| Region::new(s, clip).map(|r| Spans::new(s, r)))
             .unwrap_or_else(Spans::empty)
     }
 
