@@ -58,8 +58,9 @@ pub trait GouraudColor: PixelColor {
     }
 }
 
+/// `GouraudColor` for RGB formats; `fill = |dst, start, step| …` overrides the span loop.
 macro_rules! rgb_color {
-    ($($t:ty),*) => {$(
+    ($t:ty $(, fill = $fill:expr)?) => {
         impl GouraudColor for $t {
             const CHANNELS: usize = 3;
             const MAX: [u8; 3] = [<$t>::MAX_R, <$t>::MAX_G, <$t>::MAX_B];
@@ -71,8 +72,14 @@ macro_rules! rgb_color {
             fn from_channels(c: [u8; 3]) -> Self {
                 <$t>::new(c[0], c[1], c[2])
             }
+            $(
+                #[inline]
+                fn fill_span(dst: &mut [Self], start: [u32; 3], step: [u32; 3]) {
+                    ($fill)(dst, start, step)
+                }
+            )?
         }
-    )*};
+    };
 }
 
 macro_rules! gray_color {
@@ -92,7 +99,12 @@ macro_rules! gray_color {
     )*};
 }
 
-rgb_color!(Rgb555, Bgr555, Rgb666, Bgr666, Rgb888, Bgr888);
+rgb_color!(Rgb555);
+rgb_color!(Bgr555);
+rgb_color!(Rgb666);
+rgb_color!(Bgr666);
+rgb_color!(Rgb888);
+rgb_color!(Bgr888);
 
 /// Pixels stepped from one restart by the packed 5-6-5 loop. Its lanes carry 11 and 10 fractional
 /// bits, so 128 steps add at most 2⁻⁴ LSB of error.
@@ -178,29 +190,14 @@ fn packed_run_short<C: From<RawU16>>(
     }
 }
 
-macro_rules! rgb_565 {
-    ($t:ty, $top:expr, $bottom:expr) => {
-        impl GouraudColor for $t {
-            const CHANNELS: usize = 3;
-            const MAX: [u8; 3] = [<$t>::MAX_R, <$t>::MAX_G, <$t>::MAX_B];
-            #[inline]
-            fn channels(self) -> [u8; 3] {
-                [self.r(), self.g(), self.b()]
-            }
-            #[inline]
-            fn from_channels(c: [u8; 3]) -> Self {
-                <$t>::new(c[0], c[1], c[2])
-            }
-            #[inline]
-            fn fill_span(dst: &mut [Self], start: [u32; 3], step: [u32; 3]) {
-                fill_565(dst, start, step, $top, $bottom)
-            }
-        }
-    };
-}
-
-rgb_565!(Rgb565, 0, 2);
-rgb_565!(Bgr565, 2, 0);
+rgb_color!(
+    Rgb565,
+    fill = |d: &mut [Rgb565], s, t| fill_565(d, s, t, 0, 2)
+);
+rgb_color!(
+    Bgr565,
+    fill = |d: &mut [Bgr565], s, t| fill_565(d, s, t, 2, 0)
+);
 gray_color!(Gray2 = 3, Gray4 = 15, Gray8 = 255);
 
 impl GouraudColor for BinaryColor {
