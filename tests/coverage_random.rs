@@ -27,31 +27,11 @@ const MAX: i64 = i32::MAX as i64;
 /// Allowed deviation from the exact interpolated channel value, in LSB.
 const TOLERANCE: f64 = 1.0 + 1e-9;
 
-/// SplitMix64: small, deterministic, good enough for test-case generation.
-struct Rng(u64);
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-
-    /// Uniform in `lo..=hi`.
-    fn range(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next() % ((hi - lo) as u64 + 1)) as i64
-    }
-
-    fn chance(&mut self, one_in: u64) -> bool {
-        self.below(one_in) == 0
-    }
-
     /// An `i32` of random magnitude (2^0 .. 2^31), either sign.
     fn any_scale(&mut self) -> i64 {
         i64::from((self.next() as i32) >> self.below(32))

@@ -639,27 +639,15 @@ fn check_bary3(t: &Triangle3, p: Point3, st: &mut Stats) {
 // Random inputs (deterministic)
 // ------------------------------------------------------------------------------------------------
 
-struct Rng(u64);
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        // splitmix64
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
     /// Uniform in [-2^bits, 2^bits].
     fn spread(&mut self, bits: u32) -> i64 {
         let m = 1i64 << bits;
         (self.next() % (2 * m as u64 + 1)) as i64 - m
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 
