@@ -76,12 +76,19 @@ impl InverseArea {
     /// The reciprocal of a triangle's doubled area (`area2 > 0`, as in [`TriangleSetup`]).
     pub fn new(area2: i128) -> Self {
         // |area2| < 2^65 for any Coord vertices, so shift ≤ 126.
-        let shift = 61 + (128 - area2.leading_zeros());
-        let recip = 1u128
-            .checked_shl(shift)
-            .and_then(|n| n.checked_div(area2.unsigned_abs()))
-            .and_then(|r| u64::try_from(r).ok())
-            .unwrap_or(0);
+        let bits = 128 - area2.leading_zeros();
+        let shift = 61 + bits;
+        let magnitude = area2.unsigned_abs();
+        let recip = if (1..=64).contains(&bits) {
+            // floor(2^(61+n) / area2) = floor(2^125 / d) for the normalised d = area2·2^(64−n).
+            reciprocal_125((magnitude as u64) << (64 - bits))
+        } else {
+            1u128
+                .checked_shl(shift)
+                .and_then(|n| n.checked_div(magnitude))
+                .and_then(|r| u64::try_from(r).ok())
+                .unwrap_or(0)
+        };
         InverseArea {
             area2,
             recip,
@@ -108,6 +115,48 @@ impl InverseArea {
             div_round(num << k, self.area2)
         }
     }
+}
+
+/// First guesses of `2^17 / t` for the top nine bits `t ∈ [256, 512)` of a normalised divisor.
+const RECIPROCAL_SEED: [u16; 256] = {
+    let mut table = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        table[i] = ((1u32 << 17) / (256 + i as u32)) as u16;
+        i += 1;
+    }
+    table
+};
+
+/// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`, without a division (Cortex-M0 has no divider, and a
+/// 128-bit library division costs thousands of instructions there).
+///
+/// A table seed good to 8 bits, three Newton steps `x += x·(2^126 − d·x) / 2^126` towards
+/// `2^126 / d` (8 → 16 → 32 → 60+ bits), then an exact correction of the remainder, so the result
+/// is the exact floor whatever the steps' rounding.
+fn reciprocal_125(d: u64) -> u64 {
+    let seed = RECIPROCAL_SEED
+        .get(((d >> 55) - 256) as usize)
+        .copied()
+        .unwrap_or(256);
+    let mut x = i128::from(seed) << 54;
+    for _ in 0..3 {
+        // e = 2^126 − d·x, |e| < 2^119; x·(e / 2^64) / 2^62 ≈ x·e / 2^126.
+        let e = (1i128 << 126) - i128::from(d) * x;
+        x += (x * (e >> 64)) >> 62;
+    }
+    let d = i128::from(d);
+    let mut q = x >> 1;
+    let mut r = (1i128 << 125) - q * d;
+    while r < 0 {
+        q -= 1;
+        r += d;
+    }
+    while r >= d {
+        q += 1;
+        r -= d;
+    }
+    q as u64
 }
 
 /// The per-pixel step ([`AttributePlane::FRACTION_BITS`] fractional bits) of a per-pixel
@@ -534,6 +583,30 @@ mod tests {
                 );
                 assert_eq!(p.further(3) >> 16, (x + 3 + 1) as u32);
             }
+        }
+    }
+
+    #[test]
+    fn reciprocal_without_division_is_exact() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let check = |d: u64| {
+            let d = d | 1 << 63;
+            assert_eq!(
+                u128::from(reciprocal_125(d)),
+                (1u128 << 125) / u128::from(d),
+                "{d:#x}"
+            );
+        };
+        for d in [0, 1, u64::MAX, u64::MAX >> 1, 1 << 62, (1 << 62) + 1] {
+            check(d);
+        }
+        for _ in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            check(seed);
+            check(seed >> 40);
+            check(seed | (u64::MAX >> 30));
         }
     }
 
