@@ -30,7 +30,7 @@ use embedded_graphics::primitives::Rectangle;
 use crate::color::GouraudColor;
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
-use crate::framebuffer::SliceFramebuffer;
+use crate::framebuffer::{fill_row, SliceFramebuffer};
 use crate::interpolation::{AttributePlane, Basis, InverseArea, Stepped, MAX_CHUNK};
 use crate::traversal::{Region, Span, Spans};
 
@@ -129,7 +129,7 @@ impl<C: PixelColor> SolidTriangle<C> {
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         for span in self.spans(&framebuffer.bounding_box()) {
             if let Some(row) = framebuffer.row_mut(span.x_start, span.y, span.len()) {
-                row.fill(self.color);
+                fill_row(row, self.color);
             }
         }
     }
