@@ -5,7 +5,7 @@
 //!   pixel was drawn (white once, red more than once, black never inside the fan);
 //! * `heatmap.png` — per-pixel colour error against the f64 reference, in LSB of Rgb888.
 //!
-//! Run with `cargo run --release --features reference --example gallery`.
+//! Run with `cargo run --release --example gallery`.
 
 use embedded_graphics::{
     pixelcolor::{Rgb565, Rgb888},
@@ -13,7 +13,13 @@ use embedded_graphics::{
     primitives::Rectangle,
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
-use embedded_raster::{reference, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+
+// The f64 reference, compiled in directly so that the example needs no cargo feature
+// (it is `embedded_raster::reference` with the `reference` feature).
+#[allow(dead_code)]
+#[path = "../src/reference.rs"]
+mod reference;
 
 fn coord(v: f64) -> Coord {
     Coord::from_num(v)
