@@ -41,8 +41,15 @@ pub(crate) fn dot2(a: i64, x: i64, b: i64, y: i64, narrow: bool) -> i128 {
         // Cannot overflow under the caller's bound (debug builds check it).
         i128::from(a * x + b * y)
     } else {
-        i128::from(a) * i128::from(x) + i128::from(b) * i128::from(y)
+        dot2_wide(a, x, b, y)
     }
+}
+
+/// The `i128` case of [`dot2`], kept out of line: it is rare and large on 32-bit cores.
+#[inline(never)]
+#[cold]
+fn dot2_wide(a: i64, x: i64, b: i64, y: i64) -> i128 {
+    i128::from(a) * i128::from(x) + i128::from(b) * i128::from(y)
 }
 
 /// One edge function, reduced to pixel-centre lattice form.

@@ -46,7 +46,9 @@ pub const MAX_CHUNK: u32 = 4096;
 const MAX_STEPPED_EXTENT: i64 = 1 << 16;
 
 /// `round(n / d)` for `d > 0`, never panicking.
-#[inline]
+// Out of line and cold: 128-bit division is large on Thumb and only the rare paths need it.
+#[inline(never)]
+#[cold]
 fn div_round(n: i128, d: i128) -> i128 {
     (n.saturating_mul(2).saturating_add(d))
         .checked_div_euclid(d.saturating_mul(2))
@@ -54,7 +56,8 @@ fn div_round(n: i128, d: i128) -> i128 {
 }
 
 /// `floor(n / d)` for `d > 0`, never panicking.
-#[inline]
+#[inline(never)]
+#[cold]
 fn div_floor(n: i128, d: i128) -> i128 {
     n.checked_div_euclid(d).unwrap_or(0)
 }
@@ -524,6 +527,8 @@ impl AttributePlane {
     }
 
     /// Exact `floor(c·2^16) + 2^15` at pixel `(x, y)`.
+    #[inline(never)]
+    #[cold]
     fn exact(&self, x: i64, y: i64) -> u32 {
         let f = Self::FRACTION_BITS;
         (div_floor(self.numerator(x, y) << f, self.area2) + (1 << (f - 1))) as u32
