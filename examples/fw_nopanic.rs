@@ -27,6 +27,10 @@ mod scene;
 mod board;
 
 #[cfg(target_os = "none")]
+#[path = "common/nopanic.rs"]
+mod nopanic;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use core::hint::black_box;
 
@@ -45,24 +49,6 @@ mod firmware {
     /// Size of the framebuffers for the other colour formats.
     const SMALL: (u32, u32) = (24, 16);
     const SMALL_PIXELS: usize = (SMALL.0 * SMALL.1) as usize;
-
-    #[cfg(not(debug_assertions))]
-    extern "C" {
-        /// Deliberately undefined: see the module documentation.
-        fn embedded_raster_drawing_code_can_panic() -> !;
-    }
-
-    #[cfg(not(debug_assertions))]
-    #[panic_handler]
-    fn panic(_: &core::panic::PanicInfo) -> ! {
-        unsafe { embedded_raster_drawing_code_can_panic() }
-    }
-
-    #[cfg(debug_assertions)]
-    #[panic_handler]
-    fn panic(_: &core::panic::PanicInfo) -> ! {
-        board::exit(false)
-    }
 
     /// Draws a scene shape recoloured to `C` both ways into `fb`, with opaque inputs.
     fn draw_as<C: GouraudColor>(
