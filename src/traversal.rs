@@ -32,7 +32,7 @@
 use embedded_graphics::primitives::Rectangle;
 
 use crate::edge::{dot2, TriangleSetup};
-use crate::fixed_point::Coord;
+use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -181,76 +181,75 @@ impl Region {
 }
 
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom.
+///
+/// Two walkers share the same exact boundaries: the common one steps one start and one end
+/// boundary per row in `i32` (switching edges at the middle vertex); triangles whose boundaries
+/// leave the `i32` range over the region (far off-screen slivers) step every crossing edge in
+/// `i64`.
 #[derive(Debug, Clone)]
 pub struct Spans {
-    /// The first `starts` bound the span's start, the last `ends` its end.
-    edges: [Boundary; 3],
-    starts: usize,
-    ends: usize,
-    /// A horizontal crossing edge: `(b, value in the current row)`; the row is in iff value ≥ 0.
-    horizontal: Option<(i64, i64)>,
-    x0: i64,
-    x1: i64,
-    y: i64,
-    y1: i64,
+    walk: Walk,
+}
+
+#[derive(Debug, Clone)]
+enum Walk {
+    Narrow(NarrowSpans),
+    Wide(WideSpans),
+}
+
+/// How one edge function meets the region.
+#[derive(Debug, Clone, Copy)]
+enum Crossing {
+    /// Every pixel of the region is inside the edge.
+    Inside,
+    /// The edge crosses the region: coefficients and value `k` at the region's top-left pixel.
+    Cross { a: i64, b: i64, k: i64 },
+}
+
+/// Classifies the edges of `setup` against `region`, or `None` if one excludes all of it.
+fn crossings(setup: &TriangleSetup, region: &Region) -> Option<[Crossing; 3]> {
+    let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
+    let (w, h) = (region.width() - 1, region.height() - 1);
+    let mut out = [Crossing::Inside; 3];
+    for (e, out) in setup.edges.iter().zip(out.iter_mut()) {
+        // The edge's value at the region's top-left pixel and its range over the region.
+        let (k, min, max) = if e.narrow {
+            // |a|, |b| < 2^30 and |x0|, |y0|, w, h < 2^24: well inside i64.
+            let k = e.a * x0 + e.b * y0 + e.k as i64;
+            let (da, db) = (e.a * w, e.b * h);
+            let min = k + da.min(0) + db.min(0);
+            (k, i128::from(min), i128::from(k + da.max(0) + db.max(0)))
+        } else {
+            let k = e.value_at(x0, y0);
+            let (da, db) = (dot2(e.a, w, 0, 0, false), dot2(e.b, h, 0, 0, false));
+            (
+                k as i64,
+                k + da.min(0) + db.min(0),
+                k + da.max(0) + db.max(0),
+            )
+        };
+        if max < 0 {
+            return None;
+        }
+        if min < 0 {
+            // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2^58: the i64 above is exact.
+            *out = Crossing::Cross { a: e.a, b: e.b, k };
+        }
+    }
+    Some(out)
 }
 
 impl Spans {
     /// Spans of `setup` inside `region`.
     pub fn new(setup: &TriangleSetup, region: Region) -> Spans {
-        let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
-        let (x1, y1) = (i64::from(region.x1), i64::from(region.y1));
-        let mut spans = Spans::empty();
-        let (w, h) = (x1 - x0, y1 - y0);
-        for e in &setup.edges {
-            // The edge's value at the region's top-left pixel and its range over the region.
-            let (k, min, max) = if e.narrow {
-                // |a|, |b| < 2^30 and |x0|, |y0|, w, h < 2^24: well inside i64.
-                let k = e.a * x0 + e.b * y0 + e.k as i64;
-                let (da, db) = (e.a * w, e.b * h);
-                let min = k + da.min(0) + db.min(0);
-                (k, i128::from(min), i128::from(k + da.max(0) + db.max(0)))
-            } else {
-                let k = e.value_at(x0, y0);
-                let (da, db) = (dot2(e.a, w, 0, 0, false), dot2(e.b, h, 0, 0, false));
-                (
-                    k as i64,
-                    k + da.min(0) + db.min(0),
-                    k + da.max(0) + db.max(0),
-                )
-            };
-            if max < 0 {
-                // No pixel of the region is inside this edge.
-                return Spans::empty();
-            }
-            if min >= 0 {
-                continue;
-            }
-            // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2^58: the i64 above is exact.
-            // Start edges fill `edges` from the front, end edges from the back.
-            let slot = match e.a {
-                0 => {
-                    spans.horizontal = Some((e.b, k));
-                    continue;
-                }
-                a if a > 0 => {
-                    spans.starts += 1;
-                    spans.starts - 1
-                }
-                _ => {
-                    spans.ends += 1;
-                    3 - spans.ends
-                }
-            };
-            if let Some(slot) = spans.edges.get_mut(slot) {
-                *slot = Boundary::new(e.a, e.b, k, x0);
-            }
-        }
-        spans.x0 = x0;
-        spans.x1 = x1;
-        spans.y = y0;
-        spans.y1 = y1;
-        spans
+        let Some(crossings) = crossings(setup, &region) else {
+            return Spans::empty();
+        };
+        let walk = match NarrowSpans::new(setup, &region, &crossings) {
+            Some(narrow) => Walk::Narrow(narrow),
+            None => Walk::Wide(WideSpans::new(&region, &crossings)),
+        };
+        Spans { walk }
     }
 
     /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
@@ -265,6 +264,321 @@ impl Spans {
 
     /// An iterator with no spans.
     pub fn empty() -> Spans {
+        Spans {
+            walk: Walk::Narrow(NarrowSpans::empty()),
+        }
+    }
+
+    /// Whether the spans are stepped in `i32` (the fast walker).
+    pub fn is_narrow(&self) -> bool {
+        matches!(self.walk, Walk::Narrow(_))
+    }
+}
+
+impl Iterator for Spans {
+    type Item = Span;
+
+    #[inline]
+    fn next(&mut self) -> Option<Span> {
+        match &mut self.walk {
+            Walk::Narrow(n) => n.next(),
+            Walk::Wide(w) => w.next(),
+        }
+    }
+
+    /// One dispatch per triangle; the walker's state then lives in registers.
+    #[inline]
+    fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, f: F) -> B {
+        match self.walk {
+            Walk::Narrow(n) => n.fold(init, f),
+            Walk::Wide(w) => w.fold(init, f),
+        }
+    }
+}
+
+/// A boundary column stepped in `i32`: the [`Boundary`] of one edge whose columns stay within
+/// ±2³⁰ over the rows it is used for.
+#[derive(Debug, Clone, Copy)]
+struct Boundary32 {
+    x: i32,
+    rem: i32,
+    m: i32,
+    step: i32,
+    rem_step: i32,
+}
+
+impl Boundary32 {
+    /// A boundary that never limits the span: far left for starts, far right for ends.
+    const fn open(x: i32) -> Self {
+        Boundary32 {
+            x,
+            rem: 0,
+            m: 1,
+            step: 0,
+            rem_step: 0,
+        }
+    }
+
+    /// The `i64` boundary, if it and every column it reaches in the next `rows` rows fit.
+    fn narrow(b: &Boundary, rows: i64) -> Option<Self> {
+        const LIMIT: i64 = 1 << 30;
+        // Each row moves the column by `step` and at most one carry.
+        let reach = b
+            .step
+            .checked_abs()?
+            .checked_add(1)?
+            .checked_mul(rows.checked_add(1)?)?
+            .checked_add(b.x.checked_abs()?)?;
+        (b.m < LIMIT && reach < LIMIT).then_some(Boundary32 {
+            x: b.x as i32,
+            rem: b.rem as i32,
+            m: b.m as i32,
+            step: b.step as i32,
+            rem_step: b.rem_step as i32,
+        })
+    }
+
+    /// Moves to the next row; `carry` is −1 for start edges and +1 for end edges.
+    #[inline(always)]
+    fn advance(&mut self, carry: i32) {
+        self.x += self.step;
+        self.rem += self.rem_step;
+        if self.rem >= self.m {
+            self.rem -= self.m;
+            self.x += carry;
+        }
+    }
+}
+
+/// Row at which nothing switches.
+const NEVER: i32 = i32::MAX;
+
+/// The fast walker: one start and one end boundary per row.
+///
+/// The start edges (`a > 0`) of a triangle form a chain from its top vertex to its bottom vertex
+/// through at most one middle vertex `V`, and so do the end edges. Above `V` the upper edge of
+/// the chain is the tighter one (convexity: the lines cross only at `V`, and the real boundary of
+/// the upper edge lies strictly inside the lower one's there, which the exact column rounding
+/// preserves), below `V` the lower one. In the row through `V` both give the same column: both
+/// are left edges (start) or both are not (end), so their tie rules agree. So each row steps just
+/// the edge that bounds it, and the lower edge takes over in the first row whose centre is not
+/// above `V`. Horizontal edges only limit the rows.
+#[derive(Debug, Clone)]
+struct NarrowSpans {
+    start: Boundary32,
+    end: Boundary32,
+    /// The lower edge of each chain and the row it takes over in ([`NEVER`] if none).
+    next_start: Boundary32,
+    next_end: Boundary32,
+    start_switch: i32,
+    end_switch: i32,
+    /// The first row at which an edge changes: `min(start_switch, end_switch)`.
+    switch: i32,
+    x0: i32,
+    x1: i32,
+    y: i32,
+    y1: i32,
+}
+
+/// One chain (start or end edges) of a triangle over a region, before conversion to `i32`.
+struct Chain {
+    /// Boundary in the first row, and the lower edge with its first row (if it takes over).
+    first: Option<Boundary>,
+    next: Option<(Boundary, i64)>,
+}
+
+impl NarrowSpans {
+    fn empty() -> Self {
+        NarrowSpans {
+            start: Boundary32::open(0),
+            end: Boundary32::open(0),
+            next_start: Boundary32::open(0),
+            next_end: Boundary32::open(0),
+            start_switch: NEVER,
+            end_switch: NEVER,
+            switch: NEVER,
+            x0: 0,
+            x1: -1,
+            y: 1,
+            y1: 0,
+        }
+    }
+
+    /// The walker for the edges `crossings` of `setup` over `region`, or `None` if a boundary
+    /// leaves the `i32` range.
+    fn new(setup: &TriangleSetup, region: &Region, crossings: &[Crossing; 3]) -> Option<Self> {
+        let (x0, mut y0) = (i64::from(region.x0), i64::from(region.y0));
+        let mut y1 = i64::from(region.y1);
+        let (row0, x_first) = (y0, x0);
+        // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
+        for c in crossings {
+            if let Crossing::Cross { a: 0, b, k } = *c {
+                if b > 0 {
+                    // First row with b·d + k ≥ 0: d = ⌈−k/b⌉.
+                    let (q, r) = div_mod_floor(-k, b);
+                    y0 = y0.max(row0 + q + i64::from(r > 0));
+                } else if b < 0 {
+                    // Last row with k − |b|·d ≥ 0: d = ⌊k/|b|⌋.
+                    y1 = y1.min(row0 + div_mod_floor(k, -b).0);
+                }
+            }
+        }
+        if y0 > y1 {
+            return Some(Self::empty());
+        }
+        // The chains: edges with a > 0 bound starts, a < 0 ends.
+        let chain = |start: bool| -> Chain {
+            let mut found = [None; 2];
+            let mut n = 0;
+            for (i, c) in crossings.iter().enumerate() {
+                if let Crossing::Cross { a, b, k } = *c {
+                    if a != 0 && (a > 0) == start {
+                        if let Some(slot) = found.get_mut(n) {
+                            *slot = Some((i, a, b, k));
+                        }
+                        n += 1;
+                    }
+                }
+            }
+            let at = |a: i64, b: i64, k: i64, row: i64| {
+                Boundary::new(a, b, k + b * (row - row0), x_first)
+            };
+            match found {
+                [Some((_, a, b, k)), None] => Chain {
+                    first: Some(at(a, b, k, y0)),
+                    next: None,
+                },
+                [Some((p, ap, bp, kp)), Some((q, aq, bq, kq))] => {
+                    // The shared vertex is the one neither edge is opposite; `edges[p]` runs to
+                    // the vertex opposite `edges[q]`, and is the upper edge if that one is above.
+                    let vertex = |k: usize| {
+                        setup
+                            .order
+                            .get(k)
+                            .and_then(|&v| setup.vertices.get(v))
+                            .map_or(0, |v| v.1)
+                    };
+                    let vy = vertex(3 - p - q);
+                    let ((au, bu, ku), (al, bl, kl)) = if vertex(q) < vertex(p) {
+                        ((ap, bp, kp), (aq, bq, kq))
+                    } else {
+                        ((aq, bq, kq), (ap, bp, kp))
+                    };
+                    // First row whose centre (256·j + 128) is not above the vertex.
+                    let switch = (vy - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
+                    if switch <= y0 {
+                        Chain {
+                            first: Some(at(al, bl, kl, y0)),
+                            next: None,
+                        }
+                    } else if switch > y1 {
+                        Chain {
+                            first: Some(at(au, bu, ku, y0)),
+                            next: None,
+                        }
+                    } else {
+                        Chain {
+                            first: Some(at(au, bu, ku, y0)),
+                            next: Some((at(al, bl, kl, switch), switch)),
+                        }
+                    }
+                }
+                _ => Chain {
+                    first: None,
+                    next: None,
+                },
+            }
+        };
+        let rows = y1 - y0 + 1;
+        let convert = |c: Chain, open: i32| -> Option<(Boundary32, Boundary32, i32)> {
+            let first = match c.first {
+                Some(b) => Boundary32::narrow(&b, rows)?,
+                None => Boundary32::open(open),
+            };
+            Some(match c.next {
+                Some((b, row)) => (first, Boundary32::narrow(&b, y1 - row + 1)?, row as i32),
+                None => (first, Boundary32::open(open), NEVER),
+            })
+        };
+        // Open boundaries lie outside any region (|x| ≤ 2^31 − 1 there, within i32 here).
+        let (start, next_start, start_switch) = convert(chain(true), i32::MIN)?;
+        let (end, next_end, end_switch) = convert(chain(false), i32::MAX)?;
+        Some(NarrowSpans {
+            start,
+            end,
+            next_start,
+            next_end,
+            start_switch,
+            end_switch,
+            switch: start_switch.min(end_switch),
+            x0: region.x0,
+            x1: region.x1,
+            // Within the region's rows, so within i32.
+            y: y0 as i32,
+            y1: y1 as i32,
+        })
+    }
+
+    /// Takes over the lower edges whose row has come.
+    #[cold]
+    fn switch_edges(&mut self) {
+        if self.y == self.start_switch {
+            self.start = self.next_start;
+            self.start_switch = NEVER;
+        }
+        if self.y == self.end_switch {
+            self.end = self.next_end;
+            self.end_switch = NEVER;
+        }
+        self.switch = self.start_switch.min(self.end_switch);
+    }
+}
+
+impl Iterator for NarrowSpans {
+    type Item = Span;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Span> {
+        while self.y <= self.y1 {
+            if self.y == self.switch {
+                self.switch_edges();
+            }
+            let start = self.x0.max(self.start.x);
+            let end = self.x1.min(self.end.x);
+            self.start.advance(-1);
+            self.end.advance(1);
+            let y = self.y;
+            self.y += 1;
+            if start <= end {
+                // `end ≤ x1 < 2^24`: no overflow.
+                return Some(Span {
+                    y,
+                    x_start: start,
+                    x_end: end + 1,
+                });
+            }
+        }
+        None
+    }
+}
+
+/// The general walker: every crossing edge stepped in `i64`.
+#[derive(Debug, Clone)]
+struct WideSpans {
+    /// The first `starts` bound the span's start, the last `ends` its end.
+    edges: [Boundary; 3],
+    starts: usize,
+    ends: usize,
+    /// A horizontal crossing edge: `(b, value in the current row)`; the row is in iff value ≥ 0.
+    horizontal: Option<(i64, i64)>,
+    x0: i64,
+    x1: i64,
+    y: i64,
+    y1: i64,
+}
+
+impl WideSpans {
+    fn new(region: &Region, crossings: &[Crossing; 3]) -> Self {
         let none = Boundary {
             x: 0,
             rem: 0,
@@ -273,20 +587,45 @@ impl Spans {
             rem_step: 0,
             carry: 1,
         };
-        Spans {
+        let x0 = i64::from(region.x0);
+        let mut spans = WideSpans {
             edges: [none; 3],
             starts: 0,
             ends: 0,
             horizontal: None,
-            x0: 0,
-            x1: -1,
-            y: 1,
-            y1: 0,
+            x0,
+            x1: i64::from(region.x1),
+            y: i64::from(region.y0),
+            y1: i64::from(region.y1),
+        };
+        for c in crossings {
+            let Crossing::Cross { a, b, k } = *c else {
+                continue;
+            };
+            // Start edges fill `edges` from the front, end edges from the back.
+            let slot = match a {
+                0 => {
+                    spans.horizontal = Some((b, k));
+                    continue;
+                }
+                a if a > 0 => {
+                    spans.starts += 1;
+                    spans.starts - 1
+                }
+                _ => {
+                    spans.ends += 1;
+                    3 - spans.ends
+                }
+            };
+            if let Some(slot) = spans.edges.get_mut(slot) {
+                *slot = Boundary::new(a, b, k, x0);
+            }
         }
+        spans
     }
 }
 
-impl Iterator for Spans {
+impl Iterator for WideSpans {
     type Item = Span;
 
     #[inline]
@@ -374,6 +713,67 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The `i32` walker (one edge per chain and row, switching at the middle vertex) against the
+    /// `i64` walker that steps every crossing edge, and both against per-pixel edge tests, over
+    /// triangles from sub-pixel size to far beyond the clip, including near-horizontal slivers
+    /// that force the wide walker.
+    #[test]
+    fn narrow_and_wide_walkers_agree() {
+        let clip = Rectangle::new(Point::new(-3, -2), Size::new(31, 29));
+        let mut seed = 0x0f1e_2d3c_4b5a_6978_u64;
+        let mut rnd = |range: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * range as u64 + 1)) as i64 - range
+        };
+        let (mut narrow, mut wide) = (0, 0);
+        for i in 0..20_000 {
+            let range = [1 << 8, 1 << 12, 1 << 16, 1 << 24, 1 << 31][i % 5];
+            let c = |r: i64| {
+                Coord::from_bits((r + 12 * 256).clamp(i32::MIN.into(), i32::MAX.into()) as i32)
+            };
+            let mut v = [(); 3].map(|_| (c(rnd(range)), c(rnd(range))));
+            if i % 7 == 0 {
+                // A near-horizontal edge from far left to far right through the clip.
+                let y = rnd(20 * 256);
+                v[0] = (c(-(1 << 31)), c(y));
+                v[1] = (c(1 << 31), c(y + rnd(300)));
+            }
+            let Some(setup) = TriangleSetup::new(v) else {
+                continue;
+            };
+            let Some(region) = Region::new(&setup, &clip) else {
+                continue;
+            };
+            let spans = Spans::new(&setup, region);
+            let got: heapless::Vec<Span, 64> = spans.clone().collect();
+            let general: heapless::Vec<Span, 64> = match crossings(&setup, &region) {
+                Some(c) => WideSpans::new(&region, &c).collect(),
+                None => heapless::Vec::new(),
+            };
+            assert_eq!(got, general, "{v:?}");
+            if spans.is_narrow() {
+                narrow += 1;
+            } else {
+                wide += 1;
+            }
+            let mut covered = 0;
+            for s in &got {
+                for x in s.x_start..s.x_end {
+                    assert!(setup.covers(x, s.y), "{v:?} ({x}, {})", s.y);
+                }
+                covered += s.len();
+            }
+            let brute = (clip.top_left.y..clip.top_left.y + 29)
+                .flat_map(|y| (clip.top_left.x..clip.top_left.x + 31).map(move |x| (x, y)))
+                .filter(|&(x, y)| setup.covers(x, y))
+                .count();
+            assert_eq!(covered as usize, brute, "{v:?}");
+        }
+        assert!(narrow > 5_000 && wide > 20, "narrow {narrow}, wide {wide}");
     }
 
     #[test]
