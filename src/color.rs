@@ -21,8 +21,14 @@ use embedded_graphics::prelude::PixelColor;
 
 use crate::interpolation::AttributePlane;
 
-/// Fractional bits of the stepped channel values handed to [`GouraudColor::fill_span`].
-const F: u32 = AttributePlane::FRACTION_BITS;
+/// Fractional bits of the stepped channel values handed to [`GouraudColor::fill_span`] and
+/// [`GouraudColor::from_stepped`]: channels have at most 8 integer bits, so a value fits a `u32`.
+pub const STEP_BITS: u32 = 24;
+
+const F: u32 = STEP_BITS;
+
+/// Shift from [`AttributePlane::FRACTION_BITS`] to [`STEP_BITS`] fractional bits.
+pub(crate) const PLANE_TO_STEP: u32 = STEP_BITS - AttributePlane::FRACTION_BITS;
 
 /// A colour that can be Gouraud-interpolated channel by channel.
 pub trait GouraudColor: PixelColor {
@@ -35,15 +41,16 @@ pub trait GouraudColor: PixelColor {
     /// The colour with these channel values (each in `0..=MAX[k]`).
     fn from_channels(channels: [u8; 3]) -> Self;
 
-    /// The colour of stepped channel values (16 fractional bits, rounding offset included).
+    /// The colour of stepped channel values ([`STEP_BITS`] fractional bits, rounding offset
+    /// included).
     #[inline(always)]
     fn from_stepped(v: [u32; 3]) -> Self {
         Self::from_channels([(v[0] >> F) as u8, (v[1] >> F) as u8, (v[2] >> F) as u8])
     }
 
     /// Fills `dst` with colours whose channels start at `start` and advance by `step` per pixel
-    /// (16 fractional bits, +½ rounding offset included, at most 4096 pixels). Formats may
-    /// override it with a faster packed loop that keeps the same accuracy.
+    /// ([`STEP_BITS`] fractional bits, +½ rounding offset included, at most 2¹⁶ pixels). Formats
+    /// may override it with a faster packed loop that keeps the same accuracy.
     #[inline]
     fn fill_span(dst: &mut [Self], start: [u32; 3], step: [u32; 3]) {
         let mut v = start;
@@ -135,13 +142,6 @@ fn fill_565<C: From<RawU16>>(
     let s1 = (round_shift(st, F - 11) << 16).wrapping_add(round_shift(sg, F - 10));
     let s2 = sb << (27 - F);
     let (mut vt, mut vg, mut vb) = (start[top], start[1], start[bottom]);
-    if dst.len() <= SHORT_SPAN {
-        // Short spans (the common case for small triangles): no chunking and no vector set-up.
-        let w1 = ((vt >> (F - 11)) << 16) | (vg >> (F - 10));
-        let w2 = vb << (27 - F);
-        packed_run_short(dst, w1, w2, s1, s2);
-        return;
-    }
     for run in dst.chunks_mut(PACKED_RUN) {
         let w1 = ((vt >> (F - 11)) << 16) | (vg >> (F - 10));
         let w2 = vb << (27 - F);
@@ -153,9 +153,6 @@ fn fill_565<C: From<RawU16>>(
     }
 }
 
-/// Spans up to this length take the plain scalar loop.
-const SHORT_SPAN: usize = 16;
-
 /// One packed pixel from the two lane words of [`fill_565`].
 #[inline(always)]
 fn packed_pixel<C: From<RawU16>>(w1: u32, w2: u32) -> C {
@@ -163,30 +160,20 @@ fn packed_pixel<C: From<RawU16>>(w1: u32, w2: u32) -> C {
     C::from(RawU16::new(raw as u16))
 }
 
-/// The packed loop of [`fill_565`] over one run (at most [`PACKED_RUN`] pixels).
+/// The packed loop of [`fill_565`] over one run (at most [`PACKED_RUN`] pixels), two pixels an
+/// iteration; written with slice patterns so that it is neither vectorized nor unrolled further
+/// (either costs more set-up per span than it saves on spans of a few dozen pixels).
 #[inline(always)]
-fn packed_run<C: From<RawU16>>(run: &mut [C], mut w1: u32, mut w2: u32, s1: u32, s2: u32) {
-    for px in run.iter_mut() {
-        *px = packed_pixel(w1, w2);
-        w1 = w1.wrapping_add(s1);
-        w2 = w2.wrapping_add(s2);
-    }
-}
-
-/// [`packed_run`] for a few pixels, written so that it is not vectorized.
-#[inline(always)]
-fn packed_run_short<C: From<RawU16>>(
-    mut run: &mut [C],
-    mut w1: u32,
-    mut w2: u32,
-    s1: u32,
-    s2: u32,
-) {
-    while let Some((px, rest)) = run.split_first_mut() {
-        *px = packed_pixel(w1, w2);
-        w1 = w1.wrapping_add(s1);
-        w2 = w2.wrapping_add(s2);
+fn packed_run<C: From<RawU16>>(mut run: &mut [C], mut w1: u32, mut w2: u32, s1: u32, s2: u32) {
+    while let [a, b, rest @ ..] = run {
+        *a = packed_pixel(w1, w2);
+        *b = packed_pixel(w1.wrapping_add(s1), w2.wrapping_add(s2));
+        w1 = w1.wrapping_add(s1).wrapping_add(s1);
+        w2 = w2.wrapping_add(s2).wrapping_add(s2);
         run = rest;
+    }
+    if let [a] = run {
+        *a = packed_pixel(w1, w2);
     }
 }
 
@@ -229,7 +216,7 @@ mod tests {
         }
     }
 
-    /// The packed 5-6-5 loop stays within 2⁻⁴ LSB of plain 16-fractional-bit stepping.
+    /// The packed 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
     #[test]
     fn packed_565_matches_plain_stepping() {
         let mut seed = 0x2545_f491_4f6c_dd1d_u64;
@@ -256,8 +243,9 @@ mod tests {
                 } else {
                     0.0
                 };
-                start[k] = ((c0 + 0.5) * 65536.0) as u32;
-                step[k] = ((s * 65536.0).round() as i32) as u32;
+                let one = f64::from(1u32 << STEP_BITS);
+                start[k] = ((c0 + 0.5) * one) as u32;
+                step[k] = ((s * one).round() as i32) as u32;
             }
             Rgb565::fill_span(&mut out[..n], start, step);
             Bgr565::fill_span(&mut bgr[..n], start, step);
@@ -266,8 +254,8 @@ mod tests {
                     .into_iter()
                     .flat_map(|c| (0..3).map(move |k| (c, k)))
                 {
-                    let plain =
-                        (f64::from(start[k]) + f64::from(step[k] as i32) * i as f64) / 65536.0;
+                    let plain = (f64::from(start[k]) + f64::from(step[k] as i32) * i as f64)
+                        / f64::from(1u32 << STEP_BITS);
                     let lo = (plain - 1.0 / 16.0).floor().max(0.0);
                     let hi = (plain + 1.0 / 16.0).floor().min(f64::from(Rgb565::MAX[k]));
                     let g = f64::from(got[k]);

@@ -80,6 +80,24 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
         (x < self.width && y < self.height).then(|| y as usize * self.width as usize + x as usize)
     }
 
+    /// Columns `x_start..x_end` of row `y`, if they are all inside the buffer (fewer checks than
+    /// [`row_mut`](Self::row_mut), for the spans of the rasterizer's own loops).
+    #[inline(always)]
+    pub fn span_mut(&mut self, y: i32, x_start: i32, x_end: i32) -> Option<&mut [C]> {
+        let w = self.width as usize;
+        let (y, a, b) = (
+            usize::try_from(y).ok()?,
+            usize::try_from(x_start).ok()?,
+            usize::try_from(x_end).ok()?,
+        );
+        if b > w {
+            return None;
+        }
+        // y·w ≤ len whenever the row exists; otherwise `get_mut` refuses the range.
+        let base = y.checked_mul(w)?;
+        self.pixels.get_mut(base + a..base + b)
+    }
+
     /// The `len` pixels of row `y` starting at column `x`, if they are all inside the buffer.
     #[inline]
     pub fn row_mut(&mut self, x: i32, y: i32, len: u32) -> Option<&mut [C]> {

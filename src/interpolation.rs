@@ -265,12 +265,6 @@ impl Stepped {
     pub(crate) fn step(&self) -> u32 {
         step_of(i128::from(self.dx))
     }
-
-    /// The value (+½, [`AttributePlane::FRACTION_BITS`] fractional bits) of an accumulator.
-    #[inline(always)]
-    pub(crate) fn output(value: i64) -> u32 {
-        (value >> (ROW_BITS - AttributePlane::FRACTION_BITS)) as u32
-    }
 }
 
 /// Extra fractional bits of the barycentric basis ([`Basis`]).

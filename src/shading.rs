@@ -48,7 +48,7 @@
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
-use crate::color::GouraudColor;
+use crate::color::{GouraudColor, PLANE_TO_STEP};
 use crate::edge::TriangleSetup;
 use crate::interpolation::{AttributePlane, InverseArea, MAX_CHUNK};
 use crate::math3d::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
@@ -461,13 +461,13 @@ pub fn draw_gouraud<C: GouraudColor>(
         }
     });
     let dz = s.depth.step();
-    let step = planes.map(|p| p.step());
+    let step = planes.map(|p| p.step() << PLANE_TO_STEP);
     for_each_chunk(s.spans(), |c| {
         let mut z = plane_at(&mut s.depth, &c);
         let mut v = [0u32; 3];
         for (k, (value, plane)) in v.iter_mut().zip(planes.iter_mut()).enumerate() {
             if k < C::CHANNELS {
-                *value = plane_at(plane, &c);
+                *value = plane_at(plane, &c) << PLANE_TO_STEP;
             }
         }
         let Some((colors, depths)) = target.rows_mut(c.x, c.y, c.len) else {
