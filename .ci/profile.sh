@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Instruction profile of the rasterizer on an emulated Cortex-M (developer tool, not part of CI).
+#
+#   bash .ci/profile.sh <target> <solid|gouraud>-<large|small|tiny> [functions] [blocks]
+#   bash .ci/profile.sh thumbv6m-none-eabi gouraud-tiny 20 10
+#
+# Builds examples/fw_profile.rs for <target> with that workload, runs it under QEMU with its
+# execution log (-d in_asm,exec,nochain; -icount as in CI), and prints the executed instructions
+# per function and, optionally, the hottest translation blocks (addresses to look up with
+# llvm-objdump). Inlined code counts towards its caller.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target=$1 profile=$2 functions=${3:-20} blocks=${4:-0}
+case $target in
+    thumbv7em-none-eabihf) machine=(-machine mps2-an386 -cpu cortex-m4) ;;
+    thumbv7m-none-eabi) machine=(-machine mps2-an385 -cpu cortex-m3) ;;
+    thumbv6m-none-eabi) machine=(-machine microbit -cpu cortex-m0) ;;
+    *) echo "unknown target $target" >&2; exit 2 ;;
+esac
+PROFILE=$profile cargo build -q --release --target "$target" --example fw_profile
+elf=target/$target/release/examples/fw_profile
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+qemu-system-arm "${machine[@]}" -nographic -semihosting-config enable=on,target=native \
+    -icount shift=0,align=off,sleep=off -d in_asm,exec,nochain -D "$log" -kernel "$elf" >/dev/null
+args=("$elf" "$log" "$functions")
+[ "$blocks" -gt 0 ] && args+=("$blocks")
+python3 .ci/qprof.py "${args[@]}"

@@ -1,0 +1,119 @@
+//! Profiling firmware: draws one triangle set many times with one renderer, for QEMU's
+//! execution log (`-d in_asm,exec,nochain`), which `tools/qprof.py` turns into instructions per
+//! function. The renderer and set are chosen at build time with the `PROFILE` environment
+//! variable, `<solid|gouraud>-<large|small|tiny>` (default `gouraud-tiny`):
+//!
+//! ```text
+//! PROFILE=solid-small cargo build --release --target thumbv6m-none-eabi --example fw_profile
+//! ```
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+const PROFILE: &str = match option_env!("PROFILE") {
+    Some(p) => p,
+    None => "gouraud-tiny",
+};
+
+/// Triangles (corner pixel centres) of the chosen set on a `w × h` screen.
+fn triangles(w: i32, h: i32) -> ([[(i32, i32); 3]; 4], u32) {
+    let has = |s: &str| {
+        PROFILE
+            .as_bytes()
+            .windows(s.len())
+            .any(|x| x == s.as_bytes())
+    };
+    if has("large") {
+        let t = [
+            [(0, 0), (w - 1, 0), (w - 1, h - 1)],
+            [(0, 0), (w - 1, h - 1), (0, h - 1)],
+            [
+                (w / 10, h / 20),
+                (w * 19 / 20, h * 2 / 5),
+                (w * 3 / 10, h * 19 / 20),
+            ],
+            [
+                (w * 9 / 10, h * 9 / 10),
+                (w / 20, h * 3 / 5),
+                (w * 3 / 5, h / 20),
+            ],
+        ];
+        (t, 4)
+    } else if has("small") {
+        (
+            [
+                [(10, 10), (16, 11), (11, 15)],
+                [(25, 10), (26, 16), (20, 13)],
+                [(30, 25), (33, 20), (36, 24)],
+                [(41, 21), (46, 25), (40, 26)],
+            ],
+            200,
+        )
+    } else {
+        (
+            [
+                [(10, 10), (11, 10), (10, 11)],
+                [(21, 10), (21, 11), (20, 11)],
+                [(30, 20), (31, 21), (30, 21)],
+                [(40, 20), (41, 20), (41, 21)],
+            ],
+            400,
+        )
+    }
+}
+
+fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let (w, h) = (fb.size().width as i32, fb.size().height as i32);
+    let (set, reps) = triangles(w, h);
+    let centre = |i: i32| Coord::from_bits(i * 256 + 128);
+    let gouraud = PROFILE.starts_with("gouraud");
+    let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
+    for _ in 0..reps {
+        for t in &set {
+            if gouraud {
+                let v = [0, 1, 2].map(|k| Vertex::new(centre(t[k].0), centre(t[k].1), colors[k]));
+                GouraudTriangle::new(v).draw_into(fb);
+            } else {
+                SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
+                    .draw_into(fb);
+            }
+        }
+    }
+}
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use super::*;
+    use cortex_m_rt::entry;
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::BLACK; board::PIXELS];
+        let (w, h) = board::SIZE;
+        if let Some(mut fb) = SliceFramebuffer::new(PIXELS, w, h) {
+            draw(&mut fb);
+        }
+        board::exit(true)
+    }
+
+    #[panic_handler]
+    fn panic(_: &core::panic::PanicInfo) -> ! {
+        board::exit(false)
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    let mut pixels = [Rgb565::BLACK; 128 * 96];
+    if let Some(mut fb) = SliceFramebuffer::new(&mut pixels, 128, 96) {
+        draw(&mut fb);
+    }
+    println!("{PROFILE}");
+}
