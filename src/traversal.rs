@@ -291,9 +291,16 @@ impl Iterator for Spans {
     fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, f: F) -> B {
         match self.walk {
             Walk::Narrow(n) => n.fold(init, f),
-            Walk::Wide(w) => w.fold(init, f),
+            Walk::Wide(w) => fold_wide(w, init, f),
         }
     }
+}
+
+/// The rare wide walk, out of line: its frame stays off the common path's stack.
+#[inline(never)]
+#[cold]
+fn fold_wide<B, F: FnMut(B, Span) -> B>(w: WideSpans, init: B, f: F) -> B {
+    w.fold(init, f)
 }
 
 /// A boundary column stepped in `i32`: the [`Boundary`] of one edge whose columns stay within
@@ -578,6 +585,8 @@ struct WideSpans {
 }
 
 impl WideSpans {
+    #[inline(never)]
+    #[cold]
     fn new(region: &Region, crossings: &[Crossing; 3]) -> Self {
         let none = Boundary {
             x: 0,
