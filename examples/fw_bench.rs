@@ -108,21 +108,7 @@ fn make_set(index: usize, w: i32, h: i32) -> Set {
     };
     match index {
         0 => {
-            // The two halves of the screen, and two big rotated triangles.
-            let corners = [
-                [(0, 0), (w - 1, 0), (w - 1, h - 1)],
-                [(0, 0), (w - 1, h - 1), (0, h - 1)],
-                [
-                    (w / 10, h / 20),
-                    (w * 19 / 20, h * 2 / 5),
-                    (w * 3 / 10, h * 19 / 20),
-                ],
-                [
-                    (w * 9 / 10, h * 9 / 10),
-                    (w / 20, h * 3 / 5),
-                    (w * 3 / 5, h / 20),
-                ],
-            ];
+            let corners = scene::large_triangles(w, h);
             (set.name, set.len, set.reps) = ("large", corners.len(), 4);
             for (k, (t, c)) in set.triangles.iter_mut().zip(corners).enumerate() {
                 t.corners = c;

@@ -12,6 +12,10 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
 
+#[allow(dead_code)]
+#[path = "common/scene.rs"]
+mod scene;
+
 #[cfg(target_os = "none")]
 #[allow(dead_code)]
 #[path = "common/board.rs"]
@@ -31,20 +35,7 @@ fn triangles(w: i32, h: i32) -> ([[(i32, i32); 3]; 4], u32) {
             .any(|x| x == s.as_bytes())
     };
     if has("large") {
-        let t = [
-            [(0, 0), (w - 1, 0), (w - 1, h - 1)],
-            [(0, 0), (w - 1, h - 1), (0, h - 1)],
-            [
-                (w / 10, h / 20),
-                (w * 19 / 20, h * 2 / 5),
-                (w * 3 / 10, h * 19 / 20),
-            ],
-            [
-                (w * 9 / 10, h * 9 / 10),
-                (w / 20, h * 3 / 5),
-                (w * 3 / 5, h / 20),
-            ],
-        ];
+        let t = scene::large_triangles(w, h);
         (t, 4)
     } else if has("small") {
         (

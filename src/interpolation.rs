@@ -6,7 +6,7 @@
 //! * **Per row** the value at the span start comes from a 64-bit accumulator with 32 fractional
 //!   bits, moved by exact multiples of the per-pixel and per-row gradients. Its start value and
 //!   gradients are within 0.57 units of 2⁻³² of exact (½ from rounding, the rest when a colour's
-//!   three channels are formed from one shared barycentric basis, see [`Basis`]), so its error is
+//!   three channels are formed from one shared barycentric basis, see `Basis`), so its error is
 //!   below 2⁻³² per pixel moved plus 2⁻³², under 2⁻¹⁵ over the largest region it is used for.
 //! * **Per pixel** a 32-bit value with 16 fractional bits is stepped by one addition. Spans are
 //!   handed out in chunks of at most [`MAX_CHUNK`] pixels, each restarted from the row value, so the
@@ -16,6 +16,12 @@
 //!
 //! Values carry a +½ offset, so truncating the integer part rounds to nearest: every output is
 //! within ½ LSB plus 2⁻⁴ of the exact value, inside the promised 1 LSB.
+//!
+//! Colours ([`GouraudTriangle`](crate::GouraudTriangle)) round these accumulators once per
+//! triangle to 32-bit ones with 24 fractional bits that wrap (see `drawable`): the value at a
+//! pixel is then the same integer modulo 2³² whichever way the traversal reached it, its error
+//! grows by under 2⁻²⁴ per pixel of distance from the region's corner (below 2⁻⁹ LSB over 2¹⁶
+//! pixels), and no 64-bit arithmetic is left per row.
 //!
 //! ```
 //! use embedded_raster::{edge::TriangleSetup, interpolation::AttributePlane, traversal::Region, Coord};

@@ -14,10 +14,13 @@
 //! # Coordinate range
 //!
 //! Any `Coord` (±2²³ pixels with 1/256-pixel precision) is accepted for vertices. Setup is done in
-//! `i128`, traversal in `i64` over the triangle's pixel bounding box clipped to the target. The
-//! target's bounding box may be anywhere in `i32`. Gouraud values are stepped from a 64-bit row
-//! accumulator for regions up to 2¹⁶ pixels (`width + height`) and computed exactly per row beyond
-//! that or for extreme slivers, so the 1-LSB bound holds everywhere.
+//! `i64` for vertices within ±2²¹ pixels and in `i128` beyond. Spans are stepped in `i32` (one
+//! start and one end edge per row) over the triangle's pixel bounding box clipped to the target,
+//! or in `i64` when an edge's boundary column leaves ±2³⁰ over the region (far off-screen
+//! slivers). The target's bounding box may be anywhere in `i32`. Gouraud colours are stepped from
+//! 32-bit row accumulators (24 fractional bits) for regions up to 2¹⁶ pixels (`width + height`)
+//! and computed exactly per row beyond that or for extreme slivers, so the 1-LSB bound holds
+//! everywhere.
 //!
 //! # Example
 //!

@@ -9,6 +9,11 @@
 //! no rounding anywhere. Quotients below 4 are found by subtraction, so small triangles need no
 //! division at all (Cortex-M0 has no divider).
 //!
+//! Of the edges that bound a row's start, only the tighter one is stepped: above the middle vertex
+//! of that side it is the upper edge, below it the lower one (see `NarrowSpans`), so a row costs
+//! two boundary steps in `i32`. Regions where a boundary column would leave ±2³⁰ (near-horizontal
+//! edges of far off-screen triangles) step every crossing edge in `i64` instead.
+//!
 //! Edge functions are first tested at the corners of the clipped region: an edge that excludes
 //! the whole region rejects the triangle, an edge that includes all of it is dropped. The edges
 //! that remain cross the region, so their values there are below `|a|·(W+2) + |b|·H < 2^58` and

@@ -44,6 +44,25 @@ impl Shape {
     }
 }
 
+/// The benchmarks' "large" set on a `w × h` screen (corner pixel centres): the two halves of the
+/// screen and two big rotated triangles (`fw_bench`, `fw_profile`).
+pub fn large_triangles(w: i32, h: i32) -> [[(i32, i32); 3]; 4] {
+    [
+        [(0, 0), (w - 1, 0), (w - 1, h - 1)],
+        [(0, 0), (w - 1, h - 1), (0, h - 1)],
+        [
+            (w / 10, h / 20),
+            (w * 19 / 20, h * 2 / 5),
+            (w * 3 / 10, h * 19 / 20),
+        ],
+        [
+            (w * 9 / 10, h * 9 / 10),
+            (w / 20, h * 3 / 5),
+            (w * 3 / 5, h / 20),
+        ],
+    ]
+}
+
 /// `sin(2π k / 32)` in units of 1/4096, for any `k`.
 fn sin32(k: u32) -> i32 {
     const QUARTER: [i32; 9] = [0, 799, 1567, 2276, 2896, 3406, 3784, 4017, 4096];
