@@ -421,7 +421,7 @@ impl NarrowSpans {
     fn new(setup: &TriangleSetup, region: &Region, crossings: &[Crossing; 3]) -> Option<Self> {
         let (x0, mut y0) = (i64::from(region.x0), i64::from(region.y0));
         let mut y1 = i64::from(region.y1);
-        let (row0, x_first) = (y0, x0);
+        let row0 = y0;
         // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
         for c in crossings {
             if let Crossing::Cross { a: 0, b, k } = *c {
@@ -452,9 +452,8 @@ impl NarrowSpans {
                     }
                 }
             }
-            let at = |a: i64, b: i64, k: i64, row: i64| {
-                Boundary::new(a, b, k + b * (row - row0), x_first)
-            };
+            let at =
+                |a: i64, b: i64, k: i64, row: i64| Boundary::new(a, b, k + b * (row - row0), x0);
             match found {
                 [Some((_, a, b, k)), None] => Chain {
                     first: Some(at(a, b, k, y0)),
