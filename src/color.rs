@@ -113,9 +113,13 @@ rgb_color!(Bgr666);
 rgb_color!(Rgb888);
 rgb_color!(Bgr888);
 
-/// Pixels stepped from one restart by the packed 5-6-5 loop. Its lanes carry 11 and 10 fractional
-/// bits, so 128 steps add at most 2⁻⁴ LSB of error.
+/// Pixels stepped from one restart by the 5-6-5 loop. Their channels carry 11, 10 and 11
+/// fractional bits, so 128 steps add at most 2⁻⁴ LSB of error.
 const PACKED_RUN: usize = 128;
+
+/// Fractional bits of the 5-6-5 loop's channels in raw order (top, middle, bottom): each channel
+/// fills a 16-bit lane with its integer bits on top.
+const LANE_FRACTION: [u32; 3] = [11, 10, 11];
 
 /// `v >> k`, rounded to nearest, for a signed step.
 #[inline(always)]
@@ -123,14 +127,14 @@ fn round_shift(v: u32, k: u32) -> u32 {
     ((v as i32).wrapping_add(1 << (k - 1)) >> k) as u32
 }
 
-/// Packed Gouraud loop for 5-6-5 layouts: channel `top` goes to raw bits 11..16, channel 1 to
-/// bits 5..11, channel `bottom` to bits 0..5.
+/// Gouraud loop for 5-6-5 layouts: channel `top` goes to raw bits 11..16, channel 1 to bits
+/// 5..11, channel `bottom` to bits 0..5.
 ///
-/// `top` (11 fractional bits) and the 6-bit channel (10 fractional bits) share one 32-bit word as
-/// two 16-bit lanes; one addition steps both, because every lane value stays inside its lane at
-/// covered pixels. `bottom` is stepped alone with 27 fractional bits. A pixel is then 2 additions
-/// and 4 shift/mask/or operations.
-#[inline(always)]
+/// Every [`PACKED_RUN`] pixels each channel restarts from its [`STEP_BITS`] value rounded to a
+/// 16-bit lane ([`LANE_FRACTION`]) and is stepped by its step rounded once to the lane. At covered
+/// pixels a lane value lies in `[0, 2¹⁶)` (the channel's range plus the +½ offset and an error of
+/// at most 2⁻⁴), so lanes packed side by side ([`run_565`]) never carry into each other.
+#[inline(never)]
 fn fill_565<C: From<RawU16>>(
     dst: &mut [C],
     start: [u32; 3],
@@ -138,42 +142,56 @@ fn fill_565<C: From<RawU16>>(
     top: usize,
     bottom: usize,
 ) {
-    let (st, sg, sb) = (step[top], step[1], step[bottom]);
-    let s1 = (round_shift(st, F - 11) << 16).wrapping_add(round_shift(sg, F - 10));
-    let s2 = sb << (27 - F);
-    let (mut vt, mut vg, mut vb) = (start[top], start[1], start[bottom]);
+    let order = [top, 1, bottom];
+    let mut value = order.map(|k| start.get(k).copied().unwrap_or(0));
+    let step = order.map(|k| step.get(k).copied().unwrap_or(0));
+    let lane_step: [u32; 3] = core::array::from_fn(|i| round_shift(step[i], F - LANE_FRACTION[i]));
     for run in dst.chunks_mut(PACKED_RUN) {
-        let w1 = ((vt >> (F - 11)) << 16) | (vg >> (F - 10));
-        let w2 = vb << (27 - F);
-        packed_run(run, w1, w2, s1, s2);
-        let n = PACKED_RUN as u32;
-        vt = vt.wrapping_add(st.wrapping_mul(n));
-        vg = vg.wrapping_add(sg.wrapping_mul(n));
-        vb = vb.wrapping_add(sb.wrapping_mul(n));
+        // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
+        let lane: [u32; 3] = core::array::from_fn(|i| {
+            let k = F - LANE_FRACTION[i];
+            value[i].wrapping_add(1 << (k - 1)) >> k
+        });
+        run_565(run, lane, lane_step);
+        for (v, s) in value.iter_mut().zip(step) {
+            *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
+        }
     }
 }
 
-/// One packed pixel from the two lane words of [`fill_565`].
+/// The 5-6-5 colour of a raw value.
 #[inline(always)]
-fn packed_pixel<C: From<RawU16>>(w1: u32, w2: u32) -> C {
-    let raw = ((w1 >> 16) & 0xF800) | ((w1 >> 5) & 0x07E0) | (w2 >> 27);
+fn raw_565<C: From<RawU16>>(raw: u32) -> C {
     C::from(RawU16::new(raw as u16))
 }
 
-/// The packed loop of [`fill_565`] over one run (at most [`PACKED_RUN`] pixels), two pixels an
-/// iteration; written with slice patterns so that it is neither vectorized nor unrolled further
-/// (either costs more set-up per span than it saves on spans of a few dozen pixels).
+/// One run of [`fill_565`], two pixels per word: each channel is one 32-bit word holding the lanes of two neighbouring
+/// pixels (the right one in the upper half), stepped two pixels at a time by one addition. With
+/// the integer bits on top of each lane, one mask (and one shift) places a channel of both pixels
+/// at once: two pixels cost three masks, two ORs, three additions and their stores.
 #[inline(always)]
-fn packed_run<C: From<RawU16>>(mut run: &mut [C], mut w1: u32, mut w2: u32, s1: u32, s2: u32) {
-    while let [a, b, rest @ ..] = run {
-        *a = packed_pixel(w1, w2);
-        *b = packed_pixel(w1.wrapping_add(s1), w2.wrapping_add(s2));
-        w1 = w1.wrapping_add(s1).wrapping_add(s1);
-        w2 = w2.wrapping_add(s2).wrapping_add(s2);
-        run = rest;
+fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], lane_step: [u32; 3]) {
+    // Lanes (left pixel, right pixel) of each channel, and the step of two pixels.
+    let mut word: [u32; 3] =
+        core::array::from_fn(|i| (lane[i].wrapping_add(lane_step[i]) << 16).wrapping_add(lane[i]));
+    let double = lane_step.map(|s| s.wrapping_mul(2).wrapping_mul(0x1_0001));
+    let pair = |w: [u32; 3]| {
+        (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
+    };
+    // Slice patterns rather than `chunks_exact_mut`: LLVM then neither unrolls nor vectorizes
+    // the loop, which would cost more set-up per span than it saves on spans of a few dozen pixels.
+    let mut rest = run;
+    while let [a, b, tail @ ..] = rest {
+        let both = pair(word);
+        *a = raw_565(both);
+        *b = raw_565(both >> 16);
+        for (w, d) in word.iter_mut().zip(double) {
+            *w = w.wrapping_add(d);
+        }
+        rest = tail;
     }
-    if let [a] = run {
-        *a = packed_pixel(w1, w2);
+    if let [last] = rest {
+        *last = raw_565(pair(word));
     }
 }
 
@@ -216,7 +234,7 @@ mod tests {
         }
     }
 
-    /// The packed 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
+    /// The 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
     #[test]
     fn packed_565_matches_plain_stepping() {
         let mut seed = 0x2545_f491_4f6c_dd1d_u64;

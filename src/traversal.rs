@@ -545,8 +545,66 @@ impl NarrowSpans {
     }
 }
 
+impl NarrowSpans {
+    /// The span of row `y` between boundary columns `start` and `end`, clipped to `x0..=x1`.
+    #[inline(always)]
+    fn span(y: i32, start: i32, end: i32, x0: i32, x1: i32) -> Option<Span> {
+        let (start, end) = (x0.max(start), x1.min(end));
+        // `end ≤ x1 < 2^24`: no overflow.
+        (start <= end).then_some(Span {
+            y,
+            x_start: start,
+            x_end: end + 1,
+        })
+    }
+}
+
 impl Iterator for NarrowSpans {
     type Item = Span;
+
+    /// The whole walk with its state in locals: rows in at most three stretches, each with fixed
+    /// boundaries, so the row loop holds no switch test.
+    #[inline(always)]
+    fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, mut f: F) -> B {
+        let NarrowSpans {
+            mut start,
+            mut end,
+            next_start,
+            next_end,
+            mut start_switch,
+            mut end_switch,
+            x0,
+            x1,
+            mut y,
+            y1,
+            ..
+        } = self;
+        let mut acc = init;
+        loop {
+            // Rows before the next switch (or to the last row), all with the same two edges.
+            let last = start_switch.min(end_switch).saturating_sub(1).min(y1);
+            while y <= last {
+                let span = Self::span(y, start.x, end.x, x0, x1);
+                start.advance(-1);
+                end.advance(1);
+                if let Some(span) = span {
+                    acc = f(acc, span);
+                }
+                y += 1;
+            }
+            if y > y1 {
+                return acc;
+            }
+            if y == start_switch {
+                start = next_start;
+                start_switch = NEVER;
+            }
+            if y == end_switch {
+                end = next_end;
+                end_switch = NEVER;
+            }
+        }
+    }
 
     #[inline(always)]
     fn next(&mut self) -> Option<Span> {
@@ -554,19 +612,12 @@ impl Iterator for NarrowSpans {
             if self.y == self.switch {
                 self.switch_edges();
             }
-            let start = self.x0.max(self.start.x);
-            let end = self.x1.min(self.end.x);
+            let span = Self::span(self.y, self.start.x, self.end.x, self.x0, self.x1);
             self.start.advance(-1);
             self.end.advance(1);
-            let y = self.y;
             self.y += 1;
-            if start <= end {
-                // `end ≤ x1 < 2^24`: no overflow.
-                return Some(Span {
-                    y,
-                    x_start: start,
-                    x_end: end + 1,
-                });
+            if span.is_some() {
+                return span;
             }
         }
         None
@@ -768,6 +819,13 @@ mod tests {
                 None => heapless::Vec::new(),
             };
             assert_eq!(got, general, "{v:?}");
+            let folded = spans
+                .clone()
+                .fold(heapless::Vec::<Span, 64>::new(), |mut all, s| {
+                    assert!(all.push(s).is_ok());
+                    all
+                });
+            assert_eq!(folded, got, "fold and next differ: {v:?}");
             if spans.is_narrow() {
                 narrow += 1;
             } else {
