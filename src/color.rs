@@ -49,11 +49,28 @@ pub trait GouraudColor: PixelColor {
     }
 
     /// Fills `dst` with colours whose channels start at `start` and advance by `step` per pixel
-    /// ([`STEP_BITS`] fractional bits, +½ rounding offset included, at most 2¹⁶ pixels). Formats
-    /// may override it with a faster packed loop that keeps the same accuracy.
+    /// ([`STEP_BITS`] fractional bits, +½ rounding offset included, at most 2¹⁶ pixels).
     #[inline]
     fn fill_span(dst: &mut [Self], start: [u32; 3], step: [u32; 3]) {
-        let mut v = start;
+        Self::fill_prepared(dst, start, &Self::prepare_steps(step));
+    }
+
+    /// The per-pixel steps `step` in the form this format's span loop uses, computed once per
+    /// triangle for [`fill_prepared`](Self::fill_prepared).
+    #[inline]
+    fn prepare_steps(step: [u32; 3]) -> SpanSteps {
+        SpanSteps {
+            step,
+            lane: [0; 3],
+            double: [0; 3],
+        }
+    }
+
+    /// [`fill_span`](Self::fill_span) with steps from [`prepare_steps`](Self::prepare_steps).
+    /// Formats may override both with a faster packed loop that keeps the same accuracy.
+    #[inline]
+    fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
+        let (mut v, step) = (start, steps.step);
         for px in dst {
             *px = Self::from_stepped(v);
             v[0] = v[0].wrapping_add(step[0]);
@@ -65,9 +82,29 @@ pub trait GouraudColor: PixelColor {
     }
 }
 
-/// `GouraudColor` for RGB formats; `fill = |dst, start, step| …` overrides the span loop.
+/// Per-pixel channel steps of a triangle, prepared for a colour format's span loop
+/// ([`GouraudColor::prepare_steps`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SpanSteps {
+    /// The steps, [`STEP_BITS`] fractional bits, in channel order.
+    step: [u32; 3],
+    /// 5-6-5 formats: each channel's step rounded to its lane, in raw order (see [`fill_565`]) …
+    lane: [u32; 3],
+    /// … and two of them in both halves of a word (see [`run_565`]).
+    double: [u32; 3],
+}
+
+impl SpanSteps {
+    /// The steps, [`STEP_BITS`] fractional bits, in channel order.
+    pub fn step(&self) -> [u32; 3] {
+        self.step
+    }
+}
+
+/// `GouraudColor` for RGB formats; `order = [top, 1, bottom]` selects the 5-6-5 span loop with
+/// that channel order in the raw value.
 macro_rules! rgb_color {
-    ($t:ty $(, fill = $fill:expr)?) => {
+    ($t:ty $(, order = $order:expr)?) => {
         impl GouraudColor for $t {
             const CHANNELS: usize = 3;
             const MAX: [u8; 3] = [<$t>::MAX_R, <$t>::MAX_G, <$t>::MAX_B];
@@ -81,8 +118,13 @@ macro_rules! rgb_color {
             }
             $(
                 #[inline]
-                fn fill_span(dst: &mut [Self], start: [u32; 3], step: [u32; 3]) {
-                    ($fill)(dst, start, step)
+                fn prepare_steps(step: [u32; 3]) -> SpanSteps {
+                    prepare_565(step, $order)
+                }
+                // Out of line: the loop then has the registers to itself.
+                #[inline(never)]
+                fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
+                    fill_565(dst, start, steps, $order)
                 }
             )?
         }
@@ -127,32 +169,44 @@ fn round_shift(v: u32, k: u32) -> u32 {
     ((v as i32).wrapping_add(1 << (k - 1)) >> k) as u32
 }
 
-/// Gouraud loop for 5-6-5 layouts: channel `top` goes to raw bits 11..16, channel 1 to bits
-/// 5..11, channel `bottom` to bits 0..5.
+/// The steps of a 5-6-5 format whose raw value holds channels `order` (top, middle, bottom).
+#[inline]
+fn prepare_565(step: [u32; 3], order: [usize; 3]) -> SpanSteps {
+    let lane: [u32; 3] = core::array::from_fn(|i| {
+        let s = order
+            .get(i)
+            .and_then(|&k| step.get(k))
+            .copied()
+            .unwrap_or(0);
+        round_shift(s, F - LANE_FRACTION[i])
+    });
+    SpanSteps {
+        step,
+        lane,
+        double: lane.map(|s| s.wrapping_mul(2).wrapping_mul(0x1_0001)),
+    }
+}
+
+/// Gouraud loop for 5-6-5 layouts whose raw value holds channels `order`: the first in bits
+/// 11..16, the second in bits 5..11, the third in bits 0..5.
 ///
 /// Every [`PACKED_RUN`] pixels each channel restarts from its [`STEP_BITS`] value rounded to a
 /// 16-bit lane ([`LANE_FRACTION`]) and is stepped by its step rounded once to the lane. At covered
 /// pixels a lane value lies in `[0, 2¹⁶)` (the channel's range plus the +½ offset and an error of
 /// at most 2⁻⁴), so lanes packed side by side ([`run_565`]) never carry into each other.
-#[inline(never)]
-fn fill_565<C: From<RawU16>>(
-    dst: &mut [C],
-    start: [u32; 3],
-    step: [u32; 3],
-    top: usize,
-    bottom: usize,
-) {
-    let order = [top, 1, bottom];
-    let mut value = order.map(|k| start.get(k).copied().unwrap_or(0));
-    let step = order.map(|k| step.get(k).copied().unwrap_or(0));
-    let lane_step: [u32; 3] = core::array::from_fn(|i| round_shift(step[i], F - LANE_FRACTION[i]));
-    for run in dst.chunks_mut(PACKED_RUN) {
-        // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
-        let lane: [u32; 3] = core::array::from_fn(|i| {
+#[inline(always)]
+fn fill_565<C: From<RawU16>>(dst: &mut [C], start: [u32; 3], steps: &SpanSteps, order: [usize; 3]) {
+    let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
+    let (mut value, step) = (pick(start), pick(steps.step));
+    // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
+    let lanes = |value: [u32; 3]| -> [u32; 3] {
+        core::array::from_fn(|i| {
             let k = F - LANE_FRACTION[i];
             value[i].wrapping_add(1 << (k - 1)) >> k
-        });
-        run_565(run, lane, lane_step);
+        })
+    };
+    for run in dst.chunks_mut(PACKED_RUN) {
+        run_565(run, lanes(value), steps);
         for (v, s) in value.iter_mut().zip(step) {
             *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
         }
@@ -170,11 +224,11 @@ fn raw_565<C: From<RawU16>>(raw: u32) -> C {
 /// the integer bits on top of each lane, one mask (and one shift) places a channel of both pixels
 /// at once: two pixels cost three masks, two ORs, three additions and their stores.
 #[inline(always)]
-fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], lane_step: [u32; 3]) {
-    // Lanes (left pixel, right pixel) of each channel, and the step of two pixels.
+fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
+    // Lanes (left pixel, right pixel) of each channel; `double` steps both by two pixels.
     let mut word: [u32; 3] =
-        core::array::from_fn(|i| (lane[i].wrapping_add(lane_step[i]) << 16).wrapping_add(lane[i]));
-    let double = lane_step.map(|s| s.wrapping_mul(2).wrapping_mul(0x1_0001));
+        core::array::from_fn(|i| (lane[i].wrapping_add(steps.lane[i]) << 16).wrapping_add(lane[i]));
+    let double = steps.double;
     let pair = |w: [u32; 3]| {
         (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
     };
@@ -195,14 +249,8 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], lane_step: [u32; 3]) 
     }
 }
 
-rgb_color!(
-    Rgb565,
-    fill = |d: &mut [Rgb565], s, t| fill_565(d, s, t, 0, 2)
-);
-rgb_color!(
-    Bgr565,
-    fill = |d: &mut [Bgr565], s, t| fill_565(d, s, t, 2, 0)
-);
+rgb_color!(Rgb565, order = [0, 1, 2]);
+rgb_color!(Bgr565, order = [2, 1, 0]);
 gray_color!(Gray2 = 3, Gray4 = 15, Gray8 = 255);
 
 impl GouraudColor for BinaryColor {

@@ -82,10 +82,11 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         if let Shading::Stepped(mut rows) = spans.shading {
             // One walk with the accumulators in registers, no chunking: the 24-bit per-pixel
             // steps stay within 2⁻⁹ LSB over the longest span this path takes (2¹⁶ pixels).
+            let steps = C::prepare_steps(rows.dx);
             spans.spans.for_each(|span| {
                 let start = rows.at(span.x_start, span.y, C::CHANNELS);
                 if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
-                    C::fill_span(row, start, rows.dx);
+                    C::fill_prepared(row, start, &steps);
                 }
             });
             return;

@@ -84,18 +84,14 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
     /// [`row_mut`](Self::row_mut), for the spans of the rasterizer's own loops).
     #[inline(always)]
     pub fn span_mut(&mut self, y: i32, x_start: i32, x_end: i32) -> Option<&mut [C]> {
-        let w = self.width as usize;
-        let (y, a, b) = (
-            usize::try_from(y).ok()?,
-            usize::try_from(x_start).ok()?,
-            usize::try_from(x_end).ok()?,
-        );
-        if b > w {
+        // Negative values become huge and fail the comparisons.
+        let (y, a, b) = (y as u32, x_start as u32, x_end as u32);
+        if y >= self.height || b > self.width || a > b {
             return None;
         }
-        // y·w ≤ len whenever the row exists; otherwise `get_mut` refuses the range.
-        let base = y.checked_mul(w)?;
-        self.pixels.get_mut(base + a..base + b)
+        // y < height and b ≤ width: the range lies inside `width · height ≤ len`.
+        let base = y as usize * self.width as usize;
+        self.pixels.get_mut(base + a as usize..base + b as usize)
     }
 
     /// The `len` pixels of row `y` starting at column `x`, if they are all inside the buffer.

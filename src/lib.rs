@@ -60,7 +60,7 @@ pub mod framebuffer;
 pub mod interpolation;
 pub mod traversal;
 
-pub use color::GouraudColor;
+pub use color::{GouraudColor, SpanSteps};
 pub use drawable::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};
 pub use fixed_point::Coord;
 pub use framebuffer::SliceFramebuffer;
