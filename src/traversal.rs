@@ -246,6 +246,8 @@ fn crossings(setup: &TriangleSetup, region: &Region) -> Option<[Crossing; 3]> {
 
 impl Spans {
     /// Spans of `setup` inside `region`.
+    // Inlined into each caller: returning and then moving the walker costs more than its set-up.
+    #[inline(always)]
     pub fn new(setup: &TriangleSetup, region: Region) -> Spans {
         let Some(crossings) = crossings(setup, &region) else {
             return Spans::empty();
@@ -258,6 +260,7 @@ impl Spans {
     }
 
     /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
+    #[inline(always)]
     pub fn of_triangle(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
         // By reference: moving the setup out of the `Option` would copy it.
         let setup = TriangleSetup::new(v);
@@ -418,6 +421,7 @@ impl NarrowSpans {
 
     /// The walker for the edges `crossings` of `setup` over `region`, or `None` if a boundary
     /// leaves the `i32` range.
+    #[inline(always)]
     fn new(setup: &TriangleSetup, region: &Region, crossings: &[Crossing; 3]) -> Option<Self> {
         let (x0, mut y0) = (i64::from(region.x0), i64::from(region.y0));
         let mut y1 = i64::from(region.y1);
@@ -439,67 +443,7 @@ impl NarrowSpans {
             return Some(Self::empty());
         }
         // The chains: edges with a > 0 bound starts, a < 0 ends.
-        let chain = |start: bool| -> Chain {
-            let mut found = [None; 2];
-            let mut n = 0;
-            for (i, c) in crossings.iter().enumerate() {
-                if let Crossing::Cross { a, b, k } = *c {
-                    if a != 0 && (a > 0) == start {
-                        if let Some(slot) = found.get_mut(n) {
-                            *slot = Some((i, a, b, k));
-                        }
-                        n += 1;
-                    }
-                }
-            }
-            let at =
-                |a: i64, b: i64, k: i64, row: i64| Boundary::new(a, b, k + b * (row - row0), x0);
-            match found {
-                [Some((_, a, b, k)), None] => Chain {
-                    first: Some(at(a, b, k, y0)),
-                    next: None,
-                },
-                [Some((p, ap, bp, kp)), Some((q, aq, bq, kq))] => {
-                    // The shared vertex is the one neither edge is opposite; `edges[p]` runs to
-                    // the vertex opposite `edges[q]`, and is the upper edge if that one is above.
-                    let vertex = |k: usize| {
-                        setup
-                            .order
-                            .get(k)
-                            .and_then(|&v| setup.vertices.get(v))
-                            .map_or(0, |v| v.1)
-                    };
-                    let vy = vertex(3 - p - q);
-                    let ((au, bu, ku), (al, bl, kl)) = if vertex(q) < vertex(p) {
-                        ((ap, bp, kp), (aq, bq, kq))
-                    } else {
-                        ((aq, bq, kq), (ap, bp, kp))
-                    };
-                    // First row whose centre (256·j + 128) is not above the vertex.
-                    let switch = (vy - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
-                    if switch <= y0 {
-                        Chain {
-                            first: Some(at(al, bl, kl, y0)),
-                            next: None,
-                        }
-                    } else if switch > y1 {
-                        Chain {
-                            first: Some(at(au, bu, ku, y0)),
-                            next: None,
-                        }
-                    } else {
-                        Chain {
-                            first: Some(at(au, bu, ku, y0)),
-                            next: Some((at(al, bl, kl, switch), switch)),
-                        }
-                    }
-                }
-                _ => Chain {
-                    first: None,
-                    next: None,
-                },
-            }
-        };
+        let chain = |start: bool| Self::chain(setup, crossings, start, (x0, row0), (y0, y1));
         let rows = y1 - y0 + 1;
         let convert = |c: Chain, open: i32| -> Option<(Boundary32, Boundary32, i32)> {
             let first = match c.first {
@@ -528,6 +472,76 @@ impl NarrowSpans {
             y: y0 as i32,
             y1: y1 as i32,
         })
+    }
+
+    /// The start chain (`start`, edges with `a > 0`) or end chain of `crossings` over the rows
+    /// `y0..=y1` of a region whose first column is `x0` and whose crossings are given at row `row0`.
+    #[inline(always)]
+    fn chain(
+        setup: &TriangleSetup,
+        crossings: &[Crossing; 3],
+        start: bool,
+        (x0, row0): (i64, i64),
+        (y0, y1): (i64, i64),
+    ) -> Chain {
+        let mut found = [None; 2];
+        let mut n = 0;
+        for (i, c) in crossings.iter().enumerate() {
+            if let Crossing::Cross { a, b, k } = *c {
+                if a != 0 && (a > 0) == start {
+                    if let Some(slot) = found.get_mut(n) {
+                        *slot = Some((i, a, b, k));
+                    }
+                    n += 1;
+                }
+            }
+        }
+        let at = |a: i64, b: i64, k: i64, row: i64| Boundary::new(a, b, k + b * (row - row0), x0);
+        match found {
+            [Some((_, a, b, k)), None] => Chain {
+                first: Some(at(a, b, k, y0)),
+                next: None,
+            },
+            [Some((p, ap, bp, kp)), Some((q, aq, bq, kq))] => {
+                // The shared vertex is the one neither edge is opposite; `edges[p]` runs to
+                // the vertex opposite `edges[q]`, and is the upper edge if that one is above.
+                let vertex = |k: usize| {
+                    setup
+                        .order
+                        .get(k)
+                        .and_then(|&v| setup.vertices.get(v))
+                        .map_or(0, |v| v.1)
+                };
+                let vy = vertex(3 - p - q);
+                let ((au, bu, ku), (al, bl, kl)) = if vertex(q) < vertex(p) {
+                    ((ap, bp, kp), (aq, bq, kq))
+                } else {
+                    ((aq, bq, kq), (ap, bp, kp))
+                };
+                // First row whose centre (256·j + 128) is not above the vertex.
+                let switch = (vy - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
+                if switch <= y0 {
+                    Chain {
+                        first: Some(at(al, bl, kl, y0)),
+                        next: None,
+                    }
+                } else if switch > y1 {
+                    Chain {
+                        first: Some(at(au, bu, ku, y0)),
+                        next: None,
+                    }
+                } else {
+                    Chain {
+                        first: Some(at(au, bu, ku, y0)),
+                        next: Some((at(al, bl, kl, switch), switch)),
+                    }
+                }
+            }
+            _ => Chain {
+                first: None,
+                next: None,
+            },
+        }
     }
 
     /// Takes over the lower edges whose row has come.
