@@ -78,20 +78,36 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
     /// loop: the fastest path, with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        let spans = self.shaded_spans(&framebuffer.bounding_box());
-        if let Shading::Stepped(mut rows) = spans.shading {
-            // One walk with the accumulators in registers, no chunking: the 24-bit per-pixel
-            // steps stay within 2⁻⁹ LSB over the longest span this path takes (2¹⁶ pixels).
-            let steps = C::prepare_steps(rows.dx);
-            spans.spans.for_each(|span| {
-                let start = rows.at(span.x_start, span.y, C::CHANNELS);
-                if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
-                    C::fill_prepared(row, start, &steps);
-                }
-            });
+        let positions = self.vertices.map(|v| v.position());
+        // By reference: moving the setup out of the `Option` would copy it.
+        let setup = TriangleSetup::new(positions);
+        let Some(setup) = setup.as_ref() else {
             return;
-        }
-        for (span, colors) in spans {
+        };
+        let Some(region) = Region::new(setup, &framebuffer.bounding_box()) else {
+            return;
+        };
+        let Some(mut rows) = RowColors::of_triangle(self, setup, &region) else {
+            return self.draw_into_exact(framebuffer);
+        };
+        // One walk with the accumulators in registers, no chunking: the 24-bit per-pixel steps
+        // stay within 2⁻⁹ LSB over the longest span this path takes (2¹⁶ pixels). The walker is
+        // built here, in place.
+        let steps = C::prepare_steps(rows.dx);
+        Spans::new(setup, region).for_each(|span| {
+            let start = rows.at(span.x_start, span.y, C::CHANNELS);
+            if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
+                C::fill_prepared(row, start, &steps);
+            }
+        });
+    }
+
+    /// [`draw_into`](Self::draw_into) for triangles whose colours need the exact planes (extreme
+    /// slivers, huge regions): spans in chunks, each restarted exactly.
+    #[cold]
+    #[inline(never)]
+    fn draw_into_exact(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
+        for (span, colors) in self.shaded_spans(&framebuffer.bounding_box()) {
             if let Some(row) = framebuffer.row_mut(span.x_start, span.y, span.len()) {
                 colors.fill(row);
             }
@@ -210,7 +226,55 @@ struct RowColors {
     y: i32,
 }
 
+/// The values of channel `k` at the vertices of `triangle`.
+#[inline]
+fn channel_values<C: GouraudColor>(triangle: &GouraudTriangle<C>, k: usize) -> [u16; 3] {
+    triangle
+        .vertices
+        .map(|v| u16::from(v.color.channels().get(k).copied().unwrap_or(0)))
+}
+
 impl RowColors {
+    /// The accumulators of the colours of `triangle` over `region`, or `None` if a channel needs
+    /// the exact plane (extreme slivers, huge regions).
+    #[inline]
+    fn of_triangle<C: GouraudColor>(
+        triangle: &GouraudTriangle<C>,
+        setup: &TriangleSetup,
+        region: &Region,
+    ) -> Option<Self> {
+        let inverse = InverseArea::new(setup.area2);
+        if C::CHANNELS == 3 {
+            // One basis for all three channels: a few products per channel, no division.
+            let stepped = Basis::new(setup, &inverse, region).and_then(|basis| {
+                let plane = |k: usize| {
+                    basis.plane(AttributePlane::differences(
+                        setup,
+                        channel_values(triangle, k),
+                    ))
+                };
+                Some([plane(0)?, plane(1)?, plane(2)?])
+            });
+            if let Some(planes) = stepped {
+                return Some(RowColors::new(planes, region));
+            }
+        }
+        // Planes that all step (grey colours, or slivers too steep for the shared basis) still
+        // get the shared accumulator.
+        let stepped = |k: usize| {
+            if k < C::CHANNELS {
+                let values = channel_values(triangle, k);
+                AttributePlane::with_inverse(setup, &inverse, values, region).stepped()
+            } else {
+                Some(Stepped::ZERO)
+            }
+        };
+        Some(RowColors::new(
+            [stepped(0)?, stepped(1)?, stepped(2)?],
+            region,
+        ))
+    }
+
     /// The accumulators of `planes` (32 fractional bits) at the region's top-left pixel.
     fn new(planes: [Stepped; 3], region: &Region) -> Self {
         // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
@@ -256,41 +320,18 @@ impl<C: GouraudColor> ShadedSpans<C> {
             return Self::empty();
         };
 
-        let channels = triangle.vertices.map(|v| v.color.channels());
-        let values = |k: usize| channels.map(|c| u16::from(c.get(k).copied().unwrap_or(0)));
-        let inverse = InverseArea::new(setup.area2);
-        let stepped = if C::CHANNELS == 3 {
-            // One basis for all three channels: a few products per channel, no division.
-            Basis::new(setup, &inverse, &region).and_then(|basis| {
-                let plane = |k: usize| basis.plane(AttributePlane::differences(setup, values(k)));
-                Some([plane(0)?, plane(1)?, plane(2)?])
-            })
-        } else {
-            None
-        };
-        let shading = match stepped {
-            Some(p) => Shading::Stepped(RowColors::new(p, &region)),
+        let shading = match RowColors::of_triangle(triangle, setup, &region) {
+            Some(rows) => Shading::Stepped(rows),
             None => {
-                let plane = |k: usize| {
+                let inverse = InverseArea::new(setup.area2);
+                Shading::Planes(core::array::from_fn(|k| {
                     if k < C::CHANNELS {
-                        AttributePlane::with_inverse(setup, &inverse, values(k), &region)
+                        let values = channel_values(triangle, k);
+                        AttributePlane::with_inverse(setup, &inverse, values, &region)
                     } else {
                         AttributePlane::constant(0)
                     }
-                };
-                let planes = [plane(0), plane(1), plane(2)];
-                // Planes that all step (grey colours, or slivers too steep for the shared basis)
-                // still get the shared accumulator.
-                let stepped = |k: usize| match planes.get(k) {
-                    Some(p) if k < C::CHANNELS => p.stepped(),
-                    _ => Some(Stepped::ZERO),
-                };
-                match (stepped(0), stepped(1), stepped(2)) {
-                    (Some(a), Some(b), Some(c)) => {
-                        Shading::Stepped(RowColors::new([a, b, c], &region))
-                    }
-                    _ => Shading::Planes(planes),
-                }
+                }))
             }
         };
         let step = match &shading {

@@ -246,8 +246,9 @@ fn crossings(setup: &TriangleSetup, region: &Region) -> Option<[Crossing; 3]> {
 
 impl Spans {
     /// Spans of `setup` inside `region`.
-    // Inlined into each caller: returning and then moving the walker costs more than its set-up.
-    #[inline(always)]
+    // One copy for all callers; everything it calls is inlined into it, so the walker is built
+    // in place in the returned value rather than copied there.
+    #[inline(never)]
     pub fn new(setup: &TriangleSetup, region: Region) -> Spans {
         let Some(crossings) = crossings(setup, &region) else {
             return Spans::empty();
