@@ -84,6 +84,20 @@ pub trait GouraudColor: PixelColor {
 
 /// Per-pixel channel steps of a triangle, prepared for a colour format's span loop
 /// ([`GouraudColor::prepare_steps`]).
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_raster::{color::STEP_BITS, GouraudColor};
+///
+/// // Red from 2.5 stepping by 0.25 a pixel, green 40.5, blue 30.5 stepping by −1 (+½ included).
+/// let one = 1u32 << STEP_BITS;
+/// let (start, step) = ([5 * one / 2, 81 * one / 2, 61 * one / 2], [one / 4, 0, one.wrapping_neg()]);
+/// let steps = Rgb565::prepare_steps(step); // once per triangle
+/// let mut row = [Rgb565::new(0, 0, 0); 8];
+/// Rgb565::fill_prepared(&mut row, start, &steps); // once per span
+/// assert_eq!(row[0], Rgb565::new(2, 40, 30));
+/// assert_eq!(row[7], Rgb565::new(4, 40, 23));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SpanSteps {
     /// The steps, [`STEP_BITS`] fractional bits, in channel order.
