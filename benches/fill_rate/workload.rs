@@ -22,7 +22,9 @@ use embedded_graphics::{
     Pixel,
 };
 use embedded_raster::{
-    traversal::for_each_span, Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
+    edge::TriangleSetup,
+    traversal::{for_each_span, Region},
+    Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
 
 pub const WIDTH: usize = 320;
@@ -237,10 +239,13 @@ pub enum Method {
     EgTriangleEgFb,
     /// Textbook per-pixel `f32` barycentric rasterizer over the bounding box (Gouraud).
     NaiveFloat,
+    /// 8×8 block traversal with trivial accept/reject over the same exact edge functions
+    /// (solid; the technique weighed against our per-row spans).
+    Block8Solid,
 }
 
 impl Method {
-    pub const ALL: [Method; 9] = [
+    pub const ALL: [Method; 10] = [
         Method::OursSolidInto,
         Method::OursSolidDraw,
         Method::OursSolidEgFb,
@@ -250,6 +255,7 @@ impl Method {
         Method::EgTriangleSlice,
         Method::EgTriangleEgFb,
         Method::NaiveFloat,
+        Method::Block8Solid,
     ];
 
     pub fn id(self) -> &'static str {
@@ -263,6 +269,7 @@ impl Method {
             Method::EgTriangleSlice => "eg_triangle_slice",
             Method::EgTriangleEgFb => "eg_triangle_eg_fb",
             Method::NaiveFloat => "naive_f32_barycentric_slice",
+            Method::Block8Solid => "block8_solid_slice",
         }
     }
 
@@ -277,6 +284,7 @@ impl Method {
             Method::EgTriangleSlice => "e-g `Triangle` (solid) → SliceFramebuffer",
             Method::EgTriangleEgFb => "e-g `Triangle` (solid) → e-g Framebuffer",
             Method::NaiveFloat => "naive f32 barycentric (Gouraud) → slice",
+            Method::Block8Solid => "8×8 blocks, exact edges (solid) → slice",
         }
     }
 }
@@ -361,6 +369,71 @@ pub fn draw_set(method: Method, tris: &[Tri], targets: &mut Targets) {
                 naive_barycentric(t, |index, color| pixels[index] = color);
             }
         }
+        Method::Block8Solid => {
+            let pixels = &mut targets.slice[..];
+            for t in tris {
+                block8(t, |row, x0, x1| {
+                    pixels[row + x0..row + x1].fill(t.colors[0])
+                });
+            }
+        }
+    }
+}
+
+/// 8×8 block traversal (solid): each block of the clipped bounding box is tested against the
+/// three exact edge functions at its extreme corners — skipped if outside one edge, filled row by
+/// row if inside all three — and the blocks an edge crosses are tested pixel by pixel with the
+/// edge values stepped by `a` per pixel. `put(row_offset, x0, x1)` fills columns `x0..x1` of the
+/// row starting at `row_offset`; the coverage is ours (same edge functions and tie rule).
+#[inline(always)]
+pub fn block8(t: &Tri, mut put: impl FnMut(usize, usize, usize)) {
+    const B: i64 = 8;
+    let clip = Rectangle::new(Point::zero(), Size::new(WIDTH as u32, HEIGHT as u32));
+    let Some(setup) = TriangleSetup::new(t.positions) else {
+        return;
+    };
+    let Some(region) = Region::new(&setup, &clip) else {
+        return;
+    };
+    // On-screen bench triangles: every edge value fits i64.
+    assert!(setup.narrow, "bench triangles are on screen");
+    let edges = setup.edges.map(|e| (e.a, e.b, e.k as i64));
+    let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
+    let (x1, y1) = (i64::from(region.x1), i64::from(region.y1));
+    let mut by = y0;
+    while by <= y1 {
+        let bh = (y1 - by + 1).min(B);
+        let mut bx = x0;
+        while bx <= x1 {
+            let bw = (x1 - bx + 1).min(B);
+            let (mut inside, mut outside) = (true, false);
+            for &(a, b, k) in &edges {
+                let v = a * bx + b * by + k;
+                let (da, db) = (a * (bw - 1), b * (bh - 1));
+                inside &= v + da.min(0) + db.min(0) >= 0;
+                outside |= v + da.max(0) + db.max(0) < 0;
+            }
+            if !outside {
+                for j in by..by + bh {
+                    let row = j as usize * WIDTH;
+                    if inside {
+                        put(row, bx as usize, (bx + bw) as usize);
+                        continue;
+                    }
+                    let mut v = edges.map(|(a, b, k)| a * bx + b * j + k);
+                    for i in bx..bx + bw {
+                        if v.iter().all(|&e| e >= 0) {
+                            put(row, i as usize, i as usize + 1);
+                        }
+                        for (e, &(a, _, _)) in v.iter_mut().zip(&edges) {
+                            *e += a;
+                        }
+                    }
+                }
+            }
+            bx += B;
+        }
+        by += B;
     }
 }
 
@@ -453,6 +526,13 @@ pub fn pixel_count(method: Method, tris: &[Tri]) -> u64 {
             let mut n = 0;
             for t in tris {
                 naive_barycentric(t, |_, _| n += 1);
+            }
+            n
+        }
+        Method::Block8Solid => {
+            let mut n = 0;
+            for t in tris {
+                block8(t, |_, x0, x1| n += (x1 - x0) as u64);
             }
             n
         }
