@@ -12,7 +12,10 @@
 //! Of the edges that bound a row's start, only the tighter one is stepped: above the middle vertex
 //! of that side it is the upper edge, below it the lower one (see `NarrowSpans`), so a row costs
 //! two boundary steps in `i32`. Regions where a boundary column would leave ±2³⁰ (near-horizontal
-//! edges of far off-screen triangles) step every crossing edge in `i64` instead.
+//! edges of far off-screen triangles) step every crossing edge in `i64` instead. Small regions
+//! (small triangles, up to about 8×6 pixels) skip the boundary set-up, whose divisions and edge
+//! chains cost more than testing their few pixels: each pixel's edge values are stepped by one
+//! addition per edge (`SmallSpans`).
 //!
 //! Edge functions are first tested at the corners of the clipped region: an edge that excludes
 //! the whole region rejects the triangle, an edge that includes all of it is dropped. The edges
@@ -200,6 +203,7 @@ pub struct Spans {
 enum Walk {
     Narrow(NarrowSpans),
     Wide(WideSpans),
+    Small(SmallSpans),
 }
 
 /// How one edge function meets the region.
@@ -253,6 +257,11 @@ impl Spans {
         let Some(crossings) = crossings(setup, &region) else {
             return Spans::empty();
         };
+        if region.height() * (region.width() - 2) <= SMALL_AREA {
+            return Spans {
+                walk: Walk::Small(SmallSpans::new(&region, &crossings)),
+            };
+        }
         let walk = match NarrowSpans::new(setup, &region, &crossings) {
             Some(narrow) => Walk::Narrow(narrow),
             None => Walk::Wide(WideSpans::new(&region, &crossings)),
@@ -278,9 +287,15 @@ impl Spans {
         }
     }
 
-    /// Whether the spans are stepped in `i32` (the fast walker).
+    /// Whether the spans are stepped in `i32` (the fast walker for regions wider than a few
+    /// pixels).
     pub fn is_narrow(&self) -> bool {
         matches!(self.walk, Walk::Narrow(_))
+    }
+
+    /// Whether the region is narrow enough to be walked pixel by pixel.
+    pub fn is_small(&self) -> bool {
+        matches!(self.walk, Walk::Small(_))
     }
 }
 
@@ -292,6 +307,7 @@ impl Iterator for Spans {
         match &mut self.walk {
             Walk::Narrow(n) => n.next(),
             Walk::Wide(w) => w.next(),
+            Walk::Small(t) => t.next(),
         }
     }
 
@@ -301,6 +317,7 @@ impl Iterator for Spans {
         match self.walk {
             Walk::Narrow(n) => n.fold(init, f),
             Walk::Wide(w) => fold_wide(w, init, f),
+            Walk::Small(t) => t.fold(init, f),
         }
     }
 }
@@ -639,6 +656,96 @@ impl Iterator for NarrowSpans {
     }
 }
 
+/// Regions with `height · (width − 2)` at most this are walked pixel by pixel ([`SmallSpans`]).
+///
+/// Testing a pixel costs about 13 instructions on Cortex-M4 (three 64-bit edge values stepped and
+/// their signs tested), the boundary walker about 430 of set-up and 35 a row, so testing is
+/// cheaper while `h·(13w − 35) < 430`: `h·(w − 2) ≤ 40` follows that curve (all of an 8×6 or a
+/// 4×20 region, any width of at most 2).
+const SMALL_AREA: i64 = 40;
+
+/// The walker for narrow regions (small triangles): each row's pixels are tested against the
+/// crossing edges, stepped by `a` per pixel and `b` per row — no set-up beyond the edge values at
+/// the region's corner, where the boundary walkers divide and build edge chains.
+///
+/// A row's covered pixels are contiguous (the triangle is convex), so the scan skips to the first
+/// covered pixel and stops after the last.
+#[derive(Debug, Clone)]
+struct SmallSpans {
+    /// `(a, b)` of the crossing edges and their values at `(x0, y)`; unused slots are all zero,
+    /// which never excludes a pixel.
+    steps: [(i64, i64); 3],
+    row: [i64; 3],
+    x0: i32,
+    x1: i32,
+    y: i32,
+    y1: i32,
+}
+
+impl SmallSpans {
+    fn new(region: &Region, crossings: &[Crossing; 3]) -> Self {
+        let (mut steps, mut row) = ([(0, 0); 3], [0; 3]);
+        let crossing = crossings.iter().filter_map(|c| match *c {
+            Crossing::Cross { a, b, k } => Some(((a, b), k)),
+            Crossing::Inside => None,
+        });
+        for ((step, value), (ab, k)) in steps.iter_mut().zip(row.iter_mut()).zip(crossing) {
+            (*step, *value) = (ab, k);
+        }
+        SmallSpans {
+            steps,
+            row,
+            x0: region.x0,
+            x1: region.x1,
+            y: region.y0,
+            y1: region.y1,
+        }
+    }
+}
+
+impl Iterator for SmallSpans {
+    type Item = Span;
+
+    #[inline]
+    fn next(&mut self) -> Option<Span> {
+        // Crossing edges stay below 2^58 in magnitude over the region (see `crossings`); the
+        // region's columns are within ±2^23 (the vertex range), so `x + 1` cannot overflow.
+        let inside = |v: &[i64; 3]| v.iter().fold(0, |sign, &e| sign | e) >= 0;
+        let steps = self.steps;
+        let step = |v: &mut [i64; 3]| {
+            for (value, &(a, _)) in v.iter_mut().zip(&steps) {
+                *value += a;
+            }
+        };
+        while self.y <= self.y1 {
+            let mut v = self.row;
+            for (value, &(_, b)) in self.row.iter_mut().zip(&steps) {
+                *value += b;
+            }
+            let y = self.y;
+            self.y += 1;
+            let mut x = self.x0;
+            while x <= self.x1 && !inside(&v) {
+                x += 1;
+                step(&mut v);
+            }
+            let start = x;
+            while x <= self.x1 && inside(&v) {
+                x += 1;
+                step(&mut v);
+            }
+            if start < x {
+                return Some(Span {
+                    y,
+                    x_start: start,
+                    x_end: x,
+                });
+            }
+        }
+        None
+    }
+}
+
 /// The general walker: every crossing edge stepped in `i64`.
 #[derive(Debug, Clone)]
 struct WideSpans {
@@ -794,10 +901,10 @@ mod tests {
         }
     }
 
-    /// The `i32` walker (one edge per chain and row, switching at the middle vertex) against the
-    /// `i64` walker that steps every crossing edge, and both against per-pixel edge tests, over
-    /// triangles from sub-pixel size to far beyond the clip, including near-horizontal slivers
-    /// that force the wide walker.
+    /// The `i32` walker (one edge per chain and row, switching at the middle vertex) and the
+    /// pixel-by-pixel walker of narrow regions against the `i64` walker that steps every crossing
+    /// edge, and all against per-pixel edge tests, over triangles from sub-pixel size to far
+    /// beyond the clip, including near-horizontal slivers that force the wide walker.
     #[test]
     fn narrow_and_wide_walkers_agree() {
         let clip = Rectangle::new(Point::new(-3, -2), Size::new(31, 29));
@@ -808,7 +915,7 @@ mod tests {
             seed ^= seed << 17;
             (seed % (2 * range as u64 + 1)) as i64 - range
         };
-        let (mut narrow, mut wide) = (0, 0);
+        let (mut narrow, mut wide, mut small) = (0, 0, 0);
         for i in 0..20_000 {
             let range = [1 << 8, 1 << 12, 1 << 16, 1 << 24, 1 << 31][i % 5];
             let c = |r: i64| {
@@ -841,7 +948,9 @@ mod tests {
                     all
                 });
             assert_eq!(folded, got, "fold and next differ: {v:?}");
-            if spans.is_narrow() {
+            if spans.is_small() {
+                small += 1;
+            } else if spans.is_narrow() {
                 narrow += 1;
             } else {
                 wide += 1;
@@ -859,7 +968,10 @@ mod tests {
                 .count();
             assert_eq!(covered as usize, brute, "{v:?}");
         }
-        assert!(narrow > 5_000 && wide > 20, "narrow {narrow}, wide {wide}");
+        assert!(
+            narrow > 5_000 && wide > 20 && small > 1_000,
+            "narrow {narrow}, wide {wide}, small {small}"
+        );
     }
 
     #[test]
