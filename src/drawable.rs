@@ -31,7 +31,7 @@ use crate::color::{GouraudColor, PLANE_TO_STEP};
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::framebuffer::{fill_row, SliceFramebuffer};
-use crate::interpolation::{AttributePlane, Basis, InverseArea, Stepped, MAX_CHUNK};
+use crate::interpolation::{AttributePlane, InverseArea, StepContext, Stepped, MAX_CHUNK};
 use crate::traversal::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -244,35 +244,17 @@ impl RowColors {
         region: &Region,
     ) -> Option<Self> {
         let inverse = InverseArea::new(setup.area2);
-        if C::CHANNELS == 3 {
-            // One basis for all three channels: a few products per channel, no division.
-            let stepped = Basis::new(setup, &inverse, region).and_then(|basis| {
-                let plane = |k: usize| {
-                    basis.plane(AttributePlane::differences(
-                        setup,
-                        channel_values(triangle, k),
-                    ))
-                };
-                Some([plane(0)?, plane(1)?, plane(2)?])
-            });
-            if let Some(planes) = stepped {
-                return Some(RowColors::new(planes, region));
-            }
-        }
-        // Planes that all step (grey colours, or slivers too steep for the shared basis) still
-        // get the shared accumulator.
+        let ctx = StepContext::new(setup, region)?;
+        // Each channel: gradients and corner value, three products by the shared reciprocal.
         let stepped = |k: usize| {
             if k < C::CHANNELS {
                 let values = channel_values(triangle, k);
-                AttributePlane::with_inverse(setup, &inverse, values, region).stepped()
+                Stepped::new(&inverse, &ctx, AttributePlane::gradient(setup, values))
             } else {
                 Some(Stepped::ZERO)
             }
         };
-        Some(RowColors::new(
-            [stepped(0)?, stepped(1)?, stepped(2)?],
-            region,
-        ))
+        Some(RowColors::new([stepped(0)?, stepped(1)?, stepped(2)?], region))
     }
 
     /// The accumulators of `planes` (32 fractional bits) at the region's top-left pixel.
