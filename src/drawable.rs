@@ -27,7 +27,7 @@ use core::marker::PhantomData;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
-use crate::color::{GouraudColor, PLANE_TO_STEP};
+use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::framebuffer::{fill_row, SliceFramebuffer};
@@ -78,28 +78,49 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
     /// loop: the fastest path, with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
+        let walked =
+            self.fold_stepped(&framebuffer.bounding_box(), (), |(), span, start, steps| {
+                if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
+                    C::fill_prepared(row, start, steps);
+                }
+            });
+        if walked.is_err() {
+            self.draw_into_exact(framebuffer);
+        }
+    }
+
+    /// Folds `f` over the covered spans inside `clip`, handing it each span's channel values at
+    /// its first pixel and the per-pixel steps ([`STEP_BITS`](crate::color::STEP_BITS) fractional
+    /// bits); `Err(init)` untouched if the colours need the exact planes (extreme slivers, huge
+    /// regions).
+    ///
+    /// One walk with the accumulators in registers, no chunking: the 24-bit per-pixel steps stay
+    /// within 2⁻⁹ LSB over the longest span this path takes (2¹⁶ pixels). Set-up and walker are
+    /// built here, in place.
+    #[inline(always)]
+    fn fold_stepped<B>(
+        &self,
+        clip: &Rectangle,
+        init: B,
+        mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
+    ) -> Result<B, B> {
         let positions = self.vertices.map(|v| v.position());
         // By reference: moving the setup out of the `Option` would copy it.
         let setup = TriangleSetup::new(positions);
         let Some(setup) = setup.as_ref() else {
-            return;
+            return Ok(init);
         };
-        let Some(region) = Region::new(setup, &framebuffer.bounding_box()) else {
-            return;
+        let Some(region) = Region::new(setup, clip) else {
+            return Ok(init);
         };
         let Some(mut rows) = RowColors::of_triangle(self, setup, &region) else {
-            return self.draw_into_exact(framebuffer);
+            return Err(init);
         };
-        // One walk with the accumulators in registers, no chunking: the 24-bit per-pixel steps
-        // stay within 2⁻⁹ LSB over the longest span this path takes (2¹⁶ pixels). The walker is
-        // built here, in place.
         let steps = C::prepare_steps(rows.dx);
-        Spans::new(setup, region).for_each(|span| {
+        Ok(Spans::new(setup, region).fold(init, |acc, span| {
             let start = rows.at(span.x_start, span.y, C::CHANNELS);
-            if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
-                C::fill_prepared(row, start, &steps);
-            }
-        });
+            f(acc, span, start, &steps)
+        }))
     }
 
     /// [`draw_into`](Self::draw_into) for triangles whose colours need the exact planes (extreme
@@ -126,6 +147,34 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
     type Output = ();
 
     fn draw<D>(&self, target: &mut D) -> Result<(), D::Error>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        // After an error the remaining spans are skipped, not drawn.
+        let walked = self.fold_stepped(
+            &target.bounding_box(),
+            Ok(()),
+            |drawn, span, start, steps| {
+                drawn.and_then(|()| {
+                    let area =
+                        Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
+                    target.fill_contiguous(&area, SpanColors::new(start, steps.step(), span.len()))
+                })
+            },
+        );
+        match walked {
+            Ok(drawn) => drawn,
+            Err(_) => self.draw_exact(target),
+        }
+    }
+}
+
+impl<C: GouraudColor> GouraudTriangle<C> {
+    /// [`Drawable::draw`] for triangles whose colours need the exact planes: spans in chunks,
+    /// each restarted exactly.
+    #[cold]
+    #[inline(never)]
+    fn draw_exact<D>(&self, target: &mut D) -> Result<(), D::Error>
     where
         D: DrawTarget<Color = C>,
     {
@@ -177,11 +226,17 @@ impl<C: PixelColor> Drawable for SolidTriangle<C> {
     where
         D: DrawTarget<Color = C>,
     {
-        for span in self.spans(&target.bounding_box()) {
-            let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-            target.fill_solid(&area, self.color)?;
-        }
-        Ok(())
+        // `fold` walks with the walker's state in registers (see `Spans`; `try_fold` would step
+        // through `next`); after an error the remaining spans are skipped, not drawn.
+        #[allow(clippy::manual_try_fold)]
+        self.spans(&target.bounding_box())
+            .fold(Ok(()), |drawn, span| {
+                drawn.and_then(|()| {
+                    let area =
+                        Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
+                    target.fill_solid(&area, self.color)
+                })
+            })
     }
 }
 
@@ -254,7 +309,10 @@ impl RowColors {
                 Some(Stepped::ZERO)
             }
         };
-        Some(RowColors::new([stepped(0)?, stepped(1)?, stepped(2)?], region))
+        Some(RowColors::new(
+            [stepped(0)?, stepped(1)?, stepped(2)?],
+            region,
+        ))
     }
 
     /// The accumulators of `planes` (32 fractional bits) at the region's top-left pixel.
@@ -452,6 +510,65 @@ impl<C: GouraudColor> SpanColors<C> {
         let n = dst.len().min(self.left as usize);
         if let Some(dst) = dst.get_mut(..n) {
             C::fill_span(dst, self.value, self.step);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::Pixel;
+
+    /// A target that fails on its `fail_at`-th span and counts the spans it is handed.
+    struct Failing {
+        spans: u32,
+        fail_at: u32,
+    }
+
+    impl OriginDimensions for Failing {
+        fn size(&self) -> Size {
+            Size::new(64, 64)
+        }
+    }
+
+    impl DrawTarget for Failing {
+        type Color = Rgb565;
+        type Error = u32;
+
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, _: I) -> Result<(), u32> {
+            self.spans += 1;
+            if self.spans == self.fail_at {
+                Err(self.spans)
+            } else {
+                Ok(())
+            }
+        }
+    }
+
+    /// The first error is returned and nothing is drawn after it.
+    #[test]
+    fn draw_stops_at_the_first_error() {
+        let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
+        let points = [c(1, 1), c(60, 5), c(10, 50)];
+        let solid = SolidTriangle::new(points, Rgb565::RED);
+        let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
+        let gouraud = GouraudTriangle::new(
+            [0, 1, 2].map(|k| Vertex::new(points[k].0, points[k].1, colors[k])),
+        );
+        let mut all = Failing {
+            spans: 0,
+            fail_at: 0,
+        };
+        solid.draw(&mut all).unwrap();
+        assert!(all.spans > 40);
+        for fail_at in [1, 7, all.spans] {
+            let mut target = Failing { spans: 0, fail_at };
+            assert_eq!(solid.draw(&mut target), Err(fail_at));
+            assert_eq!(target.spans, fail_at);
+            let mut target = Failing { spans: 0, fail_at };
+            assert_eq!(gouraud.draw(&mut target), Err(fail_at));
+            assert_eq!(target.spans, fail_at);
         }
     }
 }
