@@ -85,7 +85,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
                 }
             });
         if walked.is_err() {
-            self.draw_into_exact(framebuffer);
+            let Ok(()) = self.draw_exact(framebuffer);
         }
     }
 
@@ -123,18 +123,6 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         }))
     }
 
-    /// [`draw_into`](Self::draw_into) for triangles whose colours need the exact planes (extreme
-    /// slivers, huge regions): spans in chunks, each restarted exactly.
-    #[cold]
-    #[inline(never)]
-    fn draw_into_exact(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        for (span, colors) in self.shaded_spans(&framebuffer.bounding_box()) {
-            if let Some(row) = framebuffer.row_mut(span.x_start, span.y, span.len()) {
-                colors.fill(row);
-            }
-        }
-    }
-
     /// The covered spans inside `clip` with their colours, each at most
     /// [`MAX_CHUNK`] pixels long.
     pub fn shaded_spans(&self, clip: &Rectangle) -> ShadedSpans<C> {
@@ -170,8 +158,8 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
 }
 
 impl<C: GouraudColor> GouraudTriangle<C> {
-    /// [`Drawable::draw`] for triangles whose colours need the exact planes: spans in chunks,
-    /// each restarted exactly.
+    /// [`Drawable::draw`] (and [`draw_into`](Self::draw_into)) for triangles whose colours need
+    /// the exact planes (extreme slivers, huge regions): spans in chunks, each restarted exactly.
     #[cold]
     #[inline(never)]
     fn draw_exact<D>(&self, target: &mut D) -> Result<(), D::Error>

@@ -190,10 +190,10 @@ impl Region {
 
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom.
 ///
-/// Two walkers share the same exact boundaries: the common one steps one start and one end
-/// boundary per row in `i32` (switching edges at the middle vertex); triangles whose boundaries
-/// leave the `i32` range over the region (far off-screen slivers) step every crossing edge in
-/// `i64`.
+/// Three walkers give the same exact spans: the common one steps one start and one end boundary
+/// per row in `i32` (switching edges at the middle vertex); triangles whose boundaries leave the
+/// `i32` range over the region (far off-screen slivers) step every crossing edge in `i64`; small
+/// regions test their pixels one by one, with no boundary set-up.
 #[derive(Debug, Clone)]
 pub struct Spans {
     walk: Walk,
@@ -562,6 +562,18 @@ impl NarrowSpans {
         }
     }
 
+    /// The span of row `y` between boundary columns `start` and `end`, clipped to `x0..=x1`.
+    #[inline(always)]
+    fn span(y: i32, start: i32, end: i32, x0: i32, x1: i32) -> Option<Span> {
+        let (start, end) = (x0.max(start), x1.min(end));
+        // `end ≤ x1 < 2^24`: no overflow.
+        (start <= end).then_some(Span {
+            y,
+            x_start: start,
+            x_end: end + 1,
+        })
+    }
+
     /// Takes over the lower edges whose row has come.
     #[cold]
     fn switch_edges(&mut self) {
@@ -574,20 +586,6 @@ impl NarrowSpans {
             self.end_switch = NEVER;
         }
         self.switch = self.start_switch.min(self.end_switch);
-    }
-}
-
-impl NarrowSpans {
-    /// The span of row `y` between boundary columns `start` and `end`, clipped to `x0..=x1`.
-    #[inline(always)]
-    fn span(y: i32, start: i32, end: i32, x0: i32, x1: i32) -> Option<Span> {
-        let (start, end) = (x0.max(start), x1.min(end));
-        // `end ≤ x1 < 2^24`: no overflow.
-        (start <= end).then_some(Span {
-            y,
-            x_start: start,
-            x_end: end + 1,
-        })
     }
 }
 
