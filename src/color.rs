@@ -138,7 +138,7 @@ macro_rules! rgb_color {
                 // Out of line: the loop then has the registers to itself.
                 #[inline(never)]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
-                    fill_565(dst, start, steps, $order)
+                    fill_565(dst, start, steps, $order, LAST_RUN_APART)
                 }
             )?
         }
@@ -208,8 +208,15 @@ fn prepare_565(step: [u32; 3], order: [usize; 3]) -> SpanSteps {
 /// 16-bit lane ([`LANE_FRACTION`]) and is stepped by its step rounded once to the lane. At covered
 /// pixels a lane value lies in `[0, 2¹⁶)` (the channel's range plus the +½ offset and an error of
 /// at most 2⁻⁴), so lanes packed side by side ([`run_565`]) never carry into each other.
+/// `last_run_apart` chooses between two loops over the same runs ([`LAST_RUN_APART`]).
 #[inline(always)]
-fn fill_565<C: From<RawU16>>(dst: &mut [C], start: [u32; 3], steps: &SpanSteps, order: [usize; 3]) {
+fn fill_565<C: From<RawU16>>(
+    dst: &mut [C],
+    start: [u32; 3],
+    steps: &SpanSteps,
+    order: [usize; 3],
+    last_run_apart: bool,
+) {
     let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
     let (mut value, step) = (pick(start), pick(steps.step));
     // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
@@ -219,13 +226,33 @@ fn fill_565<C: From<RawU16>>(dst: &mut [C], start: [u32; 3], steps: &SpanSteps, 
             value[i].wrapping_add(1 << (k - 1)) >> k
         })
     };
-    for run in dst.chunks_mut(PACKED_RUN) {
-        run_565(run, lanes(value), steps);
+    let advance = |value: &mut [u32; 3]| {
         for (v, s) in value.iter_mut().zip(step) {
             *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
         }
+    };
+    // The same runs either way; which loop LLVM compiles better depends on the core.
+    if last_run_apart {
+        let mut rest = dst;
+        while rest.len() > PACKED_RUN {
+            let (run, tail) = rest.split_at_mut(PACKED_RUN);
+            run_565(run, lanes(value), steps);
+            advance(&mut value);
+            rest = tail;
+        }
+        run_565(rest, lanes(value), steps);
+    } else {
+        for run in dst.chunks_mut(PACKED_RUN) {
+            run_565(run, lanes(value), steps);
+            advance(&mut value);
+        }
     }
 }
+
+/// Whether [`fill_565`] handles the last run (the only one of most spans) outside its loop of
+/// runs: fewer instructions a row on ARMv6-M (Cortex-M0/M0+, Thumb-1 only; recognised by having no
+/// 32-bit atomics), more elsewhere, where LLVM then unrolls the pixel loop.
+const LAST_RUN_APART: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// The 5-6-5 colour of a raw value.
 #[inline(always)]
@@ -329,6 +356,11 @@ mod tests {
             }
             Rgb565::fill_span(&mut out[..n], start, step);
             Bgr565::fill_span(&mut bgr[..n], start, step);
+            // The other target's loop of runs draws the same pixels.
+            let mut other = [Rgb565::BLACK; 700];
+            let steps = Rgb565::prepare_steps(step);
+            fill_565(&mut other[..n], start, &steps, [0, 1, 2], !LAST_RUN_APART);
+            assert_eq!(other[..n], out[..n]);
             for (i, (px, b)) in out[..n].iter().zip(&bgr[..n]).enumerate() {
                 for (got, k) in [px.channels(), b.channels()]
                     .into_iter()
