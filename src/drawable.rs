@@ -31,7 +31,9 @@ use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::framebuffer::{fill_row, SliceFramebuffer};
-use crate::interpolation::{AttributePlane, InverseArea, StepContext, Stepped, MAX_CHUNK};
+use crate::interpolation::{
+    AttributePlane, InverseArea, SmallPlanes, StepContext, Stepped, MAX_CHUNK,
+};
 use crate::traversal::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -286,6 +288,21 @@ impl RowColors {
         setup: &TriangleSetup,
         region: &Region,
     ) -> Option<Self> {
+        if let Some(small) = SmallPlanes::new(setup, region) {
+            let plane = |k: usize| {
+                if k < C::CHANNELS {
+                    let values = triangle
+                        .vertices
+                        .map(|v| v.color.channels().get(k).copied().unwrap_or(0));
+                    small.plane(values)
+                } else {
+                    Some(Stepped::ZERO)
+                }
+            };
+            if let (Some(r), Some(g), Some(b)) = (plane(0), plane(1), plane(2)) {
+                return Some(RowColors::new([r, g, b], region));
+            }
+        }
         let inverse = InverseArea::new(setup.area2);
         let ctx = StepContext::new(setup, region)?;
         // Each channel: gradients and corner value, three products by the shared reciprocal.
