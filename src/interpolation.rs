@@ -696,7 +696,10 @@ mod tests {
         for _ in 0..50_000 {
             // Up to about 40 px across, sub-pixel positions, some crossing the clip's corner.
             let scale = 1 << rnd(14);
-            let (cx, cy) = (rnd(500) as i32 * 256 - 60 * 256, rnd(400) as i32 * 256 - 50 * 256);
+            let (cx, cy) = (
+                rnd(500) as i32 * 256 - 60 * 256,
+                rnd(400) as i32 * 256 - 50 * 256,
+            );
             let v = [(); 3].map(|_| {
                 let mut r = |n: u64| (rnd(2 * n + 1) as i64 - n as i64) as i32;
                 (r(scale) + cx, r(scale) + cy)
@@ -723,8 +726,14 @@ mod tests {
             let within = |got: i64, exact_times_area: i128, bound: i128| {
                 (i128::from(got) * a - exact_times_area).abs() <= bound * a
             };
-            assert!(within(p.dx, i128::from(nx) << 40, 1025), "dx {v:?} {values:?}");
-            assert!(within(p.dy, i128::from(ny) << 40, 1025), "dy {v:?} {values:?}");
+            assert!(
+                within(p.dx, i128::from(nx) << 40, 1025),
+                "dx {v:?} {values:?}"
+            );
+            assert!(
+                within(p.dy, i128::from(ny) << 40, 1025),
+                "dy {v:?} {values:?}"
+            );
             let (vx, vy) = setup.vertices[setup.order[0]];
             let px = (i64::from(region.x0) << 8) + 128 - vx;
             let py = (i64::from(region.y0) << 8) + 128 - vy;

@@ -215,11 +215,13 @@ enum Crossing {
     Cross { a: i64, b: i64, k: i64 },
 }
 
-/// Classifies the edges of `setup` against `region`, or `None` if one excludes all of it.
-fn crossings(setup: &TriangleSetup, region: &Region) -> Option<[Crossing; 3]> {
+/// Classifies the edges of `setup` against `region` into `out`; `false` if one excludes all of
+/// it (nothing to draw).
+// Written through `out`: returning the array (in an `Option` or not) costs a copy of it.
+#[inline(always)]
+fn classify(setup: &TriangleSetup, region: &Region, out: &mut [Crossing; 3]) -> bool {
     let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
     let (w, h) = (region.width() - 1, region.height() - 1);
-    let mut out = [Crossing::Inside; 3];
     for (e, out) in setup.edges.iter().zip(out.iter_mut()) {
         // The edge's value at the region's top-left pixel and its range over the region.
         let (k, min, max) = if e.narrow {
@@ -238,14 +240,16 @@ fn crossings(setup: &TriangleSetup, region: &Region) -> Option<[Crossing; 3]> {
             )
         };
         if max < 0 {
-            return None;
+            return false;
         }
-        if min < 0 {
+        *out = if min < 0 {
             // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2^58: the i64 above is exact.
-            *out = Crossing::Cross { a: e.a, b: e.b, k };
-        }
+            Crossing::Cross { a: e.a, b: e.b, k }
+        } else {
+            Crossing::Inside
+        };
     }
-    Some(out)
+    true
 }
 
 impl Spans {
@@ -254,17 +258,18 @@ impl Spans {
     // in place in the returned value rather than copied there.
     #[inline(never)]
     pub fn new(setup: &TriangleSetup, region: Region) -> Spans {
-        let Some(crossings) = crossings(setup, &region) else {
+        let crossings = &mut [Crossing::Inside; 3];
+        if !classify(setup, &region, crossings) {
             return Spans::empty();
-        };
+        }
         if region.height() * (region.width() - 2) <= SMALL_AREA {
             return Spans {
-                walk: Walk::Small(SmallSpans::new(&region, &crossings)),
+                walk: Walk::Small(SmallSpans::new(&region, crossings)),
             };
         }
-        let walk = match NarrowSpans::new(setup, &region, &crossings) {
+        let walk = match NarrowSpans::new(setup, &region, crossings) {
             Some(narrow) => Walk::Narrow(narrow),
-            None => Walk::Wide(WideSpans::new(&region, &crossings)),
+            None => Walk::Wide(WideSpans::new(&region, crossings)),
         };
         Spans { walk }
     }
@@ -934,9 +939,11 @@ mod tests {
             };
             let spans = Spans::new(&setup, region);
             let got: heapless::Vec<Span, 64> = spans.clone().collect();
-            let general: heapless::Vec<Span, 64> = match crossings(&setup, &region) {
-                Some(c) => WideSpans::new(&region, &c).collect(),
-                None => heapless::Vec::new(),
+            let mut crossings = [Crossing::Inside; 3];
+            let general: heapless::Vec<Span, 64> = if classify(&setup, &region, &mut crossings) {
+                WideSpans::new(&region, &crossings).collect()
+            } else {
+                heapless::Vec::new()
             };
             assert_eq!(got, general, "{v:?}");
             let folded = spans
