@@ -137,6 +137,39 @@ const RECIPROCAL_SEED: [u16; 256] = {
     table
 };
 
+/// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`, without a division (a 64-bit library division costs
+/// hundreds of instructions on Cortex-M).
+///
+/// The table seed (8 bits), two Newton steps `x += x·(2^63 − d·x) / 2^63` (8 → 16 → 30+ bits; the
+/// error term `2^63 − d·x` is below 2⁵⁶ in magnitude, so its wrapping 64-bit value is exact), then
+/// an exact correction of the remainder.
+fn reciprocal_63(d: u32) -> u64 {
+    let seed = RECIPROCAL_SEED
+        .get(((d >> 23) as usize).wrapping_sub(256))
+        .copied()
+        .unwrap_or(256);
+    // ≈ 2^40 / (d / 2^23) = 2^63 / d, to 8 bits.
+    let mut x = u64::from(seed) << 23;
+    let d = u64::from(d);
+    let error = |x: u64| (1u64 << 63).wrapping_sub(d.wrapping_mul(x)) as i64;
+    for _ in 0..2 {
+        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^49, no overflow.
+        let e = error(x);
+        x = x.wrapping_add(((((x >> 16) as i64) * (e >> 24)) >> 23) as u64);
+    }
+    // A few units off at most: step to the exact floor.
+    let mut rem = error(x);
+    while rem < 0 {
+        x -= 1;
+        rem += d as i64;
+    }
+    while rem >= d as i64 {
+        x += 1;
+        rem -= d as i64;
+    }
+    x
+}
+
 /// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`, without a division (Cortex-M0 has no divider, and a
 /// 128-bit library division costs thousands of instructions there).
 ///
@@ -323,8 +356,8 @@ impl SmallPlanes {
         small(py)?;
         let n = 32 - area2.leading_zeros();
         Some(SmallPlanes {
-            // 2^(31+n) ≤ 2^62; r ∈ (2^31, 2^32].
-            r: ((1u64 << (31 + n)) / u64::from(area2)) as i64,
+            // ⌊2^(31+n) / area2⌋ = ⌊2^63 / (area2·2^(32−n))⌋ ∈ (2^31, 2^32].
+            r: reciprocal_63(area2 << (32 - n)) as i64,
             shift: n - 9,
             edges,
             px,
@@ -678,6 +711,25 @@ mod tests {
             );
         }
         assert!(checked > 5_000, "{checked}");
+    }
+
+    #[test]
+    fn reciprocal_63_is_the_exact_floor() {
+        let mut seed = 0x6a09_e667_f3bc_c908_u64;
+        let check = |d: u32| assert_eq!(reciprocal_63(d), (1u64 << 63) / u64::from(d), "{d}");
+        for d in [1 << 31, (1 << 31) + 1, 3 << 30, u32::MAX - 1, u32::MAX] {
+            check(d);
+        }
+        for t in 256..512u32 {
+            check(t << 23);
+            check((t << 23) - 1 + (1 << 23));
+        }
+        for _ in 0..200_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            check((seed as u32) | 1 << 31);
+        }
     }
 
     /// The small-triangle planes against exact rational values, within the bounds documented on
