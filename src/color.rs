@@ -260,10 +260,11 @@ fn raw_565<C: From<RawU16>>(raw: u32) -> C {
     C::from(RawU16::new(raw as u16))
 }
 
-/// One run of [`fill_565`], two pixels per word: each channel is one 32-bit word holding the lanes of two neighbouring
-/// pixels (the right one in the upper half), stepped two pixels at a time by one addition. With
-/// the integer bits on top of each lane, one mask (and one shift) places a channel of both pixels
-/// at once: two pixels cost three masks, two ORs, three additions and their stores.
+/// One run of [`fill_565`], two pixels per word: each channel is one 32-bit word holding the
+/// lanes of two neighbouring pixels (the right one in the upper half), stepped two pixels at a
+/// time by one addition. With the integer bits on top of each lane, one mask (and one shift)
+/// places a channel of both pixels at once: two pixels cost three masks, two ORs, three additions
+/// and their stores.
 #[inline(always)]
 fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     // Lanes (left pixel, right pixel) of each channel; `double` steps both by two pixels.
@@ -273,8 +274,9 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     let pair = |w: [u32; 3]| {
         (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
     };
-    // Slice patterns rather than `chunks_exact_mut`: LLVM then neither unrolls nor vectorizes
-    // the loop, which would cost more set-up per span than it saves on spans of a few dozen pixels.
+    // Slice patterns rather than `chunks_exact_mut`: LLVM then does not unroll the loop on
+    // Cortex-M, which would cost more set-up per span than it saves on spans of a few dozen pixels.
+    // (On x86 it still vectorizes it.)
     let mut rest = run;
     while let [a, b, tail @ ..] = rest {
         let both = pair(word);

@@ -310,7 +310,8 @@ impl Stepped {
 const SMALL_EXTENT: i64 = 64;
 
 /// Stepped planes of 8-bit attributes (colour channels) over small regions, from 32-bit products
-/// and one 64-bit division per triangle instead of [`InverseArea`]'s 64 × 64-bit products.
+/// and one 32-bit reciprocal per triangle ([`reciprocal_63`]) instead of [`InverseArea`]'s
+/// 64 × 64-bit products.
 ///
 /// It applies when the region spans at most [`SMALL_EXTENT`] pixels (width + height), the doubled
 /// area is in `[2⁸, 2³¹)`, and the coefficients `a`, `b` of two edges and the offset of the
