@@ -1,10 +1,10 @@
 //! Meshes: ready-made ones in flash, and (with the `std` feature) procedural generators.
 //!
 //! * [`icosphere::ICOSPHERE`] (42 vertices, 80 faces) and [`torus::TORUS`] (96 vertices, 192
-//!   faces) are `static` arrays, generated on the host by [`icosphere()`] / [`torus()`] and
-//!   [`MeshData::to_rust_source`]; firmware draws them straight from flash.
-//! * `MeshData` is an owned mesh for the host: generate one, load one from an OBJ file
-//!   ([`obj`](crate::obj)), and write it out as Rust source for firmware.
+//!   faces) are `static` arrays, generated on the host by `icosphere()` / `torus()` and
+//!   `MeshData::to_rust_source` (feature `std`); firmware draws them straight from flash.
+//! * `MeshData` is an owned mesh for the host: generate one, load one from an OBJ file (module
+//!   `obj`, feature `std`), and write it out as Rust source for firmware.
 //!
 //! ```
 //! use embedded_raster::meshes::icosphere::ICOSPHERE;
