@@ -656,6 +656,44 @@ mod tests {
         }
     }
 
+    /// Asserts that `p`, the accumulator of the plane through `values` over `region`, has
+    /// gradients within `gradient` hundredths of a unit (of 2⁻³²) of the exact quotients and a
+    /// corner value within `value(px, py)` hundredths, where `(px, py)` is the corner's offset
+    /// from oriented vertex 0 (sub-pixels). Exact values by `i128` cross-multiplication.
+    fn assert_near_exact(
+        p: &Stepped,
+        setup: &TriangleSetup,
+        region: &Region,
+        values: [u16; 3],
+        gradient: i128,
+        value: impl Fn(i64, i64) -> i128,
+    ) {
+        let (c0, nx, ny) = AttributePlane::gradient(setup, values);
+        let a = setup.area2;
+        // |got − exact| ≤ bound/100 units, as 100·|got·area2 − exact·area2| ≤ bound·area2.
+        let within = |got: i64, exact_times_area: i128, bound: i128| {
+            100 * (i128::from(got) * a - exact_times_area).abs() <= bound * a
+        };
+        let context = (setup.vertices, values);
+        assert!(
+            within(p.dx, i128::from(nx) << 40, gradient),
+            "dx {context:?}"
+        );
+        assert!(
+            within(p.dy, i128::from(ny) << 40, gradient),
+            "dy {context:?}"
+        );
+        let (vx, vy) = setup.vertices[setup.order[0]];
+        let px = (i64::from(region.x0) << 8) + 128 - vx;
+        let py = (i64::from(region.y0) << 8) + 128 - vy;
+        let offset = i128::from(nx) * i128::from(px) + i128::from(ny) * i128::from(py);
+        let base = (c0 << 32) + (1 << 31);
+        assert!(
+            within(p.value - base, offset << 32, value(px, py)),
+            "value {context:?}"
+        );
+    }
+
     /// The stepped accumulator against exact rational values (`i128` cross-multiplication).
     #[test]
     fn stepped_planes_are_within_the_documented_error() {
@@ -694,22 +732,8 @@ mod tests {
                 continue;
             };
             checked += 1;
-            let a = setup.area2;
-            // |got·area2 − exact·area2| ≤ 0.51·area2: rounded once, within 0.51 units.
-            let within = |got: i64, exact_times_area: i128| {
-                100 * (i128::from(got) * a - exact_times_area).abs() <= 51 * a
-            };
-            assert!(within(p.dx, i128::from(nx) << 40), "dx {v:?} {values:?}");
-            assert!(within(p.dy, i128::from(ny) << 40), "dy {v:?} {values:?}");
-            let (vx, vy) = setup.vertices[setup.order[0]];
-            let px = (i64::from(region.x0) << 8) + 128 - vx;
-            let py = (i64::from(region.y0) << 8) + 128 - vy;
-            let offset = i128::from(nx) * i128::from(px) + i128::from(ny) * i128::from(py);
-            let base = (c0 << 32) + (1 << 31);
-            assert!(
-                within(p.value - base, offset << 32),
-                "value {v:?} {values:?}"
-            );
+            // Rounded once: within 0.51 units.
+            assert_near_exact(&p, &setup, &region, values, 51, |_, _| 51);
         }
         assert!(checked > 5_000, "{checked}");
     }
@@ -773,29 +797,15 @@ mod tests {
                 continue;
             };
             checked += 1;
-            let (c0, nx, ny) = AttributePlane::gradient(&setup, values.map(u16::from));
-            let a = setup.area2;
-            // |got − exact| ≤ bound units of 2^-32, as |got·area2 − exact·area2| ≤ bound·area2.
-            let within = |got: i64, exact_times_area: i128, bound: i128| {
-                (i128::from(got) * a - exact_times_area).abs() <= bound * a
-            };
-            assert!(
-                within(p.dx, i128::from(nx) << 40, 1025),
-                "dx {v:?} {values:?}"
-            );
-            assert!(
-                within(p.dy, i128::from(ny) << 40, 1025),
-                "dy {v:?} {values:?}"
-            );
-            let (vx, vy) = setup.vertices[setup.order[0]];
-            let px = (i64::from(region.x0) << 8) + 128 - vx;
-            let py = (i64::from(region.y0) << 8) + 128 - vy;
-            let offset = i128::from(nx) * i128::from(px) + i128::from(ny) * i128::from(py);
-            let base = (c0 << 32) + (1 << 31);
-            let bound = 1 + i128::from(px.abs() + py.abs()) * 1025 / 256;
-            assert!(
-                within(p.value - base, offset << 32, bound),
-                "value {v:?} {values:?}"
+            // Gradients within 1025 units; the corner value within 1 unit plus 1025 a pixel of
+            // offset from the first vertex.
+            assert_near_exact(
+                &p,
+                &setup,
+                &region,
+                values.map(u16::from),
+                102_500,
+                |px, py| 100 + i128::from(px.abs() + py.abs()) * 102_500 / 256,
             );
         }
         assert!(checked > 8_000, "{checked}");
