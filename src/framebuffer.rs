@@ -131,6 +131,17 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     where
         I: IntoIterator<Item = C>,
     {
+        // One row wholly inside (a rasterizer's span): no rectangle intersection.
+        if area.size.height == 1 {
+            let (x, y) = (area.top_left.x, area.top_left.y);
+            let end = i32::try_from(area.size.width).ok().and_then(|w| x.checked_add(w));
+            if let Some(row) = end.and_then(|end| self.span_mut(y, x, end)) {
+                for (dst, c) in row.iter_mut().zip(colors) {
+                    *dst = c;
+                }
+                return Ok(());
+            }
+        }
         let inside = area.intersection(&self.bounding_box());
         if inside != *area {
             // Partly outside: skip the colours of clipped pixels one by one.
@@ -151,6 +162,15 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        // One row wholly inside (a rasterizer's span): no rectangle intersection.
+        if area.size.height == 1 {
+            let (x, y) = (area.top_left.x, area.top_left.y);
+            let end = i32::try_from(area.size.width).ok().and_then(|w| x.checked_add(w));
+            if let Some(row) = end.and_then(|end| self.span_mut(y, x, end)) {
+                fill_row(row, color);
+                return Ok(());
+            }
+        }
         let area = area.intersection(&self.bounding_box());
         let Size { width, height } = area.size;
         for dy in 0..height {
