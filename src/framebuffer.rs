@@ -134,7 +134,9 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
         // One row wholly inside (a rasterizer's span): no rectangle intersection.
         if area.size.height == 1 {
             let (x, y) = (area.top_left.x, area.top_left.y);
-            let end = i32::try_from(area.size.width).ok().and_then(|w| x.checked_add(w));
+            let end = i32::try_from(area.size.width)
+                .ok()
+                .and_then(|w| x.checked_add(w));
             if let Some(row) = end.and_then(|end| self.span_mut(y, x, end)) {
                 for (dst, c) in row.iter_mut().zip(colors) {
                     *dst = c;
@@ -165,7 +167,9 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
         // One row wholly inside (a rasterizer's span): no rectangle intersection.
         if area.size.height == 1 {
             let (x, y) = (area.top_left.x, area.top_left.y);
-            let end = i32::try_from(area.size.width).ok().and_then(|w| x.checked_add(w));
+            let end = i32::try_from(area.size.width)
+                .ok()
+                .and_then(|w| x.checked_add(w));
             if let Some(row) = end.and_then(|end| self.span_mut(y, x, end)) {
                 fill_row(row, color);
                 return Ok(());
@@ -207,5 +211,27 @@ mod tests {
         let luma: [u8; 12] = core::array::from_fn(|i| px[i].luma());
         assert_eq!(luma, [0, 0, 0, 255, 3, 4, 0, 0, 7, 8, 0, 0]);
         assert!(SliceFramebuffer::new(&mut [Gray8::BLACK; 5], 2, 3).is_none());
+    }
+
+    /// One-row areas (the fast path): inside, partly outside on either side, empty, past the
+    /// last row, and far outside.
+    #[test]
+    fn one_row_fills_stay_inside() {
+        let mut px = [Gray8::BLACK; 12];
+        let mut fb = SliceFramebuffer::new(&mut px, 4, 3).unwrap();
+        let row = |x: i32, y: i32, w: u32| Rectangle::new(Point::new(x, y), Size::new(w, 1));
+        fb.fill_contiguous(&row(-1, 0, 3), (1..=3).map(Gray8::new))
+            .unwrap();
+        fb.fill_contiguous(&row(2, 1, 5), (4..=8).map(Gray8::new))
+            .unwrap();
+        fb.fill_solid(&row(1, 2, 2), Gray8::new(9)).unwrap();
+        fb.fill_solid(&row(0, 2, 0), Gray8::WHITE).unwrap();
+        fb.fill_solid(&row(0, 3, 4), Gray8::WHITE).unwrap();
+        fb.fill_solid(&row(i32::MAX - 3, 1, 3), Gray8::WHITE)
+            .unwrap();
+        fb.fill_contiguous(&row(i32::MIN, 2, 2), [Gray8::WHITE; 2])
+            .unwrap();
+        let luma: [u8; 12] = core::array::from_fn(|i| px[i].luma());
+        assert_eq!(luma, [2, 3, 0, 0, 0, 0, 4, 5, 0, 9, 9, 0]);
     }
 }
