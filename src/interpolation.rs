@@ -112,7 +112,7 @@ impl InverseArea {
         let magnitude = num.unsigned_abs();
         if magnitude < 1 << 64 && s > 0 && s < 128 && self.recip > 0 {
             // < 2^64 · 2^62: no overflow; rounded half away from zero.
-            let product = u128::from(magnitude as u64) * u128::from(self.recip);
+            let product = mul_wide(magnitude as u64, self.recip);
             let q = ((product >> (s - 1)) + 1) >> 1;
             // q < 2^126.
             if num < 0 {
@@ -124,6 +124,37 @@ impl InverseArea {
             div_round(num << k, self.area2)
         }
     }
+}
+
+/// Whether the core lacks a 32 × 32 → 64-bit multiply: ARMv6-M (Cortex-M0/M0+, recognised by
+/// having no 32-bit atomics), where every 64-bit product is a library call.
+const NO_LONG_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// `a · b` in full. Without a long multiply it is formed from 16-bit limbs ([`mul_32_limbs`]):
+/// sixteen 32-bit multiplies instead of four 64-bit library calls.
+#[inline]
+fn mul_wide(a: u64, b: u64) -> u128 {
+    if NO_LONG_MULTIPLY {
+        mul_wide_limbs(a, b)
+    } else {
+        u128::from(a) * u128::from(b)
+    }
+}
+
+/// [`mul_wide`] from four 32 × 32 → 64-bit products of [`mul_32_limbs`].
+#[inline]
+fn mul_wide_limbs(a: u64, b: u64) -> u128 {
+    let (a0, a1, b0, b1) = (a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32);
+    let middle = u128::from(mul_32_limbs(a0, b1)) + u128::from(mul_32_limbs(a1, b0));
+    (u128::from(mul_32_limbs(a1, b1)) << 64) + (middle << 32) + u128::from(mul_32_limbs(a0, b0))
+}
+
+/// `a · b` from four 16 × 16 → 32-bit products (each exact in a `u32`).
+#[inline]
+fn mul_32_limbs(a: u32, b: u32) -> u64 {
+    let (a0, a1, b0, b1) = (a & 0xFFFF, a >> 16, b & 0xFFFF, b >> 16);
+    let middle = u64::from(a0 * b1) + u64::from(a1 * b0);
+    (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
 }
 
 /// First guesses of `2^17 / t` for the top nine bits `t ∈ [256, 512)` of a normalised divisor.
@@ -736,6 +767,29 @@ mod tests {
             assert_near_exact(&p, &setup, &region, values, 51, |_, _| 51);
         }
         assert!(checked > 5_000, "{checked}");
+    }
+
+    #[test]
+    fn limb_products_are_exact() {
+        let mut seed = 0x3c6e_f372_fe94_f82b_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..100_000 {
+            let (a, b) = (next() >> (next() % 64), next() >> (next() % 64));
+            assert_eq!(
+                mul_wide_limbs(a, b),
+                u128::from(a) * u128::from(b),
+                "{a} {b}"
+            );
+            assert_eq!(mul_wide(a, b), u128::from(a) * u128::from(b));
+        }
+        for (a, b) in [(u64::MAX, u64::MAX), (0, u64::MAX), (1 << 63, 3)] {
+            assert_eq!(mul_wide_limbs(a, b), u128::from(a) * u128::from(b));
+        }
     }
 
     #[test]
