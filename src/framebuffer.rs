@@ -94,6 +94,18 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
         self.pixels.get_mut(base + a as usize..base + b as usize)
     }
 
+    /// The pixels of `area` if it is one row wholly inside the buffer (a rasterizer's span): the
+    /// fills' fast path, without a rectangle intersection.
+    #[inline(always)]
+    fn one_row(&mut self, area: &Rectangle) -> Option<&mut [C]> {
+        if area.size.height != 1 {
+            return None;
+        }
+        let (x, y) = (area.top_left.x, area.top_left.y);
+        let end = x.checked_add(i32::try_from(area.size.width).ok()?)?;
+        self.span_mut(y, x, end)
+    }
+
     /// The `len` pixels of row `y` starting at column `x`, if they are all inside the buffer.
     #[inline]
     pub fn row_mut(&mut self, x: i32, y: i32, len: u32) -> Option<&mut [C]> {
@@ -131,18 +143,11 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     where
         I: IntoIterator<Item = C>,
     {
-        // One row wholly inside (a rasterizer's span): no rectangle intersection.
-        if area.size.height == 1 {
-            let (x, y) = (area.top_left.x, area.top_left.y);
-            let end = i32::try_from(area.size.width)
-                .ok()
-                .and_then(|w| x.checked_add(w));
-            if let Some(row) = end.and_then(|end| self.span_mut(y, x, end)) {
-                for (dst, c) in row.iter_mut().zip(colors) {
-                    *dst = c;
-                }
-                return Ok(());
+        if let Some(row) = self.one_row(area) {
+            for (dst, c) in row.iter_mut().zip(colors) {
+                *dst = c;
             }
+            return Ok(());
         }
         let inside = area.intersection(&self.bounding_box());
         if inside != *area {
@@ -164,16 +169,9 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
-        // One row wholly inside (a rasterizer's span): no rectangle intersection.
-        if area.size.height == 1 {
-            let (x, y) = (area.top_left.x, area.top_left.y);
-            let end = i32::try_from(area.size.width)
-                .ok()
-                .and_then(|w| x.checked_add(w));
-            if let Some(row) = end.and_then(|end| self.span_mut(y, x, end)) {
-                fill_row(row, color);
-                return Ok(());
-            }
+        if let Some(row) = self.one_row(area) {
+            fill_row(row, color);
+            return Ok(());
         }
         let area = area.intersection(&self.bounding_box());
         let Size { width, height } = area.size;
