@@ -328,13 +328,8 @@ mod tests {
     /// The 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
     #[test]
     fn packed_565_matches_plain_stepping() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut rnd = move |n: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % n
-        };
+        let mut next = crate::xorshift(0x2545_f491_4f6c_dd1d_u64);
+        let mut rnd = move |n: u64| next() % n;
         let mut out = [Rgb565::BLACK; 700];
         let mut bgr = [Bgr565::BLACK; 700];
         for _ in 0..2000 {

@@ -642,7 +642,7 @@ mod tests {
 
     #[test]
     fn reciprocal_without_division_is_exact() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
         let check = |d: u64| {
             let d = d | 1 << 63;
             assert_eq!(
@@ -655,9 +655,7 @@ mod tests {
             check(d);
         }
         for _ in 0..100_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            let seed = next();
             check(seed);
             check(seed >> 40);
             check(seed | (u64::MAX >> 30));
@@ -666,13 +664,7 @@ mod tests {
 
     #[test]
     fn reciprocal_scaling_matches_division() {
-        let mut seed = 0x0123_4567_89ab_cdef_u64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rnd = crate::xorshift(0x0123_4567_89ab_cdef_u64);
         for _ in 0..20_000 {
             let area2 = (i128::from(rnd()) << (rnd() % 2)) >> (rnd() % 64) | 1;
             let num = (i128::from(rnd() as i64) << (rnd() % 20)) >> (rnd() % 60);
@@ -728,13 +720,8 @@ mod tests {
     /// The stepped accumulator against exact rational values (`i128` cross-multiplication).
     #[test]
     fn stepped_planes_are_within_the_documented_error() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut rnd = move |n: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % n
-        };
+        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
+        let mut rnd = move |n: u64| next() % n;
         let clip = Rectangle::new(Point::new(-40, -30), Size::new(400, 300));
         let mut checked = 0;
         for i in 0..20_000 {
@@ -771,13 +758,7 @@ mod tests {
 
     #[test]
     fn limb_products_are_exact() {
-        let mut seed = 0x3c6e_f372_fe94_f82b_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
         for _ in 0..100_000 {
             let (a, b) = (next() >> (next() % 64), next() >> (next() % 64));
             assert_eq!(
@@ -794,7 +775,7 @@ mod tests {
 
     #[test]
     fn reciprocal_63_is_the_exact_floor() {
-        let mut seed = 0x6a09_e667_f3bc_c908_u64;
+        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908_u64);
         let check = |d: u32| assert_eq!(reciprocal_63(d), (1u64 << 63) / u64::from(d), "{d}");
         for d in [1 << 31, (1 << 31) + 1, 3 << 30, u32::MAX - 1, u32::MAX] {
             check(d);
@@ -804,10 +785,7 @@ mod tests {
             check((t << 23) - 1 + (1 << 23));
         }
         for _ in 0..200_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            check((seed as u32) | 1 << 31);
+            check((next() as u32) | 1 << 31);
         }
     }
 
@@ -815,13 +793,8 @@ mod tests {
     /// `SmallPlanes`.
     #[test]
     fn small_planes_are_within_the_documented_error() {
-        let mut seed = 0x1f2e_3d4c_5b6a_7988_u64;
-        let mut rnd = move |n: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % n
-        };
+        let mut next = crate::xorshift(0x1f2e_3d4c_5b6a_7988_u64);
+        let mut rnd = move |n: u64| next() % n;
         let clip = Rectangle::new(Point::new(-40, -30), Size::new(400, 300));
         let mut checked = 0;
         for _ in 0..50_000 {

@@ -76,6 +76,18 @@ pub mod pipeline;
 pub mod reference;
 pub mod shading;
 
+/// The unit tests' random numbers: xorshift64 (shifts 13, 7, 17) from `seed`, each call returning
+/// the next state.
+#[cfg(test)]
+pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    }
+}
+
 /// The README's code example, compiled and run as a doc test.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

@@ -566,12 +566,9 @@ mod tests {
 
     #[test]
     fn inverse_square_root_is_accurate() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
         for k in 0..200_000u64 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let x = (seed >> (k % 64)).max(1);
+            let x = (next() >> (k % 64)).max(1);
             let (r, s) = inv_sqrt(x);
             let got = f64::from(r) / (s as f64).exp2();
             let want = 1.0 / (x as f64).sqrt();
