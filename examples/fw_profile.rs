@@ -1,5 +1,5 @@
 //! Profiling firmware: draws one triangle set many times with one renderer, for QEMU's
-//! execution log (`-d in_asm,exec,nochain`), which `tools/qprof.py` turns into instructions per
+//! execution log (`-d in_asm,exec,nochain`), which `.ci/qprof.py` turns into instructions per
 //! function. The renderer and set are chosen at build time with the `PROFILE` environment
 //! variable, `<solid|gouraud>-<large|small|tiny>` (default `gouraud-tiny`):
 //!
