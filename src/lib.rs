@@ -54,6 +54,7 @@
 extern crate std;
 
 pub mod color;
+pub mod compact;
 pub mod drawable;
 pub mod edge;
 pub mod fixed_point;

@@ -1,0 +1,509 @@
+//! Compact triangles: a bounding box under 2048 × 2048 pixels, set up and walked in 32-bit
+//! arithmetic.
+//!
+//! Every triangle whose vertices lie within 2048 pixels of each other on both axes — anywhere in
+//! the [`Coord`](crate::Coord) range — is a compact triangle. For those, every edge value the
+//! walk needs fits an `i32`, so the whole rasterizer is a few small loops: set-up forms a handful
+//! of 64-bit products and four 64-bit divisions (colour gradients), and each row steps each edge's
+//! boundary column by a quotient and a remainder (see [`traversal`](crate::traversal)).
+//!
+//! [`GouraudTriangle::draw`](crate::GouraudTriangle) and
+//! [`draw_into`](crate::GouraudTriangle::draw_into) take this path for compact triangles and the
+//! wide one (`i64`/`i128` set-up, exact fallbacks) for the rest. The `*_compact` methods take
+//! only this path and reject larger triangles, which keeps a firmware that uses only them small:
+//! the Gouraud rasterizer links in about 4 KB on a Cortex-M0 (see the README's footprint table).
+//!
+//! Coverage is the same exact top-left rule as everywhere else. Colours are within 2⁻¹⁰ LSB of
+//! the exact plane before the final truncation (the barycentric gradients carry 32 fractional
+//! bits per pixel; values wrap modulo 2³², which is exact for the covered pixels).
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use embedded_raster::{compact::TooLarge, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+//!
+//! let mut pixels = [Rgb565::BLACK; 64 * 48];
+//! let mut fb = SliceFramebuffer::new(&mut pixels, 64, 48).unwrap();
+//! let v = |x: i32, y: i32, c| Vertex::new(Coord::from_num(x), Coord::from_num(y), c);
+//! let small = GouraudTriangle::new([v(2, 2, Rgb565::RED), v(60, 10, Rgb565::GREEN), v(20, 45, Rgb565::BLUE)]);
+//! assert_eq!(small.draw_into_compact(&mut fb), Ok(()));
+//! assert_eq!(fb.get(3, 3).map(|c| c.r()), Some(30));
+//! // 3000 pixels wide: not compact, nothing drawn.
+//! let wide = GouraudTriangle::new([v(-1000, 0, Rgb565::RED), v(2000, 10, Rgb565::RED), v(0, 40, Rgb565::RED)]);
+//! assert_eq!(wide.draw_into_compact(&mut fb), Err(TooLarge));
+//! ```
+
+use core::num::NonZeroU32;
+
+use embedded_graphics::primitives::Rectangle;
+
+use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::traversal::Span;
+
+/// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
+/// (2¹⁹, that is 2048 pixels).
+pub const LIMIT: i64 = 1 << 19;
+
+/// The triangle's bounding box is 2048 pixels or more wide or tall: the compact path does not
+/// take it (nothing was drawn).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TooLarge;
+
+/// `(⌊n / d⌋, n mod d)` for `d > 0`, in 32 bits.
+#[inline]
+fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
+    let (q, r) = (n.unsigned_abs() / d, n.unsigned_abs() % d);
+    // |n| ≤ 2³¹, so the quotient's negation fits.
+    match (n < 0, r) {
+        (false, _) => (q as i32, r),
+        (true, 0) => ((q as i32).wrapping_neg(), 0),
+        (true, r) => ((q as i32).wrapping_neg().wrapping_sub(1), d.get() - r),
+    }
+}
+
+/// `n / d` rounded (halves away from zero), for `d > 0`.
+#[inline]
+fn div_round(n: i64, d: u64) -> i64 {
+    let q = (n.unsigned_abs() + d / 2) / d;
+    if n < 0 {
+        (q as i64).wrapping_neg()
+    } else {
+        q as i64
+    }
+}
+
+/// One boundary of the rows' spans: the first covered column (an edge with `a > 0`) or the last
+/// one (`a < 0`), relative to the region's first column.
+///
+/// Row to row the column moves by `⌊b / |a|⌋` towards the edge's outside and the remainder
+/// `rem` (in `[0, |a|)`) grows by `b mod |a|`; a carry moves it one column more.
+#[derive(Debug, Clone, Copy)]
+struct Boundary {
+    x: i32,
+    rem: u32,
+    step: i32,
+    rem_step: u32,
+    m: u32,
+    carry: i32,
+}
+
+impl Boundary {
+    /// A boundary that never binds: columns `x` on every row.
+    const fn open(x: i32) -> Self {
+        Boundary {
+            x,
+            rem: 0,
+            step: 0,
+            rem_step: 0,
+            m: 1,
+            carry: 0,
+        }
+    }
+
+    /// The boundary of the edge with coefficients `a ≠ 0`, `b` and reduced value `k` at the
+    /// region's first pixel of the first row.
+    fn new(a: i32, b: i32, k: i32) -> Self {
+        let m = NonZeroU32::new(a.unsigned_abs()).unwrap_or(NonZeroU32::MIN);
+        let (q, rem) = div_floor(k, m);
+        let (qb, rem_step) = div_floor(b, m);
+        if a > 0 {
+            // Covered from ⌈−k/a⌉ = −⌊k/a⌋ on; the column moves left by ⌊b/a⌋ (+1 on a carry).
+            Boundary {
+                x: q.wrapping_neg(),
+                rem,
+                step: qb.wrapping_neg(),
+                rem_step,
+                m: m.get(),
+                carry: -1,
+            }
+        } else {
+            // Covered up to ⌊k/|a|⌋.
+            Boundary {
+                x: q,
+                rem,
+                step: qb,
+                rem_step,
+                m: m.get(),
+                carry: 1,
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        // rem, rem_step < m ≤ 2¹⁹: no overflow; columns stay within ±2³⁰ over the region.
+        self.rem += self.rem_step;
+        self.x = self.x.wrapping_add(self.step);
+        if self.rem >= self.m {
+            self.rem -= self.m;
+            self.x = self.x.wrapping_add(self.carry);
+        }
+    }
+}
+
+/// The exact covered spans of a compact triangle inside a clip rectangle, and what colour set-up
+/// needs of it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CompactSpans {
+    /// Two start boundaries and two end boundaries (unused ones open).
+    bounds: [Boundary; 4],
+    /// First column and row of the walk.
+    x0: i32,
+    y0: i32,
+    /// Last column offset (width − 1) and last row.
+    last: i32,
+    y1: i32,
+}
+
+/// The oriented set-up of a compact triangle: what the colour planes need.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CompactSetup {
+    /// Which input vertex each oriented vertex is.
+    pub(crate) order: [usize; 3],
+    /// Edge coefficients `a` (per sub-pixel in x) and `b` (in y) of the edges opposite oriented
+    /// vertices 1 and 2.
+    pub(crate) a: [i32; 2],
+    pub(crate) b: [i32; 2],
+    /// Twice the area, sub-pixel units squared (positive, below 2³⁸).
+    pub(crate) area2: u64,
+    /// Offset of the first pixel centre of the walk from oriented vertex 0, sub-pixel units.
+    pub(crate) dx: i32,
+    pub(crate) dy: i32,
+}
+
+impl CompactSpans {
+    /// The walk of the triangle `v` over `clip` and its set-up; `Ok(None)` if nothing inside
+    /// `clip` is covered (or the vertices are collinear), `Err(TooLarge)` if the triangle is not
+    /// compact.
+    #[inline(always)]
+    pub(crate) fn new(
+        v: [(Coord, Coord); 3],
+        clip: &Rectangle,
+    ) -> Result<Option<(CompactSpans, CompactSetup)>, TooLarge> {
+        let p = v.map(|(x, y)| (i64::from(x.to_bits()), i64::from(y.to_bits())));
+        let xs = p.map(|q| q.0);
+        let ys = p.map(|q| q.1);
+        let (min_x, max_x) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));
+        let (min_y, max_y) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
+        if max_x - min_x >= LIMIT || max_y - min_y >= LIMIT {
+            return Err(TooLarge);
+        }
+        // Vertices relative to the first one: every difference is below 2¹⁹.
+        let rel = p.map(|q| ((q.0 - p[0].0) as i32, (q.1 - p[0].1) as i32));
+        let cross = |u: (i32, i32), w: (i32, i32)| {
+            i64::from(u.0) * i64::from(w.1) - i64::from(u.1) * i64::from(w.0)
+        };
+        let area2 = cross(rel[1], rel[2]);
+        let order = match area2 {
+            0 => return Ok(None),
+            a if a > 0 => [0, 1, 2],
+            _ => [0, 2, 1],
+        };
+        let o = order.map(|k| rel[k]);
+
+        // Pixels whose centres lie in the bounding box, clipped.
+        let half = HALF_PIXEL;
+        let lo = |m: i64| (m - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS;
+        let hi = |m: i64| (m - half) >> SUBPIXEL_BITS;
+        let (cx, cy) = (i64::from(clip.top_left.x), i64::from(clip.top_left.y));
+        let x0 = lo(min_x).max(cx);
+        let x1 = hi(max_x).min(cx + i64::from(clip.size.width) - 1);
+        let mut y0 = lo(min_y).max(cy);
+        let mut y1 = hi(max_y).min(cy + i64::from(clip.size.height) - 1);
+
+        // Edges opposite oriented vertices 0, 1, 2: from o[1] to o[2], o[2] to o[0], o[0] to o[1].
+        let ends = [(o[1], o[2]), (o[2], o[0]), (o[0], o[1])];
+        let coef = ends.map(|(s, e)| (s.1 - e.1, e.0 - s.0));
+        // A horizontal edge only limits the rows: a top edge (b > 0) owns the centres on it, a
+        // bottom edge does not.
+        for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
+            if a == 0 {
+                let edge_y = i64::from(s.1) + p[0].1;
+                if b > 0 {
+                    y0 = y0.max((edge_y - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS);
+                } else {
+                    y1 = y1.min((edge_y - half - 1) >> SUBPIXEL_BITS);
+                }
+            }
+        }
+        if x0 > x1 || y0 > y1 {
+            return Ok(None);
+        }
+        // The first pixel centre relative to vertex 0: inside the bounding box, below 2¹⁹.
+        let px = ((x0 << SUBPIXEL_BITS) + half - p[0].0) as i32;
+        let py = ((y0 << SUBPIXEL_BITS) + half - p[0].1) as i32;
+
+        let mut bounds = [
+            Boundary::open(0),
+            Boundary::open(0),
+            Boundary::open(i32::MAX),
+            Boundary::open(i32::MAX),
+        ];
+        let (mut starts, mut stops) = (0, 2);
+        for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
+            if a == 0 {
+                continue;
+            }
+            // E at the first centre: |E| < 2·2¹⁹·2¹⁹, so K = ⌊E/256⌋ − t fits i32.
+            let e = i64::from(a) * i64::from(px - s.0) + i64::from(b) * i64::from(py - s.1);
+            let top_left = a > 0;
+            let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
+            let k = (e >> SUBPIXEL_BITS) - i64::from(on_lattice && !top_left);
+            let k = i32::try_from(k).map_err(|_| TooLarge)?;
+            let slot = if a > 0 { &mut starts } else { &mut stops };
+            if let Some(bound) = bounds.get_mut(*slot) {
+                *bound = Boundary::new(a, b, k);
+            }
+            *slot += 1;
+        }
+        // The bounding box lies within ±2²³ pixels and inside the clip: the casts are exact.
+        Ok(Some((
+            CompactSpans {
+                bounds,
+                x0: x0 as i32,
+                y0: y0 as i32,
+                last: (x1 - x0) as i32,
+                y1: y1 as i32,
+            },
+            CompactSetup {
+                order,
+                a: [coef[1].0, coef[2].0],
+                b: [coef[1].1, coef[2].1],
+                area2: area2.unsigned_abs(),
+                dx: px,
+                dy: py,
+            },
+        )))
+    }
+
+    /// Folds `f` over the covered spans, top to bottom, handing it each span and its offsets
+    /// from the walk's first pixel: columns and rows.
+    #[inline(always)]
+    pub(crate) fn fold<B>(self, init: B, mut f: impl FnMut(B, Span, u32, u32) -> B) -> B {
+        let CompactSpans {
+            mut bounds,
+            x0,
+            y0,
+            last,
+            y1,
+        } = self;
+        let mut acc = init;
+        let mut y = y0;
+        loop {
+            let [s0, s1, e0, e1] = &bounds;
+            let start = s0.x.max(s1.x).max(0);
+            let end = e0.x.min(e1.x).min(last);
+            if start <= end {
+                let span = Span {
+                    y,
+                    x_start: x0 + start,
+                    x_end: x0 + end + 1,
+                };
+                acc = f(acc, span, start as u32, y.wrapping_sub(y0) as u32);
+            }
+            if y >= y1 {
+                return acc;
+            }
+            y += 1;
+            for bound in &mut bounds {
+                bound.advance();
+            }
+        }
+    }
+}
+
+/// Colour accumulators of a compact triangle: channel values at the walk's first pixel and their
+/// per-pixel and per-row steps, [`STEP_BITS`](crate::color::STEP_BITS) fractional bits (+½
+/// included), wrapping.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CompactColors {
+    pub(crate) value: [u32; 3],
+    pub(crate) dx: [u32; 3],
+    pub(crate) dy: [u32; 3],
+}
+
+impl CompactColors {
+    /// The planes through `channels` (per input vertex) of the triangle set up as `setup`.
+    ///
+    /// The barycentric gradients of oriented vertices 1 and 2, `256·a/area2` per pixel, are
+    /// rounded to 32 fractional bits (`a·2⁴⁰/area2`: `a < 2¹⁹`, so the numerator fits `i64`); a
+    /// channel's gradient is `Σ (cₖ − c₀)·gₖ`, within 255 units of 2⁻³² (2⁻²⁴ LSB a pixel),
+    /// and its value at the first pixel is `c₀` plus the gradients times the offset from vertex
+    /// 0 (below 2¹¹ pixels). Over a region of `w + h < 2¹³` pixels the error stays below 2⁻¹⁰
+    /// LSB. Everything wraps modulo 2⁶⁴ and then 2³²: only the low bits of a huge gradient
+    /// matter for the (in-range) covered values.
+    #[inline(always)]
+    pub(crate) fn new(setup: &CompactSetup, channels: [[u8; 3]; 3], count: usize) -> Self {
+        const G: u32 = 40;
+        let grad = |n: i32| div_round(i64::from(n) << G, setup.area2);
+        let gx = setup.a.map(grad);
+        let gy = setup.b.map(grad);
+        let [c0, c1, c2] = setup
+            .order
+            .map(|k| channels.get(k).copied().unwrap_or([0; 3]));
+        let mut colors = CompactColors {
+            value: [0; 3],
+            dx: [0; 3],
+            dy: [0; 3],
+        };
+        let (px, py) = (i64::from(setup.dx), i64::from(setup.dy));
+        for k in 0..count.min(3) {
+            let base = i64::from(c0[k]);
+            let (d1, d2) = (i64::from(c1[k]) - base, i64::from(c2[k]) - base);
+            // 2⁻³² units per pixel.
+            let sx = d1.wrapping_mul(gx[0]).wrapping_add(d2.wrapping_mul(gx[1]));
+            let sy = d1.wrapping_mul(gy[0]).wrapping_add(d2.wrapping_mul(gy[1]));
+            // Value at the first centre, 2⁻⁴⁰ units: c₀ + (sx·px + sy·py) / 256 (px, py in
+            // sub-pixels).
+            let v = (base << 40)
+                .wrapping_add(sx.wrapping_mul(px))
+                .wrapping_add(sy.wrapping_mul(py));
+            let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
+            colors.value[k] = to_step(v, 16).wrapping_add(1 << 23);
+            colors.dx[k] = to_step(sx, 8);
+            colors.dy[k] = to_step(sy, 8);
+        }
+        colors
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::prelude::*;
+
+    use super::*;
+    use crate::edge::TriangleSetup;
+
+    /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
+    /// the limit, slivers included, and a 48 × 40 clip somewhere over the bounding box.
+    fn random_cases(seed: u64, n: usize, mut check: impl FnMut([(i32, i32); 3], Rectangle)) {
+        let mut next = crate::xorshift(seed);
+        let mut rnd = move |n: u64| next() % n;
+        for i in 0..n {
+            let size = (1 << rnd(20)).min(LIMIT - 1) as u64;
+            let origin = match i % 3 {
+                0 => (
+                    rnd(1 << 16) as i64 - (1 << 15),
+                    rnd(1 << 16) as i64 - (1 << 15),
+                ),
+                _ => (
+                    rnd(1 << 32) as i64 - (1 << 31),
+                    rnd(1 << 32) as i64 - (1 << 31),
+                ),
+            };
+            let mut v = [(); 3].map(|_| (rnd(size) as i64, rnd(size) as i64));
+            if i % 4 == 0 {
+                // A sliver: the third vertex close to the line through the other two.
+                let t = rnd(1025) as i64;
+                let (a, b) = (v[0], v[1]);
+                v[2] = (
+                    a.0 + (b.0 - a.0) * t / 1024 + rnd(3) as i64 - 1,
+                    a.1 + (b.1 - a.1) * t / 1024 + rnd(3) as i64 - 1,
+                );
+            }
+            let clamp = |c: i64| c.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+            let v = v.map(|(x, y)| (clamp(origin.0 + x), clamp(origin.1 + y)));
+            let (min_x, min_y) = (v.iter().map(|p| p.0).min(), v.iter().map(|p| p.1).min());
+            let (Some(min_x), Some(min_y)) = (min_x, min_y) else {
+                continue;
+            };
+            let mut at = |m: i32| (m >> 8) - 8 + rnd(size / 256 + 8) as i32;
+            let clip = Rectangle::new(Point::new(at(min_x), at(min_y)), Size::new(48, 40));
+            check(v, clip);
+        }
+    }
+
+    fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
+        v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
+    }
+
+    /// The compact walk's spans are exactly the pixels the general (`i64`/`i128`) edge functions
+    /// cover, pixel by pixel.
+    #[test]
+    fn spans_match_per_pixel_edge_tests() {
+        let mut walked = 0;
+        random_cases(0x00c0_ffee_1234_5678, 30_000, |v, clip| {
+            let mut got = [[false; 48]; 40];
+            if let Ok(Some((spans, _))) = CompactSpans::new(coords(v), &clip) {
+                walked += 1;
+                spans.fold((), |(), span, _, _| {
+                    for x in span.x_start..span.x_end {
+                        let (i, j) = (x - clip.top_left.x, span.y - clip.top_left.y);
+                        let cell = usize::try_from(j)
+                            .ok()
+                            .and_then(|j| got.get_mut(j))
+                            .and_then(|row| row.get_mut(usize::try_from(i).ok()?));
+                        let cell =
+                            cell.unwrap_or_else(|| panic!("{v:?}: ({x}, {}) outside", span.y));
+                        assert!(!*cell, "{v:?}: ({x}, {}) twice", span.y);
+                        *cell = true;
+                    }
+                });
+            }
+            let setup = TriangleSetup::new(coords(v));
+            for (j, row) in got.iter().enumerate() {
+                for (i, &cell) in row.iter().enumerate() {
+                    let (x, y) = (clip.top_left.x + i as i32, clip.top_left.y + j as i32);
+                    let want = setup.as_ref().is_some_and(|s| s.covers(x, y));
+                    assert_eq!(cell, want, "{v:?}, clip {clip:?}, pixel ({x}, {y})");
+                }
+            }
+        });
+        assert!(walked > 5_000, "{walked}");
+    }
+
+    /// Colour accumulators against exact rationals (`i128`), at every pixel of the clip, modulo
+    /// 2³² (the covered pixels' values are in range, so wrapping is exact there).
+    #[test]
+    fn colors_are_within_the_documented_error() {
+        let mut next = crate::xorshift(0x5eed_c010_0000_0001);
+        let mut checked = 0u64;
+        random_cases(0x0bad_cafe_8765_4321, 4_000, |v, clip| {
+            let Ok(Some((spans, setup))) = CompactSpans::new(coords(v), &clip) else {
+                return;
+            };
+            let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
+            let colors = CompactColors::new(&setup, channels, 3);
+            let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
+            let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
+                (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+            };
+            let area2 = cross(p[0], p[1], p[2]);
+            let modulus = area2.abs() << 32;
+            for row in 0..=(spans.y1 - spans.y0) as u32 {
+                for column in 0..=spans.last as u32 {
+                    let q = (
+                        i128::from(spans.x0 + column as i32) * 256 + 128,
+                        i128::from(spans.y0 + row as i32) * 256 + 128,
+                    );
+                    // λₖ·area2 = the edge function of the opposite edge at q.
+                    let lambda = [
+                        cross(q, p[1], p[2]),
+                        cross(q, p[2], p[0]),
+                        cross(q, p[0], p[1]),
+                    ];
+                    for k in 0..3 {
+                        let got = colors.value[k]
+                            .wrapping_add(colors.dy[k].wrapping_mul(row))
+                            .wrapping_add(colors.dx[k].wrapping_mul(column));
+                        let exact: i128 =
+                            (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
+                        // (got − ½ − exact) · area2, in 2⁻²⁴ units, reduced modulo 2³²·area2.
+                        let mut err = ((i128::from(got) - (1 << 23)) * area2 - (exact << 24))
+                            .rem_euclid(modulus);
+                        if err > modulus / 2 {
+                            err -= modulus;
+                        }
+                        // Within 2⁻¹⁰ LSB: |err| ≤ 2¹⁴ · |area2|.
+                        assert!(
+                            err.abs() <= area2.abs() << 14,
+                            "{v:?} {channels:?} ({column}, {row}) channel {k}: error {} units",
+                            err as f64 / area2.abs() as f64
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        });
+        assert!(checked > 1_000_000, "{checked}");
+    }
+}
