@@ -274,6 +274,16 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     let pair = |w: [u32; 3]| {
         (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
     };
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        let pairs = run.len() / 2;
+        thumb1::pairs_565(run, &mut word, &double);
+        if let Some(last) = run.get_mut(2 * pairs) {
+            *last = raw_565(pair(word));
+        }
+        return;
+    }
+    #[allow(unreachable_code)]
     // Slice patterns rather than `chunks_exact_mut`: LLVM then does not unroll the loop on
     // Cortex-M, which would cost more set-up per span than it saves on spans of a few dozen pixels.
     // (On x86 it still vectorizes it.)
@@ -289,6 +299,116 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     }
     if let [last] = rest {
         *last = raw_565(pair(word));
+    }
+}
+
+/// The pair loop of [`run_565`] in Thumb-1 assembly for ARMv6-M (Cortex-M0/M0+), where LLVM
+/// keeps the masks and steps in memory (26 instructions a pair): here the three channel words,
+/// two masks, the pointer and two temporaries stay in the low registers and the steps and the end
+/// pointer in high ones, 19 instructions a pair. The host checks the same pixels through the
+/// portable loop; CI checks that the Cortex-M0 firmware's scene has the host's checksum.
+#[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+mod thumb1 {
+    use embedded_graphics::pixelcolor::raw::RawU16;
+
+    core::arch::global_asm!(
+        ".section .text.embedded_raster_565_pairs_v6m,\"ax\",%progbits",
+        ".syntax unified",
+        ".thumb",
+        ".p2align 2",
+        ".global embedded_raster_565_pairs_v6m",
+        ".hidden embedded_raster_565_pairs_v6m",
+        ".type embedded_raster_565_pairs_v6m,%function",
+        ".thumb_func",
+        // r0 = pixels (2-byte aligned), r1 = pairs, r2 = channel words (in/out), r3 = steps.
+        "embedded_raster_565_pairs_v6m:",
+        "push {{r4-r7, lr}}",
+        "mov r4, r8",
+        "mov r5, r9",
+        "mov r6, r10",
+        "mov r7, r11",
+        "push {{r4-r7}}",
+        "lsls r1, r1, #2",
+        "adds r1, r0, r1",
+        "mov r11, r1",
+        "ldr r4, [r3]",
+        "mov r8, r4",
+        "ldr r4, [r3, #4]",
+        "mov r9, r4",
+        "ldr r4, [r3, #8]",
+        "mov r10, r4",
+        "mov r12, r2",
+        "ldr r1, [r2]",
+        "ldr r3, [r2, #4]",
+        "ldr r2, [r2, #8]",
+        "ldr r6, 4f",
+        "ldr r7, 5f",
+        "cmp r0, r11",
+        "beq 3f",
+        // One pair: top & 0xF800F800 | (middle & 0xFC00FC00) >> 5 | (bottom & 0xF800F800) >> 11.
+        "2:",
+        "mov r4, r1",
+        "ands r4, r6",
+        "mov r5, r2",
+        "ands r5, r6",
+        "lsrs r5, r5, #11",
+        "orrs r4, r5",
+        "mov r5, r3",
+        "ands r5, r7",
+        "lsrs r5, r5, #5",
+        "orrs r4, r5",
+        "strh r4, [r0]",
+        "lsrs r4, r4, #16",
+        "strh r4, [r0, #2]",
+        "add r1, r8",
+        "add r3, r9",
+        "add r2, r10",
+        "adds r0, #4",
+        "cmp r0, r11",
+        "bne 2b",
+        "3:",
+        "mov r4, r12",
+        "str r1, [r4]",
+        "str r3, [r4, #4]",
+        "str r2, [r4, #8]",
+        "pop {{r4-r7}}",
+        "mov r8, r4",
+        "mov r9, r5",
+        "mov r10, r6",
+        "mov r11, r7",
+        "pop {{r4-r7, pc}}",
+        ".p2align 2",
+        "4: .word 0xF800F800",
+        "5: .word 0xFC00FC00",
+        ".size embedded_raster_565_pairs_v6m, . - embedded_raster_565_pairs_v6m",
+    );
+
+    extern "C" {
+        fn embedded_raster_565_pairs_v6m(
+            pixels: *mut u16,
+            pairs: u32,
+            words: *mut [u32; 3],
+            steps: *const [u32; 3],
+        );
+    }
+
+    /// Writes `run.len() / 2` pairs of pixels from the channel words `word` (raw order: top,
+    /// middle, bottom lanes of two pixels each), stepping them by `double` after each pair.
+    #[inline(always)]
+    pub(super) fn pairs_565<C: From<RawU16>>(
+        run: &mut [C],
+        word: &mut [u32; 3],
+        double: &[u32; 3],
+    ) {
+        // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
+        const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
+        let pairs = run.len() / 2;
+        // SAFETY: the function writes exactly `2·pairs ≤ run.len()` consecutive 16-bit pixels
+        // from `run`'s start (2-byte aligned) and reads and writes `word` and reads `double`,
+        // three words each; it saves and restores every register the AAPCS asks it to.
+        unsafe {
+            embedded_raster_565_pairs_v6m(run.as_mut_ptr().cast(), pairs as u32, word, double);
+        }
     }
 }
 

@@ -87,44 +87,39 @@ struct Boundary {
 }
 
 impl Boundary {
-    /// A boundary that never binds: columns `x` on every row.
-    const fn open(x: i32) -> Self {
-        Boundary {
-            x,
-            rem: 0,
-            step: 0,
-            rem_step: 0,
-            m: 1,
-            carry: 0,
-        }
-    }
-
-    /// The boundary of the edge with coefficients `a ≠ 0`, `b` and reduced value `k` at the
-    /// region's first pixel of the first row.
-    fn new(a: i32, b: i32, k: i32) -> Self {
+    /// The boundary of the edge with coefficients `a ≠ 0`, `b` from the pixel centre at
+    /// `offset` (sub-pixels) from the edge's start vertex on; `None` if the edge's value there
+    /// does not fit (never inside a compact triangle's bounding box).
+    #[inline(never)]
+    fn new(a: i32, b: i32, offset: (i32, i32)) -> Option<Self> {
+        // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
+        let e = i64::from(a) * i64::from(offset.0) + i64::from(b) * i64::from(offset.1);
+        let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
+        // Left edges (a > 0) own the centres on them; right edges do not.
+        let k = i32::try_from((e >> SUBPIXEL_BITS) - i64::from(on_lattice && a < 0)).ok()?;
         let m = NonZeroU32::new(a.unsigned_abs()).unwrap_or(NonZeroU32::MIN);
         let (q, rem) = div_floor(k, m);
         let (qb, rem_step) = div_floor(b, m);
         if a > 0 {
             // Covered from ⌈−k/a⌉ = −⌊k/a⌋ on; the column moves left by ⌊b/a⌋ (+1 on a carry).
-            Boundary {
+            Some(Boundary {
                 x: q.wrapping_neg(),
                 rem,
                 step: qb.wrapping_neg(),
                 rem_step,
                 m: m.get(),
                 carry: -1,
-            }
+            })
         } else {
             // Covered up to ⌊k/|a|⌋.
-            Boundary {
+            Some(Boundary {
                 x: q,
                 rem,
                 step: qb,
                 rem_step,
                 m: m.get(),
                 carry: 1,
-            }
+            })
         }
     }
 
@@ -144,8 +139,13 @@ impl Boundary {
 /// needs of it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct CompactSpans {
-    /// Two start boundaries and two end boundaries (unused ones open).
-    bounds: [Boundary; 4],
+    /// The first row's start and end boundaries …
+    left: Boundary,
+    right: Boundary,
+    /// … and the one that replaces the start (`next_left`) or end boundary at row `switch`.
+    next: Boundary,
+    next_left: bool,
+    switch: i32,
     /// First column and row of the walk.
     x0: i32,
     y0: i32,
@@ -232,33 +232,75 @@ impl CompactSpans {
         let px = ((x0 << SUBPIXEL_BITS) + half - p[0].0) as i32;
         let py = ((y0 << SUBPIXEL_BITS) + half - p[0].1) as i32;
 
-        let mut bounds = [
-            Boundary::open(0),
-            Boundary::open(0),
-            Boundary::open(i32::MAX),
-            Boundary::open(i32::MAX),
-        ];
-        let (mut starts, mut stops) = (0, 2);
-        for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
+        // One edge bounds one side of every row; the other side has one edge too (and the third
+        // is horizontal) or two, which meet at that side's middle vertex: above its row the
+        // upper one binds, from its row on the lower one (in the row through the vertex both
+        // give the same column).
+        let lefts = coef.map(|(a, _)| a > 0);
+        let pair_left = lefts.iter().filter(|&&l| l).count() == 2;
+        let mut single = 0;
+        let mut pair = [0usize; 2];
+        let mut n = 0;
+        for (k, (&(a, _), &left)) in coef.iter().zip(&lefts).enumerate() {
             if a == 0 {
                 continue;
             }
-            // E at the first centre: |E| < 2·2¹⁹·2¹⁹, so K = ⌊E/256⌋ − t fits i32.
-            let e = i64::from(a) * i64::from(px - s.0) + i64::from(b) * i64::from(py - s.1);
-            let top_left = a > 0;
-            let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
-            let k = (e >> SUBPIXEL_BITS) - i64::from(on_lattice && !top_left);
-            let k = i32::try_from(k).map_err(|_| TooLarge)?;
-            let slot = if a > 0 { &mut starts } else { &mut stops };
-            if let Some(bound) = bounds.get_mut(*slot) {
-                *bound = Boundary::new(a, b, k);
+            if left == pair_left {
+                if let Some(slot) = pair.get_mut(n) {
+                    *slot = k;
+                }
+                n += 1;
+            } else {
+                single = k;
             }
-            *slot += 1;
         }
+        // Edge k's boundary from the first pixel of row `row` (an offset from y0) on.
+        let boundary = |k: usize, row: i64| {
+            let (a, b) = coef.get(k).copied().unwrap_or_default();
+            let s = ends.get(k).map_or((0, 0), |e| e.0);
+            // Inside the bounding box: below 2¹⁹ (and the row offset below 2¹¹ pixels).
+            let offset = (
+                px - s.0,
+                py.wrapping_add((row as i32) << SUBPIXEL_BITS) - s.1,
+            );
+            Boundary::new(a, b, offset).ok_or(TooLarge)
+        };
+        let rows = y1 - y0;
+        let (first, next, switch) = if n == 2 {
+            // Edge pair[0] runs between the middle vertex and vertex pair[1], and vice versa.
+            let [k1, k2] = pair;
+            let far_y = |k: usize| o.get(k).map_or(0, |v| v.1);
+            let (upper, lower) = if far_y(k2) < far_y(k1) {
+                (k1, k2)
+            } else {
+                (k2, k1)
+            };
+            let middle_y = i64::from(far_y(3 - k1 - k2)) + p[0].1;
+            // First row whose centre is not above the middle vertex, as an offset from y0.
+            let switch = (lo(middle_y) - y0).clamp(0, rows + 1);
+            (
+                boundary(upper, 0)?,
+                boundary(lower, switch.min(rows))?,
+                switch,
+            )
+        } else {
+            let only = boundary(pair[0], 0)?;
+            (only, only, rows + 1)
+        };
+        let single = boundary(single, 0)?;
+        let (left, right) = if pair_left {
+            (first, single)
+        } else {
+            (single, first)
+        };
         // The bounding box lies within ±2²³ pixels and inside the clip: the casts are exact.
         Ok(Some((
             CompactSpans {
-                bounds,
+                left,
+                right,
+                next,
+                next_left: pair_left,
+                switch: (y0 + switch) as i32,
                 x0: x0 as i32,
                 y0: y0 as i32,
                 last: (x1 - x0) as i32,
@@ -280,7 +322,11 @@ impl CompactSpans {
     #[inline(always)]
     pub(crate) fn fold<B>(self, init: B, mut f: impl FnMut(B, Span, u32, u32) -> B) -> B {
         let CompactSpans {
-            mut bounds,
+            mut left,
+            mut right,
+            next,
+            next_left,
+            switch,
             x0,
             y0,
             last,
@@ -289,9 +335,15 @@ impl CompactSpans {
         let mut acc = init;
         let mut y = y0;
         loop {
-            let [s0, s1, e0, e1] = &bounds;
-            let start = s0.x.max(s1.x).max(0);
-            let end = e0.x.min(e1.x).min(last);
+            if y == switch {
+                if next_left {
+                    left = next;
+                } else {
+                    right = next;
+                }
+            }
+            let start = left.x.max(0);
+            let end = right.x.min(last);
             if start <= end {
                 let span = Span {
                     y,
@@ -304,9 +356,8 @@ impl CompactSpans {
                 return acc;
             }
             y += 1;
-            for bound in &mut bounds {
-                bound.advance();
-            }
+            left.advance();
+            right.advance();
         }
     }
 }
