@@ -173,6 +173,12 @@ rgb_color!(Bgr888);
 /// fractional bits, so 128 steps add at most 2⁻⁴ LSB of error.
 const PACKED_RUN: usize = 128;
 
+/// Spans up to this long skip the packed 5-6-5 loop, whose pair set-up they would not repay, and
+/// step the same lanes one pixel at a time (the same pixels). On x86 LLVM vectorises the packed
+/// loop and its set-up costs ~150 instructions a span; on Cortex-M the check alone costs more
+/// than it saves.
+const SHORT_SPAN: Option<usize> = if cfg!(target_arch = "arm") { None } else { Some(4) };
+
 /// Fractional bits of the 5-6-5 loop's channels in raw order (top, middle, bottom): each channel
 /// fills a 16-bit lane with its integer bits on top.
 const LANE_FRACTION: [u32; 3] = [11, 10, 11];
@@ -219,13 +225,20 @@ fn fill_565<C: From<RawU16>>(
 ) {
     let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
     let (mut value, step) = (pick(start), pick(steps.step));
-    // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
-    let lanes = |value: [u32; 3]| -> [u32; 3] {
-        core::array::from_fn(|i| {
-            let k = F - LANE_FRACTION[i];
-            value[i].wrapping_add(1 << (k - 1)) >> k
-        })
-    };
+
+    if SHORT_SPAN.is_some_and(|short| dst.len() <= short) {
+        // The packed loop's lanes one pixel at a time (the same pixels): its set-up of the
+        // pair words costs more than a few pixels.
+        let mut lane = lanes(value);
+        for px in dst {
+            *px =
+                raw_565((lane[0] & 0xF800) | ((lane[1] >> 5) & 0x07E0) | ((lane[2] >> 11) & 0x1F));
+            for (l, s) in lane.iter_mut().zip(steps.lane) {
+                *l = l.wrapping_add(s);
+            }
+        }
+        return;
+    }
     let advance = |value: &mut [u32; 3]| {
         for (v, s) in value.iter_mut().zip(step) {
             *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
@@ -253,6 +266,16 @@ fn fill_565<C: From<RawU16>>(
 /// runs: fewer instructions a row on ARMv6-M (Cortex-M0/M0+, Thumb-1 only; recognised by having no
 /// 32-bit atomics), more elsewhere, where LLVM then unrolls the pixel loop.
 const LAST_RUN_APART: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// Channel values (raw order, [`STEP_BITS`] fractional bits) rounded to their 5-6-5 lanes.
+#[inline(always)]
+fn lanes(value: [u32; 3]) -> [u32; 3] {
+    // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
+    core::array::from_fn(|i| {
+        let k = F - LANE_FRACTION[i];
+        value[i].wrapping_add(1 << (k - 1)) >> k
+    })
+}
 
 /// The 5-6-5 colour of a raw value.
 #[inline(always)]
@@ -478,6 +501,11 @@ mod tests {
             let steps = Rgb565::prepare_steps(step);
             fill_565(&mut other[..n], start, &steps, [0, 1, 2], !LAST_RUN_APART);
             assert_eq!(other[..n], out[..n]);
+            // Short spans step the packed loop's lanes one pixel at a time: the same pixels.
+            let short = n.min(6);
+            run_565(&mut other[..short], lanes(start), &steps);
+            fill_565(&mut out[..short], start, &steps, [0, 1, 2], LAST_RUN_APART);
+            assert_eq!(other[..short], out[..short]);
             for (i, (px, b)) in out[..n].iter().zip(&bgr[..n]).enumerate() {
                 for (got, k) in [px.channels(), b.channels()]
                     .into_iter()
