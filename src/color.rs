@@ -99,6 +99,7 @@ pub trait GouraudColor: PixelColor {
 /// assert_eq!(row[7], Rgb565::new(4, 40, 23));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)] // The ARMv6-M span loop reads the fields at fixed offsets.
 pub struct SpanSteps {
     /// The steps, [`STEP_BITS`] fractional bits, in channel order.
     step: [u32; 3],
@@ -248,7 +249,21 @@ fn fill_565<C: From<RawU16>>(
             *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
         }
     };
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        let _ = last_run_apart;
+        let mut rest = dst;
+        while rest.len() > PACKED_RUN {
+            let (run, tail) = rest.split_at_mut(PACKED_RUN);
+            thumb1::span_565(run, value, steps);
+            advance(&mut value);
+            rest = tail;
+        }
+        thumb1::span_565(rest, value, steps);
+        return;
+    }
     // The same runs either way; which loop LLVM compiles better depends on the core.
+    #[allow(unreachable_code)]
     if last_run_apart {
         let mut rest = dst;
         while rest.len() > PACKED_RUN {
@@ -301,16 +316,6 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     let pair = |w: [u32; 3]| {
         (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
     };
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
-    {
-        let pairs = run.len() / 2;
-        thumb1::pairs_565(run, &mut word, &double);
-        if let Some(last) = run.get_mut(2 * pairs) {
-            *last = raw_565(pair(word));
-        }
-        return;
-    }
-    #[allow(unreachable_code)]
     // Slice patterns rather than `chunks_exact_mut`: LLVM then does not unroll the loop on
     // Cortex-M, which would cost more set-up per span than it saves on spans of a few dozen pixels.
     // (On x86 it still vectorizes it.)
@@ -329,45 +334,78 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     }
 }
 
-/// The pair loop of [`run_565`] in Thumb-1 assembly for ARMv6-M (Cortex-M0/M0+), where LLVM
-/// keeps the masks and steps in memory (26 instructions a pair): here the three channel words,
-/// two masks, the pointer and two temporaries stay in the low registers and the steps and the end
-/// pointer in high ones, 19 instructions a pair. The host checks the same pixels through the
-/// portable loop; CI checks that the Cortex-M0 firmware's scene has the host's checksum.
+/// One run of [`fill_565`] (lanes, pair words, the pair loop of [`run_565`] and a last odd
+/// pixel) in Thumb-1 assembly for ARMv6-M (Cortex-M0/M0+), where LLVM keeps masks, steps and
+/// words in memory (26 instructions a pair, ~70 a span around them): here the three channel
+/// words, two masks, the pointer and two temporaries stay in the low registers and the steps and
+/// the end pointer in high ones, 19 instructions a pair and ~60 a span. The host checks the same
+/// arithmetic through the portable loop; CI checks that the Cortex-M0 firmware's scene has the
+/// host's checksum.
 #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
 mod thumb1 {
     use embedded_graphics::pixelcolor::raw::RawU16;
 
+    use super::SpanSteps;
+
     core::arch::global_asm!(
-        ".section .text.embedded_raster_565_pairs_v6m,\"ax\",%progbits",
+        ".section .text.embedded_raster_565_span_v6m,\"ax\",%progbits",
         ".syntax unified",
         ".thumb",
         ".p2align 2",
-        ".global embedded_raster_565_pairs_v6m",
-        ".hidden embedded_raster_565_pairs_v6m",
-        ".type embedded_raster_565_pairs_v6m,%function",
+        ".global embedded_raster_565_span_v6m",
+        ".hidden embedded_raster_565_span_v6m",
+        ".type embedded_raster_565_span_v6m,%function",
         ".thumb_func",
-        // r0 = pixels (2-byte aligned), r1 = pairs, r2 = channel words (in/out), r3 = steps.
-        "embedded_raster_565_pairs_v6m:",
+        // r0 = pixels (2-byte aligned), r1 = pixel count, r2 = channel values (raw order,
+        // STEP_BITS fractional bits), r3 = SpanSteps (step +0, lane +12, double +24).
+        "embedded_raster_565_span_v6m:",
         "push {{r4-r7, lr}}",
         "mov r4, r8",
         "mov r5, r9",
         "mov r6, r10",
         "mov r7, r11",
         "push {{r4-r7}}",
+        // r12 = odd pixel count, r11 = end of the pairs.
+        "movs r4, #1",
+        "ands r4, r1",
+        "mov r12, r4",
+        "lsrs r1, r1, #1",
         "lsls r1, r1, #2",
         "adds r1, r0, r1",
         "mov r11, r1",
-        "ldr r4, [r3]",
+        // r8..r10 = steps of two pixels; r4..r6 = steps of one (lanes).
+        "ldr r4, [r3, #24]",
         "mov r8, r4",
-        "ldr r4, [r3, #4]",
+        "ldr r4, [r3, #28]",
         "mov r9, r4",
-        "ldr r4, [r3, #8]",
+        "ldr r4, [r3, #32]",
         "mov r10, r4",
-        "mov r12, r2",
+        "ldr r4, [r3, #12]",
+        "ldr r5, [r3, #16]",
+        "ldr r6, [r3, #20]",
+        // Lanes: top and bottom (v + 2^12) >> 13, middle (v + 2^13) >> 14, in r1, r3, r2.
         "ldr r1, [r2]",
         "ldr r3, [r2, #4]",
         "ldr r2, [r2, #8]",
+        "movs r7, #1",
+        "lsls r7, r7, #12",
+        "adds r1, r1, r7",
+        "lsrs r1, r1, #13",
+        "adds r2, r2, r7",
+        "lsrs r2, r2, #13",
+        "lsls r7, r7, #1",
+        "adds r3, r3, r7",
+        "lsrs r3, r3, #14",
+        // Words: (lane + step) << 16 | lane.
+        "adds r4, r4, r1",
+        "lsls r4, r4, #16",
+        "adds r1, r1, r4",
+        "adds r5, r5, r3",
+        "lsls r5, r5, #16",
+        "adds r3, r3, r5",
+        "adds r6, r6, r2",
+        "lsls r6, r6, #16",
+        "adds r2, r2, r6",
         "ldr r6, 4f",
         "ldr r7, 5f",
         "cmp r0, r11",
@@ -393,11 +431,23 @@ mod thumb1 {
         "adds r0, #4",
         "cmp r0, r11",
         "bne 2b",
+        // The odd last pixel: the left lanes.
         "3:",
         "mov r4, r12",
-        "str r1, [r4]",
-        "str r3, [r4, #4]",
-        "str r2, [r4, #8]",
+        "cmp r4, #0",
+        "beq 6f",
+        "mov r4, r1",
+        "ands r4, r6",
+        "mov r5, r2",
+        "ands r5, r6",
+        "lsrs r5, r5, #11",
+        "orrs r4, r5",
+        "mov r5, r3",
+        "ands r5, r7",
+        "lsrs r5, r5, #5",
+        "orrs r4, r5",
+        "strh r4, [r0]",
+        "6:",
         "pop {{r4-r7}}",
         "mov r8, r4",
         "mov r9, r5",
@@ -407,34 +457,29 @@ mod thumb1 {
         ".p2align 2",
         "4: .word 0xF800F800",
         "5: .word 0xFC00FC00",
-        ".size embedded_raster_565_pairs_v6m, . - embedded_raster_565_pairs_v6m",
+        ".size embedded_raster_565_span_v6m, . - embedded_raster_565_span_v6m",
     );
 
     extern "C" {
-        fn embedded_raster_565_pairs_v6m(
+        fn embedded_raster_565_span_v6m(
             pixels: *mut u16,
-            pairs: u32,
-            words: *mut [u32; 3],
-            steps: *const [u32; 3],
+            len: usize,
+            values: *const [u32; 3],
+            steps: *const SpanSteps,
         );
     }
 
-    /// Writes `run.len() / 2` pairs of pixels from the channel words `word` (raw order: top,
-    /// middle, bottom lanes of two pixels each), stepping them by `double` after each pair.
+    /// [`run_565`](super::run_565) of `run` (at most `PACKED_RUN` pixels) from the channel
+    /// values `value` (raw order, [`STEP_BITS`](super::STEP_BITS) fractional bits).
     #[inline(always)]
-    pub(super) fn pairs_565<C: From<RawU16>>(
-        run: &mut [C],
-        word: &mut [u32; 3],
-        double: &[u32; 3],
-    ) {
+    pub(super) fn span_565<C: From<RawU16>>(run: &mut [C], value: [u32; 3], steps: &SpanSteps) {
         // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
         const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
-        let pairs = run.len() / 2;
-        // SAFETY: the function writes exactly `2·pairs ≤ run.len()` consecutive 16-bit pixels
-        // from `run`'s start (2-byte aligned) and reads and writes `word` and reads `double`,
-        // three words each; it saves and restores every register the AAPCS asks it to.
+        // SAFETY: the function writes exactly `run.len()` consecutive 16-bit pixels from `run`'s
+        // start (2-byte aligned), reads three words at `value` and `SpanSteps` (`repr(C)`, nine
+        // words), and saves and restores every register the AAPCS asks it to.
         unsafe {
-            embedded_raster_565_pairs_v6m(run.as_mut_ptr().cast(), pairs as u32, word, double);
+            embedded_raster_565_span_v6m(run.as_mut_ptr().cast(), run.len(), &value, steps);
         }
     }
 }

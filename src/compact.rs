@@ -33,11 +33,12 @@
 //! assert_eq!(wide.draw_into_compact(&mut fb), Err(TooLarge));
 //! ```
 
-use core::num::NonZeroU32;
+use core::num::{NonZeroU32, NonZeroU64};
 
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::interpolation::reciprocal_63;
 use crate::traversal::Span;
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -63,12 +64,82 @@ fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
 
 /// `n / d` rounded (halves away from zero), for `d > 0`.
 #[inline]
-fn div_round(n: i64, d: u64) -> i64 {
-    let q = (n.unsigned_abs() + d / 2) / d;
+fn div_round(n: i64, d: NonZeroU64) -> i64 {
+    let q = (n.unsigned_abs() + d.get() / 2) / d;
     if n < 0 {
         (q as i64).wrapping_neg()
     } else {
         q as i64
+    }
+}
+
+/// `n·2⁴⁰ / area2` for `|n| < 2¹⁹` and `0 < area2 < 2³⁸` (a barycentric gradient per pixel,
+/// 2⁻³² units), within one unit, from one 32-bit reciprocal of the area per triangle.
+///
+/// The area is normalised to `d ∈ [2³¹, 2³²)` and `r = ⌊2⁶³/d⌋` is exact ([`reciprocal_63`]);
+/// `|n|·r` (below 2⁵¹) shifted back gives the quotient. Areas of 2³² or more are shifted right
+/// by at most 6 bits (a relative change below 2⁻³¹) and their quotients are below 2²⁷, so the
+/// result is within `2⁻³⁰·2²⁷ + ½`. Smaller areas are shifted left by `t` bits, exactly, and
+/// the floor of `r` costs at most `|n|·2^(t−23)`: within a unit while `|n|·2ᵗ ≤ 2²²`. Larger
+/// numerators (slivers under about two pixels across) take an exact 64-bit division, and if the
+/// largest of a triangle does, all do and the reciprocal is skipped.
+#[derive(Debug, Clone, Copy)]
+struct GradientScale {
+    area2: NonZeroU64,
+    r: u64,
+    shift: u32,
+    /// Largest numerator magnitude the reciprocal serves.
+    limit: u64,
+}
+
+impl GradientScale {
+    /// The scale for numerators up to `max` in magnitude.
+    #[inline]
+    fn new(area2: NonZeroU64, max: u32) -> Self {
+        let zeros = area2.leading_zeros();
+        let (area, area2) = (area2, area2.get());
+        let (d, shift, limit) = if zeros >= 32 {
+            let t = zeros - 32;
+            // t > 23 only for area2 < 2⁹, where the limit admits no numerator but 0.
+            (
+                (area2 << t) as u32,
+                23u32.saturating_sub(t),
+                (1u64 << 22) >> t,
+            )
+        } else {
+            let s = 32 - zeros;
+            ((area2 >> s) as u32, 23 + s, u64::MAX)
+        };
+        if u64::from(max) > limit {
+            return GradientScale {
+                area2: area,
+                r: 0,
+                shift: 0,
+                limit: 0,
+            };
+        }
+        GradientScale {
+            area2: area,
+            r: reciprocal_63(d),
+            shift,
+            limit,
+        }
+    }
+
+    // One copy for the four gradients (flash on Cortex-M0).
+    #[inline(never)]
+    fn of(&self, n: i32) -> i64 {
+        let m = u64::from(n.unsigned_abs());
+        if m > self.limit {
+            return div_round(i64::from(n) << 40, self.area2);
+        }
+        // m < 2¹⁹ and r ≤ 2³²: the product fits.
+        let q = ((m * self.r + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
+        if n < 0 {
+            q.wrapping_neg()
+        } else {
+            q
+        }
     }
 }
 
@@ -165,7 +236,7 @@ pub(crate) struct CompactSetup {
     pub(crate) a: [i32; 2],
     pub(crate) b: [i32; 2],
     /// Twice the area, sub-pixel units squared (positive, below 2³⁸).
-    pub(crate) area2: u64,
+    pub(crate) area2: NonZeroU64,
     /// Offset of the first pixel centre of the walk from oriented vertex 0, sub-pixel units.
     pub(crate) dx: i32,
     pub(crate) dy: i32,
@@ -194,6 +265,9 @@ impl CompactSpans {
             i64::from(u.0) * i64::from(w.1) - i64::from(u.1) * i64::from(w.0)
         };
         let area2 = cross(rel[1], rel[2]);
+        let Some(area) = NonZeroU64::new(area2.unsigned_abs()) else {
+            return Ok(None);
+        };
         let order = match area2 {
             0 => return Ok(None),
             a if a > 0 => [0, 1, 2],
@@ -311,7 +385,7 @@ impl CompactSpans {
                 order,
                 a: [coef[1].0, coef[2].0],
                 b: [coef[1].1, coef[2].1],
-                area2: area2.unsigned_abs(),
+                area2: area,
                 dx: px,
                 dy: py,
             },
@@ -377,18 +451,23 @@ impl CompactColors {
     /// The planes through `channels` (per input vertex) of the triangle set up as `setup`.
     ///
     /// The barycentric gradients of oriented vertices 1 and 2, `256·a/area2` per pixel, are
-    /// rounded to 32 fractional bits (`a·2⁴⁰/area2`: `a < 2¹⁹`, so the numerator fits `i64`); a
-    /// channel's gradient is `Σ (cₖ − c₀)·gₖ`, within 255 units of 2⁻³² (2⁻²⁴ LSB a pixel),
+    /// found to 32 fractional bits within a unit ([`GradientScale`]); a channel's gradient is
+    /// `Σ (cₖ − c₀)·gₖ`, within 510 units of 2⁻³² (2⁻²³ LSB a pixel),
     /// and its value at the first pixel is `c₀` plus the gradients times the offset from vertex
     /// 0 (below 2¹¹ pixels). Over a region of `w + h < 2¹³` pixels the error stays below 2⁻¹⁰
     /// LSB. Everything wraps modulo 2⁶⁴ and then 2³²: only the low bits of a huge gradient
     /// matter for the (in-range) covered values.
     #[inline(always)]
     pub(crate) fn new(setup: &CompactSetup, channels: [[u8; 3]; 3], count: usize) -> Self {
-        const G: u32 = 40;
-        let grad = |n: i32| div_round(i64::from(n) << G, setup.area2);
-        let gx = setup.a.map(grad);
-        let gy = setup.b.map(grad);
+        let max = setup
+            .a
+            .iter()
+            .chain(&setup.b)
+            .map(|n| n.unsigned_abs())
+            .max();
+        let scale = GradientScale::new(setup.area2, max.unwrap_or(0));
+        let gx = setup.a.map(|a| scale.of(a));
+        let gy = setup.b.map(|b| scale.of(b));
         let [c0, c1, c2] = setup
             .order
             .map(|k| channels.get(k).copied().unwrap_or([0; 3]));
@@ -466,6 +545,22 @@ mod tests {
 
     fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
         v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
+    }
+
+    /// The reciprocal gradients are within one unit of the exact quotient, over areas and
+    /// numerators of every magnitude (both sides of the sliver threshold).
+    #[test]
+    fn gradient_scale_is_within_a_unit() {
+        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908);
+        for _ in 0..200_000 {
+            let area2 = (next() >> (26 + next() % 38)).max(1);
+            let n = (next() >> (45 + next() % 19)) as i32 * if next() & 1 == 0 { 1 } else { -1 };
+            let area = NonZeroU64::new(area2).unwrap();
+            let got = GradientScale::new(area, n.unsigned_abs()).of(n);
+            let exact_times_area = i128::from(n) << 40;
+            let err = (i128::from(got) * i128::from(area2) - exact_times_area).abs();
+            assert!(err <= i128::from(area2), "n {n}, area2 {area2}: got {got}");
+        }
     }
 
     /// The compact walk's spans are exactly the pixels the general (`i64`/`i128`) edge functions

@@ -157,34 +157,20 @@ fn mul_32_limbs(a: u32, b: u32) -> u64 {
     (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
 }
 
-/// First guesses of `2^17 / t` for the top nine bits `t ∈ [256, 512)` of a normalised divisor.
-const RECIPROCAL_SEED: [u16; 256] = {
-    let mut table = [0u16; 256];
-    let mut i = 0;
-    while i < 256 {
-        table[i] = ((1u32 << 17) / (256 + i as u32)) as u16;
-        i += 1;
-    }
-    table
-};
-
 /// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`, without a division (a 64-bit library division costs
-/// hundreds of instructions on Cortex-M).
+/// hundreds of instructions on Cortex-M) and without a table (flash).
 ///
-/// The table seed (8 bits), two Newton steps `x += x·(2^63 − d·x) / 2^63` (8 → 16 → 30+ bits; the
-/// error term `2^63 − d·x` is below 2⁵⁶ in magnitude, so its wrapping 64-bit value is exact), then
+/// A linear first guess `2^63/d ≈ (3·2^35 − 16·d)/17` (the minimax line of `1/x` on `[½, 1)`,
+/// good to 4 bits), three Newton steps `x += x·(2^63 − d·x) / 2^63` (4 → 8 → 16 → 30+ bits; the
+/// error term `2^63 − d·x` is below 2⁶⁰ in magnitude, so its wrapping 64-bit value is exact), then
 /// an exact correction of the remainder.
-fn reciprocal_63(d: u32) -> u64 {
-    let seed = RECIPROCAL_SEED
-        .get(((d >> 23) as usize).wrapping_sub(256))
-        .copied()
-        .unwrap_or(256);
-    // ≈ 2^40 / (d / 2^23) = 2^63 / d, to 8 bits.
-    let mut x = u64::from(seed) << 23;
+pub(crate) fn reciprocal_63(d: u32) -> u64 {
     let d = u64::from(d);
+    // 1/17 ≈ 241/4096; 3·2^35 − 16·d lies in (2^35, 2^36].
+    let mut x = (((3u64 << 35) - 16 * d) * 241) >> 12;
     let error = |x: u64| (1u64 << 63).wrapping_sub(d.wrapping_mul(x)) as i64;
-    for _ in 0..2 {
-        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^49, no overflow.
+    for _ in 0..3 {
+        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^53, no overflow.
         let e = error(x);
         x = x.wrapping_add(((((x >> 16) as i64) * (e >> 24)) >> 23) as u64);
     }
@@ -200,6 +186,17 @@ fn reciprocal_63(d: u32) -> u64 {
     }
     x
 }
+
+/// First guesses of `2^17 / t` for the top nine bits `t ∈ [256, 512)` of a normalised divisor.
+const RECIPROCAL_SEED: [u16; 256] = {
+    let mut table = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        table[i] = ((1u32 << 17) / (256 + i as u32)) as u16;
+        i += 1;
+    }
+    table
+};
 
 /// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`, without a division (Cortex-M0 has no divider, and a
 /// 128-bit library division costs thousands of instructions there).
