@@ -214,16 +214,17 @@ pub(crate) struct CompactSpans {
     /// The first row's start and end boundaries …
     left: Boundary,
     right: Boundary,
-    /// … and the one that replaces the start (`next_left`) or end boundary at row `switch`.
+    /// … and the one that replaces the start (`next_left`) or end boundary at row offset
+    /// `switch` (from `y0`; at most `rows`).
     next: Boundary,
     next_left: bool,
-    switch: i32,
+    switch: u32,
     /// First column and row of the walk.
     x0: i32,
     y0: i32,
-    /// Last column offset (width − 1) and last row.
+    /// Last column offset (width − 1) and number of rows.
     last: i32,
-    y1: i32,
+    rows: u32,
 }
 
 /// The oriented set-up of a compact triangle: what the colour planes need.
@@ -375,11 +376,11 @@ impl CompactSpans {
                 right,
                 next,
                 next_left: pair_left,
-                switch: (y0 + switch) as i32,
+                switch: switch as u32,
                 x0: x0 as i32,
                 y0: y0 as i32,
                 last: (x1 - x0) as i32,
-                y1: y1 as i32,
+                rows: (rows + 1) as u32,
             },
             CompactSetup {
                 order,
@@ -405,35 +406,40 @@ impl CompactSpans {
             x0,
             y0,
             last,
-            y1,
+            rows,
         } = self;
         let mut acc = init;
-        let mut y = y0;
+        let mut row = 0;
+        // Two stretches of rows, the second after the edge switch: no per-row test for it.
+        let mut stop = switch;
         loop {
-            if y == switch {
-                if next_left {
-                    left = next;
-                } else {
-                    right = next;
+            while row < stop {
+                let y = y0.wrapping_add(row as i32);
+                let start = left.x.max(0);
+                let end = right.x.min(last);
+                if start <= end {
+                    let span = Span {
+                        y,
+                        x_start: x0 + start,
+                        x_end: x0 + end + 1,
+                    };
+                    acc = f(acc, span, start as u32, row);
                 }
+                row += 1;
+                left.advance();
+                right.advance();
             }
-            let start = left.x.max(0);
-            let end = right.x.min(last);
-            if start <= end {
-                let span = Span {
-                    y,
-                    x_start: x0 + start,
-                    x_end: x0 + end + 1,
-                };
-                acc = f(acc, span, start as u32, y.wrapping_sub(y0) as u32);
+            if stop == rows {
+                break;
             }
-            if y >= y1 {
-                return acc;
+            stop = rows;
+            if next_left {
+                left = next;
+            } else {
+                right = next;
             }
-            y += 1;
-            left.advance();
-            right.advance();
         }
+        acc
     }
 }
 
@@ -616,7 +622,7 @@ mod tests {
             };
             let area2 = cross(p[0], p[1], p[2]);
             let modulus = area2.abs() << 32;
-            for row in 0..=(spans.y1 - spans.y0) as u32 {
+            for row in 0..spans.rows {
                 for column in 0..=spans.last as u32 {
                     let q = (
                         i128::from(spans.x0 + column as i32) * 256 + 128,
