@@ -136,8 +136,10 @@ macro_rules! rgb_color {
                 fn prepare_steps(step: [u32; 3]) -> SpanSteps {
                     prepare_565(step, $order)
                 }
-                // Out of line: the loop then has the registers to itself.
-                #[inline(never)]
+                // Out of line: the loop then has the registers to itself (on ARMv6-M the loop
+                // is an assembly function and this wrapper is small enough to inline).
+                #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(always))]
+                #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline(never))]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
                     fill_565(dst, start, steps, $order, LAST_RUN_APART)
                 }
