@@ -2,17 +2,17 @@
 //! arithmetic.
 //!
 //! Every triangle whose vertices lie within 2048 pixels of each other on both axes — anywhere in
-//! the [`Coord`] range — is a compact triangle. For those, every edge value the
-//! walk needs fits an `i32`, so the whole rasterizer is a few small loops: set-up forms a handful
-//! of 64-bit products and four 64-bit divisions (colour gradients), and each row steps one start
-//! and one end boundary column by a quotient and a remainder (see
+//! the [`Coord`] range — is a compact triangle. For those, every edge value the walk needs fits
+//! an `i32`, so the whole rasterizer is a few small loops: set-up forms a handful of 64-bit
+//! products and one 32-bit reciprocal of the area (colour gradients; slivers divide exactly), and
+//! each row steps one start and one end boundary column by a quotient and a remainder (see
 //! [`traversal`](crate::traversal)), switching edges at the middle vertex.
 //!
 //! [`GouraudTriangle::draw`](crate::GouraudTriangle) and
 //! [`draw_into`](crate::GouraudTriangle::draw_into) take this path for compact triangles and the
 //! wide one (`i64`/`i128` set-up, exact fallbacks) for the rest. The `*_compact` methods take
 //! only this path and reject larger triangles, which keeps a firmware that uses only them small:
-//! the Gouraud rasterizer links in about 5.3 KB on a Cortex-M0 (see the README's footprint).
+//! the Gouraud rasterizer links in about 5.8 KB on a Cortex-M0 (see the README's footprint).
 //!
 //! Coverage is the same exact top-left rule as everywhere else. Colours are within 2⁻¹⁰ LSB of
 //! the exact plane before the final truncation (the barycentric gradients carry 32 fractional
