@@ -147,7 +147,8 @@ impl GradientScale {
 /// one (`a < 0`), relative to the region's first column.
 ///
 /// Row to row the column moves by `⌊b / |a|⌋` towards the edge's outside and the remainder
-/// `rem` (in `[0, |a|)`) grows by `b mod |a|`; a carry moves it one column more.
+/// `rem` (in `[0, |a|)`) grows by `b mod |a|`; a carry moves it one column more (left for start
+/// boundaries, right for end ones).
 #[derive(Debug, Clone, Copy)]
 struct Boundary {
     x: i32,
@@ -155,7 +156,6 @@ struct Boundary {
     step: i32,
     rem_step: u32,
     m: u32,
-    carry: i32,
 }
 
 impl Boundary {
@@ -180,7 +180,6 @@ impl Boundary {
                 step: qb.wrapping_neg(),
                 rem_step,
                 m: m.get(),
-                carry: -1,
             })
         } else {
             // Covered up to ⌊k/|a|⌋.
@@ -190,19 +189,19 @@ impl Boundary {
                 step: qb,
                 rem_step,
                 m: m.get(),
-                carry: 1,
             })
         }
     }
 
+    /// The next row's boundary; `CARRY` is −1 for start boundaries, +1 for end ones.
     #[inline(always)]
-    fn advance(&mut self) {
+    fn advance<const CARRY: i32>(&mut self) {
         // rem, rem_step < m ≤ 2¹⁹: no overflow; columns stay within ±2³⁰ over the region.
         self.rem += self.rem_step;
         self.x = self.x.wrapping_add(self.step);
         if self.rem >= self.m {
             self.rem -= self.m;
-            self.x = self.x.wrapping_add(self.carry);
+            self.x = self.x.wrapping_add(CARRY);
         }
     }
 }
@@ -426,8 +425,8 @@ impl CompactSpans {
                     acc = f(acc, span, start as u32, row);
                 }
                 row += 1;
-                left.advance();
-                right.advance();
+                left.advance::<-1>();
+                right.advance::<1>();
             }
             if stop == rows {
                 break;
