@@ -232,7 +232,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
 }
 
 /// Fills `span` of `framebuffer` with colours from `start` stepped by `steps` (the spans of the
-/// rasterizer's own walks are inside the framebuffer; others are skipped).
+/// rasterizer's own walks, clipped to the framebuffer).
 #[inline(always)]
 fn fill_into<C: GouraudColor>(
     framebuffer: &mut SliceFramebuffer<'_, C>,
@@ -240,7 +240,7 @@ fn fill_into<C: GouraudColor>(
     start: [u32; 3],
     steps: &SpanSteps,
 ) {
-    if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
+    if let Some(row) = framebuffer.clipped_span_mut(span.y, span.x_start, span.x_end) {
         C::fill_prepared(row, start, steps);
     }
 }
@@ -265,7 +265,7 @@ impl<C: PixelColor> SolidTriangle<C> {
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         self.spans(&framebuffer.bounding_box()).for_each(|span| {
-            if let Some(row) = framebuffer.span_mut(span.y, span.x_start, span.x_end) {
+            if let Some(row) = framebuffer.clipped_span_mut(span.y, span.x_start, span.x_end) {
                 fill_row(row, self.color);
             }
         });

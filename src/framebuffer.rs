@@ -94,6 +94,18 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
         self.pixels.get_mut(base + a as usize..base + b as usize)
     }
 
+    /// [`span_mut`](Self::span_mut) for the spans of a walk clipped to this buffer (the compact
+    /// path's): the row and column checks are debug assertions, the slice's own bounds check
+    /// remains, so a wrong span could only ever write other pixels of this buffer.
+    #[inline(always)]
+    pub(crate) fn clipped_span_mut(&mut self, y: i32, x_start: i32, x_end: i32) -> Option<&mut [C]> {
+        let (y, a, b) = (y as u32, x_start as u32, x_end as u32);
+        debug_assert!(y < self.height && a <= b && b <= self.width);
+        let base = (y as usize).wrapping_mul(self.width as usize);
+        self.pixels
+            .get_mut(base.wrapping_add(a as usize)..base.wrapping_add(b as usize))
+    }
+
     /// The pixels of `area` if it is one row wholly inside the buffer (a rasterizer's span): the
     /// fills' fast path, without a rectangle intersection.
     #[inline(always)]
