@@ -38,7 +38,7 @@ use core::num::{NonZeroU32, NonZeroU64};
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
-use crate::interpolation::reciprocal_63;
+use crate::interpolation::{reciprocal_63, wrapping_mul_i32};
 use crate::traversal::Span;
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -481,18 +481,20 @@ impl CompactColors {
             dx: [0; 3],
             dy: [0; 3],
         };
-        let (px, py) = (i64::from(setup.dx), i64::from(setup.dy));
+        let (px, py) = (setup.dx, setup.dy);
+        // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
+        let mul = wrapping_mul_i32;
         for k in 0..count.min(3) {
-            let base = i64::from(c0[k]);
-            let (d1, d2) = (i64::from(c1[k]) - base, i64::from(c2[k]) - base);
+            let base = i32::from(c0[k]);
+            let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
             // 2⁻³² units per pixel.
-            let sx = d1.wrapping_mul(gx[0]).wrapping_add(d2.wrapping_mul(gx[1]));
-            let sy = d1.wrapping_mul(gy[0]).wrapping_add(d2.wrapping_mul(gy[1]));
+            let sx = mul(gx[0], d1).wrapping_add(mul(gx[1], d2));
+            let sy = mul(gy[0], d1).wrapping_add(mul(gy[1], d2));
             // Value at the first centre, 2⁻⁴⁰ units: c₀ + (sx·px + sy·py) / 256 (px, py in
             // sub-pixels).
-            let v = (base << 40)
-                .wrapping_add(sx.wrapping_mul(px))
-                .wrapping_add(sy.wrapping_mul(py));
+            let v = (i64::from(base) << 40)
+                .wrapping_add(mul(sx, px))
+                .wrapping_add(mul(sy, py));
             let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
             colors.value[k] = to_step(v, 16).wrapping_add(1 << 23);
             colors.dx[k] = to_step(sx, 8);

@@ -149,6 +149,32 @@ fn mul_wide_limbs(a: u64, b: u64) -> u128 {
     (u128::from(mul_32_limbs(a1, b1)) << 64) + (middle << 32) + u128::from(mul_32_limbs(a0, b0))
 }
 
+/// `g · d` modulo 2⁶⁴; without a long multiply from [`mul_32_limbs`] and one 32-bit product
+/// instead of a 64 × 64-bit library call.
+#[inline]
+pub(crate) fn wrapping_mul_i32(g: i64, d: i32) -> i64 {
+    if NO_LONG_MULTIPLY {
+        wrapping_mul_i32_limbs(g, d)
+    } else {
+        g.wrapping_mul(i64::from(d))
+    }
+}
+
+/// [`wrapping_mul_i32`] from limbs: `|d|` times the low word in full, times the high word modulo
+/// 2³², then the sign.
+#[inline]
+fn wrapping_mul_i32_limbs(g: i64, d: i32) -> i64 {
+    let m = d.unsigned_abs();
+    let low = mul_32_limbs(g as u32, m);
+    let high = ((g as u64 >> 32) as u32).wrapping_mul(m);
+    let p = low.wrapping_add(u64::from(high) << 32) as i64;
+    if d < 0 {
+        p.wrapping_neg()
+    } else {
+        p
+    }
+}
+
 /// `a · b` from four 16 × 16 → 32-bit products (each exact in a `u32`).
 #[inline]
 fn mul_32_limbs(a: u32, b: u32) -> u64 {
@@ -767,6 +793,19 @@ mod tests {
         }
         for (a, b) in [(u64::MAX, u64::MAX), (0, u64::MAX), (1 << 63, 3)] {
             assert_eq!(mul_wide_limbs(a, b), u128::from(a) * u128::from(b));
+        }
+    }
+
+    #[test]
+    fn narrow_wrapping_products_match_native() {
+        let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
+        for _ in 0..200_000 {
+            let g = next() as i64;
+            let d = (next() as i32) >> (next() % 32);
+            assert_eq!(wrapping_mul_i32_limbs(g, d), g.wrapping_mul(i64::from(d)), "{g} {d}");
+        }
+        for (g, d) in [(i64::MIN, -1), (i64::MAX, i32::MIN), (-1, i32::MIN), (0, -5)] {
+            assert_eq!(wrapping_mul_i32_limbs(g, d), g.wrapping_mul(i64::from(d)));
         }
     }
 
