@@ -38,7 +38,7 @@ use core::num::{NonZeroU32, NonZeroU64};
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
-use crate::interpolation::{reciprocal_63, wrapping_mul_i32};
+use crate::interpolation::{mul_i32_wide, mul_u32_u33, reciprocal_63, wrapping_mul_i32};
 use crate::traversal::Span;
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -134,7 +134,8 @@ impl GradientScale {
             return div_round(i64::from(n) << 40, self.area2);
         }
         // m < 2¹⁹ and r ≤ 2³²: the product fits.
-        let q = ((m * self.r + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
+        let q =
+            ((mul_u32_u33(m as u32, self.r) + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
         if n < 0 {
             q.wrapping_neg()
         } else {
@@ -165,7 +166,7 @@ impl Boundary {
     #[inline(never)]
     fn new(a: i32, b: i32, offset: (i32, i32)) -> Option<Self> {
         // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
-        let e = i64::from(a) * i64::from(offset.0) + i64::from(b) * i64::from(offset.1);
+        let e = mul_i32_wide(a, offset.0) + mul_i32_wide(b, offset.1);
         let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
         // Left edges (a > 0) own the centres on them; right edges do not.
         let k = i32::try_from((e >> SUBPIXEL_BITS) - i64::from(on_lattice && a < 0)).ok()?;
@@ -261,9 +262,7 @@ impl CompactSpans {
         }
         // Vertices relative to the first one: every difference is below 2¹⁹.
         let rel = p.map(|q| ((q.0 - p[0].0) as i32, (q.1 - p[0].1) as i32));
-        let cross = |u: (i32, i32), w: (i32, i32)| {
-            i64::from(u.0) * i64::from(w.1) - i64::from(u.1) * i64::from(w.0)
-        };
+        let cross = |u: (i32, i32), w: (i32, i32)| mul_i32_wide(u.0, w.1) - mul_i32_wide(u.1, w.0);
         let area2 = cross(rel[1], rel[2]);
         let Some(area) = NonZeroU64::new(area2.unsigned_abs()) else {
             return Ok(None);

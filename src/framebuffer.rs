@@ -98,7 +98,12 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
     /// path's): the row and column checks are debug assertions, the slice's own bounds check
     /// remains, so a wrong span could only ever write other pixels of this buffer.
     #[inline(always)]
-    pub(crate) fn clipped_span_mut(&mut self, y: i32, x_start: i32, x_end: i32) -> Option<&mut [C]> {
+    pub(crate) fn clipped_span_mut(
+        &mut self,
+        y: i32,
+        x_start: i32,
+        x_end: i32,
+    ) -> Option<&mut [C]> {
         let (y, a, b) = (y as u32, x_start as u32, x_end as u32);
         debug_assert!(y < self.height && a <= b && b <= self.width);
         let base = (y as usize).wrapping_mul(self.width as usize);

@@ -149,6 +149,45 @@ fn mul_wide_limbs(a: u64, b: u64) -> u128 {
     (u128::from(mul_32_limbs(a1, b1)) << 64) + (middle << 32) + u128::from(mul_32_limbs(a0, b0))
 }
 
+/// `a · b` in full; without a long multiply from [`mul_32_limbs`] of the magnitudes.
+#[inline]
+pub(crate) fn mul_i32_wide(a: i32, b: i32) -> i64 {
+    if NO_LONG_MULTIPLY {
+        mul_i32_wide_limbs(a, b)
+    } else {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// [`mul_i32_wide`] from limbs.
+#[inline]
+fn mul_i32_wide_limbs(a: i32, b: i32) -> i64 {
+    let p = mul_32_limbs(a.unsigned_abs(), b.unsigned_abs()) as i64;
+    if (a < 0) != (b < 0) {
+        p.wrapping_neg()
+    } else {
+        p
+    }
+}
+
+/// `a · b` for `b ≤ 2³²` (and a product below 2⁶⁴); without a long multiply from
+/// [`mul_32_limbs`] and a shift.
+#[inline]
+pub(crate) fn mul_u32_u33(a: u32, b: u64) -> u64 {
+    if NO_LONG_MULTIPLY {
+        mul_u32_u33_limbs(a, b)
+    } else {
+        u64::from(a).wrapping_mul(b)
+    }
+}
+
+/// [`mul_u32_u33`] from limbs.
+#[inline]
+fn mul_u32_u33_limbs(a: u32, b: u64) -> u64 {
+    let high = if b >> 32 != 0 { u64::from(a) << 32 } else { 0 };
+    mul_32_limbs(a, b as u32).wrapping_add(high)
+}
+
 /// `g · d` modulo 2⁶⁴; without a long multiply from [`mul_32_limbs`] and one 32-bit product
 /// instead of a 64 × 64-bit library call.
 #[inline]
@@ -797,14 +836,50 @@ mod tests {
     }
 
     #[test]
+    fn narrow_full_products_match_native() {
+        let mut next = crate::xorshift(0xa54f_f53a_5f1d_36f1_u64);
+        for _ in 0..200_000 {
+            let (a, b) = (
+                (next() as i32) >> (next() % 32),
+                (next() as i32) >> (next() % 32),
+            );
+            assert_eq!(
+                mul_i32_wide_limbs(a, b),
+                i64::from(a) * i64::from(b),
+                "{a} {b}"
+            );
+            let c = next() % ((1 << 32) + 1);
+            assert_eq!(
+                mul_u32_u33_limbs(a as u32, c),
+                u64::from(a as u32) * c,
+                "{a} {c}"
+            );
+        }
+        assert_eq!(mul_i32_wide_limbs(i32::MIN, i32::MIN), 1 << 62);
+        assert_eq!(
+            mul_u32_u33_limbs(u32::MAX, 1 << 32),
+            u64::from(u32::MAX) << 32
+        );
+    }
+
+    #[test]
     fn narrow_wrapping_products_match_native() {
         let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
         for _ in 0..200_000 {
             let g = next() as i64;
             let d = (next() as i32) >> (next() % 32);
-            assert_eq!(wrapping_mul_i32_limbs(g, d), g.wrapping_mul(i64::from(d)), "{g} {d}");
+            assert_eq!(
+                wrapping_mul_i32_limbs(g, d),
+                g.wrapping_mul(i64::from(d)),
+                "{g} {d}"
+            );
         }
-        for (g, d) in [(i64::MIN, -1), (i64::MAX, i32::MIN), (-1, i32::MIN), (0, -5)] {
+        for (g, d) in [
+            (i64::MIN, -1),
+            (i64::MAX, i32::MIN),
+            (-1, i32::MIN),
+            (0, -5),
+        ] {
             assert_eq!(wrapping_mul_i32_limbs(g, d), g.wrapping_mul(i64::from(d)));
         }
     }
