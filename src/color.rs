@@ -339,10 +339,10 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
 /// One run of [`fill_565`] (lanes, pair words, the pair loop of [`run_565`] and a last odd
 /// pixel) in Thumb-1 assembly for ARMv6-M (Cortex-M0/M0+), where LLVM keeps masks, steps and
 /// words in memory (26 instructions a pair, ~70 a span around them): here the three channel
-/// words, two masks, the pointer and two temporaries stay in the low registers and the steps and
-/// the end pointer in high ones, 19 instructions a pair and ~60 a span. The host checks the same
-/// arithmetic through the portable loop; CI checks that the Cortex-M0 firmware's scene has the
-/// host's checksum.
+/// words, two masks, the pointer and two temporaries stay in the low registers and the steps, the
+/// end pointer and the odd-pixel flag in high ones: 19 instructions a pair and ~60 a span. The
+/// host checks the same arithmetic through the portable loop; CI checks that the Cortex-M0
+/// firmware's scene has the host's checksum.
 #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
 mod thumb1 {
     use embedded_graphics::pixelcolor::raw::RawU16;
@@ -365,16 +365,15 @@ mod thumb1 {
         "mov r4, r8",
         "mov r5, r9",
         "mov r6, r10",
-        "mov r7, r11",
-        "push {{r4-r7}}",
-        // r12 = odd pixel count, r11 = end of the pairs.
+        "push {{r4-r6}}",
+        // lr = odd pixel count (the return address is on the stack), r12 = end of the pairs.
         "movs r4, #1",
         "ands r4, r1",
-        "mov r12, r4",
+        "mov lr, r4",
         "lsrs r1, r1, #1",
         "lsls r1, r1, #2",
         "adds r1, r0, r1",
-        "mov r11, r1",
+        "mov r12, r1",
         // r8..r10 = steps of two pixels; r4..r6 = steps of one (lanes).
         "ldr r4, [r3, #24]",
         "mov r8, r4",
@@ -410,7 +409,7 @@ mod thumb1 {
         "adds r2, r2, r6",
         "ldr r6, 4f",
         "ldr r7, 5f",
-        "cmp r0, r11",
+        "cmp r0, r12",
         "beq 3f",
         // One pair: top & 0xF800F800 | (middle & 0xFC00FC00) >> 5 | (bottom & 0xF800F800) >> 11.
         "2:",
@@ -431,11 +430,11 @@ mod thumb1 {
         "add r3, r9",
         "add r2, r10",
         "adds r0, #4",
-        "cmp r0, r11",
+        "cmp r0, r12",
         "bne 2b",
         // The odd last pixel: the left lanes.
         "3:",
-        "mov r4, r12",
+        "mov r4, lr",
         "cmp r4, #0",
         "beq 6f",
         "mov r4, r1",
@@ -450,11 +449,10 @@ mod thumb1 {
         "orrs r4, r5",
         "strh r4, [r0]",
         "6:",
-        "pop {{r4-r7}}",
+        "pop {{r4-r6}}",
         "mov r8, r4",
         "mov r9, r5",
         "mov r10, r6",
-        "mov r11, r7",
         "pop {{r4-r7, pc}}",
         ".p2align 2",
         "4: .word 0xF800F800",
