@@ -96,10 +96,9 @@ impl GradientScale {
     /// The scale for numerators up to `max` in magnitude.
     #[inline]
     fn new(area2: NonZeroU64, max: u32) -> Self {
-        let zeros = area2.leading_zeros();
         let (area, area2) = (area2, area2.get());
-        let (d, shift, limit) = if zeros >= 32 {
-            let t = zeros - 32;
+        let (d, shift, limit) = if area2 >> 32 == 0 {
+            let t = leading_zeros_32(area2 as u32);
             // t > 23 only for area2 < 2⁹, where the limit admits no numerator but 0.
             (
                 (area2 << t) as u32,
@@ -107,7 +106,11 @@ impl GradientScale {
                 (1u64 << 22) >> t,
             )
         } else {
-            let s = 32 - zeros;
+            // area2 < 2³⁸: at most 6 bits to drop.
+            let mut s = 1;
+            while area2 >> (32 + s) != 0 {
+                s += 1;
+            }
             ((area2 >> s) as u32, 23 + s, u64::MAX)
         };
         if u64::from(max) > limit {
@@ -142,6 +145,20 @@ impl GradientScale {
             q
         }
     }
+}
+
+/// Leading zero bits of `v > 0` by halving steps (Cortex-M0 has no `clz`; the library routine
+/// costs more flash).
+#[inline]
+fn leading_zeros_32(mut v: u32) -> u32 {
+    let mut zeros = 0;
+    for bits in [16, 8, 4, 2, 1] {
+        if v >> (32 - bits) == 0 {
+            v <<= bits;
+            zeros += bits;
+        }
+    }
+    zeros
 }
 
 /// One boundary of the rows' spans: the first covered column (an edge with `a > 0`) or the last
@@ -262,7 +279,9 @@ impl CompactSpans {
         }
         // Vertices relative to the first one: every difference is below 2¹⁹.
         let rel = p.map(|q| ((q.0 - p[0].0) as i32, (q.1 - p[0].1) as i32));
-        let cross = |u: (i32, i32), w: (i32, i32)| mul_i32_wide(u.0, w.1) - mul_i32_wide(u.1, w.0);
+        let cross = |u: (i32, i32), w: (i32, i32)| {
+            i64::from(u.0) * i64::from(w.1) - i64::from(u.1) * i64::from(w.0)
+        };
         let area2 = cross(rel[1], rel[2]);
         let Some(area) = NonZeroU64::new(area2.unsigned_abs()) else {
             return Ok(None);
@@ -462,7 +481,7 @@ impl CompactColors {
     /// LSB. Everything wraps modulo 2⁶⁴ and then 2³²: only the low bits of a huge gradient
     /// matter for the (in-range) covered values.
     #[inline(always)]
-    pub(crate) fn new(setup: &CompactSetup, channels: [[u8; 3]; 3], count: usize) -> Self {
+    pub(crate) fn new(setup: &CompactSetup, channels: [[u8; 3]; 3]) -> Self {
         let max = setup
             .a
             .iter()
@@ -475,15 +494,11 @@ impl CompactColors {
         let [c0, c1, c2] = setup
             .order
             .map(|k| channels.get(k).copied().unwrap_or([0; 3]));
-        let mut colors = CompactColors {
-            value: [0; 3],
-            dx: [0; 3],
-            dy: [0; 3],
-        };
         let (px, py) = (setup.dx, setup.dy);
         // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
         let mul = wrapping_mul_i32;
-        for k in 0..count.min(3) {
+        // Unused channels are 0 at every vertex: their planes are constant.
+        let planes: [[u32; 3]; 3] = core::array::from_fn(|k| {
             let base = i32::from(c0[k]);
             let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
             // 2⁻³² units per pixel.
@@ -495,11 +510,17 @@ impl CompactColors {
                 .wrapping_add(mul(sx, px))
                 .wrapping_add(mul(sy, py));
             let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
-            colors.value[k] = to_step(v, 16).wrapping_add(1 << 23);
-            colors.dx[k] = to_step(sx, 8);
-            colors.dy[k] = to_step(sy, 8);
+            [
+                to_step(v, 16).wrapping_add(1 << 23),
+                to_step(sx, 8),
+                to_step(sy, 8),
+            ]
+        });
+        CompactColors {
+            value: planes.map(|p| p[0]),
+            dx: planes.map(|p| p[1]),
+            dy: planes.map(|p| p[2]),
         }
-        colors
     }
 }
 
@@ -551,6 +572,13 @@ mod tests {
 
     fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
         v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
+    }
+
+    #[test]
+    fn leading_zeros_by_halving() {
+        for v in (0..32).flat_map(|k| [1u32 << k, (1u32 << k) | 1, u32::MAX >> k]) {
+            assert_eq!(leading_zeros_32(v), v.leading_zeros(), "{v}");
+        }
     }
 
     /// The reciprocal gradients are within one unit of the exact quotient, over areas and
@@ -615,7 +643,7 @@ mod tests {
                 return;
             };
             let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
-            let colors = CompactColors::new(&setup, channels, 3);
+            let colors = CompactColors::new(&setup, channels);
             let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
             let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
                 (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)

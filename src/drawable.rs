@@ -127,7 +127,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         };
         let (spans, setup) = walk;
         let channels = self.vertices.map(|v| v.color.channels());
-        let colors = CompactColors::new(&setup, channels, C::CHANNELS);
+        let colors = CompactColors::new(&setup, channels);
         let steps = C::prepare_steps(colors.dx);
         Ok(spans.fold(init, |acc, span, column, row| {
             let start = core::array::from_fn(|k| {
