@@ -269,16 +269,18 @@ impl CompactSpans {
         v: [(Coord, Coord); 3],
         clip: &Rectangle,
     ) -> Result<Option<(CompactSpans, CompactSetup)>, TooLarge> {
-        let p = v.map(|(x, y)| (i64::from(x.to_bits()), i64::from(y.to_bits())));
-        let xs = p.map(|q| q.0);
-        let ys = p.map(|q| q.1);
-        let (min_x, max_x) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));
-        let (min_y, max_y) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
-        if max_x - min_x >= LIMIT || max_y - min_y >= LIMIT {
+        // In 32 bits throughout (Cortex-M0 forms each 64-bit operation from several).
+        let p = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
+        let span = |a: i32, b: i32, c: i32| (a.min(b).min(c), a.max(b).max(c));
+        let (min_x, max_x) = span(p[0].0, p[1].0, p[2].0);
+        let (min_y, max_y) = span(p[0].1, p[1].1, p[2].1);
+        // The wrapping differences are the true ones (below 2³²).
+        let limit = LIMIT as u32;
+        if max_x.wrapping_sub(min_x) as u32 >= limit || max_y.wrapping_sub(min_y) as u32 >= limit {
             return Err(TooLarge);
         }
         // Vertices relative to the first one: every difference is below 2¹⁹.
-        let rel = p.map(|q| ((q.0 - p[0].0) as i32, (q.1 - p[0].1) as i32));
+        let rel = p.map(|q| (q.0.wrapping_sub(p[0].0), q.1.wrapping_sub(p[0].1)));
         let cross = |u: (i32, i32), w: (i32, i32)| {
             i64::from(u.0) * i64::from(w.1) - i64::from(u.1) * i64::from(w.0)
         };
@@ -293,15 +295,20 @@ impl CompactSpans {
         };
         let o = order.map(|k| rel[k]);
 
-        // Pixels whose centres lie in the bounding box, clipped.
-        let half = HALF_PIXEL;
-        let lo = |m: i64| (m - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS;
-        let hi = |m: i64| (m - half) >> SUBPIXEL_BITS;
-        let (cx, cy) = (i64::from(clip.top_left.x), i64::from(clip.top_left.y));
+        // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first
+        // centre at or after m, the last at or before it and the last strictly before it:
+        let lo = |m: i32| (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80);
+        let hi = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF < 0x80);
+        let hi_before = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF <= 0x80);
+        let last = |start: i32, len: u32| {
+            let end = i64::from(start) + i64::from(len) - 1;
+            end.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+        };
+        let (cx, cy) = (clip.top_left.x, clip.top_left.y);
         let x0 = lo(min_x).max(cx);
-        let x1 = hi(max_x).min(cx + i64::from(clip.size.width) - 1);
+        let x1 = hi(max_x).min(last(cx, clip.size.width));
         let mut y0 = lo(min_y).max(cy);
-        let mut y1 = hi(max_y).min(cy + i64::from(clip.size.height) - 1);
+        let mut y1 = hi(max_y).min(last(cy, clip.size.height));
 
         // Edges opposite oriented vertices 0, 1, 2: from o[1] to o[2], o[2] to o[0], o[0] to o[1].
         let ends = [(o[1], o[2]), (o[2], o[0]), (o[0], o[1])];
@@ -310,20 +317,25 @@ impl CompactSpans {
         // bottom edge does not.
         for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
             if a == 0 {
-                let edge_y = i64::from(s.1) + p[0].1;
+                let edge_y = s.1.wrapping_add(p[0].1);
                 if b > 0 {
-                    y0 = y0.max((edge_y - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS);
+                    y0 = y0.max(lo(edge_y));
                 } else {
-                    y1 = y1.min((edge_y - half - 1) >> SUBPIXEL_BITS);
+                    y1 = y1.min(hi_before(edge_y));
                 }
             }
         }
         if x0 > x1 || y0 > y1 {
             return Ok(None);
         }
-        // The first pixel centre relative to vertex 0: inside the bounding box, below 2¹⁹.
-        let px = ((x0 << SUBPIXEL_BITS) + half - p[0].0) as i32;
-        let py = ((y0 << SUBPIXEL_BITS) + half - p[0].1) as i32;
+        // The first pixel centre relative to vertex 0: inside the bounding box (so within i32),
+        // below 2¹⁹.
+        let centre = |i: i32, v: i32| {
+            (i << SUBPIXEL_BITS)
+                .wrapping_add(HALF_PIXEL as i32)
+                .wrapping_sub(v)
+        };
+        let (px, py) = (centre(x0, p[0].0), centre(y0, p[0].1));
 
         // One edge bounds one side of every row; the other side has one edge too (and the third
         // is horizontal) or two, which meet at that side's middle vertex: above its row the
@@ -348,14 +360,11 @@ impl CompactSpans {
             }
         }
         // Edge k's boundary from the first pixel of row `row` (an offset from y0) on.
-        let boundary = |k: usize, row: i64| {
+        let boundary = |k: usize, row: i32| {
             let (a, b) = coef.get(k).copied().unwrap_or_default();
             let s = ends.get(k).map_or((0, 0), |e| e.0);
             // Inside the bounding box: below 2¹⁹ (and the row offset below 2¹¹ pixels).
-            let offset = (
-                px - s.0,
-                py.wrapping_add((row as i32) << SUBPIXEL_BITS) - s.1,
-            );
+            let offset = (px - s.0, py.wrapping_add(row << SUBPIXEL_BITS) - s.1);
             Boundary::new(a, b, offset).ok_or(TooLarge)
         };
         let rows = y1 - y0;
@@ -368,7 +377,7 @@ impl CompactSpans {
             } else {
                 (k2, k1)
             };
-            let middle_y = i64::from(far_y(3 - k1 - k2)) + p[0].1;
+            let middle_y = far_y(3 - k1 - k2).wrapping_add(p[0].1);
             // First row whose centre is not above the middle vertex, as an offset from y0.
             let switch = (lo(middle_y) - y0).clamp(0, rows + 1);
             (
@@ -386,7 +395,6 @@ impl CompactSpans {
         } else {
             (single, first)
         };
-        // The bounding box lies within ±2²³ pixels and inside the clip: the casts are exact.
         Ok(Some((
             CompactSpans {
                 left,
@@ -394,10 +402,10 @@ impl CompactSpans {
                 next,
                 next_left: pair_left,
                 switch: switch as u32,
-                x0: x0 as i32,
-                y0: y0 as i32,
-                last: (x1 - x0) as i32,
-                rows: (rows + 1) as u32,
+                x0,
+                y0,
+                last: x1 - x0,
+                rows: rows as u32 + 1,
             },
             CompactSetup {
                 order,
