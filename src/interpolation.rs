@@ -222,20 +222,36 @@ fn mul_32_limbs(a: u32, b: u32) -> u64 {
     (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
 }
 
+/// First guesses of `2^16 / t − 128` for the top eight bits `t ∈ [128, 256)` of a normalised
+/// 32-bit divisor (128 bytes of flash).
+const RECIPROCAL_SEED_8: [u8; 128] = {
+    let mut table = [0u8; 128];
+    let mut i = 0;
+    while i < 128 {
+        // 2^16 at the interval's midpoint t + ½: in [256, 511), within 2⁻⁸ of 2^16 / t.
+        let guess = (2u32 << 16) / (2 * (128 + i as u32) + 1);
+        table[i] = (guess - 256) as u8;
+        i += 1;
+    }
+    table
+};
+
 /// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`, without a division (a 64-bit library division costs
-/// hundreds of instructions on Cortex-M) and without a table (flash).
+/// hundreds of instructions on Cortex-M).
 ///
-/// A linear first guess `2^63/d ≈ (3·2^35 − 16·d)/17` (the minimax line of `1/x` on `[½, 1)`,
-/// good to 4 bits), three Newton steps `x += x·(2^63 − d·x) / 2^63` (4 → 8 → 16 → 30+ bits; the
-/// error term `2^63 − d·x` is below 2⁶⁰ in magnitude, so its wrapping 64-bit value is exact), then
-/// an exact correction of the remainder.
+/// A 128-entry seed (8 bits), two Newton steps `x += x·(2^63 − d·x) / 2^63` (8 → 16 → 30+ bits;
+/// the error term `2^63 − d·x` is below 2⁵⁶ in magnitude, so its wrapping 64-bit value is exact),
+/// then an exact correction of the remainder.
 pub(crate) fn reciprocal_63(d: u32) -> u64 {
+    let seed = RECIPROCAL_SEED_8
+        .get(((d >> 24) as usize).wrapping_sub(128))
+        .map_or(256, |&s| 256 + u64::from(s));
+    // ≈ 2^16 / (d / 2^24) · 2^15 = 2^63 / d, to 8 bits.
+    let mut x = seed << 23;
     let d = u64::from(d);
-    // 1/17 ≈ 241/4096; 3·2^35 − 16·d lies in (2^35, 2^36].
-    let mut x = (((3u64 << 35) - 16 * d) * 241) >> 12;
     let error = |x: u64| (1u64 << 63).wrapping_sub(d.wrapping_mul(x)) as i64;
-    for _ in 0..3 {
-        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^53, no overflow.
+    for _ in 0..2 {
+        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^49, no overflow.
         let e = error(x);
         x = x.wrapping_add(((((x >> 16) as i64) * (e >> 24)) >> 23) as u64);
     }
