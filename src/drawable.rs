@@ -264,11 +264,22 @@ impl<C: PixelColor> SolidTriangle<C> {
     /// Draws into a [`SliceFramebuffer`] with one slice fill per span; the same pixels as
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        self.spans(&framebuffer.bounding_box()).for_each(|span| {
+        self.fold_spans(&framebuffer.bounding_box(), (), |(), span| {
             if let Some(row) = framebuffer.clipped_span_mut(span.y, span.x_start, span.x_end) {
                 fill_row(row, self.color);
             }
         });
+    }
+
+    /// Folds `f` over the covered spans inside `clip`: the compact walk for triangles under
+    /// 2048 px (see [`compact`](crate::compact)), [`Spans`] for the rest.
+    #[inline(always)]
+    fn fold_spans<B>(&self, clip: &Rectangle, init: B, mut f: impl FnMut(B, Span) -> B) -> B {
+        match CompactSpans::new(self.points, clip) {
+            Ok(Some((spans, _))) => spans.fold(init, |acc, span, _, _| f(acc, span)),
+            Ok(None) => init,
+            Err(TooLarge) => self.spans(clip).fold(init, f),
+        }
     }
 
     /// The covered spans inside `clip`.
@@ -287,15 +298,13 @@ impl<C: PixelColor> Drawable for SolidTriangle<C> {
     {
         // `fold` walks with the walker's state in registers (see `Spans`; `try_fold` would step
         // through `next`); after an error the remaining spans are skipped, not drawn.
-        #[allow(clippy::manual_try_fold)]
-        self.spans(&target.bounding_box())
-            .fold(Ok(()), |drawn, span| {
-                drawn.and_then(|()| {
-                    let area =
-                        Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-                    target.fill_solid(&area, self.color)
-                })
+        self.fold_spans(&target.bounding_box(), Ok(()), |drawn, span| {
+            drawn.and_then(|()| {
+                let area =
+                    Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
+                target.fill_solid(&area, self.color)
             })
+        })
     }
 }
 
