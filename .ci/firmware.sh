@@ -30,6 +30,11 @@ SIZE_EXAMPLES=(fw_size_base fw_size_solid fw_size_gouraud fw_size_compact)
 # (`draw_into_compact`, fw_size_compact); the full-range path (fw_size_gouraud) is reported.
 GOURAUD_FLASH_GOAL=6144
 
+# The firmware issue's targets, instructions per covered pixel on large triangles (enforced:
+# QEMU's instruction counts are deterministic for a given toolchain and source).
+declare -A SOLID_TARGET=([cortex-m4]=3)
+declare -A GOURAUD_TARGET=([cortex-m4]=10 [cortex-m0]=18)
+
 fail() {
     echo "FAIL: $*" >&2
     exit 1
@@ -41,6 +46,19 @@ for board in "${BOARDS[@]}"; do
     read -r target _ <<<"$board"
     grep -qx "$target" <<<"$installed_targets" || rustup target add "$target"
 done
+
+# Checks fw_bench's "instr/pixel, large" figure of `renderer` against `target` (if any).
+check_target() {
+    local output=$1 cpu=$2 renderer=$3 target=$4 figure
+    [ -n "$target" ] || return 0
+    # The summary row (the stack table has one number column, the detail table a set name).
+    figure=$(printf '%s\n' "$output" | grep -E "^\| $renderer \| [0-9.]+ \| [0-9.]+ \|" |
+        head -n 1 | cut -d'|' -f3 | tr -d ' ')
+    [ -n "$figure" ] || fail "fw_bench on $cpu printed no large-triangle figure for $renderer"
+    awk -v f="$figure" -v t="$target" 'BEGIN { exit !(f <= t) }' ||
+        fail "$renderer on $cpu: $figure instructions a pixel, target $target"
+    echo "  ok: $renderer on $cpu: $figure instructions a pixel (target ≤ $target)"
+}
 
 # Runs one firmware ELF; prints its output, returns QEMU's exit status (124 on timeout).
 run_qemu() {
@@ -123,6 +141,8 @@ for board in "${BOARDS[@]}"; do
         fail "fw_bench on $machine printed no table"
     printf '%s\n\n' "$output" >>"$bench"
     echo "  ok: fw_bench on $machine"
+    check_target "$output" "$cpu" SolidTriangle::draw_into "${SOLID_TARGET[$cpu]:-}"
+    check_target "$output" "$cpu" GouraudTriangle::draw_into "${GOURAUD_TARGET[$cpu]:-}"
 done
 
 # ---- footprint --------------------------------------------------------------------------------
