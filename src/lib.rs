@@ -13,8 +13,11 @@
 //!
 //! # Coordinate range
 //!
-//! Any `Coord` (±2²³ pixels with 1/256-pixel precision) is accepted for vertices. Setup is done in
-//! `i64` for vertices within ±2²¹ pixels and in `i128` beyond. Spans are stepped in `i32` (one
+//! Any `Coord` (±2²³ pixels with 1/256-pixel precision) is accepted for vertices. Triangles whose
+//! bounding box is under 2048 × 2048 pixels (anywhere in that range) are set up and walked in
+//! 32-bit arithmetic ([`compact`]; `GouraudTriangle::draw_into_compact` takes only those, for
+//! small firmware). For larger ones setup is done in `i64` for vertices within ±2²¹ pixels and
+//! in `i128` beyond. Spans are stepped in `i32` (one
 //! start and one end edge per row) over the triangle's pixel bounding box clipped to the target,
 //! or in `i64` when an edge's boundary column leaves ±2³⁰ over the region (far off-screen
 //! slivers); regions of a few pixels test each pixel's edge values instead. The target's bounding
