@@ -147,8 +147,8 @@ impl GradientScale {
     }
 }
 
-/// Leading zero bits of `v > 0` by halving steps (Cortex-M0 has no `clz`; the library routine
-/// costs more flash).
+/// Leading zero bits of `v > 0` by halving steps (Cortex-M0 has no `clz` instruction; the
+/// library routine is a call of about the same length).
 #[inline]
 fn leading_zeros_32(mut v: u32) -> u32 {
     let mut zeros = 0;
