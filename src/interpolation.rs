@@ -222,13 +222,13 @@ fn mul_32_limbs(a: u32, b: u32) -> u64 {
     (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
 }
 
-/// First guesses of `2^16 / t − 128` for the top eight bits `t ∈ [128, 256)` of a normalised
-/// 32-bit divisor (128 bytes of flash).
+/// First guesses `2^16 / (t + ½) − 256` for the top eight bits `t ∈ [128, 256)` of a
+/// normalised 32-bit divisor (128 bytes of flash).
 const RECIPROCAL_SEED_8: [u8; 128] = {
     let mut table = [0u8; 128];
     let mut i = 0;
     while i < 128 {
-        // 2^16 at the interval's midpoint t + ½: in [256, 511), within 2⁻⁸ of 2^16 / t.
+        // 2^16 / (t + ½), the interval's midpoint: in (256, 511), within 2⁻⁸ of 2^16 / d.
         let guess = (2u32 << 16) / (2 * (128 + i as u32) + 1);
         table[i] = (guess - 256) as u8;
         i += 1;
