@@ -136,10 +136,11 @@ macro_rules! rgb_color {
                 fn prepare_steps(step: [u32; 3]) -> SpanSteps {
                     prepare_565(step, $order)
                 }
-                // Out of line: the loop then has the registers to itself (on ARMv6-M the loop
-                // is an assembly function and this wrapper is small enough to inline).
-                #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(always))]
-                #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline(never))]
+                // Out of line on Cortex-M3/M4/M7: the loop then has the registers to itself.
+                // Inlined on ARMv6-M (the loop is an assembly function and this wrapper is
+                // small) and on hosts (x86: 1,000 px² Gouraud 7.9× → 10.3× e-g in one run).
+                #[cfg_attr(not(all(target_arch = "arm", target_has_atomic = "32")), inline(always))]
+                #[cfg_attr(all(target_arch = "arm", target_has_atomic = "32"), inline(never))]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
                     fill_565(dst, start, steps, $order, LAST_RUN_APART)
                 }
