@@ -142,7 +142,7 @@ macro_rules! rgb_color {
                 #[cfg_attr(not(all(target_arch = "arm", target_has_atomic = "32")), inline(always))]
                 #[cfg_attr(all(target_arch = "arm", target_has_atomic = "32"), inline(never))]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
-                    fill_565(dst, start, steps, $order, LAST_RUN_APART)
+                    fill_565(dst, start, steps, $order)
                 }
             )?
         }
@@ -222,15 +222,8 @@ fn prepare_565(step: [u32; 3], order: [usize; 3]) -> SpanSteps {
 /// 16-bit lane ([`LANE_FRACTION`]) and is stepped by its step rounded once to the lane. At covered
 /// pixels a lane value lies in `[0, 2¹⁶)` (the channel's range plus the +½ offset and an error of
 /// at most 2⁻⁴), so lanes packed side by side ([`run_565`]) never carry into each other.
-/// `last_run_apart` chooses between two loops over the same runs ([`LAST_RUN_APART`]).
 #[inline(always)]
-fn fill_565<C: From<RawU16>>(
-    dst: &mut [C],
-    start: [u32; 3],
-    steps: &SpanSteps,
-    order: [usize; 3],
-    last_run_apart: bool,
-) {
+fn fill_565<C: From<RawU16>>(dst: &mut [C], start: [u32; 3], steps: &SpanSteps, order: [usize; 3]) {
     let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
     let (mut value, step) = (pick(start), pick(steps.step));
 
@@ -239,8 +232,7 @@ fn fill_565<C: From<RawU16>>(
         // pair words costs more than a few pixels.
         let mut lane = lanes(value);
         for px in dst {
-            *px =
-                raw_565((lane[0] & 0xF800) | ((lane[1] >> 5) & 0x07E0) | ((lane[2] >> 11) & 0x1F));
+            *px = raw_565(pack_565(lane));
             for (l, s) in lane.iter_mut().zip(steps.lane) {
                 *l = l.wrapping_add(s);
             }
@@ -252,9 +244,9 @@ fn fill_565<C: From<RawU16>>(
             *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
         }
     };
+    // ARMv6-M: the last run (the only one of most spans) outside the loop of runs, in assembly.
     #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     {
-        let _ = last_run_apart;
         let mut rest = dst;
         while rest.len() > PACKED_RUN {
             let (run, tail) = rest.split_at_mut(PACKED_RUN);
@@ -265,29 +257,12 @@ fn fill_565<C: From<RawU16>>(
         thumb1::span_565(rest, value, steps);
         return;
     }
-    // The same runs either way; which loop LLVM compiles better depends on the core.
     #[allow(unreachable_code)]
-    if last_run_apart {
-        let mut rest = dst;
-        while rest.len() > PACKED_RUN {
-            let (run, tail) = rest.split_at_mut(PACKED_RUN);
-            run_565(run, lanes(value), steps);
-            advance(&mut value);
-            rest = tail;
-        }
-        run_565(rest, lanes(value), steps);
-    } else {
-        for run in dst.chunks_mut(PACKED_RUN) {
-            run_565(run, lanes(value), steps);
-            advance(&mut value);
-        }
+    for run in dst.chunks_mut(PACKED_RUN) {
+        run_565(run, lanes(value), steps);
+        advance(&mut value);
     }
 }
-
-/// Whether [`fill_565`] handles the last run (the only one of most spans) outside its loop of
-/// runs: fewer instructions a row on ARMv6-M (Cortex-M0/M0+, Thumb-1 only; recognised by having no
-/// 32-bit atomics), more elsewhere, where LLVM then unrolls the pixel loop.
-const LAST_RUN_APART: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// Channel values (raw order, [`STEP_BITS`] fractional bits) rounded to their 5-6-5 lanes.
 #[inline(always)]
@@ -297,6 +272,13 @@ fn lanes(value: [u32; 3]) -> [u32; 3] {
         let k = F - LANE_FRACTION[i];
         value[i].wrapping_add(1 << (k - 1)) >> k
     })
+}
+
+/// The raw 5-6-5 values of the lanes `w` (top, middle, bottom channel): two pixels when each word
+/// holds two lanes ([`run_565`]), one in the low half when it holds one.
+#[inline(always)]
+fn pack_565(w: [u32; 3]) -> u32 {
+    (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
 }
 
 /// The 5-6-5 colour of a raw value.
@@ -316,15 +298,12 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
     let mut word: [u32; 3] =
         core::array::from_fn(|i| (lane[i].wrapping_add(steps.lane[i]) << 16).wrapping_add(lane[i]));
     let double = steps.double;
-    let pair = |w: [u32; 3]| {
-        (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
-    };
     // Slice patterns rather than `chunks_exact_mut`: LLVM then does not unroll the loop on
     // Cortex-M, which would cost more set-up per span than it saves on spans of a few dozen pixels.
     // (On x86 it still vectorizes it.)
     let mut rest = run;
     while let [a, b, tail @ ..] = rest {
-        let both = pair(word);
+        let both = pack_565(word);
         *a = raw_565(both);
         *b = raw_565(both >> 16);
         for (w, d) in word.iter_mut().zip(double) {
@@ -333,7 +312,7 @@ fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
         rest = tail;
     }
     if let [last] = rest {
-        *last = raw_565(pair(word));
+        *last = raw_565(pack_565(word));
     }
 }
 
@@ -349,6 +328,16 @@ mod thumb1 {
     use embedded_graphics::pixelcolor::raw::RawU16;
 
     use super::SpanSteps;
+
+    /// r4 = two pixels from the channel words r1 (top), r3 (middle), r2 (bottom) with the masks
+    /// r6 = 0xF800F800 and r7 = 0xFC00FC00: top & r6 | (middle & r7) >> 5 | (bottom & r6) >> 11
+    /// (r5 is clobbered). Used by the pair loop and for the odd last pixel.
+    macro_rules! pack_565 {
+        () => {
+            "mov r4, r1\nands r4, r6\nmov r5, r2\nands r5, r6\nlsrs r5, r5, #11\norrs r4, r5\n\
+             mov r5, r3\nands r5, r7\nlsrs r5, r5, #5\norrs r4, r5"
+        };
+    }
 
     core::arch::global_asm!(
         ".section .text.embedded_raster_565_span_v6m,\"ax\",%progbits",
@@ -412,18 +401,9 @@ mod thumb1 {
         "ldr r7, 5f",
         "cmp r0, r12",
         "beq 3f",
-        // One pair: top & 0xF800F800 | (middle & 0xFC00FC00) >> 5 | (bottom & 0xF800F800) >> 11.
+        // One pair.
         "2:",
-        "mov r4, r1",
-        "ands r4, r6",
-        "mov r5, r2",
-        "ands r5, r6",
-        "lsrs r5, r5, #11",
-        "orrs r4, r5",
-        "mov r5, r3",
-        "ands r5, r7",
-        "lsrs r5, r5, #5",
-        "orrs r4, r5",
+        pack_565!(),
         "strh r4, [r0]",
         "lsrs r4, r4, #16",
         "strh r4, [r0, #2]",
@@ -438,16 +418,7 @@ mod thumb1 {
         "mov r4, lr",
         "cmp r4, #0",
         "beq 6f",
-        "mov r4, r1",
-        "ands r4, r6",
-        "mov r5, r2",
-        "ands r5, r6",
-        "lsrs r5, r5, #11",
-        "orrs r4, r5",
-        "mov r5, r3",
-        "ands r5, r7",
-        "lsrs r5, r5, #5",
-        "orrs r4, r5",
+        pack_565!(),
         "strh r4, [r0]",
         "6:",
         "pop {{r4-r6}}",
@@ -546,15 +517,22 @@ mod tests {
             }
             Rgb565::fill_span(&mut out[..n], start, step);
             Bgr565::fill_span(&mut bgr[..n], start, step);
-            // The other target's loop of runs draws the same pixels.
+            // The span is runs of the packed loop, each restarted from the exactly stepped
+            // values every PACKED_RUN pixels.
             let mut other = [Rgb565::BLACK; 700];
             let steps = Rgb565::prepare_steps(step);
-            fill_565(&mut other[..n], start, &steps, [0, 1, 2], !LAST_RUN_APART);
+            let mut value = start;
+            for run in other[..n].chunks_mut(PACKED_RUN) {
+                run_565(run, lanes(value), &steps);
+                for (v, s) in value.iter_mut().zip(step) {
+                    *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
+                }
+            }
             assert_eq!(other[..n], out[..n]);
             // Short spans step the packed loop's lanes one pixel at a time: the same pixels.
             let short = n.min(6);
             run_565(&mut other[..short], lanes(start), &steps);
-            fill_565(&mut out[..short], start, &steps, [0, 1, 2], LAST_RUN_APART);
+            fill_565(&mut out[..short], start, &steps, [0, 1, 2]);
             assert_eq!(other[..short], out[..short]);
             for (i, (px, b)) in out[..n].iter().zip(&bgr[..n]).enumerate() {
                 for (got, k) in [px.channels(), b.channels()]
