@@ -288,11 +288,7 @@ impl CompactSpans {
         let Some(area) = NonZeroU64::new(area2.unsigned_abs()) else {
             return Ok(None);
         };
-        let order = match area2 {
-            0 => return Ok(None),
-            a if a > 0 => [0, 1, 2],
-            _ => [0, 2, 1],
-        };
+        let order = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
         let o = order.map(|k| rel[k]);
 
         // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first

@@ -111,8 +111,8 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         }
     }
 
-    /// [`fold_stepped`](Self::fold_stepped) for compact triangles (see [`compact`](crate::compact)): `Err(init)`
-    /// untouched for the others.
+    /// [`fold_stepped`](Self::fold_stepped) for compact triangles (see
+    /// [`compact`](crate::compact)): `Err(init)` untouched for the others.
     #[inline(always)]
     fn fold_compact<B>(
         &self,
@@ -351,10 +351,10 @@ struct RowColors {
 
 /// The values of channel `k` at the vertices of `triangle`.
 #[inline]
-fn channel_values<C: GouraudColor>(triangle: &GouraudTriangle<C>, k: usize) -> [u16; 3] {
+fn channel_values<C: GouraudColor>(triangle: &GouraudTriangle<C>, k: usize) -> [u8; 3] {
     triangle
         .vertices
-        .map(|v| u16::from(v.color.channels().get(k).copied().unwrap_or(0)))
+        .map(|v| v.color.channels().get(k).copied().unwrap_or(0))
 }
 
 impl RowColors {
@@ -369,10 +369,7 @@ impl RowColors {
         if let Some(small) = SmallPlanes::new(setup, region) {
             let plane = |k: usize| {
                 if k < C::CHANNELS {
-                    let values = triangle
-                        .vertices
-                        .map(|v| v.color.channels().get(k).copied().unwrap_or(0));
-                    small.plane(values)
+                    small.plane(channel_values(triangle, k))
                 } else {
                     Some(Stepped::ZERO)
                 }
@@ -386,7 +383,7 @@ impl RowColors {
         // Each channel: gradients and corner value, three products by the shared reciprocal.
         let stepped = |k: usize| {
             if k < C::CHANNELS {
-                let values = channel_values(triangle, k);
+                let values = channel_values(triangle, k).map(u16::from);
                 Stepped::new(&inverse, &ctx, AttributePlane::gradient(setup, values))
             } else {
                 Some(Stepped::ZERO)
@@ -449,7 +446,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
                 let inverse = InverseArea::new(setup.area2);
                 Shading::Planes(core::array::from_fn(|k| {
                     if k < C::CHANNELS {
-                        let values = channel_values(triangle, k);
+                        let values = channel_values(triangle, k).map(u16::from);
                         AttributePlane::with_inverse(setup, &inverse, values, &region)
                     } else {
                         AttributePlane::constant(0)
