@@ -12,7 +12,7 @@
 //! assert_eq!(Gray8::from_channels([77, 0, 0]), Gray8::new(77));
 //! ```
 
-use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics::pixelcolor::{
     Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, GrayColor, Rgb555, Rgb565,
     Rgb666, Rgb888, RgbColor,
@@ -20,6 +20,7 @@ use embedded_graphics::pixelcolor::{
 use embedded_graphics::prelude::PixelColor;
 
 use crate::interpolation::AttributePlane;
+use crate::tiny::LANES;
 
 /// Fractional bits of the stepped channel values handed to [`GouraudColor::fill_span`] and
 /// [`GouraudColor::from_stepped`]: channels have at most 8 integer bits, so a value fits a `u32`.
@@ -78,6 +79,24 @@ pub trait GouraudColor: PixelColor {
                 v[1] = v[1].wrapping_add(step[1]);
                 v[2] = v[2].wrapping_add(step[2]);
             }
+        }
+    }
+    /// Fills the covered pixels of one row of a tiny triangle's box (see
+    /// [`tiny`](crate::tiny)): `covered[i]` is `-1` for covered pixels, which form one run from
+    /// pixel `first` on, and `0` for the others, which keep their colour. The run gets the
+    /// colours [`fill_prepared`](Self::fill_prepared) gives it from `start`. Formats may
+    /// override it with a loop over all eight pixels that masks the write.
+    #[inline]
+    fn fill_masked_row(
+        row: &mut [Self; LANES],
+        covered: [i16; LANES],
+        first: u32,
+        start: [u32; 3],
+        steps: &SpanSteps,
+    ) {
+        let len = covered.iter().filter(|&&c| c != 0).count();
+        if let Some(run) = row.get_mut(first as usize..first as usize + len) {
+            Self::fill_prepared(run, start, steps);
         }
     }
 }
@@ -143,6 +162,16 @@ macro_rules! rgb_color {
                 #[cfg_attr(all(target_arch = "arm", target_has_atomic = "32"), inline(never))]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
                     fill_565(dst, start, steps, $order)
+                }
+                #[inline(always)]
+                fn fill_masked_row(
+                    row: &mut [Self; LANES],
+                    covered: [i16; LANES],
+                    first: u32,
+                    start: [u32; 3],
+                    steps: &SpanSteps,
+                ) {
+                    masked_row_565(row, covered, first, start, steps, $order)
                 }
             )?
         }
@@ -272,6 +301,35 @@ fn lanes(value: [u32; 3]) -> [u32; 3] {
         let k = F - LANE_FRACTION[i];
         value[i].wrapping_add(1 << (k - 1)) >> k
     })
+}
+
+/// [`GouraudColor::fill_masked_row`] for 5-6-5 layouts whose raw value holds channels `order`:
+/// every pixel's lanes are those of [`fill_565`] for the run from `first` (the run's first lanes
+/// stepped by the lane steps, modulo 2¹⁶ as in its pair words), and the write keeps the pixels
+/// outside the run.
+#[inline(always)]
+fn masked_row_565<C: Copy + From<RawU16> + Into<RawU16>>(
+    row: &mut [C; LANES],
+    covered: [i16; LANES],
+    first: u32,
+    start: [u32; 3],
+    steps: &SpanSteps,
+    order: [usize; 3],
+) {
+    let first_lanes = lanes(order.map(|k| start.get(k).copied().unwrap_or(0)));
+    // Lane values at pixel 0 of the row: pixel i adds i steps.
+    let at_zero: [u16; 3] = core::array::from_fn(|c| {
+        first_lanes[c].wrapping_sub(steps.lane[c].wrapping_mul(first)) as u16
+    });
+    for (i, (px, &mask)) in row.iter_mut().zip(&covered).enumerate() {
+        let lane: [u16; 3] = core::array::from_fn(|c| {
+            at_zero[c].wrapping_add((steps.lane[c] as u16).wrapping_mul(i as u16))
+        });
+        let new = pack_565(lane.map(u32::from)) as u16;
+        let old = (*px).into().into_inner();
+        let mask = mask as u16;
+        *px = C::from(RawU16::new((new & mask) | (old & !mask)));
+    }
 }
 
 /// The raw 5-6-5 values of the lanes `w` (top, middle, bottom channel): two pixels when each word

@@ -260,15 +260,35 @@ pub(crate) struct CompactSetup {
     pub(crate) dy: i32,
 }
 
-impl CompactSpans {
-    /// The walk of the triangle `v` over `clip` and its set-up; `Ok(None)` if nothing inside
-    /// `clip` is covered (or the vertices are collinear), `Err(TooLarge)` if the triangle is not
-    /// compact.
+/// A compact triangle oriented and placed over a clip rectangle: what its walks and colour
+/// planes start from.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CompactTriangle {
+    pub(crate) setup: CompactSetup,
+    /// Vertex 0's position, sub-pixels.
+    origin: (i32, i32),
+    /// Oriented vertices relative to vertex 0.
+    o: [(i32, i32); 3],
+    /// Edges opposite oriented vertices 0, 1, 2: coefficients `(a, b)` and start vertices.
+    pub(crate) coef: [(i32, i32); 3],
+    pub(crate) starts: [(i32, i32); 3],
+    /// Pixels of the walk: columns `x0..=x1`, rows `y0..=y1` (clipped, not empty).
+    pub(crate) x0: i32,
+    pub(crate) x1: i32,
+    pub(crate) y0: i32,
+    pub(crate) y1: i32,
+    /// Width and height of the vertices' bounding box, sub-pixels (below [`LIMIT`]).
+    pub(crate) extent: (u32, u32),
+}
+
+impl CompactTriangle {
+    /// The triangle `v` over `clip`; `Ok(None)` if nothing inside `clip` is covered (or the
+    /// vertices are collinear), `Err(TooLarge)` if the triangle is not compact.
     #[inline(always)]
     pub(crate) fn new(
         v: [(Coord, Coord); 3],
         clip: &Rectangle,
-    ) -> Result<Option<(CompactSpans, CompactSetup)>, TooLarge> {
+    ) -> Result<Option<CompactTriangle>, TooLarge> {
         // In 32 bits throughout (Cortex-M0 forms each 64-bit operation from several).
         let p = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
         let span = |a: i32, b: i32, c: i32| (a.min(b).min(c), a.max(b).max(c));
@@ -276,7 +296,11 @@ impl CompactSpans {
         let (min_y, max_y) = span(p[0].1, p[1].1, p[2].1);
         // The wrapping differences are the true ones (below 2³²).
         let limit = LIMIT as u32;
-        if max_x.wrapping_sub(min_x) as u32 >= limit || max_y.wrapping_sub(min_y) as u32 >= limit {
+        let extent = (
+            max_x.wrapping_sub(min_x) as u32,
+            max_y.wrapping_sub(min_y) as u32,
+        );
+        if extent.0 >= limit || extent.1 >= limit {
             return Err(TooLarge);
         }
         // Vertices relative to the first one: every difference is below 2¹⁹.
@@ -332,6 +356,60 @@ impl CompactSpans {
                 .wrapping_sub(v)
         };
         let (px, py) = (centre(x0, p[0].0), centre(y0, p[0].1));
+        Ok(Some(CompactTriangle {
+            setup: CompactSetup {
+                order,
+                a: [coef[1].0, coef[2].0],
+                b: [coef[1].1, coef[2].1],
+                area2: area,
+                dx: px,
+                dy: py,
+            },
+            origin: p[0],
+            o,
+            coef,
+            starts: ends.map(|e| e.0),
+            x0,
+            x1,
+            y0,
+            y1,
+            extent,
+        }))
+    }
+}
+
+impl CompactSpans {
+    /// The walk of the triangle `v` over `clip` and its set-up; `Ok(None)` if nothing inside
+    /// `clip` is covered (or the vertices are collinear), `Err(TooLarge)` if the triangle is not
+    /// compact.
+    #[inline(always)]
+    pub(crate) fn new(
+        v: [(Coord, Coord); 3],
+        clip: &Rectangle,
+    ) -> Result<Option<(CompactSpans, CompactSetup)>, TooLarge> {
+        match CompactTriangle::new(v, clip)? {
+            Some(triangle) => Ok(Some((Self::of(&triangle)?, triangle.setup))),
+            None => Ok(None),
+        }
+    }
+
+    /// The walk of `triangle`.
+    #[inline(always)]
+    pub(crate) fn of(triangle: &CompactTriangle) -> Result<CompactSpans, TooLarge> {
+        let CompactTriangle {
+            setup,
+            origin,
+            o,
+            coef,
+            starts,
+            x0,
+            x1,
+            y0,
+            y1,
+            ..
+        } = *triangle;
+        let (px, py) = (setup.dx, setup.dy);
+        let lo = |m: i32| (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80);
 
         // One edge bounds one side of every row; the other side has one edge too (and the third
         // is horizontal) or two, which meet at that side's middle vertex: above its row the
@@ -358,7 +436,7 @@ impl CompactSpans {
         // Edge k's boundary from the first pixel of row `row` (an offset from y0) on.
         let boundary = |k: usize, row: i32| {
             let (a, b) = coef.get(k).copied().unwrap_or_default();
-            let s = ends.get(k).map_or((0, 0), |e| e.0);
+            let s = starts.get(k).copied().unwrap_or_default();
             // Inside the bounding box: below 2¹⁹ (and the row offset below 2¹¹ pixels).
             let offset = (px - s.0, py.wrapping_add(row << SUBPIXEL_BITS) - s.1);
             Boundary::new(a, b, offset).ok_or(TooLarge)
@@ -373,7 +451,7 @@ impl CompactSpans {
             } else {
                 (k2, k1)
             };
-            let middle_y = far_y(3 - k1 - k2).wrapping_add(p[0].1);
+            let middle_y = far_y(3 - k1 - k2).wrapping_add(origin.1);
             // First row whose centre is not above the middle vertex, as an offset from y0.
             let switch = (lo(middle_y) - y0).clamp(0, rows + 1);
             (
@@ -391,27 +469,17 @@ impl CompactSpans {
         } else {
             (single, first)
         };
-        Ok(Some((
-            CompactSpans {
-                left,
-                right,
-                next,
-                next_left: pair_left,
-                switch: switch as u32,
-                x0,
-                y0,
-                last: x1 - x0,
-                rows: rows as u32 + 1,
-            },
-            CompactSetup {
-                order,
-                a: [coef[1].0, coef[2].0],
-                b: [coef[1].1, coef[2].1],
-                area2: area,
-                dx: px,
-                dy: py,
-            },
-        )))
+        Ok(CompactSpans {
+            left,
+            right,
+            next,
+            next_left: pair_left,
+            switch: switch as u32,
+            x0,
+            y0,
+            last: x1 - x0,
+            rows: rows as u32 + 1,
+        })
     }
 
     /// Folds `f` over the covered spans, top to bottom, handing it each span and its offsets

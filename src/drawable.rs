@@ -28,13 +28,14 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
-use crate::compact::{CompactColors, CompactSpans, TooLarge};
+use crate::compact::{CompactColors, CompactSpans, CompactTriangle, TooLarge};
 use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::framebuffer::{fill_row, SliceFramebuffer};
 use crate::interpolation::{
     AttributePlane, InverseArea, SmallPlanes, StepContext, Stepped, MAX_CHUNK,
 };
+use crate::tiny;
 use crate::traversal::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -81,10 +82,25 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
     /// loop: the fastest path, with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        let walked =
-            self.fold_stepped(&framebuffer.bounding_box(), (), |(), span, start, steps| {
+        let clip = framebuffer.bounding_box();
+        let walked = match CompactTriangle::new(self.positions(), &clip) {
+            Ok(None) => return,
+            Ok(Some(triangle)) => {
+                let (colors, steps) = self.compact_colors(&triangle);
+                if tiny::ENABLED && tiny::draw(framebuffer, &triangle, &colors, &steps) {
+                    return;
+                }
+                fold_compact_spans(&triangle, &colors, &steps, (), |(), span, start, steps| {
+                    fill_into(framebuffer, span, start, steps)
+                })
+            }
+            Err(TooLarge) => Err(()),
+        };
+        let walked = walked.or_else(|()| {
+            self.fold_wide(&clip, (), |(), span, start, steps| {
                 fill_into(framebuffer, span, start, steps)
-            });
+            })
+        });
         if walked.is_err() {
             let Ok(()) = self.draw_exact(framebuffer);
         }
@@ -118,25 +134,32 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         &self,
         clip: &Rectangle,
         init: B,
-        mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
+        f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
     ) -> Result<B, B> {
-        let walk = match CompactSpans::new(self.vertices.map(|v| v.position()), clip) {
-            Ok(Some(walk)) => walk,
-            Ok(None) => return Ok(init),
-            Err(TooLarge) => return Err(init),
-        };
-        let (spans, setup) = walk;
+        match CompactTriangle::new(self.positions(), clip) {
+            Ok(Some(triangle)) => {
+                let (colors, steps) = self.compact_colors(&triangle);
+                fold_compact_spans(&triangle, &colors, &steps, init, f)
+            }
+            Ok(None) => Ok(init),
+            Err(TooLarge) => Err(init),
+        }
+    }
+
+    /// The vertices' positions.
+    #[inline(always)]
+    fn positions(&self) -> [(Coord, Coord); 3] {
+        self.vertices.map(|v| v.position())
+    }
+
+    /// The colour planes of the compact triangle `triangle` (these vertices) and their span
+    /// steps.
+    #[inline(always)]
+    fn compact_colors(&self, triangle: &CompactTriangle) -> (CompactColors, SpanSteps) {
         let channels = self.vertices.map(|v| v.color.channels());
-        let colors = CompactColors::new(&setup, channels);
+        let colors = CompactColors::new(&triangle.setup, channels);
         let steps = C::prepare_steps(colors.dx);
-        Ok(spans.fold(init, |acc, span, column, row| {
-            let start = core::array::from_fn(|k| {
-                colors.value[k]
-                    .wrapping_add(colors.dy[k].wrapping_mul(row))
-                    .wrapping_add(colors.dx[k].wrapping_mul(column))
-            });
-            f(acc, span, start, &steps)
-        }))
+        (colors, steps)
     }
 
     /// [`fold_stepped`](Self::fold_stepped) for any triangle, with `i64`/`i128` set-up.
@@ -147,7 +170,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         init: B,
         mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
     ) -> Result<B, B> {
-        let positions = self.vertices.map(|v| v.position());
+        let positions = self.positions();
         // By reference: moving the setup out of the `Option` would copy it.
         let setup = TriangleSetup::new(positions);
         let Some(setup) = setup.as_ref() else {
@@ -243,6 +266,30 @@ fn fill_into<C: GouraudColor>(
     if let Some(row) = framebuffer.clipped_span_mut(span.y, span.x_start, span.x_end) {
         C::fill_prepared(row, start, steps);
     }
+}
+
+/// Folds `f` over the covered spans of the compact triangle `triangle` with their colours from
+/// `colors` (see [`GouraudTriangle::fold_stepped`]); `Err(init)` untouched if its walk does not
+/// fit 32 bits.
+#[inline(always)]
+fn fold_compact_spans<B>(
+    triangle: &CompactTriangle,
+    colors: &CompactColors,
+    steps: &SpanSteps,
+    init: B,
+    mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
+) -> Result<B, B> {
+    let Ok(spans) = CompactSpans::of(triangle) else {
+        return Err(init);
+    };
+    Ok(spans.fold(init, |acc, span, column, row| {
+        let start = core::array::from_fn(|k| {
+            colors.value[k]
+                .wrapping_add(colors.dy[k].wrapping_mul(row))
+                .wrapping_add(colors.dx[k].wrapping_mul(column))
+        });
+        f(acc, span, start, steps)
+    }))
 }
 
 /// A triangle filled with one colour; covers exactly the pixels a [`GouraudTriangle`] with the

@@ -63,6 +63,7 @@ pub mod edge;
 pub mod fixed_point;
 pub mod framebuffer;
 pub mod interpolation;
+pub mod tiny;
 pub mod traversal;
 
 pub use color::{GouraudColor, SpanSteps};

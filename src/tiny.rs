@@ -1,0 +1,187 @@
+//! Tiny triangles: a bounding box under 8 × 8 pixels, drawn a whole row of the box at a time.
+//!
+//! A triangle of a dozen pixels has rows of two to five pixels, and on a host the span walk's
+//! per-row work (boundary columns stepped by quotient and remainder, span and row loop exits the
+//! branch predictor cannot learn) costs more than its pixels. Here every row of the box is eight
+//! lanes, one per pixel: the three edge values of each lane (16 bits, exact over the box), the
+//! mask of covered lanes, their colours and one masked write of the eight pixels. The lanes are
+//! plain arrays; on x86-64 and AArch64 LLVM turns each loop over them into a few vector
+//! instructions (Cortex-M does not take this path: without vector units eight lanes cost more
+//! than a span).
+//!
+//! The pixels are exactly those of the span walk ([`compact`](crate::compact)): the same edge
+//! functions and top-left rule decide coverage, and each row's covered run gets the colours
+//! [`GouraudColor::fill_masked_row`] gives it from the run's first pixel, as the span fill does.
+
+use crate::color::{GouraudColor, SpanSteps};
+use crate::compact::{CompactColors, CompactTriangle};
+use crate::fixed_point::SUBPIXEL_BITS;
+use crate::SliceFramebuffer;
+use embedded_graphics::geometry::OriginDimensions;
+
+/// Pixels of a row of the box: one lane each.
+pub const LANES: usize = 8;
+
+/// Whether draws take this path: hosts with vector units.
+pub(crate) const ENABLED: bool = cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
+
+/// Width and height of a tiny triangle's vertex bounding box stay below this many sub-pixels
+/// (8 pixels): its box then holds at most 8 × 8 pixel centres, and every edge value there,
+/// `|a·Δx + b·Δy| ≤ 2·w·h < 2²³` sub-pixels², divided by 256 fits an `i16`.
+const TINY: u32 = (LANES as u32) << SUBPIXEL_BITS;
+
+/// Draws `triangle` (set up over `framebuffer`'s bounding box) with `colors` if it is tiny and
+/// the framebuffer is at least [`LANES`] pixels wide; `false` (nothing drawn) otherwise.
+#[inline(always)]
+pub(crate) fn draw<C: GouraudColor>(
+    framebuffer: &mut SliceFramebuffer<'_, C>,
+    triangle: &CompactTriangle,
+    colors: &CompactColors,
+    steps: &SpanSteps,
+) -> bool {
+    let (w, h) = triangle.extent;
+    let width = framebuffer.size().width;
+    if w >= TINY || h >= TINY || width < LANES as u32 {
+        return false;
+    }
+    // The box's columns x0..=x1 (at most 8) inside the window of eight columns from xw, which
+    // ends inside the framebuffer. x0 ≥ 0 and x1 < width: the walk is clipped to it.
+    let (x0, x1) = (triangle.x0, triangle.x1);
+    let xw = x0.min(width as i32 - LANES as i32);
+    let (lo, hi) = ((x0 - xw) as i16, (x1 - xw) as i16);
+    let lane: [i16; LANES] = core::array::from_fn(|i| i as i16);
+    let in_box = lane.map(|i| -i16::from(lo <= i && i <= hi));
+
+    // Edge values K = ⌊(E − bias)/256⌋ at the window's pixel centres (inside iff K ≥ 0; the
+    // bias gives the centres on an edge to left and top edges only), stepped by a per column
+    // and b per row: exact modulo 2¹⁶, so exact wherever the true value fits, in the box.
+    let setup = &triangle.setup;
+    let mut edge = [[0i16; LANES]; 3];
+    let mut row_step = [0i16; 3];
+    let mut left = [0i16; 3];
+    for (k, (&(a, b), &s)) in triangle.coef.iter().zip(&triangle.starts).enumerate() {
+        // Within 2¹² of the box's centres: the products fit.
+        let offset = (
+            setup.dx - (i32::from(lo) << SUBPIXEL_BITS) - s.0,
+            setup.dy - s.1,
+        );
+        let e = a * offset.0 + b * offset.1;
+        let bias = i32::from(!(a > 0 || (a == 0 && b > 0)));
+        let first = ((e - bias) >> SUBPIXEL_BITS) as i16;
+        if let (Some(values), Some(step), Some(l)) =
+            (edge.get_mut(k), row_step.get_mut(k), left.get_mut(k))
+        {
+            *values = lane.map(|i| first.wrapping_add((a as i16).wrapping_mul(i)));
+            *step = b as i16;
+            // Lanes a left edge (a > 0) excludes lie before the row's run.
+            *l = -i16::from(a > 0);
+        }
+    }
+
+    let pixels = framebuffer.pixels_mut();
+    let (y0, y1) = (triangle.y0, triangle.y1);
+    let mut base = y0 as usize * width as usize + xw as usize;
+    let mut row_value = colors.value;
+    for _ in y0..=y1 {
+        let mut covered = [0i16; LANES];
+        let mut before = 0i16;
+        for (i, c) in covered.iter_mut().enumerate() {
+            let [e0, e1, e2] = edge.map(|e| e[i]);
+            let outside = (e0 | e1 | e2) >> 15;
+            *c = in_box[i] & !outside;
+            let left_outside = ((e0 & left[0]) | (e1 & left[1]) | (e2 & left[2])) >> 15;
+            before = before.wrapping_add(in_box[i] & left_outside);
+        }
+        // The run's first lane: lanes before the box, and those a left edge excludes.
+        let first = lo.wrapping_sub(before);
+        let column = first.wrapping_sub(lo) as u32;
+        let start =
+            core::array::from_fn(|k| row_value[k].wrapping_add(colors.dx[k].wrapping_mul(column)));
+        if let Some(row) = pixels
+            .get_mut(base..base + LANES)
+            .and_then(|row| <&mut [C; LANES]>::try_from(row).ok())
+        {
+            C::fill_masked_row(row, covered, first as u32, start, steps);
+        }
+        for (values, step) in edge.iter_mut().zip(row_step) {
+            for v in values.iter_mut() {
+                *v = v.wrapping_add(step);
+            }
+        }
+        for (v, d) in row_value.iter_mut().zip(colors.dy) {
+            *v = v.wrapping_add(d);
+        }
+        base += width as usize;
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::pixelcolor::{Bgr565, Gray8, Rgb565, Rgb888};
+
+    use crate::{Coord, GouraudColor, GouraudTriangle, Vertex};
+
+    /// Tiny and small triangles drawn by `draw_into` (this path, for the tiny ones) and by
+    /// `draw_into_compact` (the span walk) give the same framebuffer, pixel for pixel: over
+    /// random backgrounds, near and across every border of framebuffers 8 to 21 pixels wide.
+    fn same_as_the_span_walk<C: GouraudColor + core::fmt::Debug>(
+        seed: u64,
+        color: impl Fn(u64) -> C,
+    ) {
+        let mut next = crate::xorshift(seed);
+        let mut tiny = 0;
+        for n in 0..40_000 {
+            let (width, height) = (8 + (next() % 14) as u32, 1 + (next() % 14) as u32);
+            let len = (width * height) as usize;
+            let mut background = [color(0); 21 * 14];
+            for px in &mut background[..len] {
+                *px = color(next());
+            }
+            // Boxes up to 9 pixels (some just past the tiny limit), anywhere over the buffer.
+            let size = 1 + (next() % (9 * 256)) as i32;
+            let origin = (
+                (next() % u64::from(width + 8) * 256) as i32 - 6 * 256,
+                (next() % u64::from(height + 8) * 256) as i32 - 6 * 256,
+            );
+            // A third on a 1/2-pixel lattice: edges through pixel centres (the fill rule's ties).
+            let lattice = if n % 3 == 0 { !127 } else { !0 };
+            let v: [Vertex<C>; 3] = core::array::from_fn(|_| {
+                let mut at = |o: i32| (o + (next() % size as u64) as i32) & lattice;
+                let (x, y) = (at(origin.0), at(origin.1));
+                Vertex::new(Coord::from_bits(x), Coord::from_bits(y), color(next()))
+            });
+            let triangle = GouraudTriangle::new(v);
+            let (mut got, mut want) = (background, background);
+            let mut fb = crate::SliceFramebuffer::new(&mut got[..len], width, height).unwrap();
+            triangle.draw_into(&mut fb);
+            let mut fb = crate::SliceFramebuffer::new(&mut want[..len], width, height).unwrap();
+            assert_eq!(triangle.draw_into_compact(&mut fb), Ok(()));
+            assert!(got == want, "case {n}: {width}×{height}, {v:?}");
+            tiny += usize::from(size < 2048);
+        }
+        assert!(tiny > 20_000);
+    }
+
+    #[test]
+    fn rgb565_rows_are_the_span_walks_pixels() {
+        same_as_the_span_walk(0x7157_0001, |r| {
+            Rgb565::from(embedded_graphics::pixelcolor::raw::RawU16::new(r as u16))
+        });
+    }
+
+    #[test]
+    fn bgr565_rows_are_the_span_walks_pixels() {
+        same_as_the_span_walk(0x7157_0002, |r| {
+            Bgr565::from(embedded_graphics::pixelcolor::raw::RawU16::new(r as u16))
+        });
+    }
+
+    #[test]
+    fn default_rows_are_the_span_walks_pixels() {
+        same_as_the_span_walk(0x7157_0003, |r| {
+            Rgb888::new(r as u8, (r >> 8) as u8, (r >> 16) as u8)
+        });
+        same_as_the_span_walk(0x7157_0004, |r| Gray8::new(r as u8));
+    }
+}
