@@ -147,10 +147,21 @@ impl GradientScale {
     }
 }
 
-/// Leading zero bits of `v > 0` by halving steps (Cortex-M0 has no `clz` instruction; the
-/// library routine is a call of about the same length).
+/// Leading zero bits of `v > 0`: by halving steps on ARMv6-M (Cortex-M0 has no `clz`
+/// instruction; the library routine is a call of about the same length), the instruction
+/// elsewhere.
 #[inline]
-fn leading_zeros_32(mut v: u32) -> u32 {
+fn leading_zeros_32(v: u32) -> u32 {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        leading_zeros_by_halving(v)
+    } else {
+        v.leading_zeros()
+    }
+}
+
+/// [`leading_zeros_32`] by halving steps.
+#[inline]
+fn leading_zeros_by_halving(mut v: u32) -> u32 {
     let mut zeros = 0;
     for bits in [16, 8, 4, 2, 1] {
         if v >> (32 - bits) == 0 {
@@ -647,9 +658,9 @@ mod tests {
     }
 
     #[test]
-    fn leading_zeros_by_halving() {
+    fn halving_counts_leading_zeros() {
         for v in (0..32).flat_map(|k| [1u32 << k, (1u32 << k) | 1, u32::MAX >> k]) {
-            assert_eq!(leading_zeros_32(v), v.leading_zeros(), "{v}");
+            assert_eq!(leading_zeros_by_halving(v), v.leading_zeros(), "{v}");
         }
     }
 

@@ -236,13 +236,24 @@ const RECIPROCAL_SEED_8: [u8; 128] = {
     table
 };
 
-/// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`, without a division (a 64-bit library division costs
-/// hundreds of instructions on Cortex-M).
+/// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`: a hardware division on 64-bit hosts,
+/// [`reciprocal_63_newton`] elsewhere (a 64-bit library division costs hundreds of instructions
+/// on Cortex-M). Both give the exact floor.
+#[inline]
+pub(crate) fn reciprocal_63(d: u32) -> u64 {
+    if cfg!(target_pointer_width = "64") {
+        (1u64 << 63) / u64::from(d.max(1))
+    } else {
+        reciprocal_63_newton(d)
+    }
+}
+
+/// [`reciprocal_63`] without a division.
 ///
 /// A 128-entry seed (8 bits), two Newton steps `x += x·(2^63 − d·x) / 2^63` (8 → 16 → 30+ bits;
 /// the error term `2^63 − d·x` is below 2⁵⁶ in magnitude, so its wrapping 64-bit value is exact),
 /// then an exact correction of the remainder.
-pub(crate) fn reciprocal_63(d: u32) -> u64 {
+fn reciprocal_63_newton(d: u32) -> u64 {
     let seed = RECIPROCAL_SEED_8
         .get(((d >> 24) as usize).wrapping_sub(128))
         .map_or(256, |&s| 256 + u64::from(s));
@@ -903,7 +914,8 @@ mod tests {
     #[test]
     fn reciprocal_63_is_the_exact_floor() {
         let mut next = crate::xorshift(0x6a09_e667_f3bc_c908_u64);
-        let check = |d: u32| assert_eq!(reciprocal_63(d), (1u64 << 63) / u64::from(d), "{d}");
+        let check =
+            |d: u32| assert_eq!(reciprocal_63_newton(d), (1u64 << 63) / u64::from(d), "{d}");
         for d in [1 << 31, (1 << 31) + 1, 3 << 30, u32::MAX - 1, u32::MAX] {
             check(d);
         }

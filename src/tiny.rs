@@ -138,16 +138,34 @@ mod tests {
             for px in &mut background[..len] {
                 *px = color(next());
             }
-            // Boxes up to 9 pixels (some just past the tiny limit), anywhere over the buffer.
-            let size = 1 + (next() % (9 * 256)) as i32;
+            // Boxes up to 9 pixels (some just past the tiny limit), anywhere over the buffer; a
+            // quarter near the limit with vertices on the box's corners, across the right border
+            // (the eight lanes then reach furthest from the vertices: edge values wrap there).
+            let extreme = n % 4 == 1;
+            let size = if extreme {
+                1792 + (next() % 256) as i32
+            } else {
+                1 + (next() % (9 * 256)) as i32
+            };
             let origin = (
-                (next() % u64::from(width + 8) * 256) as i32 - 6 * 256,
+                if extreme {
+                    (width as i32 - 7) * 256 + (next() % 1536) as i32
+                } else {
+                    (next() % u64::from(width + 8) * 256) as i32 - 6 * 256
+                },
                 (next() % u64::from(height + 8) * 256) as i32 - 6 * 256,
             );
             // A third on a 1/2-pixel lattice: edges through pixel centres (the fill rule's ties).
             let lattice = if n % 3 == 0 { !127 } else { !0 };
             let v: [Vertex<C>; 3] = core::array::from_fn(|_| {
-                let mut at = |o: i32| (o + (next() % size as u64) as i32) & lattice;
+                let mut at = |o: i32| {
+                    let d = if extreme {
+                        (next() % 2) as i32 * (size - 1)
+                    } else {
+                        (next() % size as u64) as i32
+                    };
+                    (o + d) & lattice
+                };
                 let (x, y) = (at(origin.0), at(origin.1));
                 Vertex::new(Coord::from_bits(x), Coord::from_bits(y), color(next()))
             });
