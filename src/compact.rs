@@ -139,10 +139,16 @@ impl GradientScale {
         // m < 2¹⁹ and r ≤ 2³²: the product fits.
         let q =
             ((mul_u32_u33(m as u32, self.r) + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
-        if n < 0 {
-            q.wrapping_neg()
+        if cfg!(target_arch = "arm") {
+            if n < 0 {
+                q.wrapping_neg()
+            } else {
+                q
+            }
         } else {
-            q
+            // Without a branch on hosts: the signs of a triangle's gradients are random.
+            let sign = i64::from(n >> 31);
+            (q ^ sign).wrapping_sub(sign)
         }
     }
 }
