@@ -396,20 +396,6 @@ impl CompactTriangle {
 }
 
 impl CompactSpans {
-    /// The walk of the triangle `v` over `clip` and its set-up; `Ok(None)` if nothing inside
-    /// `clip` is covered (or the vertices are collinear), `Err(TooLarge)` if the triangle is not
-    /// compact.
-    #[inline(always)]
-    pub(crate) fn new(
-        v: [(Coord, Coord); 3],
-        clip: &Rectangle,
-    ) -> Result<Option<(CompactSpans, CompactSetup)>, TooLarge> {
-        match CompactTriangle::new(v, clip)? {
-            Some(triangle) => Ok(Some((Self::of(&triangle)?, triangle.setup))),
-            None => Ok(None),
-        }
-    }
-
     /// The walk of `triangle`.
     #[inline(always)]
     pub(crate) fn of(triangle: &CompactTriangle) -> Result<CompactSpans, TooLarge> {
@@ -693,7 +679,8 @@ mod tests {
         let mut walked = 0;
         random_cases(0x00c0_ffee_1234_5678, 30_000, |v, clip| {
             let mut got = [[false; 48]; 40];
-            if let Ok(Some((spans, _))) = CompactSpans::new(coords(v), &clip) {
+            if let Ok(Some(triangle)) = CompactTriangle::new(coords(v), &clip) {
+                let spans = CompactSpans::of(&triangle).expect("a compact walk");
                 walked += 1;
                 spans.fold((), |(), span, _, _| {
                     for x in span.x_start..span.x_end {
@@ -728,9 +715,13 @@ mod tests {
         let mut next = crate::xorshift(0x5eed_c010_0000_0001);
         let mut checked = 0u64;
         random_cases(0x0bad_cafe_8765_4321, 4_000, |v, clip| {
-            let Ok(Some((spans, setup))) = CompactSpans::new(coords(v), &clip) else {
+            let Ok(Some(triangle)) = CompactTriangle::new(coords(v), &clip) else {
                 return;
             };
+            let (spans, setup) = (
+                CompactSpans::of(&triangle).expect("a compact walk"),
+                triangle.setup,
+            );
             let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
             let colors = CompactColors::new(&setup, channels);
             let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));

@@ -308,23 +308,53 @@ impl<C: PixelColor> SolidTriangle<C> {
         SolidTriangle { points, color }
     }
 
-    /// Draws into a [`SliceFramebuffer`] with one slice fill per span; the same pixels as
+    /// Draws into a [`SliceFramebuffer`] with one slice fill per span (tiny triangles on hosts:
+    /// one masked write per row, see [`tiny`](crate::tiny)); the same pixels as
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        self.fold_spans(&framebuffer.bounding_box(), (), |(), span| {
-            if let Some(row) = framebuffer.clipped_span_mut(span.y, span.x_start, span.x_end) {
-                fill_row(row, self.color);
+        let clip = framebuffer.bounding_box();
+        let color = self.color;
+        let fill = |fb: &mut SliceFramebuffer<'_, C>, span: Span| {
+            if let Some(row) = fb.clipped_span_mut(span.y, span.x_start, span.x_end) {
+                fill_row(row, color);
             }
-        });
+        };
+        match CompactTriangle::new(self.points, &clip) {
+            Ok(None) => {}
+            Ok(Some(triangle)) => {
+                if tiny::ENABLED && tiny::fill(framebuffer, &triangle, color) {
+                    return;
+                }
+                self.fold_compact(&triangle, &clip, (), |(), span| fill(framebuffer, span));
+            }
+            Err(TooLarge) => self
+                .spans(&clip)
+                .fold((), |(), span| fill(framebuffer, span)),
+        }
     }
 
     /// Folds `f` over the covered spans inside `clip`: the compact walk for triangles under
     /// 2048 px (see [`compact`](crate::compact)), [`Spans`] for the rest.
     #[inline(always)]
-    fn fold_spans<B>(&self, clip: &Rectangle, init: B, mut f: impl FnMut(B, Span) -> B) -> B {
-        match CompactSpans::new(self.points, clip) {
-            Ok(Some((spans, _))) => spans.fold(init, |acc, span, _, _| f(acc, span)),
+    fn fold_spans<B>(&self, clip: &Rectangle, init: B, f: impl FnMut(B, Span) -> B) -> B {
+        match CompactTriangle::new(self.points, clip) {
+            Ok(Some(triangle)) => self.fold_compact(&triangle, clip, init, f),
             Ok(None) => init,
+            Err(TooLarge) => self.spans(clip).fold(init, f),
+        }
+    }
+
+    /// [`fold_spans`](Self::fold_spans) for the compact triangle `triangle` (these points).
+    #[inline(always)]
+    fn fold_compact<B>(
+        &self,
+        triangle: &CompactTriangle,
+        clip: &Rectangle,
+        init: B,
+        mut f: impl FnMut(B, Span) -> B,
+    ) -> B {
+        match CompactSpans::of(triangle) {
+            Ok(spans) => spans.fold(init, |acc, span, _, _| f(acc, span)),
             Err(TooLarge) => self.spans(clip).fold(init, f),
         }
     }

@@ -18,6 +18,7 @@ use crate::compact::{CompactColors, CompactTriangle};
 use crate::fixed_point::SUBPIXEL_BITS;
 use crate::SliceFramebuffer;
 use embedded_graphics::geometry::OriginDimensions;
+use embedded_graphics::pixelcolor::PixelColor;
 
 /// Pixels of a row of the box: one lane each.
 pub const LANES: usize = 8;
@@ -30,14 +31,15 @@ pub(crate) const ENABLED: bool = cfg!(any(target_arch = "x86_64", target_arch = 
 /// `|a·Δx + b·Δy| ≤ 2·w·h < 2²³` sub-pixels², divided by 256 fits an `i16`.
 const TINY: u32 = (LANES as u32) << SUBPIXEL_BITS;
 
-/// Draws `triangle` (set up over `framebuffer`'s bounding box) with `colors` if it is tiny and
-/// the framebuffer is at least [`LANES`] pixels wide; `false` (nothing drawn) otherwise.
+/// Walks the rows of `triangle` (set up over `framebuffer`'s bounding box) if it is tiny and the
+/// framebuffer is at least [`LANES`] pixels wide, handing `fill` each row's eight pixels, the
+/// covered mask, the run's first pixel (8 if the row is empty) and its column from the walk's
+/// first column; `false` (nothing walked) otherwise.
 #[inline(always)]
-pub(crate) fn draw<C: GouraudColor>(
+pub(crate) fn walk<C: PixelColor>(
     framebuffer: &mut SliceFramebuffer<'_, C>,
     triangle: &CompactTriangle,
-    colors: &CompactColors,
-    steps: &SpanSteps,
+    mut fill: impl FnMut(&mut [C; LANES], [i16; LANES], u32, u32),
 ) -> bool {
     let (w, h) = triangle.extent;
     let width = framebuffer.size().width;
@@ -45,7 +47,8 @@ pub(crate) fn draw<C: GouraudColor>(
         return false;
     }
     // The box's columns x0..=x1 (at most 8) inside the window of eight columns from xw, which
-    // ends inside the framebuffer. x0 ≥ 0 and x1 < width: the walk is clipped to it.
+    // ends inside the framebuffer (the walk is clipped to it: 0 ≤ x0, x1 < width). Lanes outside
+    // the box may be far enough from the vertices for their edge values to wrap: masked.
     let (x0, x1) = (triangle.x0, triangle.x1);
     let xw = x0.min(width as i32 - LANES as i32);
     let (lo, hi) = ((x0 - xw) as i16, (x1 - xw) as i16);
@@ -73,58 +76,86 @@ pub(crate) fn draw<C: GouraudColor>(
         {
             *values = lane.map(|i| first.wrapping_add((a as i16).wrapping_mul(i)));
             *step = b as i16;
-            // Lanes a left edge (a > 0) excludes lie before the row's run.
+            // The lanes a left edge (a > 0) excludes lie before the row's run.
             *l = -i16::from(a > 0);
         }
     }
 
     let pixels = framebuffer.pixels_mut();
-    let (y0, y1) = (triangle.y0, triangle.y1);
-    let mut base = y0 as usize * width as usize + xw as usize;
-    let mut row_value = colors.value;
-    for _ in y0..=y1 {
+    let rows = (triangle.y1 - triangle.y0) as u32 + 1;
+    let mut base = triangle.y0 as usize * width as usize + xw as usize;
+    for _ in 0..rows {
         let mut covered = [0i16; LANES];
         let mut before = 0i16;
         for (i, c) in covered.iter_mut().enumerate() {
             let [e0, e1, e2] = edge.map(|e| e[i]);
-            let outside = (e0 | e1 | e2) >> 15;
-            *c = in_box[i] & !outside;
+            *c = in_box[i] & !((e0 | e1 | e2) >> 15);
             let left_outside = ((e0 & left[0]) | (e1 & left[1]) | (e2 & left[2])) >> 15;
             before = before.wrapping_add(in_box[i] & left_outside);
         }
-        // The run's first lane: lanes before the box, and those a left edge excludes.
-        let first = lo.wrapping_sub(before);
-        let column = first.wrapping_sub(lo) as u32;
-        let start =
-            core::array::from_fn(|k| row_value[k].wrapping_add(colors.dx[k].wrapping_mul(column)));
+        // The run's first lane: lanes before the box and those a left edge excludes.
+        let column = before.wrapping_neg() as u32;
         if let Some(row) = pixels
             .get_mut(base..base + LANES)
             .and_then(|row| <&mut [C; LANES]>::try_from(row).ok())
         {
-            C::fill_masked_row(row, covered, first as u32, start, steps);
+            fill(row, covered, column + lo as u32, column);
         }
         for (values, step) in edge.iter_mut().zip(row_step) {
             for v in values.iter_mut() {
                 *v = v.wrapping_add(step);
             }
         }
-        for (v, d) in row_value.iter_mut().zip(colors.dy) {
-            *v = v.wrapping_add(d);
-        }
         base += width as usize;
     }
     true
+}
+
+/// Draws `triangle` with `colors` (see [`walk`]).
+#[inline(always)]
+pub(crate) fn draw<C: GouraudColor>(
+    framebuffer: &mut SliceFramebuffer<'_, C>,
+    triangle: &CompactTriangle,
+    colors: &CompactColors,
+    steps: &SpanSteps,
+) -> bool {
+    let mut row_value = colors.value;
+    walk(framebuffer, triangle, |row, covered, first, column| {
+        let start =
+            core::array::from_fn(|k| row_value[k].wrapping_add(colors.dx[k].wrapping_mul(column)));
+        C::fill_masked_row(row, covered, first, start, steps);
+        for (v, d) in row_value.iter_mut().zip(colors.dy) {
+            *v = v.wrapping_add(d);
+        }
+    })
+}
+
+/// Fills the covered pixels of `triangle` with `color` (see [`walk`]).
+#[inline(always)]
+pub(crate) fn fill<C: PixelColor>(
+    framebuffer: &mut SliceFramebuffer<'_, C>,
+    triangle: &CompactTriangle,
+    color: C,
+) -> bool {
+    walk(framebuffer, triangle, |row, covered, _, _| {
+        for (px, &c) in row.iter_mut().zip(&covered) {
+            *px = if c != 0 { color } else { *px };
+        }
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use embedded_graphics::pixelcolor::{Bgr565, Gray8, Rgb565, Rgb888};
 
-    use crate::{Coord, GouraudColor, GouraudTriangle, Vertex};
+    use embedded_graphics::Drawable;
 
-    /// Tiny and small triangles drawn by `draw_into` (this path, for the tiny ones) and by
-    /// `draw_into_compact` (the span walk) give the same framebuffer, pixel for pixel: over
-    /// random backgrounds, near and across every border of framebuffers 8 to 21 pixels wide.
+    use crate::{Coord, GouraudColor, GouraudTriangle, SolidTriangle, Vertex};
+
+    /// Tiny and small triangles drawn by `draw_into` (this path, for the tiny ones) and by the
+    /// span walk (`draw_into_compact`; `Drawable::draw` for solid ones) give the same
+    /// framebuffer, pixel for pixel: over random backgrounds, near and across every border of
+    /// framebuffers 8 to 21 pixels wide.
     fn same_as_the_span_walk<C: GouraudColor + core::fmt::Debug>(
         seed: u64,
         color: impl Fn(u64) -> C,
@@ -176,6 +207,14 @@ mod tests {
             let mut fb = crate::SliceFramebuffer::new(&mut want[..len], width, height).unwrap();
             assert_eq!(triangle.draw_into_compact(&mut fb), Ok(()));
             assert!(got == want, "case {n}: {width}×{height}, {v:?}");
+            // Solid: `draw_into` (this path) against `Drawable::draw` (the span walk).
+            let solid = SolidTriangle::new(v.map(|v| v.position()), v[0].color);
+            let (mut got, mut want) = (background, background);
+            let mut fb = crate::SliceFramebuffer::new(&mut got[..len], width, height).unwrap();
+            solid.draw_into(&mut fb);
+            let mut fb = crate::SliceFramebuffer::new(&mut want[..len], width, height).unwrap();
+            let Ok(()) = solid.draw(&mut fb);
+            assert!(got == want, "solid case {n}: {width}×{height}, {v:?}");
             tiny += usize::from(size < 2048);
         }
         assert!(tiny > 20_000);
