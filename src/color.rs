@@ -81,11 +81,31 @@ pub trait GouraudColor: PixelColor {
             }
         }
     }
+
     /// Fills the covered pixels of one row of a tiny triangle's box (see
     /// [`tiny`](crate::tiny)): `covered[i]` is `-1` for covered pixels, which form one run from
     /// pixel `first` on, and `0` for the others, which keep their colour. The run gets the
     /// colours [`fill_prepared`](Self::fill_prepared) gives it from `start`. Formats may
-    /// override it with a loop over all eight pixels that masks the write.
+    /// override it with a loop over all eight pixels that masks the write (the 5-6-5 formats
+    /// do).
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+    /// use embedded_raster::{color::STEP_BITS, GouraudColor};
+    ///
+    /// let one = 1u32 << STEP_BITS;
+    /// let (start, step) = ([one / 2, 81 * one / 2, 61 * one / 2], [one, 0, 0]);
+    /// let steps = Rgb565::prepare_steps(step);
+    /// let mut row = [Rgb565::WHITE; 8];
+    /// // Pixels 2, 3 and 4 covered: red 0, 1, 2 there.
+    /// Rgb565::fill_masked_row(&mut row, [0, 0, -1, -1, -1, 0, 0, 0], 2, start, &steps);
+    /// let mut span = [Rgb565::WHITE; 3];
+    /// Rgb565::fill_prepared(&mut span, start, &steps);
+    /// assert_eq!(row[..2], [Rgb565::WHITE; 2]);
+    /// assert_eq!(row[2..5], span);
+    /// assert_eq!(span[2], Rgb565::new(2, 40, 30));
+    /// assert_eq!(row[5..], [Rgb565::WHITE; 3]);
+    /// ```
     #[inline]
     fn fill_masked_row(
         row: &mut [Self; LANES],

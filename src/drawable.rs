@@ -80,7 +80,8 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
-    /// loop: the fastest path, with the same pixels as [`Drawable::draw`].
+    /// loop (tiny triangles on hosts: one masked write per row, see [`tiny`]): the fastest path,
+    /// with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();
         let walked = match CompactTriangle::new(self.positions(), &clip) {
@@ -192,7 +193,8 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     /// Draws into a [`SliceFramebuffer`] like [`draw_into`](Self::draw_into) if the triangle is
     /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::compact)), else
     /// draws nothing and returns [`TooLarge`]. A firmware that draws only through this method
-    /// links only the compact rasterizer: about an eighth of `draw_into`'s code.
+    /// links only the compact rasterizer: about an eighth of `draw_into`'s code. It always walks
+    /// spans (no [`tiny`] rows): the same pixels.
     pub fn draw_into_compact(
         &self,
         framebuffer: &mut SliceFramebuffer<'_, C>,
@@ -309,7 +311,7 @@ impl<C: PixelColor> SolidTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with one slice fill per span (tiny triangles on hosts:
-    /// one masked write per row, see [`tiny`](crate::tiny)); the same pixels as
+    /// one masked write per row, see [`tiny`]); the same pixels as
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();

@@ -2,16 +2,40 @@
 //!
 //! A triangle of a dozen pixels has rows of two to five pixels, and on a host the span walk's
 //! per-row work (boundary columns stepped by quotient and remainder, span and row loop exits the
-//! branch predictor cannot learn) costs more than its pixels. Here every row of the box is eight
-//! lanes, one per pixel: the three edge values of each lane (16 bits, exact over the box), the
-//! mask of covered lanes, their colours and one masked write of the eight pixels. The lanes are
-//! plain arrays; on x86-64 and AArch64 LLVM turns each loop over them into a few vector
-//! instructions (Cortex-M does not take this path: without vector units eight lanes cost more
-//! than a span).
+//! branch predictor cannot learn) costs more than its pixels. Here every row of the box is
+//! [`LANES`] lanes, one per pixel: the three edge values of each lane (16 bits, exact over the
+//! box), the mask of covered lanes, their colours and one masked write of the eight pixels. The
+//! lanes are plain arrays; on x86-64 and AArch64 LLVM turns each loop over them into a few
+//! vector instructions.
+//!
+//! [`GouraudTriangle::draw_into`](crate::GouraudTriangle::draw_into) and
+//! [`SolidTriangle::draw_into`](crate::SolidTriangle::draw_into) take this path on those hosts
+//! for triangles whose vertices lie within 8 pixels (less a sub-pixel) of each other on both
+//! axes, drawn into a framebuffer at least 8 pixels wide. Cortex-M does not take it (without
+//! vector units eight lanes cost more than a span), nor do `Drawable::draw` and
+//! `draw_into_compact`.
 //!
 //! The pixels are exactly those of the span walk ([`compact`](crate::compact)): the same edge
 //! functions and top-left rule decide coverage, and each row's covered run gets the colours
-//! [`GouraudColor::fill_masked_row`] gives it from the run's first pixel, as the span fill does.
+//! [`GouraudColor::fill_masked_row`] gives it from the run's first pixel, as the span fill does,
+//! so a firmware and its host simulation draw the same picture.
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+//!
+//! let v = |x: f32, y: f32, c| Vertex::new(Coord::from_num(x), Coord::from_num(y), c);
+//! let tiny = GouraudTriangle::new([
+//!     v(2.5, 1.0, Rgb565::RED),
+//!     v(7.0, 6.25, Rgb565::GREEN),
+//!     v(1.0, 5.5, Rgb565::BLUE),
+//! ]);
+//! let (mut rows, mut spans) = ([Rgb565::BLACK; 16 * 8], [Rgb565::BLACK; 16 * 8]);
+//! tiny.draw_into(&mut SliceFramebuffer::new(&mut rows, 16, 8).unwrap());
+//! tiny.draw_into_compact(&mut SliceFramebuffer::new(&mut spans, 16, 8).unwrap()).unwrap();
+//! assert_eq!(rows, spans);
+//! assert_ne!(rows, [Rgb565::BLACK; 16 * 8]);
+//! ```
 
 use crate::color::{GouraudColor, SpanSteps};
 use crate::compact::{CompactColors, CompactTriangle};
