@@ -171,7 +171,8 @@ pub(crate) fn fill<C: PixelColor>(
     })
 }
 
-// Where the path is taken: elsewhere `draw_into` walks spans and these would compare a walk with itself.
+// Only where the path is taken: elsewhere `draw_into` walks spans, and these tests would compare
+// the walk with itself.
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
     use embedded_graphics::pixelcolor::{Bgr565, Gray8, Rgb565, Rgb888};
