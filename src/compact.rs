@@ -294,7 +294,9 @@ pub(crate) struct CompactTriangle {
     pub(crate) x1: i32,
     pub(crate) y0: i32,
     pub(crate) y1: i32,
-    /// Width and height of the vertices' bounding box, sub-pixels (below [`LIMIT`]).
+    /// Width and height of the vertices' bounding box, sub-pixels (below [`LIMIT`]): what
+    /// [`tiny`](crate::tiny) rows check (x86-64 only).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub(crate) extent: (u32, u32),
 }
 

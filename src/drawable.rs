@@ -35,7 +35,6 @@ use crate::framebuffer::{fill_row, SliceFramebuffer};
 use crate::interpolation::{
     AttributePlane, InverseArea, SmallPlanes, StepContext, Stepped, MAX_CHUNK,
 };
-use crate::tiny;
 use crate::traversal::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -80,15 +79,16 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
-    /// loop (tiny triangles on hosts: one masked write per row, see [`tiny`]): the fastest path,
-    /// with the same pixels as [`Drawable::draw`].
+    /// loop (tiny triangles on x86-64: one masked write per row, see [`tiny`](crate::tiny)): the
+    /// fastest path, with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();
         let walked = match CompactTriangle::new(self.positions(), &clip) {
             Ok(None) => return,
             Ok(Some(triangle)) => {
                 let (colors, steps) = self.compact_colors(&triangle);
-                if tiny::ENABLED && tiny::draw(framebuffer, &triangle, &colors, &steps) {
+                #[cfg(target_arch = "x86_64")]
+                if crate::tiny::draw(framebuffer, &triangle, &colors, &steps) {
                     return;
                 }
                 fold_compact_spans(&triangle, &colors, &steps, (), |(), span, start, steps| {
@@ -194,7 +194,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::compact)), else
     /// draws nothing and returns [`TooLarge`]. A firmware that draws only through this method
     /// links only the compact rasterizer: about an eighth of `draw_into`'s code. It always walks
-    /// spans (no [`tiny`] rows): the same pixels.
+    /// spans (no [`tiny`](crate::tiny) rows): the same pixels.
     pub fn draw_into_compact(
         &self,
         framebuffer: &mut SliceFramebuffer<'_, C>,
@@ -310,8 +310,8 @@ impl<C: PixelColor> SolidTriangle<C> {
         SolidTriangle { points, color }
     }
 
-    /// Draws into a [`SliceFramebuffer`] with one slice fill per span (tiny triangles on hosts:
-    /// one masked write per row, see [`tiny`]); the same pixels as
+    /// Draws into a [`SliceFramebuffer`] with one slice fill per span (tiny triangles on x86-64:
+    /// one masked write per row, see [`tiny`](crate::tiny)); the same pixels as
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();
@@ -324,7 +324,8 @@ impl<C: PixelColor> SolidTriangle<C> {
         match CompactTriangle::new(self.points, &clip) {
             Ok(None) => {}
             Ok(Some(triangle)) => {
-                if tiny::ENABLED && tiny::fill(framebuffer, &triangle, color) {
+                #[cfg(target_arch = "x86_64")]
+                if crate::tiny::fill(framebuffer, &triangle, color) {
                     return;
                 }
                 self.fold_compact(&triangle, &clip, (), |(), span| fill(framebuffer, span));

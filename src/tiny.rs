@@ -6,7 +6,8 @@
 //! [`LANES`] lanes, one per pixel: the three edge values of each lane (16 bits, exact over the
 //! box), the mask of covered lanes, their colours and one masked write of the eight pixels. The
 //! lanes are plain arrays; on x86-64 LLVM turns each loop over them into a few SSE2
-//! instructions, the eight pixels' load and store included.
+//! instructions, the eight pixels' load and store included, and the run's first pixel comes from
+//! one `movemask` of the covered mask (the one intrinsic).
 //!
 //! [`GouraudTriangle::draw_into`](crate::GouraudTriangle::draw_into) and
 //! [`SolidTriangle::draw_into`](crate::SolidTriangle::draw_into) take this path on x86-64
@@ -19,8 +20,8 @@
 //!
 //! The pixels are exactly those of the span walk ([`compact`](crate::compact)): the same edge
 //! functions and top-left rule decide coverage, and each row's covered run gets the colours
-//! [`GouraudColor::fill_masked_row`] gives it from the run's first pixel, as the span fill does,
-//! so a firmware and its host simulation draw the same picture.
+//! [`fill_masked_row`](crate::GouraudColor::fill_masked_row) gives it from the run's first
+//! pixel, as the span fill does, so a firmware and its host simulation draw the same picture.
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
@@ -39,137 +40,150 @@
 //! assert_ne!(rows, [Rgb565::BLACK; 16 * 8]);
 //! ```
 
-use crate::color::{GouraudColor, SpanSteps};
-use crate::compact::{CompactColors, CompactTriangle};
-use crate::fixed_point::SUBPIXEL_BITS;
-use crate::SliceFramebuffer;
-use embedded_graphics::geometry::OriginDimensions;
-use embedded_graphics::pixelcolor::PixelColor;
-
 /// Pixels of a row of the box: one lane each.
 pub const LANES: usize = 8;
 
-/// Whether draws take this path: x86-64, where it is measured. (On AArch64 LLVM vectorises the
-/// lanes but loads and stores the eight pixels one by one; that is unmeasured, so it walks spans.)
-pub(crate) const ENABLED: bool = cfg!(target_arch = "x86_64");
+// x86-64 only, where it is measured (on AArch64 LLVM vectorises the lanes but loads and stores
+// the eight pixels one by one: unmeasured, so other hosts walk spans).
+#[cfg(target_arch = "x86_64")]
+pub(crate) use rows::{draw, fill};
 
-/// Width and height of a tiny triangle's vertex bounding box stay below this many sub-pixels
-/// (8 pixels): its box then holds at most 8 × 8 pixel centres, and every edge value there,
-/// `|a·Δx + b·Δy| ≤ 2·w·h < 2²³` sub-pixels², divided by 256 fits an `i16`.
-const TINY: u32 = (LANES as u32) << SUBPIXEL_BITS;
+#[cfg(target_arch = "x86_64")]
+mod rows {
+    use embedded_graphics::geometry::OriginDimensions;
+    use embedded_graphics::pixelcolor::PixelColor;
 
-/// Walks the rows of `triangle` (set up over `framebuffer`'s bounding box) if it is tiny and the
-/// framebuffer is at least [`LANES`] pixels wide, handing `fill` each row's eight pixels, the
-/// covered mask, the run's first pixel (8 if the row is empty) and its column from the walk's
-/// first column; `false` (nothing walked) otherwise.
-#[inline(always)]
-pub(crate) fn walk<C: PixelColor>(
-    framebuffer: &mut SliceFramebuffer<'_, C>,
-    triangle: &CompactTriangle,
-    mut fill: impl FnMut(&mut [C; LANES], [i16; LANES], u32, u32),
-) -> bool {
-    let (w, h) = triangle.extent;
-    let width = framebuffer.size().width;
-    if w >= TINY || h >= TINY || width < LANES as u32 {
-        return false;
-    }
-    // The box's columns x0..=x1 (at most 8) inside the window of eight columns from xw, which
-    // ends inside the framebuffer (the walk is clipped to it: 0 ≤ x0, x1 < width). Lanes outside
-    // the box may be far enough from the vertices for their edge values to wrap: masked.
-    let (x0, x1) = (triangle.x0, triangle.x1);
-    let xw = x0.min(width as i32 - LANES as i32);
-    let (lo, hi) = ((x0 - xw) as i16, (x1 - xw) as i16);
-    let lane: [i16; LANES] = core::array::from_fn(|i| i as i16);
-    let in_box = lane.map(|i| -i16::from(lo <= i && i <= hi));
+    use super::LANES;
+    use crate::color::{GouraudColor, SpanSteps};
+    use crate::compact::{CompactColors, CompactTriangle};
+    use crate::fixed_point::SUBPIXEL_BITS;
+    use crate::SliceFramebuffer;
 
-    // Edge values K = ⌊(E − bias)/256⌋ at the window's pixel centres (inside iff K ≥ 0; the
-    // bias gives the centres on an edge to left and top edges only), stepped by a per column
-    // and b per row: exact modulo 2¹⁶, so exact wherever the true value fits, in the box.
-    let setup = &triangle.setup;
-    let mut edge = [[0i16; LANES]; 3];
-    let mut row_step = [0i16; 3];
-    let mut left = [0i16; 3];
-    for (k, (&(a, b), &s)) in triangle.coef.iter().zip(&triangle.starts).enumerate() {
-        // Within 2¹² of the box's centres: the products fit.
-        let offset = (
-            setup.dx - (i32::from(lo) << SUBPIXEL_BITS) - s.0,
-            setup.dy - s.1,
-        );
-        let e = a * offset.0 + b * offset.1;
-        let bias = i32::from(!(a > 0 || (a == 0 && b > 0)));
-        let first = ((e - bias) >> SUBPIXEL_BITS) as i16;
-        if let (Some(values), Some(step), Some(l)) =
-            (edge.get_mut(k), row_step.get_mut(k), left.get_mut(k))
-        {
-            *values = lane.map(|i| first.wrapping_add((a as i16).wrapping_mul(i)));
-            *step = b as i16;
-            // The lanes a left edge (a > 0) excludes lie before the row's run.
-            *l = -i16::from(a > 0);
+    /// Width and height of a tiny triangle's vertex bounding box stay below this many sub-pixels
+    /// (8 pixels): its box then holds at most 8 × 8 pixel centres, and every edge value there,
+    /// `|a·Δx + b·Δy| ≤ 2·w·h < 2²³` sub-pixels², divided by 256 fits an `i16`.
+    const TINY: u32 = (LANES as u32) << SUBPIXEL_BITS;
+
+    /// Walks the rows of `triangle` (set up over `framebuffer`'s bounding box) if it is tiny and
+    /// the framebuffer is at least [`LANES`] pixels wide, handing `fill` each row's eight pixels,
+    /// the covered mask, the run's first pixel (8 if the row is empty) and its column from the
+    /// walk's first column; `false` (nothing walked) otherwise.
+    #[inline(always)]
+    pub(crate) fn walk<C: PixelColor>(
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+        triangle: &CompactTriangle,
+        mut fill: impl FnMut(&mut [C; LANES], [i16; LANES], u32, u32),
+    ) -> bool {
+        let (w, h) = triangle.extent;
+        let width = framebuffer.size().width;
+        if w >= TINY || h >= TINY || width < LANES as u32 {
+            return false;
         }
-    }
+        // The box's columns x0..=x1 (at most 8) inside the window of eight columns from xw,
+        // which ends inside the framebuffer (the walk is clipped to it: 0 ≤ x0, x1 < width).
+        // Lanes outside the box may be far enough from the vertices for their edge values to
+        // wrap: masked.
+        let (x0, x1) = (triangle.x0, triangle.x1);
+        let xw = x0.min(width as i32 - LANES as i32);
+        let (lo, hi) = ((x0 - xw) as i16, (x1 - xw) as i16);
+        let lane: [i16; LANES] = core::array::from_fn(|i| i as i16);
+        let in_box = lane.map(|i| -i16::from(lo <= i && i <= hi));
 
-    let pixels = framebuffer.pixels_mut();
-    let rows = (triangle.y1 - triangle.y0) as u32 + 1;
-    let mut base = triangle.y0 as usize * width as usize + xw as usize;
-    for _ in 0..rows {
-        let mut covered = [0i16; LANES];
-        let mut before = 0i16;
-        for (i, c) in covered.iter_mut().enumerate() {
-            let [e0, e1, e2] = edge.map(|e| e[i]);
-            *c = in_box[i] & !((e0 | e1 | e2) >> 15);
-            let left_outside = ((e0 & left[0]) | (e1 & left[1]) | (e2 & left[2])) >> 15;
-            before = before.wrapping_add(in_box[i] & left_outside);
-        }
-        // The run's first lane: lanes before the box and those a left edge excludes.
-        let column = before.wrapping_neg() as u32;
-        if let Some(row) = pixels
-            .get_mut(base..base + LANES)
-            .and_then(|row| <&mut [C; LANES]>::try_from(row).ok())
-        {
-            fill(row, covered, column + lo as u32, column);
-        }
-        for (values, step) in edge.iter_mut().zip(row_step) {
-            for v in values.iter_mut() {
-                *v = v.wrapping_add(step);
+        // Edge values K = ⌊(E − bias)/256⌋ at the window's pixel centres (inside iff K ≥ 0; the
+        // bias gives the centres on an edge to left and top edges only), stepped by a per column
+        // and b per row: exact modulo 2¹⁶, so exact wherever the true value fits, in the box.
+        let setup = &triangle.setup;
+        let mut edge = [[0i16; LANES]; 3];
+        let mut row_step = [0i16; 3];
+        for (k, (&(a, b), &s)) in triangle.coef.iter().zip(&triangle.starts).enumerate() {
+            // Within 2¹² of the box's centres: the products fit.
+            let offset = (
+                setup.dx - (i32::from(lo) << SUBPIXEL_BITS) - s.0,
+                setup.dy - s.1,
+            );
+            let e = a * offset.0 + b * offset.1;
+            let bias = i32::from(!(a > 0 || (a == 0 && b > 0)));
+            let first = ((e - bias) >> SUBPIXEL_BITS) as i16;
+            if let (Some(values), Some(step)) = (edge.get_mut(k), row_step.get_mut(k)) {
+                *values = lane.map(|i| first.wrapping_add((a as i16).wrapping_mul(i)));
+                *step = b as i16;
             }
         }
-        base += width as usize;
-    }
-    true
-}
 
-/// Draws `triangle` with `colors` (see [`walk`]).
-#[inline(always)]
-pub(crate) fn draw<C: GouraudColor>(
-    framebuffer: &mut SliceFramebuffer<'_, C>,
-    triangle: &CompactTriangle,
-    colors: &CompactColors,
-    steps: &SpanSteps,
-) -> bool {
-    let mut row_value = colors.value;
-    walk(framebuffer, triangle, |row, covered, first, column| {
-        let start =
-            core::array::from_fn(|k| row_value[k].wrapping_add(colors.dx[k].wrapping_mul(column)));
-        C::fill_masked_row(row, covered, first, start, steps);
-        for (v, d) in row_value.iter_mut().zip(colors.dy) {
-            *v = v.wrapping_add(d);
+        let pixels = framebuffer.pixels_mut();
+        let rows = (triangle.y1 - triangle.y0) as u32 + 1;
+        let mut base = triangle.y0 as usize * width as usize + xw as usize;
+        for _ in 0..rows {
+            let mut covered = [0i16; LANES];
+            for (i, c) in covered.iter_mut().enumerate() {
+                *c = in_box[i] & !((edge[0][i] | edge[1][i] | edge[2][i]) >> 15);
+            }
+            // The run's first lane (8 if the row is empty) and its column from x0.
+            let first = first_covered(covered);
+            let column = first.wrapping_sub(lo as u32);
+            if let Some(row) = pixels
+                .get_mut(base..base + LANES)
+                .and_then(|row| <&mut [C; LANES]>::try_from(row).ok())
+            {
+                fill(row, covered, first, column);
+            }
+            for (values, step) in edge.iter_mut().zip(row_step) {
+                for v in values.iter_mut() {
+                    *v = v.wrapping_add(step);
+                }
+            }
+            base += width as usize;
         }
-    })
-}
+        true
+    }
 
-/// Fills the covered pixels of `triangle` with `color` (see [`walk`]).
-#[inline(always)]
-pub(crate) fn fill<C: PixelColor>(
-    framebuffer: &mut SliceFramebuffer<'_, C>,
-    triangle: &CompactTriangle,
-    color: C,
-) -> bool {
-    walk(framebuffer, triangle, |row, covered, _, _| {
-        // The whole row read, then written: a select of values, which LLVM vectorises (a select
-        // of a load per pixel becomes a branch per pixel).
-        let old = *row;
-        *row = core::array::from_fn(|i| if covered[i] != 0 { color } else { old[i] });
-    })
+    /// The first covered lane (8 if none): the lanes' sign bits in one SSE2 `movemask`.
+    #[inline(always)]
+    fn first_covered(covered: [i16; LANES]) -> u32 {
+        use core::arch::x86_64::{_mm_movemask_epi8, _mm_packs_epi16, _mm_set_epi16};
+        let c = covered;
+        // SAFETY: SSE2 is part of the x86-64 baseline; no memory is accessed.
+        let bits = unsafe {
+            let v = _mm_set_epi16(c[7], c[6], c[5], c[4], c[3], c[2], c[1], c[0]);
+            _mm_movemask_epi8(_mm_packs_epi16(v, v)) as u32 & 0xFF
+        };
+        (bits | 1 << LANES).trailing_zeros()
+    }
+
+    /// Draws `triangle` with `colors` (see [`walk`]).
+    #[inline(always)]
+    pub(crate) fn draw<C: GouraudColor>(
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+        triangle: &CompactTriangle,
+        colors: &CompactColors,
+        steps: &SpanSteps,
+    ) -> bool {
+        let mut row_value = colors.value;
+        walk(framebuffer, triangle, |row, covered, first, column| {
+            let start = core::array::from_fn(|k| {
+                row_value[k].wrapping_add(colors.dx[k].wrapping_mul(column))
+            });
+            C::fill_masked_row(row, covered, first, start, steps);
+            for (v, d) in row_value.iter_mut().zip(colors.dy) {
+                *v = v.wrapping_add(d);
+            }
+        })
+    }
+
+    /// Fills the covered pixels of `triangle` with `color` (see [`walk`]).
+    #[inline(always)]
+    pub(crate) fn fill<C: PixelColor>(
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+        triangle: &CompactTriangle,
+        color: C,
+    ) -> bool {
+        walk(framebuffer, triangle, |row, covered, _, _| {
+            // The whole row read, then written: a select of values, which LLVM vectorises (a select
+            // of a load per pixel becomes a branch per pixel).
+            let old = *row;
+            *row = core::array::from_fn(|i| if covered[i] != 0 { color } else { old[i] });
+        })
+    }
 }
 
 // Only where the path is taken: elsewhere `draw_into` walks spans, and these tests would compare
