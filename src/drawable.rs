@@ -86,12 +86,17 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         let walked = match CompactTriangle::new(self.positions(), &clip) {
             Ok(None) => return,
             Ok(Some(triangle)) => {
-                let (colors, steps) = self.compact_colors(&triangle);
                 #[cfg(target_arch = "x86_64")]
-                if crate::tiny::draw(framebuffer, &triangle, &colors, &steps) {
-                    return;
-                }
-                fold_compact_spans(&triangle, &colors, &steps, (), |(), span, start, steps| {
+                let colors = {
+                    let (colors, steps) = self.compact_colors(&triangle);
+                    if crate::tiny::draw(framebuffer, &triangle, &colors, &steps) {
+                        return;
+                    }
+                    move || (colors, steps)
+                };
+                #[cfg(not(target_arch = "x86_64"))]
+                let colors = || self.compact_colors(&triangle);
+                fold_compact_spans(&triangle, colors, (), |(), span, start, steps| {
                     fill_into(framebuffer, span, start, steps)
                 })
             }
@@ -139,8 +144,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     ) -> Result<B, B> {
         match CompactTriangle::new(self.positions(), clip) {
             Ok(Some(triangle)) => {
-                let (colors, steps) = self.compact_colors(&triangle);
-                fold_compact_spans(&triangle, &colors, &steps, init, f)
+                fold_compact_spans(&triangle, || self.compact_colors(&triangle), init, f)
             }
             Ok(None) => Ok(init),
             Err(TooLarge) => Err(init),
@@ -271,19 +275,21 @@ fn fill_into<C: GouraudColor>(
 }
 
 /// Folds `f` over the covered spans of the compact triangle `triangle` with their colours from
-/// `colors` (see [`GouraudTriangle::fold_stepped`]); `Err(init)` untouched if its walk does not
-/// fit 32 bits.
+/// `colors` (see [`GouraudTriangle::fold_stepped`]), called after the walk's set-up (on
+/// Cortex-M0 fewer values then live across it); `Err(init)` untouched if its walk does not fit
+/// 32 bits.
 #[inline(always)]
 fn fold_compact_spans<B>(
     triangle: &CompactTriangle,
-    colors: &CompactColors,
-    steps: &SpanSteps,
+    colors: impl FnOnce() -> (CompactColors, SpanSteps),
     init: B,
     mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
 ) -> Result<B, B> {
     let Ok(spans) = CompactSpans::of(triangle) else {
         return Err(init);
     };
+    let (colors, steps) = colors();
+    let steps = &steps;
     Ok(spans.fold(init, |acc, span, column, row| {
         let start = core::array::from_fn(|k| {
             colors.value[k]
