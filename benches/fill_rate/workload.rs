@@ -315,68 +315,68 @@ fn slice_fb(pixels: &mut [Rgb565]) -> SliceFramebuffer<'_, Rgb565> {
 }
 
 /// Draws the whole set with one method.
-#[inline(never)]
+///
+/// Each method's loop is its own function ([`each`]): compiled apart, so that LLVM's inlining
+/// decisions for one method do not depend on how much code the others add to one big function.
 pub fn draw_set(method: Method, tris: &[Tri], targets: &mut Targets) {
     match method {
         Method::OursSolidInto => {
             let mut fb = slice_fb(&mut targets.slice);
-            for t in tris {
-                t.solid.draw_into(&mut fb);
-            }
+            each(tris, |t| t.solid.draw_into(&mut fb));
         }
         Method::OursSolidDraw => {
             let mut fb = slice_fb(&mut targets.slice);
-            for t in tris {
+            each(tris, |t| {
                 let Ok(()) = t.solid.draw(&mut fb);
-            }
+            });
         }
-        Method::OursSolidEgFb => {
-            for t in tris {
-                let Ok(()) = t.solid.draw(&mut *targets.eg_fb);
-            }
-        }
+        Method::OursSolidEgFb => each(tris, |t| {
+            let Ok(()) = t.solid.draw(&mut *targets.eg_fb);
+        }),
         Method::OursGouraudInto => {
             let mut fb = slice_fb(&mut targets.slice);
-            for t in tris {
-                t.gouraud.draw_into(&mut fb);
-            }
+            each(tris, |t| t.gouraud.draw_into(&mut fb));
         }
         Method::OursGouraudDraw => {
             let mut fb = slice_fb(&mut targets.slice);
-            for t in tris {
+            each(tris, |t| {
                 let Ok(()) = t.gouraud.draw(&mut fb);
-            }
+            });
         }
-        Method::OursGouraudEgFb => {
-            for t in tris {
-                let Ok(()) = t.gouraud.draw(&mut *targets.eg_fb);
-            }
-        }
+        Method::OursGouraudEgFb => each(tris, |t| {
+            let Ok(()) = t.gouraud.draw(&mut *targets.eg_fb);
+        }),
         Method::EgTriangleSlice => {
             let mut fb = slice_fb(&mut targets.slice);
-            for t in tris {
+            each(tris, |t| {
                 let Ok(()) = t.eg.draw(&mut fb);
-            }
+            });
         }
-        Method::EgTriangleEgFb => {
-            for t in tris {
-                let Ok(()) = t.eg.draw(&mut *targets.eg_fb);
-            }
-        }
+        Method::EgTriangleEgFb => each(tris, |t| {
+            let Ok(()) = t.eg.draw(&mut *targets.eg_fb);
+        }),
         Method::NaiveFloat => {
             let pixels = &mut targets.slice[..];
-            for t in tris {
-                naive_barycentric(t, |index, color| pixels[index] = color);
-            }
+            each(tris, |t| {
+                naive_barycentric(t, |index, color| pixels[index] = color)
+            });
         }
         Method::Block8Solid => {
             let pixels = &mut targets.slice[..];
-            for t in tris {
+            each(tris, |t| {
                 block8(t, |row, x0, x1| {
                     pixels[row + x0..row + x1].fill(t.colors[0])
-                });
-            }
+                })
+            });
         }
+    }
+}
+
+/// `draw` for every triangle of the set, in a function of its own for each method.
+#[inline(never)]
+fn each(tris: &[Tri], mut draw: impl FnMut(&Tri)) {
+    for t in tris {
+        draw(t);
     }
 }
 
