@@ -300,6 +300,12 @@ pub(crate) struct CompactTriangle {
     pub(crate) extent: (u32, u32),
 }
 
+/// The first pixel whose centre is at or after `m` (sub-pixels) on its axis.
+#[inline(always)]
+fn first_centre_from(m: i32) -> i32 {
+    (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80)
+}
+
 impl CompactTriangle {
     /// The triangle `v` over `clip`; `Ok(None)` if nothing inside `clip` is covered (or the
     /// vertices are collinear), `Err(TooLarge)` if the triangle is not compact.
@@ -336,7 +342,7 @@ impl CompactTriangle {
 
         // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first
         // centre at or after m, the last at or before it and the last strictly before it:
-        let lo = |m: i32| (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80);
+        let lo = first_centre_from;
         let hi = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF < 0x80);
         let hi_before = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF <= 0x80);
         let last = |start: i32, len: u32| {
@@ -414,7 +420,6 @@ impl CompactSpans {
             ..
         } = *triangle;
         let (px, py) = (setup.dx, setup.dy);
-        let lo = |m: i32| (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80);
 
         // One edge bounds one side of every row; the other side has one edge too (and the third
         // is horizontal) or two, which meet at that side's middle vertex: above its row the
@@ -458,7 +463,7 @@ impl CompactSpans {
             };
             let middle_y = far_y(3 - k1 - k2).wrapping_add(origin.1);
             // First row whose centre is not above the middle vertex, as an offset from y0.
-            let switch = (lo(middle_y) - y0).clamp(0, rows + 1);
+            let switch = (first_centre_from(middle_y) - y0).clamp(0, rows + 1);
             (
                 boundary(upper, 0)?,
                 boundary(lower, switch.min(rows))?,

@@ -69,7 +69,7 @@ mod rows {
     /// the covered mask, the run's first pixel (8 if the row is empty) and its column from the
     /// walk's first column; `false` (nothing walked) otherwise.
     #[inline(always)]
-    pub(crate) fn walk<C: PixelColor>(
+    fn walk<C: PixelColor>(
         framebuffer: &mut SliceFramebuffer<'_, C>,
         triangle: &CompactTriangle,
         mut fill: impl FnMut(&mut [C; LANES], [i16; LANES], u32, u32),
@@ -178,8 +178,8 @@ mod rows {
         color: C,
     ) -> bool {
         walk(framebuffer, triangle, |row, covered, _, _| {
-            // The whole row read, then written: a select of values, which LLVM vectorises (a select
-            // of a load per pixel becomes a branch per pixel).
+            // The whole row read, then written: a select of values, which LLVM vectorises (a
+            // select of a load per pixel becomes a branch per pixel).
             let old = *row;
             *row = core::array::from_fn(|i| if covered[i] != 0 { color } else { old[i] });
         })
