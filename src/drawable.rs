@@ -320,52 +320,55 @@ impl<C: PixelColor> SolidTriangle<C> {
     /// one masked write per row, see [`tiny`](crate::tiny)); the same pixels as
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        let clip = framebuffer.bounding_box();
         let color = self.color;
-        let fill = |fb: &mut SliceFramebuffer<'_, C>, span: Span| {
-            if let Some(row) = fb.clipped_span_mut(span.y, span.x_start, span.x_end) {
-                fill_row(row, color);
-            }
-        };
-        match CompactTriangle::new(self.points, &clip) {
-            Ok(None) => {}
-            Ok(Some(triangle)) => {
+        // The framebuffer travels in the fold's accumulator.
+        self.fold_spans(
+            &framebuffer.bounding_box(),
+            framebuffer,
+            |_triangle, fb| {
                 #[cfg(target_arch = "x86_64")]
-                if crate::tiny::fill(framebuffer, &triangle, color) {
-                    return;
+                if crate::tiny::fill(fb, _triangle, color) {
+                    return Ok(fb);
                 }
-                self.fold_compact(&triangle, &clip, (), |(), span| fill(framebuffer, span));
-            }
-            Err(TooLarge) => self
-                .spans(&clip)
-                .fold((), |(), span| fill(framebuffer, span)),
-        }
+                Err(fb)
+            },
+            |fb, span| {
+                if let Some(row) = fb.clipped_span_mut(span.y, span.x_start, span.x_end) {
+                    fill_row(row, color);
+                }
+                fb
+            },
+        );
     }
 
     /// Folds `f` over the covered spans inside `clip`: the compact walk for triangles under
-    /// 2048 px (see [`compact`](crate::compact)), [`Spans`] for the rest.
+    /// 2048 px (see [`compact`](crate::compact)), [`Spans`] for the rest. A compact triangle is
+    /// first offered to `whole`, which may draw it in one piece (`Ok`) or hand the accumulator
+    /// back (`Err`).
     #[inline(always)]
-    fn fold_spans<B>(&self, clip: &Rectangle, init: B, f: impl FnMut(B, Span) -> B) -> B {
-        match CompactTriangle::new(self.points, clip) {
-            Ok(Some(triangle)) => self.fold_compact(&triangle, clip, init, f),
-            Ok(None) => init,
-            Err(TooLarge) => self.spans(clip).fold(init, f),
-        }
-    }
-
-    /// [`fold_spans`](Self::fold_spans) for the compact triangle `triangle` (these points).
-    #[inline(always)]
-    fn fold_compact<B>(
+    fn fold_spans<B>(
         &self,
-        triangle: &CompactTriangle,
         clip: &Rectangle,
         init: B,
+        whole: impl FnOnce(&CompactTriangle, B) -> Result<B, B>,
         mut f: impl FnMut(B, Span) -> B,
     ) -> B {
-        match CompactSpans::of(triangle) {
-            Ok(spans) => spans.fold(init, |acc, span, _, _| f(acc, span)),
-            Err(TooLarge) => self.spans(clip).fold(init, f),
-        }
+        let init = match CompactTriangle::new(self.points, clip) {
+            Ok(Some(triangle)) => {
+                let init = match whole(&triangle, init) {
+                    Ok(done) => return done,
+                    Err(init) => init,
+                };
+                match CompactSpans::of(&triangle) {
+                    Ok(spans) => return spans.fold(init, |acc, span, _, _| f(acc, span)),
+                    Err(TooLarge) => init,
+                }
+            }
+            Ok(None) => return init,
+            Err(TooLarge) => init,
+        };
+        // One call of the general walk for both ways here (flash on Cortex-M).
+        self.spans(clip).fold(init, f)
     }
 
     /// The covered spans inside `clip`.
@@ -384,13 +387,19 @@ impl<C: PixelColor> Drawable for SolidTriangle<C> {
     {
         // `fold` walks with the walker's state in registers (see `Spans`; `try_fold` would step
         // through `next`); after an error the remaining spans are skipped, not drawn.
-        self.fold_spans(&target.bounding_box(), Ok(()), |drawn, span| {
-            drawn.and_then(|()| {
-                let area =
-                    Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-                target.fill_solid(&area, self.color)
-            })
-        })
+        let span_by_span = |_: &CompactTriangle, drawn| Err(drawn);
+        self.fold_spans(
+            &target.bounding_box(),
+            Ok(()),
+            span_by_span,
+            |drawn, span| {
+                drawn.and_then(|()| {
+                    let area =
+                        Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
+                    target.fill_solid(&area, self.color)
+                })
+            },
+        )
     }
 }
 
