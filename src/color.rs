@@ -336,20 +336,87 @@ fn masked_row_565<C: Copy + From<RawU16> + Into<RawU16>>(
     steps: &SpanSteps,
     order: [usize; 3],
 ) {
-    let first_lanes = lanes(order.map(|k| start.get(k).copied().unwrap_or(0)));
-    // Lane values at pixel 0 of the row: pixel i adds i steps.
-    let at_zero: [u16; 3] = core::array::from_fn(|c| {
-        first_lanes[c].wrapping_sub(steps.lane[c].wrapping_mul(first)) as u16
-    });
-    for (i, (px, &mask)) in row.iter_mut().zip(&covered).enumerate() {
-        let lane: [u16; 3] = core::array::from_fn(|c| {
-            at_zero[c].wrapping_add((steps.lane[c] as u16).wrapping_mul(i as u16))
-        });
-        let new = pack_565(lane.map(u32::from)) as u16;
+    let raw = row_565(
+        order.map(|k| start.get(k).copied().unwrap_or(0)),
+        first,
+        &steps.lane,
+    );
+    for ((px, &mask), new) in row.iter_mut().zip(&covered).zip(raw) {
         let old = (*px).into().into_inner();
         let mask = mask as u16;
         *px = C::from(RawU16::new((new & mask) | (old & !mask)));
     }
+}
+
+/// The raw 5-6-5 values of a row's eight pixels for the run from `first` (see
+/// [`masked_row_565`]); `start` and `lane` in raw order. SSE2 on x86-64.
+#[inline(always)]
+fn row_565(start: [u32; 3], first: u32, lane: &[u32; 3]) -> [u16; LANES] {
+    #[cfg(target_arch = "x86_64")]
+    return row_565_sse2(start, first, lane);
+    #[cfg(not(target_arch = "x86_64"))]
+    return row_565_portable(start, first, lane);
+}
+
+/// [`row_565`] in portable code.
+#[cfg_attr(all(target_arch = "x86_64", not(test)), allow(dead_code))]
+#[inline(always)]
+fn row_565_portable(start: [u32; 3], first: u32, lane: &[u32; 3]) -> [u16; LANES] {
+    let first_lanes = lanes(start);
+    // Lane values at pixel 0 of the row: pixel i adds i steps.
+    let at_zero: [u16; 3] =
+        core::array::from_fn(|c| first_lanes[c].wrapping_sub(lane[c].wrapping_mul(first)) as u16);
+    core::array::from_fn(|i| {
+        let l: [u16; 3] = core::array::from_fn(|c| {
+            at_zero[c].wrapping_add((lane[c] as u16).wrapping_mul(i as u16))
+        });
+        pack_565(l.map(u32::from)) as u16
+    })
+}
+
+/// [`row_565`] in SSE2: the three channels' rounding and first-pixel offset in one register (the
+/// lanes only matter modulo 2¹⁶), then each channel's eight lanes.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn row_565_sse2(start: [u32; 3], first: u32, lane: &[u32; 3]) -> [u16; LANES] {
+    use core::arch::x86_64::*;
+    let mut raw = [0u16; LANES];
+    // SAFETY: SSE2 is part of the x86-64 baseline; the one store writes the 16 bytes of `raw`.
+    unsafe {
+        let i32s = |v: [u32; 3]| _mm_setr_epi32(v[0] as i32, v[1] as i32, v[2] as i32, 0);
+        // Lanes: (v + 2^12) >> 13 for the top and bottom channels, (v + 2^13) >> 14 for the
+        // middle one (see `lanes`).
+        let t = _mm_add_epi32(i32s(start), _mm_setr_epi32(1 << 12, 1 << 13, 1 << 12, 0));
+        let (t13, t14) = (_mm_srli_epi32::<13>(t), _mm_srli_epi32::<14>(t));
+        let middle = _mm_setr_epi32(0, -1, 0, 0);
+        let lanes = _mm_or_si128(_mm_andnot_si128(middle, t13), _mm_and_si128(middle, t14));
+        // Minus `first` steps, in the low 16 bits of each 32-bit lane.
+        let steps = i32s(*lane);
+        let at_zero = _mm_sub_epi16(lanes, _mm_mullo_epi16(steps, _mm_set1_epi16(first as i16)));
+        // Each channel's value at pixel 0 in all eight lanes, plus i steps at pixel i.
+        let index = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7);
+        let top = _mm_unpacklo_epi64(
+            _mm_shufflelo_epi16::<0x00>(at_zero),
+            _mm_shufflelo_epi16::<0x00>(at_zero),
+        );
+        let mid = _mm_shufflelo_epi16::<0xAA>(at_zero);
+        let mid = _mm_unpacklo_epi64(mid, mid);
+        let bot = _mm_shufflehi_epi16::<0x00>(at_zero);
+        let bot = _mm_unpackhi_epi64(bot, bot);
+        let step = |k: usize| _mm_mullo_epi16(index, _mm_set1_epi16(lane[k] as i16));
+        let top = _mm_add_epi16(top, step(0));
+        let mid = _mm_add_epi16(mid, step(1));
+        let bot = _mm_add_epi16(bot, step(2));
+        let packed = _mm_or_si128(
+            _mm_or_si128(
+                _mm_and_si128(top, _mm_set1_epi16(0xF800u16 as i16)),
+                _mm_and_si128(_mm_srli_epi16::<5>(mid), _mm_set1_epi16(0x07E0)),
+            ),
+            _mm_srli_epi16::<11>(bot),
+        );
+        _mm_storeu_si128(raw.as_mut_ptr().cast(), packed);
+    }
+    raw
 }
 
 /// The raw 5-6-5 values of the lanes `w` (top, middle, bottom channel): two pixels when each word
@@ -625,6 +692,33 @@ mod tests {
                     assert!(lo <= g && g <= hi, "pixel {i} channel {k}: {g} vs {plain}");
                 }
             }
+        }
+    }
+
+    /// The SSE2 row of eight 5-6-5 pixels is the portable one (and so the span loop's lanes,
+    /// which the tiny tests check), over values, steps and first pixels of every range.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn sse2_rows_are_the_portable_rows() {
+        let mut next = crate::xorshift(0x0005_5e20_0001_0001);
+        for _ in 0..100_000 {
+            let (v, s) = (next(), next());
+            let start = [
+                v as u32 >> (v >> 59),
+                (v >> 20) as u32,
+                (v >> 36) as u32 >> 2,
+            ];
+            let lane = [
+                s as u32 >> (s >> 60),
+                (s >> 16) as u32,
+                (s >> 32) as u32 >> (s >> 59),
+            ];
+            let first = (next() % 9) as u32;
+            assert_eq!(
+                row_565_sse2(start, first, &lane),
+                row_565_portable(start, first, &lane),
+                "{start:?} {lane:?} {first}"
+            );
         }
     }
 

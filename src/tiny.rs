@@ -158,15 +158,31 @@ mod rows {
         colors: &CompactColors,
         steps: &SpanSteps,
     ) -> bool {
-        let mut row_value = colors.value;
+        use core::arch::x86_64::*;
+        // The channels in one SSE2 register (the fourth lane unused): the row's values stepped
+        // by dy, and the first pixel's offset from a table of dx·column (column 0..=8).
+        let vector = |v: [u32; 3]| {
+            // SAFETY: SSE2 is part of the x86-64 baseline.
+            unsafe { _mm_setr_epi32(v[0] as i32, v[1] as i32, v[2] as i32, 0) }
+        };
+        let (dx, dy, zero) = (vector(colors.dx), vector(colors.dy), vector([0; 3]));
+        let mut next = zero;
+        let by_column: [__m128i; LANES + 1] = core::array::from_fn(|_| {
+            let this = next;
+            // SAFETY: as above.
+            next = unsafe { _mm_add_epi32(next, dx) };
+            this
+        });
+        let mut row_value = vector(colors.value);
         walk(framebuffer, triangle, |row, covered, first, column| {
-            let start = core::array::from_fn(|k| {
-                row_value[k].wrapping_add(colors.dx[k].wrapping_mul(column))
-            });
-            C::fill_masked_row(row, covered, first, start, steps);
-            for (v, d) in row_value.iter_mut().zip(colors.dy) {
-                *v = v.wrapping_add(d);
+            let offset = by_column.get(column as usize).copied().unwrap_or(zero);
+            let mut start = [0u32; 4];
+            // SAFETY: as above; the store writes the 16 bytes of `start`.
+            unsafe {
+                _mm_storeu_si128(start.as_mut_ptr().cast(), _mm_add_epi32(row_value, offset));
+                row_value = _mm_add_epi32(row_value, dy);
             }
+            C::fill_masked_row(row, covered, first, [start[0], start[1], start[2]], steps);
         })
     }
 
