@@ -6,8 +6,9 @@
 //! [`LANES`] lanes, one per pixel: the three edge values of each lane (16 bits, exact over the
 //! box), the mask of covered lanes, their colours and one masked write of the eight pixels. The
 //! lanes are plain arrays; on x86-64 LLVM turns each loop over them into a few SSE2
-//! instructions, the eight pixels' load and store included, and the run's first pixel comes from
-//! one `movemask` of the covered mask (the one intrinsic).
+//! instructions, the eight pixels' load and store included. Two parts are SSE2 intrinsics, where
+//! LLVM left scalar code: the run's first pixel (one `movemask` of the covered mask) and the
+//! colours' per-row arithmetic (the three channels in one register).
 //!
 //! [`GouraudTriangle::draw_into`](crate::GouraudTriangle::draw_into) and
 //! [`SolidTriangle::draw_into`](crate::SolidTriangle::draw_into) take this path on x86-64
