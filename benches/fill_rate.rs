@@ -6,7 +6,7 @@
 //! filled `Triangle` (on both targets) and a textbook per-pixel `f32` barycentric rasterizer.
 //!
 //! Throughput is `Elements` = pixels one pass over the set writes, counted once outside the timed
-//! loop with each method's *own* coverage: `traversal::for_each_span` for ours, a counting draw
+//! loop with each method's *own* coverage: `raster::for_each_span` for ours, a counting draw
 //! target for embedded-graphics' `Triangle` (integer vertices, its own fill convention) and the
 //! naive rasterizer's own inside test. Criterion's "elem/s" is therefore pixels per second.
 //!

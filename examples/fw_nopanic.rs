@@ -40,7 +40,7 @@ mod firmware {
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
     use embedded_raster::{
-        traversal::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
+        raster::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
         Vertex,
     };
 

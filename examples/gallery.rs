@@ -105,7 +105,7 @@ fn fan_picture() {
         ];
         let mut left = display.clipped(&Rectangle::new(Point::zero(), Size::new(w, h)));
         GouraudTriangle::new(v).draw(&mut left).unwrap();
-        embedded_raster::traversal::for_each_span(
+        embedded_raster::raster::for_each_span(
             t.map(|(x, y)| (coord(x), coord(y))),
             Rectangle::new(Point::zero(), Size::new(w, h)),
             |y, x0, x1| {

@@ -17,10 +17,10 @@ use embedded_graphics::{
     text::Text,
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
-use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
-use embedded_raster::meshes::{icosphere::ICOSPHERE, torus::TORUS};
-use embedded_raster::pipeline::{DepthTarget, Mesh, Pipeline};
-use embedded_raster::shading::{Light, Material, Shading};
+use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
+use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
+use embedded_raster::three_d::{DepthTarget, Mesh, Pipeline};
+use embedded_raster::three_d::{Light, Material, Shading};
 
 const PANEL_W: u32 = 220;
 const PANEL_H: u32 = 200;

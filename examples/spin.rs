@@ -9,10 +9,10 @@ use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
 use embedded_graphics_simulator::{
     sdl2::Keycode, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
-use embedded_raster::meshes::{icosphere::ICOSPHERE, torus::TORUS};
-use embedded_raster::pipeline::{DepthTarget, Mesh, Pipeline};
-use embedded_raster::shading::{Light, Material, Shading};
+use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
+use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
+use embedded_raster::three_d::{DepthTarget, Mesh, Pipeline};
+use embedded_raster::three_d::{Light, Material, Shading};
 
 const W: u32 = 320;
 const H: u32 = 160;

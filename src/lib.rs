@@ -15,9 +15,9 @@
 //!
 //! Any `Coord` (±2²³ pixels with 1/256-pixel precision) is accepted for vertices. Triangles whose
 //! bounding box is under 2048 × 2048 pixels (anywhere in that range) are set up and walked in
-//! 32-bit arithmetic ([`compact`]; `GouraudTriangle::draw_into_compact` takes only those, for
-//! small firmware); on x86-64 hosts those under 8 × 8 pixels are drawn by
-//! `draw_into` a row of eight lanes at a time ([`tiny`], the same pixels). For larger ones setup
+//! 32-bit arithmetic ([`raster::compact`]; `GouraudTriangle::draw_into_compact` takes only
+//! those, for small firmware); on x86-64 hosts those under 8 × 8 pixels are drawn by
+//! `draw_into` a row of eight lanes at a time (the same pixels). For larger ones setup
 //! is done in `i64` for vertices within ±2²¹ pixels and
 //! in `i128` beyond. Spans are stepped in `i32` (one
 //! start and one end edge per row) over the triangle's pixel bounding box clipped to the target,
@@ -54,34 +54,41 @@
 //! [embedded-graphics]: https://docs.rs/embedded-graphics
 #![no_std]
 #![deny(missing_docs)]
+#![deny(unsafe_code)]
 
 #[cfg(feature = "std")]
 extern crate std;
 
+// Layers, each using only those above it: target code, the raster core, colours, drawing into
+// embedded-graphics targets, the 3D pipeline. `geometry` and `reference` stand apart.
+mod arch;
 pub mod color;
-pub mod compact;
-pub mod drawable;
-pub mod edge;
+pub mod draw;
 pub mod fixed_point;
-pub mod framebuffer;
-pub mod interpolation;
-pub mod tiny;
-pub mod traversal;
-
-pub use color::{GouraudColor, SpanSteps};
-pub use drawable::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};
-pub use fixed_point::Coord;
-pub use framebuffer::SliceFramebuffer;
+pub mod raster;
+pub mod three_d;
 
 pub mod geometry;
-pub mod math3d;
-pub mod meshes;
-#[cfg(feature = "std")]
-pub mod obj;
-pub mod pipeline;
 #[cfg(feature = "reference")]
 pub mod reference;
-pub mod shading;
+
+pub use color::{GouraudColor, SpanSteps};
+pub use draw::{GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, Vertex};
+pub use fixed_point::Coord;
+pub use three_d::{
+    Angle, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading, Vec3,
+};
+
+/// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`.
+pub mod prelude {
+    pub use crate::color::GouraudColor;
+    pub use crate::draw::{GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+    pub use crate::fixed_point::Coord;
+    pub use crate::three_d::{
+        Angle, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, ScreenVertex,
+        Shading, Vec3, Vec4,
+    };
+}
 
 /// The unit tests' random numbers: xorshift64 (shifts 13, 7, 17) from `seed`, each call returning
 /// the next state.

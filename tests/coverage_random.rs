@@ -1,6 +1,6 @@
 //! Random triangles against the independent f64 reference (`embedded_raster::reference`).
 //!
-//! For every triangle: the core's spans (`traversal::for_each_span`) must cover exactly the
+//! For every triangle: the core's spans (`raster::for_each_span`) must cover exactly the
 //! reference's pixel set; `SolidTriangle` and `GouraudTriangle` (through both `Drawable::draw` and
 //! `draw_into`) must write exactly those pixels; every Gouraud channel must be within 1 LSB of the
 //! reference's exact barycentric interpolation. Triangles range from sub-pixel to the full `i32`
@@ -15,7 +15,7 @@ use embedded_graphics::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb88
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::{
-    reference, traversal, Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
+    raster, reference, Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
     Vertex,
 };
 
@@ -323,7 +323,7 @@ fn fail(v: [(i32, i32); 3], what: &str, x: i32, y: i32, want: bool, got: impl De
 
 fn check_spans(v: [(i32, i32); 3], want: &[bool]) {
     let mut got = vec![0u8; N];
-    traversal::for_each_span(coords(v), target(), |y, x0, x1| {
+    raster::for_each_span(coords(v), target(), |y, x0, x1| {
         assert!(
             (0..H).contains(&y) && 0 <= x0 && x0 <= x1 && x1 <= W,
             "span outside the clip: y {y}, x {x0}..{x1}, triangle {v:?}"

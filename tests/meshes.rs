@@ -4,10 +4,9 @@
 //! (compared ignoring whitespace, since the files are rustfmt-formatted). Set
 //! `REGENERATE_MESHES=1` to rewrite them after changing either.
 
-use embedded_raster::math3d::Vec3;
-use embedded_raster::meshes::{icosphere, to_f64, torus, MeshData};
-use embedded_raster::obj;
-use embedded_raster::pipeline::Mesh;
+use embedded_raster::three_d::meshes::{icosphere, to_f64, torus, MeshData};
+use embedded_raster::three_d::obj;
+use embedded_raster::three_d::{Mesh, Vec3};
 
 fn squeeze(s: &str) -> String {
     s.chars().filter(|c| !c.is_whitespace()).collect()
@@ -15,7 +14,7 @@ fn squeeze(s: &str) -> String {
 
 fn check_generated(mesh: &MeshData, name: &str, file: &str) {
     let source = mesh.to_rust_source(name, "crate");
-    let path = format!("{}/src/meshes/{file}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/src/three_d/meshes/{file}", env!("CARGO_MANIFEST_DIR"));
     if std::env::var_os("REGENERATE_MESHES").is_some() {
         std::fs::write(&path, &source).unwrap();
         let _ = std::process::Command::new("rustfmt")
@@ -42,8 +41,11 @@ fn flash_meshes_match_generators() {
     check_generated(&ico, "ICOSPHERE", "icosphere.rs");
     check_generated(&tor, "TORUS", "torus.rs");
     // The generated statics compile into the crate (no_std) and hold the same data.
-    same_mesh(&embedded_raster::meshes::icosphere::ICOSPHERE, &ico);
-    same_mesh(&embedded_raster::meshes::torus::TORUS, &tor);
+    same_mesh(
+        &embedded_raster::three_d::meshes::icosphere::ICOSPHERE,
+        &ico,
+    );
+    same_mesh(&embedded_raster::three_d::meshes::torus::TORUS, &tor);
 }
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -180,7 +182,7 @@ fn check_normals_agree(m: &MeshData) {
 fn rust_source_declares_the_arrays() {
     let tri = obj::parse("v 0 0 0\nv 1.5 0 0\nv 0 -2 0.25\nf 1 3 2\n").unwrap();
     let src = tri.to_rust_source("TRI", "embedded_raster");
-    assert!(src.contains("use embedded_raster::math3d::Vec3;"));
+    assert!(src.contains("use embedded_raster::three_d::{Mesh, Vec3};"));
     assert!(src.contains("pub static TRI_VERTICES: [Vec3; 3] = ["));
     assert!(src.contains("Vec3::from_bits(98304, 0, 0),"));
     assert!(src.contains("Vec3::from_bits(0, -131072, 16384),"));

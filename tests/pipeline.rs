@@ -23,10 +23,10 @@
 //! triangle's depth within its tolerance.
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
-use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
-use embedded_raster::meshes::{icosphere, MeshData};
-use embedded_raster::pipeline::{Cull, DepthTarget, Mesh, Pipeline, DEPTH_CLEAR};
-use embedded_raster::shading::{Light, Material, Shading};
+use embedded_raster::three_d::meshes::{icosphere, MeshData};
+use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
+use embedded_raster::three_d::{Cull, DepthTarget, Mesh, Pipeline, DEPTH_CLEAR};
+use embedded_raster::three_d::{Light, Material, Shading};
 
 const W: u32 = 128;
 const H: u32 = 96;
@@ -594,8 +594,8 @@ fn clipped_grid_is_watertight() {
 /// degenerate and huge triangles, every shading mode.
 #[test]
 fn extreme_inputs_do_not_panic() {
-    use embedded_raster::pipeline::ScreenVertex;
-    use embedded_raster::shading::{draw_quadratic, QuadraticNormals};
+    use embedded_raster::three_d::ScreenVertex;
+    use embedded_raster::three_d::{draw_quadratic, QuadraticNormals};
     use embedded_raster::Coord;
     let mut rng = Rng(0xfeed_0005);
     let pick = |rng: &mut Rng| -> i32 {

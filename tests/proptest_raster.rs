@@ -1,6 +1,6 @@
 //! Property tests against the independent f64 reference (`embedded_raster::reference`).
 //!
-//! * coverage of `traversal::for_each_span` equals the reference for arbitrary `i32` vertices in
+//! * coverage of `raster::for_each_span` equals the reference for arbitrary `i32` vertices in
 //!   several ranges and arbitrary clip rectangles;
 //! * drawing never touches a pixel outside the target (a `DrawTarget` that asserts), with targets
 //!   anywhere, and draws exactly the reference's pixels;
@@ -15,7 +15,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::{
-    reference, traversal, Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
+    raster, reference, Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
 use proptest::prelude::*;
 
@@ -38,7 +38,7 @@ fn rect(x: i32, y: i32, w: u32, h: u32) -> Rectangle {
 /// The core's covered set inside `clip`; asserts spans are inside it and not repeated.
 fn core_set(v: Tri, clip: Rectangle) -> PixelSet {
     let mut set = PixelSet::new();
-    traversal::for_each_span(coords(v), clip, |y, x0, x1| {
+    raster::for_each_span(coords(v), clip, |y, x0, x1| {
         for x in x0..x1 {
             assert!(
                 clip.contains(Point::new(x, y)),

@@ -6,11 +6,11 @@ use embedded_graphics::{
     prelude::*,
     primitives::Rectangle,
 };
-use embedded_raster::math3d::{Scalar, Vec3};
-use embedded_raster::pipeline::{DepthTarget, ScreenVertex, DEPTH_CLEAR};
-use embedded_raster::shading::{
+use embedded_raster::three_d::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Light, QuadraticNormals,
 };
+use embedded_raster::three_d::{DepthTarget, ScreenVertex, DEPTH_CLEAR};
+use embedded_raster::three_d::{Scalar, Vec3};
 use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle};
 
 struct Rng(u64);

@@ -5,7 +5,7 @@
 //! triangles around centres on pixel centres, corners or sub-pixel offsets, jittered grids,
 //! meshes extending past the screen and up to the ends of the raw `i32` range; windings mixed.
 //! A counting `DrawTarget` records how often each pixel is drawn by `SolidTriangle`,
-//! `GouraudTriangle` and `traversal::for_each_span`; the independent reference
+//! `GouraudTriangle` and `raster::for_each_span`; the independent reference
 //! (`reference::for_each_covered`) must count each pixel of the union exactly once (and 0
 //! elsewhere), and each core count must equal the reference count.
 
@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raster::{reference, traversal, Coord, GouraudTriangle, SolidTriangle, Vertex};
+use embedded_raster::{raster, reference, Coord, GouraudTriangle, SolidTriangle, Vertex};
 
 const W: u32 = 64;
 const H: u32 = 48;
@@ -403,7 +403,7 @@ fn draw_counts(mesh: &Mesh, area: Rectangle, rng: &mut Rng) -> [Vec<u32>; 3] {
         GouraudTriangle::new([0, 1, 2].map(|k| Vertex::new(c[k].0, c[k].1, colour(rng))))
             .draw(&mut gouraud)
             .unwrap();
-        traversal::for_each_span(c, area, |y, x0, x1| {
+        raster::for_each_span(c, area, |y, x0, x1| {
             spans
                 .draw_iter((x0..x1).map(|x| Pixel(Point::new(x, y), Rgb565::WHITE)))
                 .unwrap();

@@ -22,8 +22,8 @@ use embedded_graphics::{
     Pixel,
 };
 use embedded_raster::{
-    edge::TriangleSetup,
-    traversal::{for_each_span, Region},
+    raster::edge::TriangleSetup,
+    raster::{for_each_span, Region},
     Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
 

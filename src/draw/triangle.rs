@@ -27,15 +27,17 @@ use core::marker::PhantomData;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
+use super::framebuffer::{fill_row, SliceFramebuffer};
+#[cfg(sse2_rows)]
+use super::tiny;
 use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
-use crate::compact::{CompactColors, CompactSpans, CompactTriangle, TooLarge};
-use crate::edge::TriangleSetup;
 use crate::fixed_point::{pixel_corner, Coord};
-use crate::framebuffer::{fill_row, SliceFramebuffer};
-use crate::interpolation::{
+use crate::raster::compact::{CompactColors, CompactSpans, CompactTriangle, TooLarge};
+use crate::raster::edge::TriangleSetup;
+use crate::raster::plane::{
     AttributePlane, InverseArea, SmallPlanes, StepContext, Stepped, MAX_CHUNK,
 };
-use crate::traversal::{Region, Span, Spans};
+use crate::raster::walk::{Region, Span, Spans};
 
 /// A triangle vertex: sub-pixel position and colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,22 +81,22 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
-    /// loop (tiny triangles on x86-64: one masked write per row, see [`tiny`](crate::tiny)): the
+    /// loop (tiny triangles on x86-64: one masked write per row, see the tiny rows): the
     /// fastest path, with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();
         let walked = match CompactTriangle::new(self.positions(), &clip) {
             Ok(None) => return,
             Ok(Some(triangle)) => {
-                #[cfg(target_arch = "x86_64")]
+                #[cfg(sse2_rows)]
                 let colors = {
                     let (colors, steps) = self.compact_colors(&triangle);
-                    if crate::tiny::draw(framebuffer, &triangle, &colors, &steps) {
+                    if tiny::draw(framebuffer, &triangle, &colors, &steps) {
                         return;
                     }
                     move || (colors, steps)
                 };
-                #[cfg(not(target_arch = "x86_64"))]
+                #[cfg(not(sse2_rows))]
                 let colors = || self.compact_colors(&triangle);
                 fold_compact_spans(&triangle, colors, (), |(), span, start, steps| {
                     fill_into(framebuffer, span, start, steps)
@@ -134,7 +136,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// [`fold_stepped`](Self::fold_stepped) for compact triangles (see
-    /// [`compact`](crate::compact)): `Err(init)` untouched for the others.
+    /// [`compact`](crate::raster::compact)): `Err(init)` untouched for the others.
     #[inline(always)]
     fn fold_compact<B>(
         &self,
@@ -195,10 +197,10 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] like [`draw_into`](Self::draw_into) if the triangle is
-    /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::compact)), else
+    /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::raster::compact)), else
     /// draws nothing and returns [`TooLarge`]. A firmware that draws only through this method
     /// links only the compact rasterizer: about an eighth of `draw_into`'s code. It always walks
-    /// spans (no [`tiny`](crate::tiny) rows): the same pixels.
+    /// spans (no the tiny rows rows): the same pixels.
     pub fn draw_into_compact(
         &self,
         framebuffer: &mut SliceFramebuffer<'_, C>,
@@ -317,7 +319,7 @@ impl<C: PixelColor> SolidTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with one slice fill per span (tiny triangles on x86-64:
-    /// one masked write per row, see [`tiny`](crate::tiny)); the same pixels as
+    /// one masked write per row, see the tiny rows); the same pixels as
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let color = self.color;
@@ -326,8 +328,8 @@ impl<C: PixelColor> SolidTriangle<C> {
             &framebuffer.bounding_box(),
             framebuffer,
             |_triangle, fb| {
-                #[cfg(target_arch = "x86_64")]
-                if crate::tiny::fill(fb, _triangle, color) {
+                #[cfg(sse2_rows)]
+                if tiny::fill(fb, _triangle, color) {
                     return Ok(fb);
                 }
                 Err(fb)
@@ -342,7 +344,7 @@ impl<C: PixelColor> SolidTriangle<C> {
     }
 
     /// Folds `f` over the covered spans inside `clip`: the compact walk for triangles under
-    /// 2048 px (see [`compact`](crate::compact)), [`Spans`] for the rest. A compact triangle is
+    /// 2048 px (see [`compact`](crate::raster::compact)), [`Spans`] for the rest. A compact triangle is
     /// first offered to `whole`, which may draw it in one piece (`Ok`) or hand the accumulator
     /// back (`Err`).
     #[inline(always)]

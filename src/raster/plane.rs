@@ -24,7 +24,7 @@
 //! pixels), and no 64-bit arithmetic is left per row.
 //!
 //! ```
-//! use embedded_raster::{edge::TriangleSetup, interpolation::AttributePlane, traversal::Region, Coord};
+//! use embedded_raster::{raster::{edge::TriangleSetup, AttributePlane, Region}, Coord};
 //! use embedded_graphics::{prelude::*, primitives::Rectangle};
 //!
 //! let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
@@ -38,9 +38,10 @@
 //! // Values are fixed point with 16 fractional bits; steps are added with `wrapping_add`.
 //! ```
 
-use crate::edge::{dot2, TriangleSetup};
 use crate::fixed_point::SUBPIXEL_BITS;
-use crate::traversal::Region;
+use crate::raster::arith::{mul_wide, reciprocal_125, reciprocal_63};
+use crate::raster::edge::{dot2, TriangleSetup};
+use crate::raster::walk::Region;
 
 /// Fractional bits of the per-row accumulator.
 const ROW_BITS: u32 = 32;
@@ -124,201 +125,6 @@ impl InverseArea {
             div_round(num << k, self.area2)
         }
     }
-}
-
-/// Whether the core lacks a 32 × 32 → 64-bit multiply: ARMv6-M (Cortex-M0/M0+, recognised by
-/// having no 32-bit atomics), where every 64-bit product is a library call.
-const NO_LONG_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
-
-/// `a · b` in full. Without a long multiply it is formed from 16-bit limbs ([`mul_32_limbs`]):
-/// sixteen 32-bit multiplies instead of four 64-bit library calls.
-#[inline]
-fn mul_wide(a: u64, b: u64) -> u128 {
-    if NO_LONG_MULTIPLY {
-        mul_wide_limbs(a, b)
-    } else {
-        u128::from(a) * u128::from(b)
-    }
-}
-
-/// [`mul_wide`] from four 32 × 32 → 64-bit products of [`mul_32_limbs`].
-#[inline]
-fn mul_wide_limbs(a: u64, b: u64) -> u128 {
-    let (a0, a1, b0, b1) = (a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32);
-    let middle = u128::from(mul_32_limbs(a0, b1)) + u128::from(mul_32_limbs(a1, b0));
-    (u128::from(mul_32_limbs(a1, b1)) << 64) + (middle << 32) + u128::from(mul_32_limbs(a0, b0))
-}
-
-/// `a · b` in full; without a long multiply from [`mul_32_limbs`] of the magnitudes.
-#[inline]
-pub(crate) fn mul_i32_wide(a: i32, b: i32) -> i64 {
-    if NO_LONG_MULTIPLY {
-        mul_i32_wide_limbs(a, b)
-    } else {
-        i64::from(a) * i64::from(b)
-    }
-}
-
-/// [`mul_i32_wide`] from limbs.
-#[inline]
-fn mul_i32_wide_limbs(a: i32, b: i32) -> i64 {
-    let p = mul_32_limbs(a.unsigned_abs(), b.unsigned_abs()) as i64;
-    if (a < 0) != (b < 0) {
-        p.wrapping_neg()
-    } else {
-        p
-    }
-}
-
-/// `a · b` for `b ≤ 2³²` (and a product below 2⁶⁴); without a long multiply from
-/// [`mul_32_limbs`] and a shift.
-#[inline]
-pub(crate) fn mul_u32_u33(a: u32, b: u64) -> u64 {
-    if NO_LONG_MULTIPLY {
-        mul_u32_u33_limbs(a, b)
-    } else {
-        u64::from(a).wrapping_mul(b)
-    }
-}
-
-/// [`mul_u32_u33`] from limbs.
-#[inline]
-fn mul_u32_u33_limbs(a: u32, b: u64) -> u64 {
-    let high = if b >> 32 != 0 { u64::from(a) << 32 } else { 0 };
-    mul_32_limbs(a, b as u32).wrapping_add(high)
-}
-
-/// `g · d` modulo 2⁶⁴; without a long multiply from [`mul_32_limbs`] and one 32-bit product
-/// instead of a 64 × 64-bit library call.
-#[inline]
-pub(crate) fn wrapping_mul_i32(g: i64, d: i32) -> i64 {
-    if NO_LONG_MULTIPLY {
-        wrapping_mul_i32_limbs(g, d)
-    } else {
-        g.wrapping_mul(i64::from(d))
-    }
-}
-
-/// [`wrapping_mul_i32`] from limbs: `|d|` times the low word in full, times the high word modulo
-/// 2³², then the sign.
-#[inline]
-fn wrapping_mul_i32_limbs(g: i64, d: i32) -> i64 {
-    let m = d.unsigned_abs();
-    let low = mul_32_limbs(g as u32, m);
-    let high = ((g as u64 >> 32) as u32).wrapping_mul(m);
-    let p = low.wrapping_add(u64::from(high) << 32) as i64;
-    if d < 0 {
-        p.wrapping_neg()
-    } else {
-        p
-    }
-}
-
-/// `a · b` from four 16 × 16 → 32-bit products (each exact in a `u32`).
-#[inline]
-fn mul_32_limbs(a: u32, b: u32) -> u64 {
-    let (a0, a1, b0, b1) = (a & 0xFFFF, a >> 16, b & 0xFFFF, b >> 16);
-    let middle = u64::from(a0 * b1) + u64::from(a1 * b0);
-    (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
-}
-
-/// First guesses `2^16 / (t + ½) − 256` for the top eight bits `t ∈ [128, 256)` of a
-/// normalised 32-bit divisor (128 bytes of flash).
-const RECIPROCAL_SEED_8: [u8; 128] = {
-    let mut table = [0u8; 128];
-    let mut i = 0;
-    while i < 128 {
-        // 2^16 / (t + ½), the interval's midpoint: in (256, 511), within 2⁻⁸ of 2^16 / d.
-        let guess = (2u32 << 16) / (2 * (128 + i as u32) + 1);
-        table[i] = (guess - 256) as u8;
-        i += 1;
-    }
-    table
-};
-
-/// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`: a hardware division on 64-bit hosts,
-/// [`reciprocal_63_newton`] elsewhere (a 64-bit library division costs hundreds of instructions
-/// on Cortex-M). Both give the exact floor.
-#[inline]
-pub(crate) fn reciprocal_63(d: u32) -> u64 {
-    if cfg!(target_pointer_width = "64") {
-        (1u64 << 63) / u64::from(d.max(1))
-    } else {
-        reciprocal_63_newton(d)
-    }
-}
-
-/// [`reciprocal_63`] without a division.
-///
-/// A 128-entry seed (8 bits), two Newton steps `x += x·(2^63 − d·x) / 2^63` (8 → 16 → 30+ bits;
-/// the error term `2^63 − d·x` is below 2⁵⁶ in magnitude, so its wrapping 64-bit value is exact),
-/// then an exact correction of the remainder.
-fn reciprocal_63_newton(d: u32) -> u64 {
-    let seed = RECIPROCAL_SEED_8
-        .get(((d >> 24) as usize).wrapping_sub(128))
-        .map_or(256, |&s| 256 + u64::from(s));
-    // ≈ 2^16 / (d / 2^24) · 2^15 = 2^63 / d, to 8 bits.
-    let mut x = seed << 23;
-    let d = u64::from(d);
-    let error = |x: u64| (1u64 << 63).wrapping_sub(d.wrapping_mul(x)) as i64;
-    for _ in 0..2 {
-        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^49, no overflow.
-        let e = error(x);
-        x = x.wrapping_add(((((x >> 16) as i64) * (e >> 24)) >> 23) as u64);
-    }
-    // A few units off at most: step to the exact floor.
-    let mut rem = error(x);
-    while rem < 0 {
-        x -= 1;
-        rem += d as i64;
-    }
-    while rem >= d as i64 {
-        x += 1;
-        rem -= d as i64;
-    }
-    x
-}
-
-/// First guesses of `2^17 / t` for the top nine bits `t ∈ [256, 512)` of a normalised divisor.
-const RECIPROCAL_SEED: [u16; 256] = {
-    let mut table = [0u16; 256];
-    let mut i = 0;
-    while i < 256 {
-        table[i] = ((1u32 << 17) / (256 + i as u32)) as u16;
-        i += 1;
-    }
-    table
-};
-
-/// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`, without a division (Cortex-M0 has no divider, and a
-/// 128-bit library division costs thousands of instructions there).
-///
-/// A table seed good to 8 bits, three Newton steps `x += x·(2^126 − d·x) / 2^126` towards
-/// `2^126 / d` (8 → 16 → 32 → 60+ bits), then an exact correction of the remainder, so the result
-/// is the exact floor whatever the steps' rounding.
-fn reciprocal_125(d: u64) -> u64 {
-    let seed = RECIPROCAL_SEED
-        .get(((d >> 55) - 256) as usize)
-        .copied()
-        .unwrap_or(256);
-    let mut x = i128::from(seed) << 54;
-    for _ in 0..3 {
-        // e = 2^126 − d·x, |e| < 2^119; x·(e / 2^64) / 2^62 ≈ x·e / 2^126.
-        let e = (1i128 << 126) - i128::from(d) * x;
-        x += (x * (e >> 64)) >> 62;
-    }
-    let d = i128::from(d);
-    let mut q = x >> 1;
-    let mut r = (1i128 << 125) - q * d;
-    while r < 0 {
-        q -= 1;
-        r += d;
-    }
-    while r >= d {
-        q += 1;
-        r -= d;
-    }
-    q as u64
 }
 
 /// The per-pixel step ([`AttributePlane::FRACTION_BITS`] fractional bits) of a per-pixel
@@ -730,28 +536,6 @@ mod tests {
     }
 
     #[test]
-    fn reciprocal_without_division_is_exact() {
-        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
-        let check = |d: u64| {
-            let d = d | 1 << 63;
-            assert_eq!(
-                u128::from(reciprocal_125(d)),
-                (1u128 << 125) / u128::from(d),
-                "{d:#x}"
-            );
-        };
-        for d in [0, 1, u64::MAX, u64::MAX >> 1, 1 << 62, (1 << 62) + 1] {
-            check(d);
-        }
-        for _ in 0..100_000 {
-            let seed = next();
-            check(seed);
-            check(seed >> 40);
-            check(seed | (u64::MAX >> 30));
-        }
-    }
-
-    #[test]
     fn reciprocal_scaling_matches_division() {
         let mut rnd = crate::xorshift(0x0123_4567_89ab_cdef_u64);
         for _ in 0..20_000 {
@@ -843,89 +627,6 @@ mod tests {
             assert_near_exact(&p, &setup, &region, values, 51, |_, _| 51);
         }
         assert!(checked > 5_000, "{checked}");
-    }
-
-    #[test]
-    fn limb_products_are_exact() {
-        let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
-        for _ in 0..100_000 {
-            let (a, b) = (next() >> (next() % 64), next() >> (next() % 64));
-            assert_eq!(
-                mul_wide_limbs(a, b),
-                u128::from(a) * u128::from(b),
-                "{a} {b}"
-            );
-            assert_eq!(mul_wide(a, b), u128::from(a) * u128::from(b));
-        }
-        for (a, b) in [(u64::MAX, u64::MAX), (0, u64::MAX), (1 << 63, 3)] {
-            assert_eq!(mul_wide_limbs(a, b), u128::from(a) * u128::from(b));
-        }
-    }
-
-    #[test]
-    fn narrow_full_products_match_native() {
-        let mut next = crate::xorshift(0xa54f_f53a_5f1d_36f1_u64);
-        for _ in 0..200_000 {
-            let (a, b) = (
-                (next() as i32) >> (next() % 32),
-                (next() as i32) >> (next() % 32),
-            );
-            assert_eq!(
-                mul_i32_wide_limbs(a, b),
-                i64::from(a) * i64::from(b),
-                "{a} {b}"
-            );
-            let c = next() % ((1 << 32) + 1);
-            assert_eq!(
-                mul_u32_u33_limbs(a as u32, c),
-                u64::from(a as u32) * c,
-                "{a} {c}"
-            );
-        }
-        assert_eq!(mul_i32_wide_limbs(i32::MIN, i32::MIN), 1 << 62);
-        assert_eq!(
-            mul_u32_u33_limbs(u32::MAX, 1 << 32),
-            u64::from(u32::MAX) << 32
-        );
-    }
-
-    #[test]
-    fn narrow_wrapping_products_match_native() {
-        let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
-        for _ in 0..200_000 {
-            let g = next() as i64;
-            let d = (next() as i32) >> (next() % 32);
-            assert_eq!(
-                wrapping_mul_i32_limbs(g, d),
-                g.wrapping_mul(i64::from(d)),
-                "{g} {d}"
-            );
-        }
-        for (g, d) in [
-            (i64::MIN, -1),
-            (i64::MAX, i32::MIN),
-            (-1, i32::MIN),
-            (0, -5),
-        ] {
-            assert_eq!(wrapping_mul_i32_limbs(g, d), g.wrapping_mul(i64::from(d)));
-        }
-    }
-
-    #[test]
-    fn reciprocal_63_is_the_exact_floor() {
-        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908_u64);
-        let check =
-            |d: u32| assert_eq!(reciprocal_63_newton(d), (1u64 << 63) / u64::from(d), "{d}");
-        for d in [1 << 31, (1 << 31) + 1, 3 << 30, u32::MAX - 1, u32::MAX] {
-            check(d);
-        }
-        for t in 256..512u32 {
-            check(t << 23);
-            check((t << 23) - 1 + (1 << 23));
-        }
-        for _ in 0..200_000 {
-            check((next() as u32) | 1 << 31);
-        }
     }
 
     /// The small-triangle planes against exact rational values, within the bounds documented on

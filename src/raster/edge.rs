@@ -15,7 +15,7 @@
 //! sign is the exact coverage decision — no rounding anywhere.
 //!
 //! ```
-//! use embedded_raster::{edge::TriangleSetup, Coord};
+//! use embedded_raster::{raster::edge::TriangleSetup, Coord};
 //!
 //! let c = |x: f32, y: f32| (Coord::from_num(x), Coord::from_num(y));
 //! let setup = TriangleSetup::new([c(0.0, 0.0), c(4.0, 0.0), c(0.0, 4.0)]).unwrap();

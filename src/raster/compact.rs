@@ -6,13 +6,13 @@
 //! an `i32`, so the whole rasterizer is a few small loops: set-up forms a handful of 64-bit
 //! products and one 32-bit reciprocal of the area (colour gradients; slivers divide exactly), and
 //! each row steps one start and one end boundary column by a quotient and a remainder (see
-//! [`traversal`](crate::traversal)), switching edges at the middle vertex.
+//! [`walk`](crate::raster::walk)), switching edges at the middle vertex.
 //!
 //! [`GouraudTriangle::draw`](crate::GouraudTriangle) and
 //! [`draw_into`](crate::GouraudTriangle::draw_into) take this path for compact triangles and the
 //! wide one (`i64`/`i128` set-up, exact fallbacks) for the rest; on x86-64 `draw_into` draws
 //! the smallest (under 8 × 8 px) from the same set-up a row of lanes at a time
-//! ([`tiny`](crate::tiny)). The `*_compact` methods take
+//! (`tiny`). The `*_compact` methods take
 //! only this path and reject larger triangles, which keeps a firmware that uses only them small:
 //! the Gouraud rasterizer links in about 5.7 KB on a Cortex-M0 (see the README's footprint).
 //!
@@ -22,7 +22,7 @@
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-//! use embedded_raster::{compact::TooLarge, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+//! use embedded_raster::{raster::compact::TooLarge, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
 //!
 //! let mut pixels = [Rgb565::BLACK; 64 * 48];
 //! let mut fb = SliceFramebuffer::new(&mut pixels, 64, 48).unwrap();
@@ -40,8 +40,10 @@ use core::num::{NonZeroU32, NonZeroU64};
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
-use crate::interpolation::{mul_i32_wide, mul_u32_u33, reciprocal_63, wrapping_mul_i32};
-use crate::traversal::Span;
+use crate::raster::arith::{
+    leading_zeros_32, mul_i32_wide, mul_u32_u33, reciprocal_63, wrapping_mul_i32,
+};
+use crate::raster::walk::Span;
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
 /// (2¹⁹, that is 2048 pixels).
@@ -141,7 +143,7 @@ impl GradientScale {
         // m < 2¹⁹ and r ≤ 2³²: the product fits.
         let q =
             ((mul_u32_u33(m as u32, self.r) + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
-        if cfg!(target_arch = "arm") {
+        if crate::arch::CORTEX_M {
             if n < 0 {
                 q.wrapping_neg()
             } else {
@@ -153,31 +155,6 @@ impl GradientScale {
             (q ^ sign).wrapping_sub(sign)
         }
     }
-}
-
-/// Leading zero bits of `v > 0`: by halving steps on ARMv6-M (Cortex-M0 has no `clz`
-/// instruction; the library routine is a call of about the same length), the instruction
-/// elsewhere.
-#[inline]
-fn leading_zeros_32(v: u32) -> u32 {
-    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
-        leading_zeros_by_halving(v)
-    } else {
-        v.leading_zeros()
-    }
-}
-
-/// [`leading_zeros_32`] by halving steps.
-#[inline]
-fn leading_zeros_by_halving(mut v: u32) -> u32 {
-    let mut zeros = 0;
-    for bits in [16, 8, 4, 2, 1] {
-        if v >> (32 - bits) == 0 {
-            v <<= bits;
-            zeros += bits;
-        }
-    }
-    zeros
 }
 
 /// One boundary of the rows' spans: the first covered column (an edge with `a > 0`) or the last
@@ -297,8 +274,8 @@ pub(crate) struct CompactTriangle {
     pub(crate) y0: i32,
     pub(crate) y1: i32,
     /// Width and height of the vertices' bounding box, sub-pixels (below [`LIMIT`]): what
-    /// [`tiny`](crate::tiny) rows check (x86-64 only).
-    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    /// `tiny` rows check (x86-64 only).
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
     pub(crate) extent: (u32, u32),
 }
 
@@ -545,8 +522,8 @@ impl CompactSpans {
 }
 
 /// Colour accumulators of a compact triangle: channel values at the walk's first pixel and their
-/// per-pixel and per-row steps, [`STEP_BITS`](crate::color::STEP_BITS) fractional bits (+½
-/// included), wrapping.
+/// per-pixel and per-row steps, 24 fractional bits (the colours' `STEP_BITS`; +½ included),
+/// wrapping.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct CompactColors {
     pub(crate) value: [u32; 3],
@@ -613,7 +590,7 @@ mod tests {
     use embedded_graphics::prelude::*;
 
     use super::*;
-    use crate::edge::TriangleSetup;
+    use crate::raster::edge::TriangleSetup;
 
     /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
     /// the limit, slivers included, and a 48 × 40 clip somewhere over the bounding box.
@@ -656,13 +633,6 @@ mod tests {
 
     fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
         v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
-    }
-
-    #[test]
-    fn halving_counts_leading_zeros() {
-        for v in (0..32).flat_map(|k| [1u32 << k, (1u32 << k) | 1, u32::MAX >> k]) {
-            assert_eq!(leading_zeros_by_halving(v), v.leading_zeros(), "{v}");
-        }
     }
 
     /// The reciprocal gradients are within one unit of the exact quotient, over areas and

@@ -1,6 +1,6 @@
 //! Span traversal: exact covered spans per row, by stepping each edge's boundary column.
 //!
-//! Each edge's reduced function `K(i, j) = a·i + b·j + k` (see [`edge`](crate::edge)) is `≥ 0`
+//! Each edge's reduced function `K(i, j) = a·i + b·j + k` (see [`edge`](crate::raster::edge)) is `≥ 0`
 //! on one side of a boundary column per row. For an edge that bounds the span's start (`a > 0`)
 //! that column is `⌈−K(0, j)/a⌉`; for one that bounds its end (`a < 0`) it is `⌊K(0, j)/|a|⌋`.
 //! Both are stepped from row to row like a Bresenham line: the column moves by the precomputed
@@ -24,7 +24,7 @@
 //!
 //! ```
 //! use embedded_graphics::{prelude::*, primitives::Rectangle};
-//! use embedded_raster::{traversal::for_each_span, Coord};
+//! use embedded_raster::{raster::for_each_span, Coord};
 //!
 //! let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
 //! let clip = Rectangle::new(Point::zero(), Size::new(8, 8));
@@ -39,8 +39,8 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use crate::edge::{dot2, TriangleSetup};
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
+use crate::raster::edge::{dot2, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

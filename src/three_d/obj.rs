@@ -2,17 +2,17 @@
 //!
 //! [`parse`] reads `v`, `vn` and `f` statements (faces with `v`, `v/vt`, `v//vn` or `v/vt/vn`
 //! references, 1-based or negative, polygons fanned into triangles) into a
-//! `MeshData` ([`meshes::MeshData`](crate::meshes::MeshData)) and ignores everything else (`vt`, `o`, `g`, `s`,
+//! `MeshData` ([`meshes::MeshData`](crate::three_d::meshes::MeshData)) and ignores everything else (`vt`, `o`, `g`, `s`,
 //! materials, comments). A vertex is emitted per distinct position/normal pair; vertices whose
 //! faces give no normal get the normalised area-weighted mean of their faces' normals; explicit
 //! normals are kept as written. Vertices come out sorted by (position, normal) index, unused
 //! positions are dropped. [`to_obj`] writes a
 //! mesh back out exactly (every `I16F16` value prints as a decimal that parses back to it), and
-//! [`MeshData::to_rust_source`](crate::meshes::MeshData::to_rust_source) turns it into `static`
+//! [`MeshData::to_rust_source`](crate::three_d::meshes::MeshData::to_rust_source) turns it into `static`
 //! arrays for firmware.
 //!
 //! ```
-//! use embedded_raster::obj;
+//! use embedded_raster::three_d::obj;
 //!
 //! let mesh = obj::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
 //! assert_eq!(mesh.indices, vec![[0, 1, 2]]);
@@ -26,7 +26,7 @@ use std::format;
 use std::string::String;
 use std::vec::Vec;
 
-use crate::meshes::{to_f64, vec3, MeshData};
+use crate::three_d::meshes::{to_f64, vec3, MeshData};
 
 /// Why an OBJ file could not be read.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -180,7 +180,7 @@ fn vec_zero(n: usize) -> Vec<[f64; 3]> {
 /// Writes a mesh as OBJ text (`v`, `vn`, and `f v//vn` lines). Parsing the result with
 /// [`parse`] gives back the same mesh, bit for bit.
 pub fn to_obj(mesh: &MeshData) -> String {
-    let mut s = String::from("# written by embedded_raster::obj\n");
+    let mut s = String::from("# written by embedded_raster::three_d::obj\n");
     for v in &mesh.vertices {
         let [x, y, z] = to_f64(*v);
         s += &format!("v {x} {y} {z}\n");

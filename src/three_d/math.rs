@@ -1,4 +1,4 @@
-//! Fixed-point 3D maths for the [`pipeline`](crate::pipeline): vectors, 4×4 matrices, binary
+//! Fixed-point 3D maths for the [`Pipeline`](crate::three_d::Pipeline): vectors, 4×4 matrices, binary
 //! angles with sine and cosine, and an inverse square root — all integer, for cores without an FPU.
 //!
 //! * Scalars are [`Scalar`] (`I16F16`: 16 fractional bits, range ±32768). Products are formed in
@@ -13,7 +13,7 @@
 //! Matrices act on column vectors (`p' = M·p`) and are stored row by row, as written on paper.
 //!
 //! ```
-//! use embedded_raster::math3d::{Angle, Mat4, Scalar, Vec3};
+//! use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
 //!
 //! let quarter = Angle::from_degrees(90);
 //! let r = Mat4::rotation_z(quarter);

@@ -27,9 +27,9 @@
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
-//! use embedded_raster::math3d::{Scalar, Vec3};
-//! use embedded_raster::pipeline::{DepthTarget, ScreenVertex};
-//! use embedded_raster::shading::{draw_quadratic, Light, QuadraticNormals};
+//! use embedded_raster::three_d::{Scalar, Vec3};
+//! use embedded_raster::three_d::{DepthTarget, ScreenVertex};
+//! use embedded_raster::three_d::{draw_quadratic, Light, QuadraticNormals};
 //! use embedded_raster::Coord;
 //!
 //! let (mut px, mut z) = ([Gray8::BLACK; 16 * 16], [0u16; 16 * 16]);
@@ -48,12 +48,12 @@
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
+use super::depth::{DepthTarget, ScreenVertex};
+use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
 use crate::color::{GouraudColor, PLANE_TO_STEP};
-use crate::edge::TriangleSetup;
-use crate::interpolation::{AttributePlane, InverseArea, MAX_CHUNK};
-use crate::math3d::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
-use crate::pipeline::{DepthTarget, ScreenVertex};
-use crate::traversal::{Region, Spans};
+use crate::raster::edge::TriangleSetup;
+use crate::raster::plane::{AttributePlane, InverseArea, MAX_CHUNK};
+use crate::raster::walk::{Region, Spans};
 
 /// How a mesh is lit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

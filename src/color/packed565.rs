@@ -1,0 +1,325 @@
+//! The 5-6-5 span loop (`Rgb565`, `Bgr565`): two pixels a word.
+//!
+//! Each channel is rounded to a 16-bit lane with its integer bits on top, two neighbouring
+//! pixels' lanes share a 32-bit word, and one addition steps both; one mask and one shift place a
+//! channel of both pixels at once. Every [`PACKED_RUN`] pixels the lanes restart from the exact
+//! [`STEP_BITS`] values. Cortex-M0 runs the same arithmetic in Thumb-1 assembly
+//! ([`arch::thumbv6m`]), x86-64 computes tiny triangles' rows of eight pixels in SSE2.
+
+use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
+
+use super::{SpanSteps, STEP_BITS};
+use crate::arch::{self, LANES};
+
+const F: u32 = STEP_BITS;
+
+/// Pixels stepped from one restart by the 5-6-5 loop. Their channels carry 11, 10 and 11
+/// fractional bits, so 128 steps add at most 2⁻⁴ LSB of error.
+const PACKED_RUN: usize = 128;
+
+/// Spans up to this long skip the packed 5-6-5 loop, whose pair set-up they would not repay, and
+/// step the same lanes one pixel at a time (the same pixels). On x86 LLVM vectorises the packed
+/// loop and its set-up costs ~150 instructions a span; on Cortex-M the check alone costs more
+/// than it saves.
+const SHORT_SPAN: Option<usize> = if arch::CORTEX_M { None } else { Some(4) };
+
+/// Fractional bits of the 5-6-5 loop's channels in raw order (top, middle, bottom): each channel
+/// fills a 16-bit lane with its integer bits on top.
+const LANE_FRACTION: [u32; 3] = [11, 10, 11];
+
+/// `v >> k`, rounded to nearest, for a signed step.
+#[inline(always)]
+fn round_shift(v: u32, k: u32) -> u32 {
+    ((v as i32).wrapping_add(1 << (k - 1)) >> k) as u32
+}
+
+/// The steps of a 5-6-5 format whose raw value holds channels `order` (top, middle, bottom).
+#[inline]
+pub(super) fn prepare_565(step: [u32; 3], order: [usize; 3]) -> SpanSteps {
+    let lane: [u32; 3] = core::array::from_fn(|i| {
+        let s = order
+            .get(i)
+            .and_then(|&k| step.get(k))
+            .copied()
+            .unwrap_or(0);
+        round_shift(s, F - LANE_FRACTION[i])
+    });
+    SpanSteps {
+        step,
+        lane,
+        double: lane.map(|s| s.wrapping_mul(2).wrapping_mul(0x1_0001)),
+    }
+}
+
+/// Gouraud loop for 5-6-5 layouts whose raw value holds channels `order`: the first in bits
+/// 11..16, the second in bits 5..11, the third in bits 0..5.
+///
+/// Every [`PACKED_RUN`] pixels each channel restarts from its [`STEP_BITS`] value rounded to a
+/// 16-bit lane ([`LANE_FRACTION`]) and is stepped by its step rounded once to the lane. At covered
+/// pixels a lane value lies in `[0, 2¹⁶)` (the channel's range plus the +½ offset and an error of
+/// at most 2⁻⁴), so lanes packed side by side ([`run_565`]) never carry into each other.
+#[inline(always)]
+pub(super) fn fill_565<C: From<RawU16>>(
+    dst: &mut [C],
+    start: [u32; 3],
+    steps: &SpanSteps,
+    order: [usize; 3],
+) {
+    let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
+    let (mut value, step) = (pick(start), pick(steps.step));
+
+    if SHORT_SPAN.is_some_and(|short| dst.len() <= short) {
+        // The packed loop's lanes one pixel at a time (the same pixels): its set-up of the
+        // pair words costs more than a few pixels.
+        let mut lane = lanes(value);
+        for px in dst {
+            *px = raw_565(pack_565(lane));
+            for (l, s) in lane.iter_mut().zip(steps.lane) {
+                *l = l.wrapping_add(s);
+            }
+        }
+        return;
+    }
+    let advance = |value: &mut [u32; 3]| {
+        for (v, s) in value.iter_mut().zip(step) {
+            *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
+        }
+    };
+    // ARMv6-M: the last run (the only one of most spans) outside the loop of runs, in assembly.
+    #[cfg(armv6m)]
+    {
+        let mut rest = dst;
+        while rest.len() > PACKED_RUN {
+            let (run, tail) = rest.split_at_mut(PACKED_RUN);
+            span_565_thumb1(run, value, steps);
+            advance(&mut value);
+            rest = tail;
+        }
+        span_565_thumb1(rest, value, steps);
+        return;
+    }
+    #[allow(unreachable_code)]
+    for run in dst.chunks_mut(PACKED_RUN) {
+        run_565(run, lanes(value), steps);
+        advance(&mut value);
+    }
+}
+
+/// Channel values (raw order, [`STEP_BITS`] fractional bits) rounded to their 5-6-5 lanes.
+#[inline(always)]
+fn lanes(value: [u32; 3]) -> [u32; 3] {
+    // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
+    core::array::from_fn(|i| {
+        let k = F - LANE_FRACTION[i];
+        value[i].wrapping_add(1 << (k - 1)) >> k
+    })
+}
+
+/// [`GouraudColor::fill_masked_row`] for 5-6-5 layouts whose raw value holds channels `order`:
+/// every pixel's lanes are those of [`fill_565`] for the run from `first` (the run's first lanes
+/// stepped by the lane steps, modulo 2¹⁶ as in its pair words), and the write keeps the pixels
+/// outside the run.
+#[inline(always)]
+pub(super) fn masked_row_565<C: Copy + From<RawU16> + Into<RawU16>>(
+    row: &mut [C; LANES],
+    covered: [i16; LANES],
+    first: u32,
+    start: [u32; 3],
+    steps: &SpanSteps,
+    order: [usize; 3],
+) {
+    let raw = row_565(
+        order.map(|k| start.get(k).copied().unwrap_or(0)),
+        first,
+        &steps.lane,
+    );
+    for ((px, &mask), new) in row.iter_mut().zip(&covered).zip(raw) {
+        let old = (*px).into().into_inner();
+        let mask = mask as u16;
+        *px = C::from(RawU16::new((new & mask) | (old & !mask)));
+    }
+}
+
+/// The raw 5-6-5 values of a row's eight pixels for the run from `first` (see
+/// [`masked_row_565`]); `start` and `lane` in raw order. SSE2 on x86-64.
+#[inline(always)]
+fn row_565(start: [u32; 3], first: u32, lane: &[u32; 3]) -> [u16; LANES] {
+    #[cfg(sse2_rows)]
+    return arch::x86_64::row_565(start, first, lane);
+    #[cfg(not(sse2_rows))]
+    return row_565_portable(start, first, lane);
+}
+
+/// [`row_565`] in portable code.
+#[cfg_attr(all(sse2_rows, not(test)), allow(dead_code))]
+#[inline(always)]
+fn row_565_portable(start: [u32; 3], first: u32, lane: &[u32; 3]) -> [u16; LANES] {
+    let first_lanes = lanes(start);
+    // Lane values at pixel 0 of the row: pixel i adds i steps.
+    let at_zero: [u16; 3] =
+        core::array::from_fn(|c| first_lanes[c].wrapping_sub(lane[c].wrapping_mul(first)) as u16);
+    core::array::from_fn(|i| {
+        let l: [u16; 3] = core::array::from_fn(|c| {
+            at_zero[c].wrapping_add((lane[c] as u16).wrapping_mul(i as u16))
+        });
+        pack_565(l.map(u32::from)) as u16
+    })
+}
+
+/// The raw 5-6-5 values of the lanes `w` (top, middle, bottom channel): two pixels when each word
+/// holds two lanes ([`run_565`]), one in the low half when it holds one.
+#[inline(always)]
+fn pack_565(w: [u32; 3]) -> u32 {
+    (w[0] & 0xF800_F800) | ((w[1] >> 5) & 0x07E0_07E0) | ((w[2] >> 11) & 0x001F_001F)
+}
+
+/// The 5-6-5 colour of a raw value.
+#[inline(always)]
+fn raw_565<C: From<RawU16>>(raw: u32) -> C {
+    C::from(RawU16::new(raw as u16))
+}
+
+/// One run of [`fill_565`], two pixels per word: each channel is one 32-bit word holding the
+/// lanes of two neighbouring pixels (the right one in the upper half), stepped two pixels at a
+/// time by one addition. With the integer bits on top of each lane, one mask (and one shift)
+/// places a channel of both pixels at once: two pixels cost three masks, two ORs, three additions
+/// and their stores.
+#[inline(always)]
+fn run_565<C: From<RawU16>>(run: &mut [C], lane: [u32; 3], steps: &SpanSteps) {
+    // Lanes (left pixel, right pixel) of each channel; `double` steps both by two pixels.
+    let mut word: [u32; 3] =
+        core::array::from_fn(|i| (lane[i].wrapping_add(steps.lane[i]) << 16).wrapping_add(lane[i]));
+    let double = steps.double;
+    // Slice patterns rather than `chunks_exact_mut`: LLVM then does not unroll the loop on
+    // Cortex-M, which would cost more set-up per span than it saves on spans of a few dozen pixels.
+    // (On x86 it still vectorizes it.)
+    let mut rest = run;
+    while let [a, b, tail @ ..] = rest {
+        let both = pack_565(word);
+        *a = raw_565(both);
+        *b = raw_565(both >> 16);
+        for (w, d) in word.iter_mut().zip(double) {
+            *w = w.wrapping_add(d);
+        }
+        rest = tail;
+    }
+    if let [last] = rest {
+        *last = raw_565(pack_565(word));
+    }
+}
+
+/// [`run_565`] of `run` (at most [`PACKED_RUN`] pixels) from the channel values `value` (raw
+/// order, [`STEP_BITS`] fractional bits), in Thumb-1 assembly ([`arch::thumbv6m`]).
+#[cfg(armv6m)]
+#[inline(always)]
+#[allow(unsafe_code)]
+fn span_565_thumb1<C: From<RawU16>>(run: &mut [C], value: [u32; 3], steps: &SpanSteps) {
+    // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
+    const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
+    // SAFETY: `run` is `run.len()` consecutive, 2-byte aligned 16-bit pixels; `SpanSteps` is
+    // `repr(C)`, nine `u32`s.
+    unsafe {
+        arch::thumbv6m::span_565(
+            run.as_mut_ptr().cast(),
+            run.len(),
+            &value,
+            core::ptr::from_ref(steps).cast(),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::pixelcolor::{Bgr565, Rgb565, RgbColor};
+
+    use super::*;
+    use crate::GouraudColor;
+
+    /// The 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
+    #[test]
+    fn packed_565_matches_plain_stepping() {
+        let mut next = crate::xorshift(0x2545_f491_4f6c_dd1d_u64);
+        let mut rnd = move |n: u64| next() % n;
+        let mut out = [Rgb565::BLACK; 700];
+        let mut bgr = [Bgr565::BLACK; 700];
+        for _ in 0..2000 {
+            let n = 1 + rnd(700) as usize;
+            let mut start = [0u32; 3];
+            let mut step = [0u32; 3];
+            for k in 0..3 {
+                let max = f64::from(Rgb565::MAX[k]);
+                let (c0, c1) = (
+                    rnd(1 << 20) as f64 / f64::from(1 << 20) * max,
+                    rnd(1 << 20) as f64 / f64::from(1 << 20) * max,
+                );
+                let s = if n > 1 {
+                    (c1 - c0) / (n - 1) as f64
+                } else {
+                    0.0
+                };
+                let one = f64::from(1u32 << STEP_BITS);
+                start[k] = ((c0 + 0.5) * one) as u32;
+                step[k] = ((s * one).round() as i32) as u32;
+            }
+            Rgb565::fill_span(&mut out[..n], start, step);
+            Bgr565::fill_span(&mut bgr[..n], start, step);
+            // The span is runs of the packed loop, each restarted from the exactly stepped
+            // values every PACKED_RUN pixels.
+            let mut other = [Rgb565::BLACK; 700];
+            let steps = Rgb565::prepare_steps(step);
+            let mut value = start;
+            for run in other[..n].chunks_mut(PACKED_RUN) {
+                run_565(run, lanes(value), &steps);
+                for (v, s) in value.iter_mut().zip(step) {
+                    *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
+                }
+            }
+            assert_eq!(other[..n], out[..n]);
+            // Short spans step the packed loop's lanes one pixel at a time: the same pixels.
+            let short = n.min(6);
+            run_565(&mut other[..short], lanes(start), &steps);
+            fill_565(&mut out[..short], start, &steps, [0, 1, 2]);
+            assert_eq!(other[..short], out[..short]);
+            for (i, (px, b)) in out[..n].iter().zip(&bgr[..n]).enumerate() {
+                for (got, k) in [px.channels(), b.channels()]
+                    .into_iter()
+                    .flat_map(|c| (0..3).map(move |k| (c, k)))
+                {
+                    let plain = (f64::from(start[k]) + f64::from(step[k] as i32) * i as f64)
+                        / f64::from(1u32 << STEP_BITS);
+                    let lo = (plain - 1.0 / 16.0).floor().max(0.0);
+                    let hi = (plain + 1.0 / 16.0).floor().min(f64::from(Rgb565::MAX[k]));
+                    let g = f64::from(got[k]);
+                    assert!(lo <= g && g <= hi, "pixel {i} channel {k}: {g} vs {plain}");
+                }
+            }
+        }
+    }
+
+    /// The SSE2 row of eight 5-6-5 pixels is the portable one (and so the span loop's lanes,
+    /// which the tiny tests check), over values, steps and first pixels of every range.
+    #[cfg(sse2_rows)]
+    #[test]
+    fn sse2_rows_are_the_portable_rows() {
+        let mut next = crate::xorshift(0x0005_5e20_0001_0001);
+        for _ in 0..100_000 {
+            let (v, s) = (next(), next());
+            let start = [
+                v as u32 >> (v >> 59),
+                (v >> 20) as u32,
+                (v >> 36) as u32 >> 2,
+            ];
+            let lane = [
+                s as u32 >> (s >> 60),
+                (s >> 16) as u32,
+                (s >> 32) as u32 >> (s >> 59),
+            ];
+            let first = (next() % 9) as u32;
+            assert_eq!(
+                arch::x86_64::row_565(start, first, &lane),
+                row_565_portable(start, first, &lane),
+                "{start:?} {lane:?} {first}"
+            );
+        }
+    }
+}

@@ -1,0 +1,147 @@
+//! The depth target: a colour framebuffer with a 16-bit z-buffer, and the projected vertices the
+//! depth-tested fills take.
+
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::Pixel;
+
+use crate::draw::SliceFramebuffer;
+use crate::fixed_point::Coord;
+
+/// The z-buffer value of an empty pixel; nothing is ever drawn at this depth.
+pub const DEPTH_CLEAR: u16 = u16::MAX;
+
+/// The depth of the far plane (the near plane is at 0).
+pub const DEPTH_FAR: u16 = u16::MAX - 1;
+
+/// A colour framebuffer with a 16-bit z-buffer of the same size, both caller-owned.
+///
+/// It is also a plain [`DrawTarget`] for 2D overlays: drawing ignores and keeps the depth, except
+/// `clear`, which resets it as well.
+#[derive(Debug)]
+pub struct DepthTarget<'a, C> {
+    color: SliceFramebuffer<'a, C>,
+    depth: &'a mut [u16],
+    width: u32,
+}
+
+impl<'a, C: PixelColor> DepthTarget<'a, C> {
+    /// Wraps row-major `width × height` colour and depth buffers, or `None` if either is too
+    /// short. The depth buffer is not cleared: call [`clear`](Self::clear) or
+    /// [`clear_depth`](Self::clear_depth) before the first frame.
+    pub fn new(color: &'a mut [C], depth: &'a mut [u16], width: u32, height: u32) -> Option<Self> {
+        let len = (width as usize).checked_mul(height as usize)?;
+        let color = SliceFramebuffer::new(color, width, height)?;
+        let depth = depth.get_mut(..len)?;
+        Some(DepthTarget {
+            color,
+            depth,
+            width,
+        })
+    }
+
+    /// The colour buffer.
+    pub fn framebuffer(&self) -> &SliceFramebuffer<'a, C> {
+        &self.color
+    }
+
+    /// The colour buffer, mutably.
+    pub fn framebuffer_mut(&mut self) -> &mut SliceFramebuffer<'a, C> {
+        &mut self.color
+    }
+
+    /// The z-buffer, row-major.
+    pub fn depth(&self) -> &[u16] {
+        self.depth
+    }
+
+    /// The depth at `(x, y)`, or `None` outside the buffer.
+    pub fn depth_at(&self, x: i32, y: i32) -> Option<u16> {
+        let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
+        if x >= self.width {
+            return None;
+        }
+        self.depth
+            .get(y as usize * self.width as usize + x as usize)
+            .copied()
+    }
+
+    /// Resets every depth to [`DEPTH_CLEAR`].
+    pub fn clear_depth(&mut self) {
+        self.depth.fill(DEPTH_CLEAR);
+    }
+
+    /// Fills the colour buffer with `color` and resets the z-buffer.
+    pub fn clear(&mut self, color: C) {
+        self.color.pixels_mut().fill(color);
+        self.clear_depth();
+    }
+
+    /// Colour and depth of `len` pixels of row `y` from column `x`, if all inside.
+    #[inline]
+    pub(crate) fn rows_mut(&mut self, x: i32, y: i32, len: u32) -> Option<(&mut [C], &mut [u16])> {
+        let colors = self.color.row_mut(x, y, len)?;
+        let start = y as usize * self.width as usize + x as usize;
+        let depths = self.depth.get_mut(start..start + len as usize)?;
+        Some((colors, depths))
+    }
+}
+
+impl<C: PixelColor> OriginDimensions for DepthTarget<'_, C> {
+    fn size(&self) -> Size {
+        self.color.size()
+    }
+}
+
+impl<C: PixelColor> DrawTarget for DepthTarget<'_, C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        self.color.draw_iter(pixels)
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        self.color.fill_contiguous(area, colors)
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        self.color.fill_solid(area, color)
+    }
+
+    /// Fills the colour buffer and resets the z-buffer, like the inherent
+    /// [`DepthTarget::clear`].
+    fn clear(&mut self, color: C) -> Result<(), Self::Error> {
+        DepthTarget::clear(self, color);
+        Ok(())
+    }
+}
+
+/// A projected vertex: sub-pixel screen position and depth (0 near … [`DEPTH_FAR`] far).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ScreenVertex {
+    /// Horizontal position.
+    pub x: Coord,
+    /// Vertical position (down).
+    pub y: Coord,
+    /// Depth; smaller is nearer.
+    pub depth: u16,
+}
+
+impl ScreenVertex {
+    /// A vertex at `(x, y)` with `depth`.
+    pub const fn new(x: Coord, y: Coord, depth: u16) -> Self {
+        ScreenVertex { x, y, depth }
+    }
+
+    /// The position as a coordinate pair.
+    pub fn position(&self) -> (Coord, Coord) {
+        (self.x, self.y)
+    }
+}

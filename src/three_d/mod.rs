@@ -1,0 +1,26 @@
+//! A fixed-point 3D pipeline: meshes transformed, clipped, projected, culled, lit and drawn with
+//! a 16-bit z-buffer.
+//!
+//! * `math` — [`Scalar`] (`I16F16`), [`Vec3`], [`Vec4`], [`Mat4`] and [`Angle`]: integer
+//!   arithmetic with wide accumulation, no floats.
+//! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
+//! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
+//!   per-pixel lighting of quadratically interpolated normals).
+//! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
+//! * [`meshes`] — meshes in flash (an icosphere and a torus) and, on the host, mesh data to
+//!   generate them; [`obj`] reads Wavefront OBJ files (host).
+
+mod depth;
+mod math;
+pub mod meshes;
+#[cfg(feature = "std")]
+pub mod obj;
+mod pipeline;
+mod shading;
+
+pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
+pub use math::{inv_sqrt, normalize_wide, Angle, Mat4, Scalar, Vec3, Vec4, SCALAR_BITS};
+pub use pipeline::{signed_area2, Cull, DrawStats, Mesh, Pipeline, GUARD_BAND};
+pub use shading::{
+    draw_flat, draw_gouraud, draw_quadratic, shade, Light, Material, QuadraticNormals, Shading,
+};
