@@ -32,7 +32,7 @@ use super::framebuffer::{fill_row, SliceFramebuffer};
 use super::tiny;
 use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
 use crate::fixed_point::{pixel_corner, Coord};
-use crate::raster::compact::{CompactColors, CompactSpans, CompactTriangle, TooLarge};
+use crate::raster::compact::{CompactColors, CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{
     AttributePlane, InverseArea, SmallPlanes, StepContext, Stepped, MAX_CHUNK,
@@ -287,7 +287,7 @@ fn fold_compact_spans<B>(
     init: B,
     mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
 ) -> Result<B, B> {
-    let Ok(spans) = CompactSpans::of(triangle) else {
+    let Ok(spans) = triangle.walk() else {
         return Err(init);
     };
     let (colors, steps) = colors();
@@ -361,7 +361,7 @@ impl<C: PixelColor> SolidTriangle<C> {
                     Ok(done) => return done,
                     Err(init) => init,
                 };
-                match CompactSpans::of(&triangle) {
+                match triangle.walk() {
                     Ok(spans) => return spans.fold(init, |acc, span, _, _| f(acc, span)),
                     Err(TooLarge) => init,
                 }

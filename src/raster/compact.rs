@@ -43,7 +43,7 @@ use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::raster::arith::{
     leading_zeros_32, mul_i32_wide, mul_u32_u33, reciprocal_63, wrapping_mul_i32,
 };
-use crate::raster::walk::Span;
+use crate::raster::walk::{Boundary, Walk};
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
 /// (2¹⁹, that is 2048 pixels).
@@ -157,87 +157,32 @@ impl GradientScale {
     }
 }
 
-/// One boundary of the rows' spans: the first covered column (an edge with `a > 0`) or the last
-/// one (`a < 0`), relative to the region's first column.
-///
-/// Row to row the column moves by `⌊b / |a|⌋` towards the edge's outside and the remainder
-/// `rem` (in `[0, |a|)`) grows by `b mod |a|`; a carry moves it one column more (left for start
-/// boundaries, right for end ones).
-#[derive(Debug, Clone, Copy)]
-struct Boundary {
-    x: i32,
-    rem: u32,
-    step: i32,
-    rem_step: u32,
-    m: u32,
-}
-
-impl Boundary {
-    /// The boundary of the edge with coefficients `a ≠ 0`, `b` from the pixel centre at
-    /// `offset` (sub-pixels) from the edge's start vertex on; `None` if the edge's value there
-    /// does not fit (never inside a compact triangle's bounding box).
-    #[inline(never)]
-    fn new(a: i32, b: i32, offset: (i32, i32)) -> Option<Self> {
-        // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
-        let e = mul_i32_wide(a, offset.0) + mul_i32_wide(b, offset.1);
-        let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
-        // Left edges (a > 0) own the centres on them; right edges do not.
-        let k = i32::try_from((e >> SUBPIXEL_BITS) - i64::from(on_lattice && a < 0)).ok()?;
-        let m = NonZeroU32::new(a.unsigned_abs()).unwrap_or(NonZeroU32::MIN);
-        let (q, rem) = div_floor(k, m);
-        let (qb, rem_step) = div_floor(b, m);
-        if a > 0 {
-            // Covered from ⌈−k/a⌉ = −⌊k/a⌋ on; the column moves left by ⌊b/a⌋ (+1 on a carry).
-            Some(Boundary {
-                x: q.wrapping_neg(),
-                rem,
-                step: qb.wrapping_neg(),
-                rem_step,
-                m: m.get(),
-            })
-        } else {
-            // Covered up to ⌊k/|a|⌋.
-            Some(Boundary {
-                x: q,
-                rem,
-                step: qb,
-                rem_step,
-                m: m.get(),
-            })
-        }
+/// The boundary (see [`Walk`]) of the edge with coefficients `a ≠ 0`, `b` from the pixel centre at
+/// `offset` (sub-pixels) from the edge's start vertex on; `None` if the edge's value there
+/// does not fit (never inside a compact triangle's bounding box).
+#[inline(never)]
+fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary<i32>> {
+    // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
+    let e = mul_i32_wide(a, offset.0) + mul_i32_wide(b, offset.1);
+    let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
+    // Left edges (a > 0) own the centres on them; right edges do not.
+    let k = i32::try_from((e >> SUBPIXEL_BITS) - i64::from(on_lattice && a < 0)).ok()?;
+    let m = NonZeroU32::new(a.unsigned_abs()).unwrap_or(NonZeroU32::MIN);
+    let (q, rem) = div_floor(k, m);
+    let (qb, rem_step) = div_floor(b, m);
+    if a > 0 {
+        // Covered from ⌈−k/a⌉ = −⌊k/a⌋ on; the column moves left by ⌊b/a⌋ (+1 on a carry).
+        Some(Boundary::from_parts(
+            q.wrapping_neg(),
+            rem,
+            qb.wrapping_neg(),
+            rem_step,
+            m.get(),
+        ))
+    } else {
+        // Covered up to ⌊k/|a|⌋.
+        Some(Boundary::from_parts(q, rem, qb, rem_step, m.get()))
     }
-
-    /// The next row's boundary; `CARRY` is −1 for start boundaries, +1 for end ones.
-    #[inline(always)]
-    fn advance<const CARRY: i32>(&mut self) {
-        // rem, rem_step < m ≤ 2¹⁹: no overflow; columns stay within ±2³⁰ over the region.
-        self.rem += self.rem_step;
-        self.x = self.x.wrapping_add(self.step);
-        if self.rem >= self.m {
-            self.rem -= self.m;
-            self.x = self.x.wrapping_add(CARRY);
-        }
-    }
-}
-
-/// The exact covered spans of a compact triangle inside a clip rectangle, and what colour set-up
-/// needs of it.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct CompactSpans {
-    /// The first row's start and end boundaries …
-    left: Boundary,
-    right: Boundary,
-    /// … and the one that replaces the start (`next_left`) or end boundary at row offset
-    /// `switch` (from `y0`; at most `rows`).
-    next: Boundary,
-    next_left: bool,
-    switch: u32,
-    /// First column and row of the walk.
-    x0: i32,
-    y0: i32,
-    /// Last column offset (width − 1) and number of rows.
-    last: i32,
-    rows: u32,
 }
 
 /// The oriented set-up of a compact triangle: what the colour planes need.
@@ -382,10 +327,11 @@ impl CompactTriangle {
     }
 }
 
-impl CompactSpans {
-    /// The walk of `triangle`.
+impl CompactTriangle {
+    /// The walk of the triangle over its pixels; `Err` if an edge value does not fit 32 bits
+    /// (never for a compact triangle).
     #[inline(always)]
-    pub(crate) fn of(triangle: &CompactTriangle) -> Result<CompactSpans, TooLarge> {
+    pub(crate) fn walk(&self) -> Result<Walk<i32>, TooLarge> {
         let CompactTriangle {
             setup,
             origin,
@@ -397,7 +343,7 @@ impl CompactSpans {
             y0,
             y1,
             ..
-        } = *triangle;
+        } = *self;
         let (px, py) = (setup.dx, setup.dy);
 
         // One edge bounds one side of every row; the other side has one edge too (and the third
@@ -428,7 +374,7 @@ impl CompactSpans {
             let s = starts.get(k).copied().unwrap_or_default();
             // Inside the bounding box: below 2¹⁹ (and the row offset below 2¹¹ pixels).
             let offset = (px - s.0, py.wrapping_add(row << SUBPIXEL_BITS) - s.1);
-            Boundary::new(a, b, offset).ok_or(TooLarge)
+            boundary(a, b, offset).ok_or(TooLarge)
         };
         let rows = y1 - y0;
         let (first, next, switch) = if n == 2 {
@@ -458,66 +404,13 @@ impl CompactSpans {
         } else {
             (single, first)
         };
-        Ok(CompactSpans {
-            left,
-            right,
-            next,
-            next_left: pair_left,
-            switch: switch as u32,
-            x0,
-            y0,
-            last: x1 - x0,
-            rows: rows as u32 + 1,
-        })
-    }
-
-    /// Folds `f` over the covered spans, top to bottom, handing it each span and its offsets
-    /// from the walk's first pixel: columns and rows.
-    #[inline(always)]
-    pub(crate) fn fold<B>(self, init: B, mut f: impl FnMut(B, Span, u32, u32) -> B) -> B {
-        let CompactSpans {
-            mut left,
-            mut right,
-            next,
-            next_left,
-            switch,
-            x0,
-            y0,
-            last,
-            rows,
-        } = self;
-        let mut acc = init;
-        let mut row = 0;
-        // Two stretches of rows, the second after the edge switch: no per-row test for it.
-        let mut stop = switch;
-        loop {
-            while row < stop {
-                let y = y0.wrapping_add(row as i32);
-                let start = left.x.max(0);
-                let end = right.x.min(last);
-                if start <= end {
-                    let span = Span {
-                        y,
-                        x_start: x0 + start,
-                        x_end: x0 + end + 1,
-                    };
-                    acc = f(acc, span, start as u32, row);
-                }
-                row += 1;
-                left.advance::<-1>();
-                right.advance::<1>();
-            }
-            if stop == rows {
-                break;
-            }
-            stop = rows;
-            if next_left {
-                left = next;
-            } else {
-                right = next;
-            }
-        }
-        acc
+        Ok(Walk::new(
+            (left, right),
+            (next, pair_left, switch as u32),
+            (x0, y0),
+            x1 - x0,
+            rows as u32 + 1,
+        ))
     }
 }
 
@@ -659,7 +552,7 @@ mod tests {
         random_cases(0x00c0_ffee_1234_5678, 30_000, |v, clip| {
             let mut got = [[false; 48]; 40];
             if let Ok(Some(triangle)) = CompactTriangle::new(coords(v), &clip) {
-                let spans = CompactSpans::of(&triangle).expect("a compact walk");
+                let spans = triangle.walk().expect("a compact walk");
                 walked += 1;
                 spans.fold((), |(), span, _, _| {
                     for x in span.x_start..span.x_end {
@@ -697,10 +590,8 @@ mod tests {
             let Ok(Some(triangle)) = CompactTriangle::new(coords(v), &clip) else {
                 return;
             };
-            let (spans, setup) = (
-                CompactSpans::of(&triangle).expect("a compact walk"),
-                triangle.setup,
-            );
+            assert!(triangle.walk().is_ok());
+            let setup = triangle.setup;
             let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
             let colors = CompactColors::new(&setup, channels);
             let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
@@ -709,11 +600,11 @@ mod tests {
             };
             let area2 = cross(p[0], p[1], p[2]);
             let modulus = area2.abs() << 32;
-            for row in 0..spans.rows {
-                for column in 0..=spans.last as u32 {
+            for row in 0..=(triangle.y1 - triangle.y0) as u32 {
+                for column in 0..=(triangle.x1 - triangle.x0) as u32 {
                     let q = (
-                        i128::from(spans.x0 + column as i32) * 256 + 128,
-                        i128::from(spans.y0 + row as i32) * 256 + 128,
+                        i128::from(triangle.x0 + column as i32) * 256 + 128,
+                        i128::from(triangle.y0 + row as i32) * 256 + 128,
                     );
                     // λₖ·area2 = the edge function of the opposite edge at q.
                     let lambda = [

@@ -1,26 +1,23 @@
-//! Span traversal: exact covered spans per row, by stepping each edge's boundary column.
+//! The walk: the exact covered spans of a triangle over a region, top to bottom.
 //!
-//! Each edge's reduced function `K(i, j) = a·i + b·j + k` (see [`edge`](crate::raster::edge)) is `≥ 0`
-//! on one side of a boundary column per row. For an edge that bounds the span's start (`a > 0`)
-//! that column is `⌈−K(0, j)/a⌉`; for one that bounds its end (`a < 0`) it is `⌊K(0, j)/|a|⌋`.
-//! Both are stepped from row to row like a Bresenham line: the column moves by the precomputed
-//! quotient of `b / |a|`, the remainder accumulates, and one comparison carries it. So each row
-//! costs two additions and a compare per edge, whatever the slope, and the decision is exact —
-//! no rounding anywhere. Quotients below 4 are found by subtraction, so small triangles need no
-//! division at all (Cortex-M0 has no divider).
+//! Each edge's reduced function `K(i, j) = a·i + b·j + k` (see [`edge`](crate::raster::edge)) is
+//! `≥ 0` on one side of a boundary column per row. For an edge that bounds the span's start
+//! (`a > 0`) that column is `⌈−K(0, j)/a⌉`; for one that bounds its end (`a < 0`) it is
+//! `⌊K(0, j)/|a|⌋`. Both are stepped from row to row like a Bresenham line: the column moves by
+//! the precomputed quotient of `b / |a|`, the remainder accumulates, and one comparison carries
+//! it. So each row costs two additions and a compare per boundary, whatever the slope, and the
+//! decision is exact — no rounding anywhere.
 //!
-//! Of the edges that bound a row's start, only the tighter one is stepped: above the middle vertex
-//! of that side it is the upper edge, below it the lower one (see `NarrowSpans`), so a row costs
-//! two boundary steps in `i32`. Regions where a boundary column would leave ±2³⁰ (near-horizontal
-//! edges of far off-screen triangles) step every crossing edge in `i64` instead. Small regions
-//! (small triangles, up to about 8×6 pixels) skip the boundary set-up, whose divisions and edge
-//! chains cost more than testing their few pixels: each pixel's edge values are stepped by one
-//! addition per edge (`SmallSpans`).
+//! One [`Walk`] serves every triangle: one start and one end boundary a row, switching edges at
+//! the middle vertex. It steps columns in `i32` when they stay within ±2³⁰ of the region over
+//! its rows (every on-screen triangle), in `i64` otherwise (far off-screen slivers); the set-up
+//! is the compact one ([`compact`](crate::raster::compact), 32-bit, bounding boxes under
+//! 2048 px) or the general one here (`i64`/`i128` edge functions, any [`Coord`]).
 //!
-//! Edge functions are first tested at the corners of the clipped region: an edge that excludes
-//! the whole region rejects the triangle, an edge that includes all of it is dropped. The edges
-//! that remain cross the region, so their values there are below `|a|·(W+2) + |b|·H < 2^58` and
-//! every stepped quantity fits `i64`.
+//! The general set-up first tests the edge functions at the corners of the clipped region: an
+//! edge that excludes the whole region rejects the triangle, an edge that includes all of it is
+//! dropped. The edges that remain cross the region, so their values there are below
+//! `|a|·(W+2) + |b|·H < 2^58` and every stepped quantity fits `i64`.
 //!
 //! ```
 //! use embedded_graphics::{prelude::*, primitives::Rectangle};
@@ -37,9 +34,12 @@
 //! assert_eq!(pixels, 16);
 //! ```
 
+use core::ops::{Add, Sub};
+
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
+use crate::raster::compact::CompactTriangle;
 use crate::raster::edge::{dot2, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
@@ -88,60 +88,294 @@ fn div_mod_floor(n: i64, d: i64) -> (i64, i64) {
     }
 }
 
-/// The boundary column of one edge, stepped exactly from row to row.
-///
-/// `rem` is the edge's reduced value at the boundary column, kept in `[0, m)` with `m = |a|`.
-#[derive(Debug, Clone, Copy)]
-struct Boundary {
-    /// Boundary column: first inside column (start edges) or last one (end edges); unclamped.
-    x: i64,
-    rem: i64,
-    m: i64,
-    /// Column change per row before the carry, and remainder change per row.
-    step: i64,
-    rem_step: i64,
-    /// Column change of the carry: −1 for start edges, +1 for end edges.
-    carry: i64,
+/// The integer width boundary columns are stepped in: `i32` for every triangle whose columns
+/// stay within ±2³⁰ of the region over its rows (all but far off-screen slivers), `i64` for the
+/// rest.
+pub(crate) trait Width: Copy + Ord + core::fmt::Debug {
+    /// The remainders' type (`[0, m)`, `m` below 2³⁰ for `i32` and 2³⁴ for `i64`).
+    type Rem: Copy
+        + Ord
+        + Default
+        + core::fmt::Debug
+        + Add<Output = Self::Rem>
+        + Sub<Output = Self::Rem>;
+    /// Column offset 0 (the region's first column).
+    const ZERO: Self;
+    /// `self + other`, wrapping (never wraps under the walk's bounds).
+    fn plus(self, other: Self) -> Self;
+    /// `self + 1` (`up`) or `self − 1`, wrapping.
+    fn carry(self, up: bool) -> Self;
+    /// The region's last column offset, below 2²⁵.
+    fn from_column(column: i32) -> Self;
+    /// A column offset known to lie in `[0, last]`.
+    fn column(self) -> u32;
 }
 
-impl Boundary {
-    /// For edge coefficients `a ≠ 0`, `b` and value `k` at `(x0, row)`.
-    fn new(a: i64, b: i64, k: i64, x0: i64) -> Self {
-        let m = a.abs();
-        let (q, rem) = div_mod_floor(k, m);
-        let (step, rem_step) = div_mod_floor(b, m);
-        if a > 0 {
-            // First x with k + a·(x − x0) ≥ 0; moving one column left subtracts m.
-            Boundary {
-                x: x0 - q,
-                rem,
-                m,
-                step: -step,
-                rem_step,
-                carry: -1,
-            }
+impl Width for i32 {
+    type Rem = u32;
+    const ZERO: Self = 0;
+    #[inline(always)]
+    fn plus(self, other: Self) -> Self {
+        self.wrapping_add(other)
+    }
+    #[inline(always)]
+    fn carry(self, up: bool) -> Self {
+        if up {
+            self.wrapping_add(1)
         } else {
-            // Last x with k − m·(x − x0) ≥ 0; moving one column right subtracts m.
-            Boundary {
-                x: x0 + q,
-                rem,
-                m,
-                step,
-                rem_step,
-                carry: 1,
-            }
+            self.wrapping_sub(1)
+        }
+    }
+    #[inline(always)]
+    fn from_column(column: i32) -> Self {
+        column
+    }
+    #[inline(always)]
+    fn column(self) -> u32 {
+        self as u32
+    }
+}
+
+impl Width for i64 {
+    type Rem = u64;
+    const ZERO: Self = 0;
+    #[inline(always)]
+    fn plus(self, other: Self) -> Self {
+        self.wrapping_add(other)
+    }
+    #[inline(always)]
+    fn carry(self, up: bool) -> Self {
+        if up {
+            self.wrapping_add(1)
+        } else {
+            self.wrapping_sub(1)
+        }
+    }
+    #[inline(always)]
+    fn from_column(column: i32) -> Self {
+        i64::from(column)
+    }
+    #[inline(always)]
+    fn column(self) -> u32 {
+        self as u32
+    }
+}
+
+/// One boundary of the rows' spans: the first covered column (an edge with `a > 0`, a start
+/// boundary) or the last one (`a < 0`, an end boundary), as an offset from the region's first
+/// column.
+///
+/// Row to row the column moves by `⌊b / |a|⌋` towards the edge's outside and the remainder `rem`
+/// (the edge's reduced value at the column, in `[0, |a|)`) grows by `b mod |a|`; a carry moves
+/// it one column more (left for start boundaries, right for end ones). Exact: no rounding.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Boundary<W: Width> {
+    x: W,
+    rem: W::Rem,
+    step: W,
+    rem_step: W::Rem,
+    m: W::Rem,
+}
+
+impl<W: Width> Boundary<W> {
+    /// The boundary with column `x`, remainder `rem` and per-row steps, for `|a| = m`.
+    #[inline(always)]
+    pub(crate) fn from_parts(x: W, rem: W::Rem, step: W, rem_step: W::Rem, m: W::Rem) -> Self {
+        Boundary {
+            x,
+            rem,
+            step,
+            rem_step,
+            m,
         }
     }
 
-    /// Moves to the next row: the value at the old column grows by `b`.
+    /// The next row's boundary; `END` for end boundaries (the carry moves right).
+    #[inline(always)]
+    fn advance<const END: bool>(&mut self) {
+        // rem, rem_step < m: no overflow; columns stay within the width's bound over the region.
+        self.rem = self.rem + self.rem_step;
+        self.x = self.x.plus(self.step);
+        if self.rem >= self.m {
+            self.rem = self.rem - self.m;
+            self.x = self.x.carry(END);
+        }
+    }
+}
+
+/// The walk of a triangle over a region: the exact covered spans, top to bottom.
+///
+/// One start and one end boundary bound every row. The other side's chain of edges has one edge,
+/// or two that meet at its middle vertex: above that vertex's row the upper edge binds, from its
+/// row on the lower one (convexity: the lines cross only at the vertex, and the exact column
+/// rounding preserves their order; in the row through the vertex both give the same column, as
+/// both are left edges or both are not). So the rows come in two stretches, each with two fixed
+/// boundaries and no per-row test for the switch. Horizontal edges only limit the rows.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Walk<W: Width> {
+    /// The current row's start and end boundaries …
+    left: Boundary<W>,
+    right: Boundary<W>,
+    /// … and the one that replaces the start (`next_left`) or end boundary at row offset
+    /// `switch` (at most `rows`).
+    next: Boundary<W>,
+    next_left: bool,
+    switch: u32,
+    /// First column and row of the region.
+    x0: i32,
+    y0: i32,
+    /// Last column offset (width − 1) and number of rows.
+    last: i32,
+    rows: u32,
+    /// The next row to walk, as an offset from `y0`.
+    row: u32,
+}
+
+impl<W: Width> Walk<W> {
+    /// A walk with no rows.
+    pub(crate) fn empty() -> Self {
+        let none = Boundary::from_parts(
+            W::ZERO,
+            W::Rem::default(),
+            W::ZERO,
+            W::Rem::default(),
+            W::Rem::default(),
+        );
+        Walk::new((none, none), (none, false, 0), (0, 0), -1, 0)
+    }
+
+    /// The walk of rows `y0 .. y0 + rows` and columns `x0 ..= x0 + last`, starting with the
+    /// boundaries `left` and `right`; at row offset `switch` (if below `rows`) `next` replaces
+    /// the start boundary (`next_left`) or the end one.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn new(
+        (left, right): (Boundary<W>, Boundary<W>),
+        (next, next_left, switch): (Boundary<W>, bool, u32),
+        (x0, y0): (i32, i32),
+        last: i32,
+        rows: u32,
+    ) -> Self {
+        let mut walk = Walk {
+            left,
+            right,
+            next,
+            next_left,
+            switch: switch.min(rows),
+            x0,
+            y0,
+            last,
+            rows,
+            row: 0,
+        };
+        // From `switch` on, the walk has taken `next` (the invariant `fold` relies on).
+        if walk.switch == 0 {
+            walk.take_next();
+        }
+        walk
+    }
+
+    /// The span of the current row between the boundaries, clipped to the region, with its
+    /// first column's offset from the region's first column.
+    #[inline(always)]
+    fn span(&self) -> Option<(Span, u32)> {
+        let start = self.left.x.max(W::ZERO);
+        let end = self.right.x.min(W::from_column(self.last));
+        // 0 ≤ start ≤ end ≤ last < 2²⁵: the offsets fit.
+        (start <= end).then(|| {
+            let (start, end) = (start.column(), end.column());
+            let x_start = self.x0.wrapping_add(start as i32);
+            let span = Span {
+                y: self.y0.wrapping_add(self.row as i32),
+                x_start,
+                x_end: self.x0.wrapping_add(end as i32).wrapping_add(1),
+            };
+            (span, start)
+        })
+    }
+
+    /// Moves to the next row (the switch of boundaries included).
     #[inline(always)]
     fn advance(&mut self) {
-        self.x += self.step;
-        self.rem += self.rem_step;
-        if self.rem >= self.m {
-            self.rem -= self.m;
-            self.x += self.carry;
+        self.row += 1;
+        self.left.advance::<false>();
+        self.right.advance::<true>();
+        if self.row == self.switch {
+            self.take_next();
         }
+    }
+
+    #[inline(always)]
+    fn take_next(&mut self) {
+        if self.next_left {
+            self.left = self.next;
+        } else {
+            self.right = self.next;
+        }
+    }
+
+    /// Folds `f` over the covered spans from the current row on, top to bottom, handing it each
+    /// span and its offsets from the region's first pixel: columns and rows.
+    #[inline(always)]
+    pub(crate) fn fold<B>(self, init: B, mut f: impl FnMut(B, Span, u32, u32) -> B) -> B {
+        let Walk {
+            mut left,
+            mut right,
+            next,
+            next_left,
+            switch,
+            x0,
+            y0,
+            last,
+            rows,
+            mut row,
+        } = self;
+        let mut acc = init;
+        // Two stretches of rows, the second after the switch: no per-row test for it. (From
+        // `switch` on, `left` and `right` already hold the second stretch's boundaries.)
+        let mut stop = if row < switch { switch } else { rows };
+        loop {
+            while row < stop {
+                let start = left.x.max(W::ZERO);
+                let end = right.x.min(W::from_column(last));
+                if start <= end {
+                    let (start, end) = (start.column(), end.column());
+                    let span = Span {
+                        y: y0.wrapping_add(row as i32),
+                        x_start: x0.wrapping_add(start as i32),
+                        x_end: x0.wrapping_add(end as i32).wrapping_add(1),
+                    };
+                    acc = f(acc, span, start, row);
+                }
+                row += 1;
+                left.advance::<false>();
+                right.advance::<true>();
+            }
+            if stop == rows {
+                break;
+            }
+            stop = rows;
+            if next_left {
+                left = next;
+            } else {
+                right = next;
+            }
+        }
+        acc
+    }
+
+    /// The next covered span with its column and row offsets, or `None` after the last row.
+    #[inline]
+    pub(crate) fn next_span(&mut self) -> Option<(Span, u32, u32)> {
+        while self.row < self.rows {
+            let row = self.row;
+            let span = self.span();
+            self.advance();
+            if let Some((span, column)) = span {
+                return Some((span, column, row));
+            }
+        }
+        None
     }
 }
 
@@ -186,24 +420,6 @@ impl Region {
     pub fn height(&self) -> i64 {
         i64::from(self.y1) - i64::from(self.y0) + 1
     }
-}
-
-/// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom.
-///
-/// Three walkers give the same exact spans: the common one steps one start and one end boundary
-/// per row in `i32` (switching edges at the middle vertex); triangles whose boundaries leave the
-/// `i32` range over the region (far off-screen slivers) step every crossing edge in `i64`; small
-/// regions test their pixels one by one, with no boundary set-up.
-#[derive(Debug, Clone)]
-pub struct Spans {
-    walk: Walk,
-}
-
-#[derive(Debug, Clone)]
-enum Walk {
-    Narrow(NarrowSpans),
-    Wide(WideSpans),
-    Small(SmallSpans),
 }
 
 /// How one edge function meets the region.
@@ -252,205 +468,136 @@ fn classify(setup: &TriangleSetup, region: &Region, out: &mut [Crossing; 3]) -> 
     true
 }
 
-impl Spans {
-    /// Spans of `setup` inside `region`.
-    // One copy for all callers; everything it calls is inlined into it, so the walker is built
-    // in place in the returned value rather than copied there.
-    #[inline(never)]
-    pub fn new(setup: &TriangleSetup, region: Region) -> Spans {
-        let crossings = &mut [Crossing::Inside; 3];
-        if !classify(setup, &region, crossings) {
-            return Spans::empty();
-        }
-        if region.height() * (region.width() - 2) <= SMALL_AREA {
-            return Spans {
-                walk: Walk::Small(SmallSpans::new(&region, crossings)),
-            };
-        }
-        let walk = match NarrowSpans::new(setup, &region, crossings) {
-            Some(narrow) => Walk::Narrow(narrow),
-            None => Walk::Wide(WideSpans::new(&region, crossings)),
-        };
-        Spans { walk }
-    }
-
-    /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
-    #[inline(always)]
-    pub fn of_triangle(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
-        // By reference: moving the setup out of the `Option` would copy it.
-        let setup = TriangleSetup::new(v);
-        setup
-            .as_ref()
-            .and_then(|s| Region::new(s, clip).map(|r| Spans::new(s, r)))
-            .unwrap_or_else(Spans::empty)
-    }
-
-    /// An iterator with no spans.
-    pub fn empty() -> Spans {
-        Spans {
-            walk: Walk::Narrow(NarrowSpans::empty()),
-        }
-    }
-
-    /// Whether the spans are stepped in `i32` (the fast walker for regions wider than a few
-    /// pixels).
-    pub fn is_narrow(&self) -> bool {
-        matches!(self.walk, Walk::Narrow(_))
-    }
-
-    /// Whether the region is narrow enough to be walked pixel by pixel.
-    pub fn is_small(&self) -> bool {
-        matches!(self.walk, Walk::Small(_))
-    }
-}
-
-impl Iterator for Spans {
-    type Item = Span;
-
-    #[inline]
-    fn next(&mut self) -> Option<Span> {
-        match &mut self.walk {
-            Walk::Narrow(n) => n.next(),
-            Walk::Wide(w) => w.next(),
-            Walk::Small(t) => t.next(),
-        }
-    }
-
-    /// One dispatch per triangle; the walker's state then lives in registers.
-    #[inline]
-    fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, f: F) -> B {
-        match self.walk {
-            Walk::Narrow(n) => n.fold(init, f),
-            Walk::Wide(w) => fold_wide(w, init, f),
-            Walk::Small(t) => t.fold(init, f),
-        }
-    }
-}
-
-/// The rare wide walk, out of line: its frame stays off the common path's stack.
-#[inline(never)]
-#[cold]
-fn fold_wide<B, F: FnMut(B, Span) -> B>(w: WideSpans, init: B, f: F) -> B {
-    w.fold(init, f)
-}
-
-/// A boundary column stepped in `i32`: the [`Boundary`] of one edge whose columns stay within
-/// ±2³⁰ over the rows it is used for.
+/// A boundary of the general set-up: column relative to the region's first column, remainder and
+/// steps, before the choice of width.
 #[derive(Debug, Clone, Copy)]
-struct Boundary32 {
-    x: i32,
-    rem: i32,
-    m: i32,
-    step: i32,
-    rem_step: i32,
+struct WideBoundary {
+    x: i64,
+    rem: i64,
+    step: i64,
+    rem_step: i64,
+    m: i64,
 }
 
-impl Boundary32 {
-    /// A boundary that never limits the span: far left for starts, far right for ends.
-    const fn open(x: i32) -> Self {
-        Boundary32 {
-            x,
+impl WideBoundary {
+    /// For edge coefficients `a ≠ 0`, `b` and reduced value `k` at the region's first column.
+    fn new(a: i64, b: i64, k: i64) -> Self {
+        let m = a.abs();
+        let (q, rem) = div_mod_floor(k, m);
+        let (step, rem_step) = div_mod_floor(b, m);
+        if a > 0 {
+            // First x with k + a·x ≥ 0; moving one column left subtracts m.
+            WideBoundary {
+                x: q.wrapping_neg(),
+                rem,
+                step: step.wrapping_neg(),
+                rem_step,
+                m,
+            }
+        } else {
+            // Last x with k − m·x ≥ 0; moving one column right subtracts m.
+            WideBoundary {
+                x: q,
+                rem,
+                step,
+                rem_step,
+                m,
+            }
+        }
+    }
+
+    /// A boundary that never limits the span: far left (start) or far right (end) of any
+    /// region.
+    const fn open(end: bool) -> Self {
+        WideBoundary {
+            x: if end { 1 << 40 } else { -(1 << 40) },
             rem: 0,
-            m: 1,
             step: 0,
             rem_step: 0,
+            m: 1,
         }
     }
 
-    /// The `i64` boundary, if it and every column it reaches in the next `rows` rows fit.
-    fn narrow(b: &Boundary, rows: i64) -> Option<Self> {
+    /// The boundary stepped in `i32`, if it and every column it reaches in the next `rows` rows
+    /// stay within ±2³⁰.
+    fn narrow(&self, rows: i64) -> Option<Boundary<i32>> {
         const LIMIT: i64 = 1 << 30;
         // Each row moves the column by `step` and at most one carry.
-        let reach = b
+        let reach = self
             .step
             .checked_abs()?
             .checked_add(1)?
             .checked_mul(rows.checked_add(1)?)?
-            .checked_add(b.x.checked_abs()?)?;
-        (b.m < LIMIT && reach < LIMIT).then_some(Boundary32 {
-            x: b.x as i32,
-            rem: b.rem as i32,
-            m: b.m as i32,
-            step: b.step as i32,
-            rem_step: b.rem_step as i32,
-        })
+            .checked_add(self.x.checked_abs()?)?;
+        (self.m < LIMIT && reach < LIMIT).then_some(Boundary::from_parts(
+            self.x as i32,
+            self.rem as u32,
+            self.step as i32,
+            self.rem_step as u32,
+            self.m as u32,
+        ))
     }
 
-    /// Moves to the next row; `carry` is −1 for start edges and +1 for end edges.
-    #[inline(always)]
-    fn advance(&mut self, carry: i32) {
-        self.x += self.step;
-        self.rem += self.rem_step;
-        if self.rem >= self.m {
-            self.rem -= self.m;
-            self.x += carry;
-        }
+    /// The boundary stepped in `i64`: columns stay below 2⁵⁹ over the region (the crossing
+    /// edges' values there are below 2⁵⁸), remainders below 2³⁴.
+    fn wide(&self) -> Boundary<i64> {
+        Boundary::from_parts(
+            self.x,
+            self.rem as u64,
+            self.step,
+            self.rem_step as u64,
+            self.m as u64,
+        )
     }
 }
 
-/// Row at which nothing switches.
-const NEVER: i32 = i32::MAX;
+/// The general set-up's walk, in `i32` where it fits.
+#[derive(Debug, Clone, Copy)]
+enum GeneralWalk {
+    Narrow(Walk<i32>),
+    Wide(Walk<i64>),
+}
 
-/// The fast walker: one start and one end boundary per row.
-///
-/// The start edges (`a > 0`) of a triangle form a chain from its top vertex to its bottom vertex
-/// through at most one middle vertex `V`, and so do the end edges. Above `V` the upper edge of
-/// the chain is the tighter one (convexity: the lines cross only at `V`, and the real boundary of
-/// the upper edge lies strictly inside the lower one's there, which the exact column rounding
-/// preserves), below `V` the lower one. In the row through `V` both give the same column: both
-/// are left edges (start) or both are not (end), so their tie rules agree. So each row steps just
-/// the edge that bounds it, and the lower edge takes over in the first row whose centre is not
-/// above `V`. Horizontal edges only limit the rows.
-#[derive(Debug, Clone)]
-struct NarrowSpans {
-    start: Boundary32,
-    end: Boundary32,
-    /// The lower edge of each chain and the row it takes over in ([`NEVER`] if none).
-    next_start: Boundary32,
-    next_end: Boundary32,
-    start_switch: i32,
-    end_switch: i32,
-    /// The first row at which an edge changes: `min(start_switch, end_switch)`.
-    switch: i32,
+/// The walk of `setup` (any [`Coord`] vertices) over `region`.
+// One copy for all callers; everything it calls is inlined into it.
+#[inline(never)]
+fn general_walk(setup: &TriangleSetup, region: &Region) -> GeneralWalk {
+    match GeneralParts::new(setup, region) {
+        None => GeneralWalk::Narrow(Walk::empty()),
+        Some(parts) => match parts.narrow() {
+            Some(walk) => GeneralWalk::Narrow(walk),
+            None => GeneralWalk::Wide(parts.wide()),
+        },
+    }
+}
+
+/// What a [`Walk`] of the general set-up is made of, before the choice of width.
+#[derive(Debug, Clone, Copy)]
+struct GeneralParts {
+    /// The first row's start and end boundaries, the one that replaces the start (`next_left`)
+    /// or end boundary at row offset `switch`.
+    first: [WideBoundary; 2],
+    next: WideBoundary,
+    next_left: bool,
+    switch: u32,
     x0: i32,
-    x1: i32,
-    y: i32,
-    y1: i32,
+    y0: i32,
+    last: i32,
+    rows: u32,
 }
 
-/// One chain (start or end edges) of a triangle over a region, before conversion to `i32`.
-struct Chain {
-    /// Boundary in the first row, and the lower edge with its first row (if it takes over).
-    first: Option<Boundary>,
-    next: Option<(Boundary, i64)>,
-}
-
-impl NarrowSpans {
-    fn empty() -> Self {
-        NarrowSpans {
-            start: Boundary32::open(0),
-            end: Boundary32::open(0),
-            next_start: Boundary32::open(0),
-            next_end: Boundary32::open(0),
-            start_switch: NEVER,
-            end_switch: NEVER,
-            switch: NEVER,
-            x0: 0,
-            x1: -1,
-            y: 1,
-            y1: 0,
-        }
-    }
-
-    /// The walker for the edges `crossings` of `setup` over `region`, or `None` if a boundary
-    /// leaves the `i32` range.
+impl GeneralParts {
+    /// The parts of the walk of `setup` over `region`; `None` if no pixel is covered.
     #[inline(always)]
-    fn new(setup: &TriangleSetup, region: &Region, crossings: &[Crossing; 3]) -> Option<Self> {
-        let (x0, mut y0) = (i64::from(region.x0), i64::from(region.y0));
-        let mut y1 = i64::from(region.y1);
-        let row0 = y0;
+    fn new(setup: &TriangleSetup, region: &Region) -> Option<Self> {
+        let crossings = &mut [Crossing::Inside; 3];
+        if !classify(setup, region, crossings) {
+            return None;
+        }
+        let (x0, row0) = (i64::from(region.x0), i64::from(region.y0));
+        let (mut y0, mut y1) = (row0, i64::from(region.y1));
         // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
-        for c in crossings {
+        for c in crossings.iter() {
             if let Crossing::Cross { a: 0, b, k } = *c {
                 if b > 0 {
                     // First row with b·d + k ≥ 0: d = ⌈−k/b⌉.
@@ -463,392 +610,205 @@ impl NarrowSpans {
             }
         }
         if y0 > y1 {
-            return Some(Self::empty());
+            return None;
         }
-        // The chains: edges with a > 0 bound starts, a < 0 ends.
-        let chain = |start: bool| Self::chain(setup, crossings, start, (x0, row0), (y0, y1));
+        // The boundaries of the first row and, on the side with two edges, the lower edge's from
+        // the row it takes over.
+        let at =
+            |(a, b, k): (i64, i64, i64), row: i64| WideBoundary::new(a, b, k + b * (row - row0));
         let rows = y1 - y0 + 1;
-        let convert = |c: Chain, open: i32| -> Option<(Boundary32, Boundary32, i32)> {
-            let first = match c.first {
-                Some(b) => Boundary32::narrow(&b, rows)?,
-                None => Boundary32::open(open),
-            };
-            Some(match c.next {
-                Some((b, row)) => (first, Boundary32::narrow(&b, y1 - row + 1)?, row as i32),
-                None => (first, Boundary32::open(open), NEVER),
-            })
-        };
-        // Open boundaries lie outside any region (|x| ≤ 2^31 − 1 there, within i32 here).
-        let (start, next_start, start_switch) = convert(chain(true), i32::MIN)?;
-        let (end, next_end, end_switch) = convert(chain(false), i32::MAX)?;
-        Some(NarrowSpans {
-            start,
-            end,
-            next_start,
-            next_end,
-            start_switch,
-            end_switch,
-            switch: start_switch.min(end_switch),
-            x0: region.x0,
-            x1: region.x1,
-            // Within the region's rows, so within i32.
-            y: y0 as i32,
-            y1: y1 as i32,
+        let mut first = [WideBoundary::open(false), WideBoundary::open(true)];
+        let (mut next, mut next_left, mut switch) = (first[0], true, rows);
+        for (side, boundary) in first.iter_mut().enumerate() {
+            let start = side == 0;
+            match chain(setup, crossings, start) {
+                [Some((only, _)), None] => *boundary = at(only, y0),
+                [Some((upper, vertex_y)), Some((lower, _))] => {
+                    // First row whose centre (256·j + 128) is not above the vertex.
+                    let row = (vertex_y - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
+                    if row <= y0 {
+                        *boundary = at(lower, y0);
+                    } else {
+                        *boundary = at(upper, y0);
+                        if row <= y1 {
+                            (next, next_left, switch) = (at(lower, row), start, row - y0);
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        // Within the region: rows and columns below 2²⁵.
+        Some(GeneralParts {
+            first,
+            next,
+            next_left,
+            switch: switch as u32,
+            x0: x0 as i32,
+            y0: y0 as i32,
+            last: region.x1 - region.x0,
+            rows: rows as u32,
         })
     }
 
-    /// The start chain (`start`, edges with `a > 0`) or end chain of `crossings` over the rows
-    /// `y0..=y1` of a region whose first column is `x0` and whose crossings are given at row `row0`.
+    /// The walk in `i32`, if every boundary's columns stay within ±2³⁰ over the rows.
     #[inline(always)]
-    fn chain(
-        setup: &TriangleSetup,
-        crossings: &[Crossing; 3],
-        start: bool,
-        (x0, row0): (i64, i64),
-        (y0, y1): (i64, i64),
-    ) -> Chain {
-        let mut found = [None; 2];
-        let mut n = 0;
-        for (i, c) in crossings.iter().enumerate() {
-            if let Crossing::Cross { a, b, k } = *c {
-                if a != 0 && (a > 0) == start {
-                    if let Some(slot) = found.get_mut(n) {
-                        *slot = Some((i, a, b, k));
-                    }
-                    n += 1;
-                }
-            }
-        }
-        let at = |a: i64, b: i64, k: i64, row: i64| Boundary::new(a, b, k + b * (row - row0), x0);
-        match found {
-            [Some((_, a, b, k)), None] => Chain {
-                first: Some(at(a, b, k, y0)),
-                next: None,
-            },
-            [Some((p, ap, bp, kp)), Some((q, aq, bq, kq))] => {
-                // The shared vertex is the one neither edge is opposite; `edges[p]` runs to
-                // the vertex opposite `edges[q]`, and is the upper edge if that one is above.
-                let vertex = |k: usize| {
-                    setup
-                        .order
-                        .get(k)
-                        .and_then(|&v| setup.vertices.get(v))
-                        .map_or(0, |v| v.1)
-                };
-                let vy = vertex(3 - p - q);
-                let ((au, bu, ku), (al, bl, kl)) = if vertex(q) < vertex(p) {
-                    ((ap, bp, kp), (aq, bq, kq))
-                } else {
-                    ((aq, bq, kq), (ap, bp, kp))
-                };
-                // First row whose centre (256·j + 128) is not above the vertex.
-                let switch = (vy - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
-                if switch <= y0 {
-                    Chain {
-                        first: Some(at(al, bl, kl, y0)),
-                        next: None,
-                    }
-                } else if switch > y1 {
-                    Chain {
-                        first: Some(at(au, bu, ku, y0)),
-                        next: None,
-                    }
-                } else {
-                    Chain {
-                        first: Some(at(au, bu, ku, y0)),
-                        next: Some((at(al, bl, kl, switch), switch)),
-                    }
-                }
-            }
-            _ => Chain {
-                first: None,
-                next: None,
-            },
-        }
+    fn narrow(&self) -> Option<Walk<i32>> {
+        let rows = i64::from(self.rows);
+        let [left, right] = self.first;
+        let (left, right) = (left.narrow(rows)?, right.narrow(rows)?);
+        Some(Walk::new(
+            (left, right),
+            (self.next.narrow(rows)?, self.next_left, self.switch),
+            (self.x0, self.y0),
+            self.last,
+            self.rows,
+        ))
     }
 
-    /// The span of row `y` between boundary columns `start` and `end`, clipped to `x0..=x1`.
-    #[inline(always)]
-    fn span(y: i32, start: i32, end: i32, x0: i32, x1: i32) -> Option<Span> {
-        let (start, end) = (x0.max(start), x1.min(end));
-        // `end ≤ x1 < 2^24`: no overflow.
-        (start <= end).then_some(Span {
-            y,
-            x_start: start,
-            x_end: end + 1,
-        })
-    }
-
-    /// Takes over the lower edges whose row has come.
+    /// The walk in `i64`.
     #[cold]
-    fn switch_edges(&mut self) {
-        if self.y == self.start_switch {
-            self.start = self.next_start;
-            self.start_switch = NEVER;
-        }
-        if self.y == self.end_switch {
-            self.end = self.next_end;
-            self.end_switch = NEVER;
-        }
-        self.switch = self.start_switch.min(self.end_switch);
+    fn wide(&self) -> Walk<i64> {
+        let [left, right] = self.first;
+        Walk::new(
+            (left.wide(), right.wide()),
+            (self.next.wide(), self.next_left, self.switch),
+            (self.x0, self.y0),
+            self.last,
+            self.rows,
+        )
     }
 }
 
-impl Iterator for NarrowSpans {
+/// The start chain (`start`, edges with `a > 0`) or end chain of `crossings`: its only edge, or
+/// its upper edge and its lower edge with the y (sub-pixels) of the vertex they share.
+#[allow(clippy::type_complexity)]
+#[inline(always)]
+fn chain(
+    setup: &TriangleSetup,
+    crossings: &[Crossing; 3],
+    start: bool,
+) -> [Option<((i64, i64, i64), i64)>; 2] {
+    let mut found = [None; 2];
+    let mut n = 0;
+    for (i, c) in crossings.iter().enumerate() {
+        if let Crossing::Cross { a, b, k } = *c {
+            if a != 0 && (a > 0) == start {
+                if let Some(slot) = found.get_mut(n) {
+                    *slot = Some((i, (a, b, k)));
+                }
+                n += 1;
+            }
+        }
+    }
+    match found {
+        [Some((_, only)), None] => [Some((only, 0)), None],
+        [Some((p, edge_p)), Some((q, edge_q))] => {
+            // The shared vertex is the one neither edge is opposite; `edges[p]` runs to the
+            // vertex opposite `edges[q]`, and is the upper edge if that one is above.
+            let vertex = |k: usize| {
+                setup
+                    .order
+                    .get(k)
+                    .and_then(|&v| setup.vertices.get(v))
+                    .map_or(0, |v| v.1)
+            };
+            let vy = vertex(3 - p - q);
+            let (upper, lower) = if vertex(q) < vertex(p) {
+                (edge_p, edge_q)
+            } else {
+                (edge_q, edge_p)
+            };
+            [Some((upper, vy)), Some((lower, vy))]
+        }
+        _ => [None, None],
+    }
+}
+
+/// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom: the
+/// [`Walk`] of the compact set-up (bounding boxes under 2048 px) or of the general one.
+#[derive(Debug, Clone)]
+pub struct Spans {
+    walk: GeneralWalk,
+}
+
+impl Spans {
+    /// Spans of `setup` inside `region`.
+    #[inline(always)]
+    pub(crate) fn new(setup: &TriangleSetup, region: Region) -> Spans {
+        Spans {
+            walk: general_walk(setup, &region),
+        }
+    }
+
+    /// The spans of a compact triangle.
+    #[inline(always)]
+    pub(crate) fn compact(walk: Walk<i32>) -> Spans {
+        Spans {
+            walk: GeneralWalk::Narrow(walk),
+        }
+    }
+
+    /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
+    #[inline(always)]
+    pub fn of_triangle(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
+        match CompactTriangle::new(v, clip) {
+            Ok(Some(triangle)) => {
+                if let Ok(walk) = triangle.walk() {
+                    return Spans::compact(walk);
+                }
+            }
+            Ok(None) => return Spans::empty(),
+            Err(_) => {}
+        }
+        // By reference: moving the setup out of the `Option` would copy it.
+        let setup = TriangleSetup::new(v);
+        setup
+            .as_ref()
+            .and_then(|s| Region::new(s, clip).map(|r| Spans::new(s, r)))
+            .unwrap_or_else(Spans::empty)
+    }
+
+    /// An iterator with no spans.
+    pub fn empty() -> Spans {
+        Spans {
+            walk: GeneralWalk::Narrow(Walk::empty()),
+        }
+    }
+
+    /// Whether the columns are stepped in `i32` (every triangle but far off-screen slivers).
+    pub fn is_narrow(&self) -> bool {
+        matches!(self.walk, GeneralWalk::Narrow(_))
+    }
+}
+
+impl Iterator for Spans {
     type Item = Span;
 
-    /// The whole walk with its state in locals: rows in at most three stretches, each with fixed
-    /// boundaries, so the row loop holds no switch test.
-    #[inline(always)]
+    #[inline]
+    fn next(&mut self) -> Option<Span> {
+        match &mut self.walk {
+            GeneralWalk::Narrow(w) => w.next_span(),
+            GeneralWalk::Wide(w) => w.next_span(),
+        }
+        .map(|(span, _, _)| span)
+    }
+
+    /// One dispatch per triangle; the walk's state then lives in registers.
+    #[inline]
     fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, mut f: F) -> B {
-        let NarrowSpans {
-            mut start,
-            mut end,
-            next_start,
-            next_end,
-            mut start_switch,
-            mut end_switch,
-            x0,
-            x1,
-            mut y,
-            y1,
-            ..
-        } = self;
-        let mut acc = init;
-        loop {
-            // Rows before the next switch (or to the last row), all with the same two edges.
-            let last = start_switch.min(end_switch).saturating_sub(1).min(y1);
-            while y <= last {
-                let span = Self::span(y, start.x, end.x, x0, x1);
-                start.advance(-1);
-                end.advance(1);
-                if let Some(span) = span {
-                    acc = f(acc, span);
-                }
-                y += 1;
-            }
-            if y > y1 {
-                return acc;
-            }
-            if y == start_switch {
-                start = next_start;
-                start_switch = NEVER;
-            }
-            if y == end_switch {
-                end = next_end;
-                end_switch = NEVER;
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<Span> {
-        while self.y <= self.y1 {
-            if self.y == self.switch {
-                self.switch_edges();
-            }
-            let span = Self::span(self.y, self.start.x, self.end.x, self.x0, self.x1);
-            self.start.advance(-1);
-            self.end.advance(1);
-            self.y += 1;
-            if span.is_some() {
-                return span;
-            }
-        }
-        None
-    }
-}
-
-/// Regions with `height · (width − 2)` at most this are walked pixel by pixel ([`SmallSpans`]).
-///
-/// Testing a pixel costs about 13 instructions on Cortex-M4 (three 64-bit edge values stepped and
-/// their signs tested), the boundary walker about 430 of set-up and 35 a row, so testing is
-/// cheaper while `h·(13w − 35) < 430`: `h·(w − 2) ≤ 40` follows that curve (all of an 8×6 or a
-/// 4×20 region, any width of at most 2).
-const SMALL_AREA: i64 = 40;
-
-/// The walker for narrow regions (small triangles): each row's pixels are tested against the
-/// crossing edges, stepped by `a` per pixel and `b` per row — no set-up beyond the edge values at
-/// the region's corner, where the boundary walkers divide and build edge chains.
-///
-/// A row's covered pixels are contiguous (the triangle is convex), so the scan skips to the first
-/// covered pixel and stops after the last.
-#[derive(Debug, Clone)]
-struct SmallSpans {
-    /// `(a, b)` of the crossing edges and their values at `(x0, y)`; unused slots are all zero,
-    /// which never excludes a pixel.
-    steps: [(i64, i64); 3],
-    row: [i64; 3],
-    x0: i32,
-    x1: i32,
-    y: i32,
-    y1: i32,
-}
-
-impl SmallSpans {
-    fn new(region: &Region, crossings: &[Crossing; 3]) -> Self {
-        let (mut steps, mut row) = ([(0, 0); 3], [0; 3]);
-        let crossing = crossings.iter().filter_map(|c| match *c {
-            Crossing::Cross { a, b, k } => Some(((a, b), k)),
-            Crossing::Inside => None,
-        });
-        for ((step, value), (ab, k)) in steps.iter_mut().zip(row.iter_mut()).zip(crossing) {
-            (*step, *value) = (ab, k);
-        }
-        SmallSpans {
-            steps,
-            row,
-            x0: region.x0,
-            x1: region.x1,
-            y: region.y0,
-            y1: region.y1,
+        match self.walk {
+            GeneralWalk::Narrow(w) => w.fold(init, |acc, span, _, _| f(acc, span)),
+            GeneralWalk::Wide(w) => fold_wide(w, init, f),
         }
     }
 }
 
-impl Iterator for SmallSpans {
-    type Item = Span;
-
-    #[inline]
-    fn next(&mut self) -> Option<Span> {
-        // Crossing edges stay below 2^58 in magnitude over the region (see `crossings`); the
-        // region's columns are within ±2^23 (the vertex range), so `x + 1` cannot overflow.
-        let inside = |v: &[i64; 3]| v.iter().fold(0, |sign, &e| sign | e) >= 0;
-        let steps = self.steps;
-        let step = |v: &mut [i64; 3]| {
-            for (value, &(a, _)) in v.iter_mut().zip(&steps) {
-                *value += a;
-            }
-        };
-        while self.y <= self.y1 {
-            let mut v = self.row;
-            for (value, &(_, b)) in self.row.iter_mut().zip(&steps) {
-                *value += b;
-            }
-            let y = self.y;
-            self.y += 1;
-            let mut x = self.x0;
-            while x <= self.x1 && !inside(&v) {
-                x += 1;
-                step(&mut v);
-            }
-            let start = x;
-            while x <= self.x1 && inside(&v) {
-                x += 1;
-                step(&mut v);
-            }
-            if start < x {
-                return Some(Span {
-                    y,
-                    x_start: start,
-                    x_end: x,
-                });
-            }
-        }
-        None
-    }
-}
-
-/// The general walker: every crossing edge stepped in `i64`.
-#[derive(Debug, Clone)]
-struct WideSpans {
-    /// The first `starts` bound the span's start, the last `ends` its end.
-    edges: [Boundary; 3],
-    starts: usize,
-    ends: usize,
-    /// A horizontal crossing edge: `(b, value in the current row)`; the row is in iff value ≥ 0.
-    horizontal: Option<(i64, i64)>,
-    x0: i64,
-    x1: i64,
-    y: i64,
-    y1: i64,
-}
-
-impl WideSpans {
-    #[inline(never)]
-    #[cold]
-    fn new(region: &Region, crossings: &[Crossing; 3]) -> Self {
-        let none = Boundary {
-            x: 0,
-            rem: 0,
-            m: 1,
-            step: 0,
-            rem_step: 0,
-            carry: 1,
-        };
-        let x0 = i64::from(region.x0);
-        let mut spans = WideSpans {
-            edges: [none; 3],
-            starts: 0,
-            ends: 0,
-            horizontal: None,
-            x0,
-            x1: i64::from(region.x1),
-            y: i64::from(region.y0),
-            y1: i64::from(region.y1),
-        };
-        for c in crossings {
-            let Crossing::Cross { a, b, k } = *c else {
-                continue;
-            };
-            // Start edges fill `edges` from the front, end edges from the back.
-            let slot = match a {
-                0 => {
-                    spans.horizontal = Some((b, k));
-                    continue;
-                }
-                a if a > 0 => {
-                    spans.starts += 1;
-                    spans.starts - 1
-                }
-                _ => {
-                    spans.ends += 1;
-                    3 - spans.ends
-                }
-            };
-            if let Some(slot) = spans.edges.get_mut(slot) {
-                *slot = Boundary::new(a, b, k, x0);
-            }
-        }
-        spans
-    }
-}
-
-impl Iterator for WideSpans {
-    type Item = Span;
-
-    #[inline]
-    fn next(&mut self) -> Option<Span> {
-        while self.y <= self.y1 {
-            let (mut start, mut end) = (self.x0, self.x1);
-            let (starts, ends) = (self.starts, self.ends);
-            for e in self.edges.iter_mut().take(starts) {
-                start = start.max(e.x);
-                e.advance();
-            }
-            for e in self.edges.iter_mut().skip(3 - ends) {
-                end = end.min(e.x);
-                e.advance();
-            }
-            if let Some((b, k)) = &mut self.horizontal {
-                if *k < 0 {
-                    end = start - 1;
-                }
-                *k += *b;
-            }
-            let y = self.y;
-            self.y += 1;
-            if start <= end {
-                // All three values lie inside the region, which lies inside i32.
-                return Some(Span {
-                    y: y as i32,
-                    x_start: start as i32,
-                    x_end: (end + 1) as i32,
-                });
-            }
-        }
-        None
-    }
+/// The rare wide walk, out of line: its frame stays off the common path's stack.
+#[inline(never)]
+#[cold]
+fn fold_wide<B, F: FnMut(B, Span) -> B>(w: Walk<i64>, init: B, mut f: F) -> B {
+    w.fold(init, |acc, span, _, _| f(acc, span))
 }
 
 /// Calls `f(y, x_start, x_end)` for every covered span of the triangle `v` inside `clip`
@@ -904,16 +864,16 @@ mod tests {
         }
     }
 
-    /// The `i32` walker (one edge per chain and row, switching at the middle vertex) and the
-    /// pixel-by-pixel walker of narrow regions against the `i64` walker that steps every crossing
-    /// edge, and all against per-pixel edge tests, over triangles from sub-pixel size to far
-    /// beyond the clip, including near-horizontal slivers that force the wide walker.
+    /// Every form of the walk — the compact set-up, the general one in `i32` and the general one
+    /// forced to `i64` — and both ways of consuming it (`fold` and `next`) against per-pixel edge
+    /// tests, over triangles from sub-pixel size to far beyond the clip, including
+    /// near-horizontal slivers through it whose columns leave the `i32` range.
     #[test]
-    fn narrow_and_wide_walkers_agree() {
+    fn every_walk_matches_per_pixel_edge_tests() {
         let clip = Rectangle::new(Point::new(-3, -2), Size::new(31, 29));
         let mut next = crate::xorshift(0x0f1e_2d3c_4b5a_6978_u64);
         let mut rnd = |range: i64| (next() % (2 * range as u64 + 1)) as i64 - range;
-        let (mut narrow, mut wide, mut small) = (0, 0, 0);
+        let (mut narrow, mut wide, mut compact) = (0, 0, 0);
         for i in 0..20_000 {
             let range = [1 << 8, 1 << 12, 1 << 16, 1 << 24, 1 << 31][i % 5];
             let c = |r: i64| {
@@ -932,45 +892,56 @@ mod tests {
             let Some(region) = Region::new(&setup, &clip) else {
                 continue;
             };
-            let spans = Spans::new(&setup, region);
-            let got: heapless::Vec<Span, 64> = spans.clone().collect();
-            let mut crossings = [Crossing::Inside; 3];
-            let general: heapless::Vec<Span, 64> = if classify(&setup, &region, &mut crossings) {
-                WideSpans::new(&region, &crossings).collect()
-            } else {
-                heapless::Vec::new()
-            };
-            assert_eq!(got, general, "{v:?}");
-            let folded = spans
-                .clone()
-                .fold(heapless::Vec::<Span, 64>::new(), |mut all, s| {
+            let brute: heapless::Vec<Span, 64> = (clip.top_left.y..clip.top_left.y + 29)
+                .filter_map(|y| {
+                    let xs =
+                        (clip.top_left.x..clip.top_left.x + 31).filter(|&x| setup.covers(x, y));
+                    let (first, count) = xs.fold((None, 0), |(f, n), x| (f.or(Some(x)), n + 1));
+                    first.map(|x_start| Span {
+                        y,
+                        x_start,
+                        x_end: x_start + count,
+                    })
+                })
+                .collect();
+            let collect = |spans: Spans| -> heapless::Vec<Span, 64> { spans.collect() };
+            let fold = |spans: Spans| {
+                spans.fold(heapless::Vec::<Span, 64>::new(), |mut all, s| {
                     assert!(all.push(s).is_ok());
                     all
-                });
-            assert_eq!(folded, got, "fold and next differ: {v:?}");
-            if spans.is_small() {
-                small += 1;
-            } else if spans.is_narrow() {
+                })
+            };
+            let general = Spans::new(&setup, region);
+            assert_eq!(collect(general.clone()), brute, "general next {v:?}");
+            assert_eq!(fold(general.clone()), brute, "general fold {v:?}");
+            if general.is_narrow() {
                 narrow += 1;
             } else {
                 wide += 1;
             }
-            let mut covered = 0;
-            for s in &got {
+            if let Some(parts) = GeneralParts::new(&setup, &region) {
+                let forced = Spans {
+                    walk: GeneralWalk::Wide(parts.wide()),
+                };
+                assert_eq!(collect(forced.clone()), brute, "i64 next {v:?}");
+                assert_eq!(fold(forced), brute, "i64 fold {v:?}");
+            }
+            if let Ok(Some(triangle)) = CompactTriangle::new(v, &clip) {
+                let walk = Spans::compact(triangle.walk().expect("a compact walk"));
+                assert_eq!(collect(walk.clone()), brute, "compact next {v:?}");
+                assert_eq!(fold(walk), brute, "compact fold {v:?}");
+                compact += 1;
+            }
+            // `brute` makes each row's covered pixels one run: check that they are.
+            for s in &brute {
                 for x in s.x_start..s.x_end {
                     assert!(setup.covers(x, s.y), "{v:?} ({x}, {})", s.y);
                 }
-                covered += s.len();
             }
-            let brute = (clip.top_left.y..clip.top_left.y + 29)
-                .flat_map(|y| (clip.top_left.x..clip.top_left.x + 31).map(move |x| (x, y)))
-                .filter(|&(x, y)| setup.covers(x, y))
-                .count();
-            assert_eq!(covered as usize, brute, "{v:?}");
         }
         assert!(
-            narrow > 5_000 && wide > 20 && small > 1_000,
-            "narrow {narrow}, wide {wide}, small {small}"
+            narrow > 5_000 && wide > 20 && compact > 1_000,
+            "narrow {narrow}, wide {wide}, compact {compact}"
         );
     }
 
