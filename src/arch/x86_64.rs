@@ -21,25 +21,27 @@ pub(crate) fn first_covered(covered: [i16; LANES]) -> u32 {
     (bits | 1 << LANES).trailing_zeros()
 }
 
-/// Three channel values (32-bit, wrapping) in one register: a tiny triangle's row values, stepped
-/// by a per-row step, and the offset of a row's first covered pixel from a table of
+/// Up to four attribute values (32-bit, wrapping) in one register: a tiny triangle's row values,
+/// stepped by a per-row step, and the offset of a row's first covered pixel from a table of
 /// `step·column` for columns `0..=LANES`.
 #[derive(Clone, Copy)]
-pub(crate) struct ChannelRows {
+pub(crate) struct ChannelRows<const N: usize> {
     value: __m128i,
     dy: __m128i,
     by_column: [__m128i; LANES + 1],
 }
 
-impl ChannelRows {
-    /// Rows starting at `value`, stepped by `dx` per column and `dy` per row.
+impl<const N: usize> ChannelRows<N> {
+    /// Rows starting at `value`, stepped by `dx` per column and `dy` per row (`N ≤ 4`).
     #[inline(always)]
-    pub(crate) fn new(value: [u32; 3], dx: [u32; 3], dy: [u32; 3]) -> Self {
-        let vector = |v: [u32; 3]| {
+    pub(crate) fn new(value: [u32; N], dx: [u32; N], dy: [u32; N]) -> Self {
+        const { assert!(N <= 4) };
+        let vector = |v: [u32; N]| {
+            let w: [u32; 4] = core::array::from_fn(|k| v.get(k).copied().unwrap_or(0));
             // SAFETY: SSE2 is part of the x86-64 baseline.
-            unsafe { _mm_setr_epi32(v[0] as i32, v[1] as i32, v[2] as i32, 0) }
+            unsafe { _mm_setr_epi32(w[0] as i32, w[1] as i32, w[2] as i32, w[3] as i32) }
         };
-        let (dx, mut next) = (vector(dx), vector([0; 3]));
+        let (dx, mut next) = (vector(dx), vector([0; N]));
         let by_column = core::array::from_fn(|_| {
             let this = next;
             // SAFETY: as above.
@@ -55,7 +57,7 @@ impl ChannelRows {
 
     /// The values at `column` (at most `LANES`) of the current row; moves to the next row.
     #[inline(always)]
-    pub(crate) fn next_row(&mut self, column: u32) -> [u32; 3] {
+    pub(crate) fn next_row(&mut self, column: u32) -> [u32; N] {
         let mut out = [0u32; 4];
         // SAFETY: SSE2 is part of the x86-64 baseline; the store writes the 16 bytes of `out`.
         unsafe {
@@ -67,7 +69,7 @@ impl ChannelRows {
             _mm_storeu_si128(out.as_mut_ptr().cast(), _mm_add_epi32(self.value, offset));
             self.value = _mm_add_epi32(self.value, self.dy);
         }
-        [out[0], out[1], out[2]]
+        core::array::from_fn(|k| out.get(k).copied().unwrap_or(0))
     }
 }
 

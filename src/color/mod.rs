@@ -20,7 +20,6 @@ use embedded_graphics::pixelcolor::{
 use embedded_graphics::prelude::PixelColor;
 
 pub use crate::arch::LANES;
-use crate::raster::AttributePlane;
 
 mod packed565;
 
@@ -28,12 +27,11 @@ use packed565::{fill_565, masked_row_565, prepare_565};
 
 /// Fractional bits of the stepped channel values handed to [`GouraudColor::fill_span`] and
 /// [`GouraudColor::from_stepped`]: channels have at most 8 integer bits, so a value fits a `u32`.
-pub const STEP_BITS: u32 = 24;
+pub use crate::raster::plane::STEP_BITS;
 
 const F: u32 = STEP_BITS;
 
-/// Shift from [`AttributePlane::FRACTION_BITS`] to [`STEP_BITS`] fractional bits.
-pub(crate) const PLANE_TO_STEP: u32 = STEP_BITS - AttributePlane::FRACTION_BITS;
+pub(crate) use crate::raster::plane::PLANE_TO_STEP;
 
 /// A colour that can be Gouraud-interpolated channel by channel.
 pub trait GouraudColor: PixelColor {
@@ -141,7 +139,7 @@ pub trait GouraudColor: PixelColor {
 /// assert_eq!(row[0], Rgb565::new(2, 40, 30));
 /// assert_eq!(row[7], Rgb565::new(4, 40, 23));
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[repr(C)] // The ARMv6-M span loop reads the fields at fixed offsets.
 pub struct SpanSteps {
     /// The steps, [`STEP_BITS`] fractional bits, in channel order.

@@ -22,6 +22,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
+use crate::arch::LANES;
+
 /// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
 /// pixel on Cortex-M4 against 3 for `slice::fill`, which LLVM leaves as one store per iteration
 /// for 16-bit colours on Thumb.
@@ -109,6 +111,16 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
         let base = (y as usize).wrapping_mul(self.width as usize);
         self.pixels
             .get_mut(base.wrapping_add(a as usize)..base.wrapping_add(b as usize))
+    }
+
+    /// Pixels `x .. x + LANES` of row `y`, if they are all inside the buffer: a row of a tiny
+    /// triangle's box (x86-64).
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
+    #[inline(always)]
+    pub(crate) fn lanes_mut(&mut self, y: i32, x: i32) -> Option<&mut [C; LANES]> {
+        let end = x.checked_add(LANES as i32)?;
+        self.span_mut(y, x, end)
+            .and_then(|row| <&mut [C; LANES]>::try_from(row).ok())
     }
 
     /// The pixels of `area` if it is one row wholly inside the buffer (a rasterizer's span): the

@@ -5,8 +5,6 @@
 //! `draw_into` (slice writes and the colour format's packed span loop).
 
 mod framebuffer;
-#[cfg(sse2_rows)]
-mod tiny;
 mod triangle;
 
 pub use framebuffer::{fill_row, SliceFramebuffer};

@@ -28,16 +28,14 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::{fill_row, SliceFramebuffer};
-#[cfg(sse2_rows)]
-use super::tiny;
+use crate::arch::LANES;
 use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
 use crate::fixed_point::{pixel_corner, Coord};
-use crate::raster::compact::{CompactColors, CompactTriangle, TooLarge};
+use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
-use crate::raster::plane::{
-    AttributePlane, InverseArea, SmallPlanes, StepContext, Stepped, MAX_CHUNK,
-};
+use crate::raster::plane::{AttributePlane, InverseArea, Planes, MAX_CHUNK};
 use crate::raster::walk::{Region, Span, Spans};
+use crate::raster::{shade, shade_compact, SpanShader};
 
 /// A triangle vertex: sub-pixel position and colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -81,76 +79,32 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with slice writes and the colour format's packed span
-    /// loop (tiny triangles on x86-64: one masked write per row, see the tiny rows): the
-    /// fastest path, with the same pixels as [`Drawable::draw`].
+    /// loop (tiny triangles on x86-64: one masked write per row of eight pixels): the fastest
+    /// path, with the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();
-        let walked = match CompactTriangle::new(self.positions(), &clip) {
-            Ok(None) => return,
-            Ok(Some(triangle)) => {
-                #[cfg(sse2_rows)]
-                let colors = {
-                    let (colors, steps) = self.compact_colors(&triangle);
-                    if tiny::draw(framebuffer, &triangle, &colors, &steps) {
-                        return;
-                    }
-                    move || (colors, steps)
-                };
-                #[cfg(not(sse2_rows))]
-                let colors = || self.compact_colors(&triangle);
-                fold_compact_spans(&triangle, colors, (), |(), span, start, steps| {
-                    fill_into(framebuffer, span, start, steps)
-                })
-            }
-            Err(TooLarge) => Err(()),
-        };
-        let walked = walked.or_else(|()| {
-            self.fold_wide(&clip, (), |(), span, start, steps| {
-                fill_into(framebuffer, span, start, steps)
-            })
-        });
-        if walked.is_err() {
-            let Ok(()) = self.draw_exact(framebuffer);
-        }
+        let mut shader = IntoSlice::new(framebuffer, true);
+        shade(self.positions(), self.channels(), &clip, &mut shader);
     }
 
-    /// Folds `f` over the covered spans inside `clip`, handing it each span's channel values at
-    /// its first pixel and the per-pixel steps ([`STEP_BITS`](crate::color::STEP_BITS) fractional
-    /// bits); `Err(init)` untouched if the colours need the exact planes (extreme slivers, huge
-    /// regions).
-    ///
-    /// One walk with the accumulators in registers, no chunking: the 24-bit per-pixel steps stay
-    /// within 2⁻⁹ LSB over the longest span this path takes (2¹⁶ pixels). Set-up and walker are
-    /// built here, in place.
-    #[inline(always)]
-    fn fold_stepped<B>(
+    /// Draws into a [`SliceFramebuffer`] like [`draw_into`](Self::draw_into) if the triangle is
+    /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::raster::compact)),
+    /// else draws nothing and returns [`TooLarge`]. A firmware that draws only through this
+    /// method links only the compact rasterizer: a fraction of `draw_into`'s code. It always
+    /// walks spans (no rows of lanes): the same pixels.
+    pub fn draw_into_compact(
         &self,
-        clip: &Rectangle,
-        init: B,
-        mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
-    ) -> Result<B, B> {
-        match self.fold_compact(clip, init, &mut f) {
-            Err(init) => self.fold_wide(clip, init, f),
-            done => done,
-        }
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+    ) -> Result<(), TooLarge> {
+        let clip = framebuffer.bounding_box();
+        let mut shader = IntoSlice::new(framebuffer, false);
+        shade_compact(self.positions(), self.channels(), &clip, &mut shader)
     }
 
-    /// [`fold_stepped`](Self::fold_stepped) for compact triangles (see
-    /// [`compact`](crate::raster::compact)): `Err(init)` untouched for the others.
-    #[inline(always)]
-    fn fold_compact<B>(
-        &self,
-        clip: &Rectangle,
-        init: B,
-        f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
-    ) -> Result<B, B> {
-        match CompactTriangle::new(self.positions(), clip) {
-            Ok(Some(triangle)) => {
-                fold_compact_spans(&triangle, || self.compact_colors(&triangle), init, f)
-            }
-            Ok(None) => Ok(init),
-            Err(TooLarge) => Err(init),
-        }
+    /// The covered spans inside `clip` with their colours, each at most
+    /// [`MAX_CHUNK`] pixels long.
+    pub fn shaded_spans(&self, clip: &Rectangle) -> ShadedSpans<C> {
+        ShadedSpans::new(self, clip)
     }
 
     /// The vertices' positions.
@@ -159,62 +113,10 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         self.vertices.map(|v| v.position())
     }
 
-    /// The colour planes of the compact triangle `triangle` (these vertices) and their span
-    /// steps.
+    /// The vertices' colour channels.
     #[inline(always)]
-    fn compact_colors(&self, triangle: &CompactTriangle) -> (CompactColors, SpanSteps) {
-        let channels = self.vertices.map(|v| v.color.channels());
-        let colors = CompactColors::new(&triangle.setup, channels);
-        let steps = C::prepare_steps(colors.dx);
-        (colors, steps)
-    }
-
-    /// [`fold_stepped`](Self::fold_stepped) for any triangle, with `i64`/`i128` set-up.
-    #[inline(always)]
-    fn fold_wide<B>(
-        &self,
-        clip: &Rectangle,
-        init: B,
-        mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
-    ) -> Result<B, B> {
-        let positions = self.positions();
-        // By reference: moving the setup out of the `Option` would copy it.
-        let setup = TriangleSetup::new(positions);
-        let Some(setup) = setup.as_ref() else {
-            return Ok(init);
-        };
-        let Some(region) = Region::new(setup, clip) else {
-            return Ok(init);
-        };
-        let Some(mut rows) = RowColors::of_triangle(self, setup, &region) else {
-            return Err(init);
-        };
-        let steps = C::prepare_steps(rows.dx);
-        Ok(Spans::new(setup, region).fold(init, |acc, span| {
-            let start = rows.at(span.x_start, span.y, C::CHANNELS);
-            f(acc, span, start, &steps)
-        }))
-    }
-
-    /// Draws into a [`SliceFramebuffer`] like [`draw_into`](Self::draw_into) if the triangle is
-    /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::raster::compact)), else
-    /// draws nothing and returns [`TooLarge`]. A firmware that draws only through this method
-    /// links only the compact rasterizer: about an eighth of `draw_into`'s code. It always walks
-    /// spans (no the tiny rows rows): the same pixels.
-    pub fn draw_into_compact(
-        &self,
-        framebuffer: &mut SliceFramebuffer<'_, C>,
-    ) -> Result<(), TooLarge> {
-        self.fold_compact(&framebuffer.bounding_box(), (), |(), span, start, steps| {
-            fill_into(framebuffer, span, start, steps)
-        })
-        .map_err(|()| TooLarge)
-    }
-
-    /// The covered spans inside `clip` with their colours, each at most
-    /// [`MAX_CHUNK`] pixels long.
-    pub fn shaded_spans(&self, clip: &Rectangle) -> ShadedSpans<C> {
-        ShadedSpans::new(self, clip)
+    fn channels(&self) -> [[u8; 3]; 3] {
+        self.vertices.map(|v| v.color.channels())
     }
 }
 
@@ -226,80 +128,89 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
     where
         D: DrawTarget<Color = C>,
     {
-        // After an error the remaining spans are skipped, not drawn.
-        let walked = self.fold_stepped(
-            &target.bounding_box(),
-            Ok(()),
-            |drawn, span, start, steps| {
-                drawn.and_then(|()| {
-                    let area =
-                        Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-                    target.fill_contiguous(&area, SpanColors::new(start, steps.step(), span.len()))
-                })
-            },
-        );
-        match walked {
-            Ok(drawn) => drawn,
-            Err(_) => self.draw_exact(target),
+        let clip = target.bounding_box();
+        let mut shader = ToTarget {
+            target,
+            step: [0; 3],
+            result: Ok(()),
+        };
+        shade(self.positions(), self.channels(), &clip, &mut shader);
+        shader.result
+    }
+}
+
+/// The span shader of [`GouraudTriangle::draw_into`]: the colour format's span loop into the
+/// slice, and its masked rows of eight pixels for tiny triangles (x86-64) when `rows`.
+struct IntoSlice<'f, 'a, C> {
+    framebuffer: &'f mut SliceFramebuffer<'a, C>,
+    steps: SpanSteps,
+    rows: bool,
+}
+
+impl<'f, 'a, C: GouraudColor> IntoSlice<'f, 'a, C> {
+    #[inline(always)]
+    fn new(framebuffer: &'f mut SliceFramebuffer<'a, C>, rows: bool) -> Self {
+        IntoSlice {
+            framebuffer,
+            steps: SpanSteps::default(),
+            rows,
         }
     }
 }
 
-impl<C: GouraudColor> GouraudTriangle<C> {
-    /// [`Drawable::draw`] (and [`draw_into`](Self::draw_into)) for triangles whose colours need
-    /// the exact planes (extreme slivers, huge regions): spans in chunks, each restarted exactly.
-    #[cold]
-    #[inline(never)]
-    fn draw_exact<D>(&self, target: &mut D) -> Result<(), D::Error>
-    where
-        D: DrawTarget<Color = C>,
-    {
-        for (span, colors) in self.shaded_spans(&target.bounding_box()) {
+impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
+    #[inline(always)]
+    fn prepare(&mut self, step: [u32; 3]) {
+        self.steps = C::prepare_steps(step);
+    }
+
+    #[inline(always)]
+    fn span(&mut self, span: Span, start: [u32; 3]) {
+        // The spans of the walk are clipped to the framebuffer.
+        if let Some(row) = self
+            .framebuffer
+            .clipped_span_mut(span.y, span.x_start, span.x_end)
+        {
+            C::fill_prepared(row, start, &self.steps);
+        }
+    }
+
+    #[inline(always)]
+    fn row_width(&self) -> Option<u32> {
+        self.rows.then(|| self.framebuffer.size().width)
+    }
+
+    #[inline(always)]
+    fn masked_row(&mut self, y: i32, x: i32, covered: [i16; LANES], first: u32, start: [u32; 3]) {
+        if let Some(row) = self.framebuffer.lanes_mut(y, x) {
+            C::fill_masked_row(row, covered, first, start, &self.steps);
+        }
+    }
+}
+
+/// The span shader of [`GouraudTriangle`]'s [`Drawable::draw`]: one `fill_contiguous` a span.
+/// After an error the remaining spans are skipped, not drawn.
+struct ToTarget<'t, D: DrawTarget> {
+    target: &'t mut D,
+    step: [u32; 3],
+    result: Result<(), D::Error>,
+}
+
+impl<C: GouraudColor, D: DrawTarget<Color = C>> SpanShader<3> for ToTarget<'_, D> {
+    #[inline(always)]
+    fn prepare(&mut self, step: [u32; 3]) {
+        self.step = step;
+    }
+
+    #[inline(always)]
+    fn span(&mut self, span: Span, start: [u32; 3]) {
+        if self.result.is_ok() {
             let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-            target.fill_contiguous(&area, colors)?;
+            self.result = self
+                .target
+                .fill_contiguous(&area, SpanColors::new(start, self.step, span.len()));
         }
-        Ok(())
     }
-}
-
-/// Fills `span` of `framebuffer` with colours from `start` stepped by `steps` (the spans of the
-/// rasterizer's own walks, clipped to the framebuffer).
-#[inline(always)]
-fn fill_into<C: GouraudColor>(
-    framebuffer: &mut SliceFramebuffer<'_, C>,
-    span: Span,
-    start: [u32; 3],
-    steps: &SpanSteps,
-) {
-    if let Some(row) = framebuffer.clipped_span_mut(span.y, span.x_start, span.x_end) {
-        C::fill_prepared(row, start, steps);
-    }
-}
-
-/// Folds `f` over the covered spans of the compact triangle `triangle` with their colours from
-/// `colors` (see [`GouraudTriangle::fold_stepped`]), called after the walk's set-up (on
-/// Cortex-M0 fewer values then live across it); `Err(init)` untouched if its walk does not fit
-/// 32 bits.
-#[inline(always)]
-fn fold_compact_spans<B>(
-    triangle: &CompactTriangle,
-    colors: impl FnOnce() -> (CompactColors, SpanSteps),
-    init: B,
-    mut f: impl FnMut(B, Span, [u32; 3], &SpanSteps) -> B,
-) -> Result<B, B> {
-    let Ok(spans) = triangle.walk() else {
-        return Err(init);
-    };
-    let (colors, steps) = colors();
-    let steps = &steps;
-    Ok(spans.fold(init, |acc, span, column, row| {
-        let start = core::array::from_fn(|k| {
-            colors.value[k]
-                .wrapping_add(colors.dy[k].wrapping_mul(row))
-                .wrapping_add(colors.dx[k].wrapping_mul(column))
-        });
-        f(acc, span, start, steps)
-    }))
 }
 
 /// A triangle filled with one colour; covers exactly the pixels a [`GouraudTriangle`] with the
@@ -319,58 +230,14 @@ impl<C: PixelColor> SolidTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] with one slice fill per span (tiny triangles on x86-64:
-    /// one masked write per row, see the tiny rows); the same pixels as
-    /// [`Drawable::draw`].
+    /// one masked write per row of eight pixels); the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
-        let color = self.color;
-        // The framebuffer travels in the fold's accumulator.
-        self.fold_spans(
-            &framebuffer.bounding_box(),
+        let clip = framebuffer.bounding_box();
+        let mut shader = SolidIntoSlice {
             framebuffer,
-            |_triangle, fb| {
-                #[cfg(sse2_rows)]
-                if tiny::fill(fb, _triangle, color) {
-                    return Ok(fb);
-                }
-                Err(fb)
-            },
-            |fb, span| {
-                if let Some(row) = fb.clipped_span_mut(span.y, span.x_start, span.x_end) {
-                    fill_row(row, color);
-                }
-                fb
-            },
-        );
-    }
-
-    /// Folds `f` over the covered spans inside `clip`: the compact walk for triangles under
-    /// 2048 px (see [`compact`](crate::raster::compact)), [`Spans`] for the rest. A compact triangle is
-    /// first offered to `whole`, which may draw it in one piece (`Ok`) or hand the accumulator
-    /// back (`Err`).
-    #[inline(always)]
-    fn fold_spans<B>(
-        &self,
-        clip: &Rectangle,
-        init: B,
-        whole: impl FnOnce(&CompactTriangle, B) -> Result<B, B>,
-        mut f: impl FnMut(B, Span) -> B,
-    ) -> B {
-        let init = match CompactTriangle::new(self.points, clip) {
-            Ok(Some(triangle)) => {
-                let init = match whole(&triangle, init) {
-                    Ok(done) => return done,
-                    Err(init) => init,
-                };
-                match triangle.walk() {
-                    Ok(spans) => return spans.fold(init, |acc, span, _, _| f(acc, span)),
-                    Err(TooLarge) => init,
-                }
-            }
-            Ok(None) => return init,
-            Err(TooLarge) => init,
+            color: self.color,
         };
-        // One call of the general walk for both ways here (flash on Cortex-M).
-        self.spans(clip).fold(init, f)
+        shade(self.points, [[]; 3], &clip, &mut shader);
     }
 
     /// The covered spans inside `clip`.
@@ -387,147 +254,118 @@ impl<C: PixelColor> Drawable for SolidTriangle<C> {
     where
         D: DrawTarget<Color = C>,
     {
-        // `fold` walks with the walker's state in registers (see `Spans`; `try_fold` would step
-        // through `next`); after an error the remaining spans are skipped, not drawn.
-        let span_by_span = |_: &CompactTriangle, drawn| Err(drawn);
-        self.fold_spans(
-            &target.bounding_box(),
-            Ok(()),
-            span_by_span,
-            |drawn, span| {
-                drawn.and_then(|()| {
-                    let area =
-                        Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-                    target.fill_solid(&area, self.color)
-                })
-            },
-        )
+        let clip = target.bounding_box();
+        let mut shader = SolidToTarget {
+            target,
+            color: self.color,
+            result: Ok(()),
+        };
+        shade(self.points, [[]; 3], &clip, &mut shader);
+        shader.result
     }
 }
 
-/// Iterator over the covered spans of a [`GouraudTriangle`] and their colours.
+/// The span shader of [`SolidTriangle::draw_into`]: slice fills, and masked rows of eight
+/// pixels for tiny triangles (x86-64).
+struct SolidIntoSlice<'f, 'a, C> {
+    framebuffer: &'f mut SliceFramebuffer<'a, C>,
+    color: C,
+}
+
+impl<C: PixelColor> SpanShader<0> for SolidIntoSlice<'_, '_, C> {
+    #[inline(always)]
+    fn prepare(&mut self, _: [u32; 0]) {}
+
+    #[inline(always)]
+    fn span(&mut self, span: Span, _: [u32; 0]) {
+        // The spans of the walk are clipped to the framebuffer.
+        if let Some(row) = self
+            .framebuffer
+            .clipped_span_mut(span.y, span.x_start, span.x_end)
+        {
+            fill_row(row, self.color);
+        }
+    }
+
+    #[inline(always)]
+    fn row_width(&self) -> Option<u32> {
+        Some(self.framebuffer.size().width)
+    }
+
+    #[inline(always)]
+    fn masked_row(&mut self, y: i32, x: i32, covered: [i16; LANES], _: u32, _: [u32; 0]) {
+        if let Some(row) = self.framebuffer.lanes_mut(y, x) {
+            // The whole row read, then written: a select of values, which LLVM vectorises (a
+            // select of a load per pixel becomes a branch per pixel).
+            let (old, color) = (*row, self.color);
+            *row = core::array::from_fn(|i| if covered[i] != 0 { color } else { old[i] });
+        }
+    }
+}
+
+/// The span shader of [`SolidTriangle`]'s [`Drawable::draw`]: one `fill_solid` a span. After an
+/// error the remaining spans are skipped, not drawn.
+struct SolidToTarget<'t, D: DrawTarget> {
+    target: &'t mut D,
+    color: D::Color,
+    result: Result<(), D::Error>,
+}
+
+impl<D: DrawTarget> SpanShader<0> for SolidToTarget<'_, D> {
+    #[inline(always)]
+    fn prepare(&mut self, _: [u32; 0]) {}
+
+    #[inline(always)]
+    fn span(&mut self, span: Span, _: [u32; 0]) {
+        if self.result.is_ok() {
+            let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
+            self.result = self.target.fill_solid(&area, self.color);
+        }
+    }
+}
+
+/// Iterator over the covered spans of a [`GouraudTriangle`] and their colours: the same walk,
+/// planes and colours as [`Drawable::draw`], spans cut into chunks of at most [`MAX_CHUNK`]
+/// pixels.
 #[derive(Debug, Clone)]
 pub struct ShadedSpans<C> {
     spans: Spans,
     shading: Shading,
     /// Per-pixel steps of the channels.
     step: [u32; 3],
-    /// The span being handed out in chunks, and how far into it we are.
-    current: Option<(Span, u32)>,
+    /// The span being handed out in chunks, how far into it we are, and its first pixel's values.
+    current: Option<(Span, u32, [u32; 3])>,
     _color: PhantomData<C>,
 }
 
 /// How the channel values at span starts are found.
-// No heap to box the rare large variant in; the iterator was this size before (three planes).
+// No heap to box the rare large variant in.
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 enum Shading {
-    /// All channels stepped from one shared position (the common case): [`STEP_BITS`]
-    /// fractional bits at pixel `(x, y)`, moved by exact multiples of `dx` and `dy` modulo 2³².
-    Stepped(RowColors),
-    /// Some channel needs the general plane (huge regions or gradients).
-    Planes([AttributePlane; 3]),
-}
-
-/// The channel values at one pixel and their gradients, [`STEP_BITS`] fractional bits (+½
-/// included), wrapping.
-///
-/// Wrapping arithmetic makes the value at `(x, y)` the same integer modulo 2³² whichever way it
-/// was reached, so its error is that of the start value plus `|Δx|` and `|Δy|` times that of the
-/// gradients (each within ½ + 2⁻⁸ units of 2⁻²⁴): below 2⁻⁹ LSB over the largest region stepped
-/// (`width + height ≤ 2¹⁶`). Covered pixels have values in `[0, 256)·2²⁴`, so the wrapped value
-/// is the true one.
-#[derive(Debug, Clone, Copy)]
-struct RowColors {
-    value: [u32; 3],
-    dx: [u32; 3],
-    dy: [u32; 3],
-    x: i32,
-    y: i32,
-}
-
-/// The values of channel `k` at the vertices of `triangle`.
-#[inline]
-fn channel_values<C: GouraudColor>(triangle: &GouraudTriangle<C>, k: usize) -> [u8; 3] {
-    triangle
-        .vertices
-        .map(|v| v.color.channels().get(k).copied().unwrap_or(0))
-}
-
-impl RowColors {
-    /// The accumulators of the colours of `triangle` over `region`, or `None` if a channel needs
-    /// the exact plane (extreme slivers, huge regions).
-    #[inline]
-    fn of_triangle<C: GouraudColor>(
-        triangle: &GouraudTriangle<C>,
-        setup: &TriangleSetup,
-        region: &Region,
-    ) -> Option<Self> {
-        if let Some(small) = SmallPlanes::new(setup, region) {
-            let plane = |k: usize| {
-                if k < C::CHANNELS {
-                    small.plane(channel_values(triangle, k))
-                } else {
-                    Some(Stepped::ZERO)
-                }
-            };
-            if let (Some(r), Some(g), Some(b)) = (plane(0), plane(1), plane(2)) {
-                return Some(RowColors::new([r, g, b], region));
-            }
-        }
-        let inverse = InverseArea::new(setup.area2);
-        let ctx = StepContext::new(setup, region)?;
-        // Each channel: gradients and corner value, three products by the shared reciprocal.
-        let stepped = |k: usize| {
-            if k < C::CHANNELS {
-                let values = channel_values(triangle, k).map(u16::from);
-                Stepped::new(&inverse, &ctx, AttributePlane::gradient(setup, values))
-            } else {
-                Some(Stepped::ZERO)
-            }
-        };
-        Some(RowColors::new(
-            [stepped(0)?, stepped(1)?, stepped(2)?],
-            region,
-        ))
-    }
-
-    /// The accumulators of `planes` (32 fractional bits) at the region's top-left pixel.
-    fn new(planes: [Stepped; 3], region: &Region) -> Self {
-        // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
-        let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
-        RowColors {
-            value: planes.map(|p| round(p.value)),
-            dx: planes.map(|p| round(p.dx)),
-            dy: planes.map(|p| round(p.dy)),
-            x: region.x0,
-            y: region.y0,
-        }
-    }
-
-    /// Moves to pixel `(x, y)` and returns the values there.
-    #[inline(always)]
-    fn at(&mut self, x: i32, y: i32, channels: usize) -> [u32; 3] {
-        let (mx, my) = (x.wrapping_sub(self.x) as u32, y.wrapping_sub(self.y) as u32);
-        (self.x, self.y) = (x, y);
-        for ((v, dx), dy) in self
-            .value
-            .iter_mut()
-            .zip(&self.dx)
-            .zip(&self.dy)
-            .take(channels)
-        {
-            *v = v
-                .wrapping_add(dy.wrapping_mul(my))
-                .wrapping_add(dx.wrapping_mul(mx));
-        }
-        self.value
-    }
+    /// The stepped planes (the common case), from the pixel `origin`.
+    Stepped {
+        planes: Planes<3>,
+        origin: (i32, i32),
+    },
+    /// Exact planes (huge regions or gradients).
+    Exact([AttributePlane; 3]),
 }
 
 impl<C: GouraudColor> ShadedSpans<C> {
     fn new(triangle: &GouraudTriangle<C>, clip: &Rectangle) -> Self {
-        let positions = triangle.vertices.map(|v| v.position());
+        let (positions, channels) = (triangle.positions(), triangle.channels());
+        match CompactTriangle::new(positions, clip) {
+            Ok(None) => return Self::empty(),
+            Ok(Some(compact)) => {
+                if let Ok(walk) = compact.walk() {
+                    let planes = Planes::compact(&compact.setup, channels);
+                    let origin = (compact.x0, compact.y0);
+                    return Self::stepped(Spans::compact(walk), planes, origin);
+                }
+            }
+            Err(TooLarge) => {}
+        }
         let setup = TriangleSetup::new(positions);
         // By reference: moving the setup out of the `Option` would copy it.
         let Some(setup) = setup.as_ref() else {
@@ -536,29 +374,29 @@ impl<C: GouraudColor> ShadedSpans<C> {
         let Some(region) = Region::new(setup, clip) else {
             return Self::empty();
         };
-
-        let shading = match RowColors::of_triangle(triangle, setup, &region) {
-            Some(rows) => Shading::Stepped(rows),
-            None => {
-                let inverse = InverseArea::new(setup.area2);
-                Shading::Planes(core::array::from_fn(|k| {
-                    if k < C::CHANNELS {
-                        let values = channel_values(triangle, k).map(u16::from);
-                        AttributePlane::with_inverse(setup, &inverse, values, &region)
-                    } else {
-                        AttributePlane::constant(0)
-                    }
-                }))
-            }
-        };
-        let step = match &shading {
-            Shading::Stepped(rows) => rows.dx,
-            Shading::Planes(planes) => planes.map(|p| p.step() << PLANE_TO_STEP),
-        };
+        let spans = Spans::new(setup, region);
+        if let Some(planes) = Planes::general(setup, &region, channels) {
+            return Self::stepped(spans, planes, (region.x0, region.y0));
+        }
+        let inverse = InverseArea::new(setup.area2);
+        let planes: [AttributePlane; 3] = core::array::from_fn(|k| {
+            let values = channels.map(|c| u16::from(c[k]));
+            AttributePlane::with_inverse(setup, &inverse, values, &region)
+        });
         ShadedSpans {
-            spans: Spans::new(setup, region),
-            shading,
-            step,
+            spans,
+            step: planes.map(|p| p.step() << PLANE_TO_STEP),
+            shading: Shading::Exact(planes),
+            current: None,
+            _color: PhantomData,
+        }
+    }
+
+    fn stepped(spans: Spans, planes: Planes<3>, origin: (i32, i32)) -> Self {
+        ShadedSpans {
+            spans,
+            step: planes.step(),
+            shading: Shading::Stepped { planes, origin },
             current: None,
             _color: PhantomData,
         }
@@ -568,7 +406,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
     fn empty() -> Self {
         ShadedSpans {
             spans: Spans::empty(),
-            shading: Shading::Planes([AttributePlane::constant(0); 3]),
+            shading: Shading::Exact([AttributePlane::constant(0); 3]),
             step: [0; 3],
             current: None,
             _color: PhantomData,
@@ -579,28 +417,24 @@ impl<C: GouraudColor> ShadedSpans<C> {
     #[inline]
     fn row_start(&mut self, span: &Span) -> [u32; 3] {
         match &mut self.shading {
-            Shading::Stepped(rows) => rows.at(span.x_start, span.y, C::CHANNELS),
-            Shading::Planes(planes) => {
-                let mut start = [0; 3];
-                for (s, p) in start.iter_mut().zip(planes.iter_mut()).take(C::CHANNELS) {
-                    *s = p.row_start(span.x_start, span.y) << PLANE_TO_STEP;
-                }
-                start
+            Shading::Stepped { planes, origin } => {
+                // Inside the walk's region, which starts at `origin`.
+                let column = span.x_start.wrapping_sub(origin.0) as u32;
+                planes.at(column, span.y.wrapping_sub(origin.1) as u32)
             }
+            Shading::Exact(planes) => planes
+                .each_mut()
+                .map(|p| p.row_start(span.x_start, span.y) << PLANE_TO_STEP),
         }
     }
 
-    /// Channel values `offset` pixels right of the last [`Self::row_start`].
-    fn further(&self, offset: u32) -> [u32; 3] {
+    /// Channel values `offset` pixels right of the last [`Self::row_start`], which was `start`.
+    fn further(&self, start: [u32; 3], offset: u32) -> [u32; 3] {
         match &self.shading {
-            Shading::Stepped(rows) => {
-                let mut start = rows.value;
-                for (s, dx) in start.iter_mut().zip(&rows.dx) {
-                    *s = s.wrapping_add(dx.wrapping_mul(offset));
-                }
-                start
+            Shading::Stepped { .. } => {
+                core::array::from_fn(|k| start[k].wrapping_add(self.step[k].wrapping_mul(offset)))
             }
-            Shading::Planes(planes) => planes.map(|p| p.further(offset) << PLANE_TO_STEP),
+            Shading::Exact(planes) => planes.map(|p| p.further(offset) << PLANE_TO_STEP),
         }
     }
 }
@@ -610,8 +444,8 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
 
     #[inline]
     fn next(&mut self) -> Option<Self::Item> {
-        let (span, offset, start) = match self.current {
-            Some((span, offset)) => (span, offset, self.further(offset)),
+        let (span, offset, first) = match self.current {
+            Some(current) => current,
             None => {
                 let span = self.spans.next()?;
                 let start = self.row_start(&span);
@@ -621,9 +455,14 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
                 (span, 0, start)
             }
         };
+        let start = if offset == 0 {
+            first
+        } else {
+            self.further(first, offset)
+        };
         let len = (span.len() - offset).min(MAX_CHUNK);
         let done = offset + len;
-        self.current = (done < span.len()).then_some((span, done));
+        self.current = (done < span.len()).then_some((span, done, first));
         let chunk = Span {
             y: span.y,
             x_start: span.x_start.wrapping_add(offset as i32),
@@ -747,5 +586,106 @@ mod tests {
             assert_eq!(gouraud.draw(&mut target), Err(fail_at));
             assert_eq!(target.spans, fail_at);
         }
+    }
+}
+
+/// Tiny triangles (x86-64) drawn a row of lanes at a time by `draw_into`: the same pixels as
+/// the span walk.
+#[cfg(all(test, sse2_rows))]
+mod tiny_tests {
+    use embedded_graphics::pixelcolor::{Bgr565, Gray8, Rgb565, Rgb888};
+
+    use embedded_graphics::Drawable;
+
+    use crate::{Coord, GouraudColor, GouraudTriangle, SolidTriangle, Vertex};
+
+    /// Tiny and small triangles drawn by `draw_into` (this path, for the tiny ones) and by the
+    /// span walk (`draw_into_compact`; `Drawable::draw` for solid ones) give the same
+    /// framebuffer, pixel for pixel: over random backgrounds, near and across every border of
+    /// framebuffers 8 to 21 pixels wide.
+    fn same_as_the_span_walk<C: GouraudColor + core::fmt::Debug>(
+        seed: u64,
+        color: impl Fn(u64) -> C,
+    ) {
+        let mut next = crate::xorshift(seed);
+        let mut tiny = 0;
+        for n in 0..40_000 {
+            let (width, height) = (8 + (next() % 14) as u32, 1 + (next() % 14) as u32);
+            let len = (width * height) as usize;
+            let mut background = [color(0); 21 * 14];
+            for px in &mut background[..len] {
+                *px = color(next());
+            }
+            // Boxes up to 9 pixels (some just past the tiny limit), anywhere over the buffer; a
+            // quarter near the limit with vertices on the box's corners, across the right border
+            // (the eight lanes then reach furthest from the vertices: edge values wrap there).
+            let extreme = n % 4 == 1;
+            let size = if extreme {
+                1792 + (next() % 256) as i32
+            } else {
+                1 + (next() % (9 * 256)) as i32
+            };
+            let origin = (
+                if extreme {
+                    (width as i32 - 7) * 256 + (next() % 1536) as i32
+                } else {
+                    (next() % u64::from(width + 8) * 256) as i32 - 6 * 256
+                },
+                (next() % u64::from(height + 8) * 256) as i32 - 6 * 256,
+            );
+            // A third on a 1/2-pixel lattice: edges through pixel centres (the fill rule's ties).
+            let lattice = if n % 3 == 0 { !127 } else { !0 };
+            let v: [Vertex<C>; 3] = core::array::from_fn(|_| {
+                let mut at = |o: i32| {
+                    let d = if extreme {
+                        (next() % 2) as i32 * (size - 1)
+                    } else {
+                        (next() % size as u64) as i32
+                    };
+                    (o + d) & lattice
+                };
+                let (x, y) = (at(origin.0), at(origin.1));
+                Vertex::new(Coord::from_bits(x), Coord::from_bits(y), color(next()))
+            });
+            let triangle = GouraudTriangle::new(v);
+            let (mut got, mut want) = (background, background);
+            let mut fb = crate::SliceFramebuffer::new(&mut got[..len], width, height).unwrap();
+            triangle.draw_into(&mut fb);
+            let mut fb = crate::SliceFramebuffer::new(&mut want[..len], width, height).unwrap();
+            assert_eq!(triangle.draw_into_compact(&mut fb), Ok(()));
+            assert!(got == want, "case {n}: {width}×{height}, {v:?}");
+            // Solid: `draw_into` (this path) against `Drawable::draw` (the span walk).
+            let solid = SolidTriangle::new(v.map(|v| v.position()), v[0].color);
+            let (mut got, mut want) = (background, background);
+            let mut fb = crate::SliceFramebuffer::new(&mut got[..len], width, height).unwrap();
+            solid.draw_into(&mut fb);
+            let mut fb = crate::SliceFramebuffer::new(&mut want[..len], width, height).unwrap();
+            let Ok(()) = solid.draw(&mut fb);
+            assert!(got == want, "solid case {n}: {width}×{height}, {v:?}");
+            tiny += usize::from(size < 2048);
+        }
+        assert!(tiny > 20_000);
+    }
+
+    #[test]
+    fn rgb565_rows_are_the_span_walks_pixels() {
+        same_as_the_span_walk(0x7157_0001, |r| {
+            Rgb565::from(embedded_graphics::pixelcolor::raw::RawU16::new(r as u16))
+        });
+    }
+
+    #[test]
+    fn bgr565_rows_are_the_span_walks_pixels() {
+        same_as_the_span_walk(0x7157_0002, |r| {
+            Bgr565::from(embedded_graphics::pixelcolor::raw::RawU16::new(r as u16))
+        });
+    }
+
+    #[test]
+    fn default_rows_are_the_span_walks_pixels() {
+        same_as_the_span_walk(0x7157_0003, |r| {
+            Rgb888::new(r as u8, (r >> 8) as u8, (r >> 16) as u8)
+        });
+        same_as_the_span_walk(0x7157_0004, |r| Gray8::new(r as u8));
     }
 }

@@ -40,9 +40,8 @@ use core::num::{NonZeroU32, NonZeroU64};
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
-use crate::raster::arith::{
-    leading_zeros_32, mul_i32_wide, mul_u32_u33, reciprocal_63, wrapping_mul_i32,
-};
+use crate::raster::arith::mul_i32_wide;
+use crate::raster::edge::owns_centres_on;
 use crate::raster::walk::{Boundary, Walk};
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -66,97 +65,6 @@ fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
     }
 }
 
-/// `n / d` rounded (halves away from zero), for `d > 0`.
-#[inline]
-fn div_round(n: i64, d: NonZeroU64) -> i64 {
-    let q = (n.unsigned_abs() + d.get() / 2) / d;
-    if n < 0 {
-        (q as i64).wrapping_neg()
-    } else {
-        q as i64
-    }
-}
-
-/// `n·2⁴⁰ / area2` for `|n| < 2¹⁹` and `0 < area2 < 2³⁸` (a barycentric gradient per pixel,
-/// 2⁻³² units), within one unit, from one 32-bit reciprocal of the area per triangle.
-///
-/// The area is normalised to `d ∈ [2³¹, 2³²)` and `r = ⌊2⁶³/d⌋` is exact ([`reciprocal_63`]);
-/// `|n|·r` (below 2⁵¹) shifted back gives the quotient. Areas of 2³² or more are shifted right
-/// by at most 6 bits (a relative change below 2⁻³¹) and their quotients are below 2²⁷, so the
-/// result is within `2⁻³⁰·2²⁷ + ½`. Smaller areas are shifted left by `t` bits, exactly, and
-/// the floor of `r` costs at most `|n|·2^(t−23)`: within a unit while `|n|·2ᵗ ≤ 2²²`. Larger
-/// numerators (slivers under about two pixels across) take an exact 64-bit division, and if the
-/// largest of a triangle does, all do and the reciprocal is skipped.
-#[derive(Debug, Clone, Copy)]
-struct GradientScale {
-    area2: NonZeroU64,
-    r: u64,
-    shift: u32,
-    /// Largest numerator magnitude the reciprocal serves.
-    limit: u64,
-}
-
-impl GradientScale {
-    /// The scale for numerators up to `max` in magnitude.
-    #[inline]
-    fn new(area2: NonZeroU64, max: u32) -> Self {
-        let (area, area2) = (area2, area2.get());
-        let (d, shift, limit) = if area2 >> 32 == 0 {
-            let t = leading_zeros_32(area2 as u32);
-            // t > 23 only for area2 < 2⁹, where the limit admits no numerator but 0.
-            (
-                (area2 << t) as u32,
-                23u32.saturating_sub(t),
-                (1u64 << 22) >> t,
-            )
-        } else {
-            // area2 < 2³⁸: at most 6 bits to drop.
-            let mut s = 1;
-            while area2 >> (32 + s) != 0 {
-                s += 1;
-            }
-            ((area2 >> s) as u32, 23 + s, u64::MAX)
-        };
-        if u64::from(max) > limit {
-            return GradientScale {
-                area2: area,
-                r: 0,
-                shift: 0,
-                limit: 0,
-            };
-        }
-        GradientScale {
-            area2: area,
-            r: reciprocal_63(d),
-            shift,
-            limit,
-        }
-    }
-
-    // One copy for the four gradients (flash on Cortex-M0).
-    #[inline(never)]
-    fn of(&self, n: i32) -> i64 {
-        let m = u64::from(n.unsigned_abs());
-        if m > self.limit {
-            return div_round(i64::from(n) << 40, self.area2);
-        }
-        // m < 2¹⁹ and r ≤ 2³²: the product fits.
-        let q =
-            ((mul_u32_u33(m as u32, self.r) + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
-        if crate::arch::CORTEX_M {
-            if n < 0 {
-                q.wrapping_neg()
-            } else {
-                q
-            }
-        } else {
-            // Without a branch on hosts: the signs of a triangle's gradients are random.
-            let sign = i64::from(n >> 31);
-            (q ^ sign).wrapping_sub(sign)
-        }
-    }
-}
-
 /// The boundary (see [`Walk`]) of the edge with coefficients `a ≠ 0`, `b` from the pixel centre at
 /// `offset` (sub-pixels) from the edge's start vertex on; `None` if the edge's value there
 /// does not fit (never inside a compact triangle's bounding box).
@@ -165,8 +73,8 @@ fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary<i32>> {
     // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
     let e = mul_i32_wide(a, offset.0) + mul_i32_wide(b, offset.1);
     let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
-    // Left edges (a > 0) own the centres on them; right edges do not.
-    let k = i32::try_from((e >> SUBPIXEL_BITS) - i64::from(on_lattice && a < 0)).ok()?;
+    let owns = owns_centres_on(a.into(), b.into());
+    let k = i32::try_from((e >> SUBPIXEL_BITS) - i64::from(on_lattice && !owns)).ok()?;
     let m = NonZeroU32::new(a.unsigned_abs()).unwrap_or(NonZeroU32::MIN);
     let (q, rem) = div_floor(k, m);
     let (qb, rem_step) = div_floor(b, m);
@@ -287,7 +195,7 @@ impl CompactTriangle {
         for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
             if a == 0 {
                 let edge_y = s.1.wrapping_add(p[0].1);
-                if b > 0 {
+                if owns_centres_on(0, b.into()) {
                     y0 = y0.max(lo(edge_y));
                 } else {
                     y1 = y1.min(hi_before(edge_y));
@@ -409,72 +317,8 @@ impl CompactTriangle {
             (next, pair_left, switch as u32),
             (x0, y0),
             x1 - x0,
-            rows as u32 + 1,
+            (0, rows as u32 + 1),
         ))
-    }
-}
-
-/// Colour accumulators of a compact triangle: channel values at the walk's first pixel and their
-/// per-pixel and per-row steps, 24 fractional bits (the colours' `STEP_BITS`; +½ included),
-/// wrapping.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct CompactColors {
-    pub(crate) value: [u32; 3],
-    pub(crate) dx: [u32; 3],
-    pub(crate) dy: [u32; 3],
-}
-
-impl CompactColors {
-    /// The planes through `channels` (per input vertex) of the triangle set up as `setup`.
-    ///
-    /// The barycentric gradients of oriented vertices 1 and 2, `256·a/area2` per pixel, are
-    /// found to 32 fractional bits within a unit ([`GradientScale`]); a channel's gradient is
-    /// `Σ (cₖ − c₀)·gₖ`, within 510 units of 2⁻³² (2⁻²³ LSB a pixel),
-    /// and its value at the first pixel is `c₀` plus the gradients times the offset from vertex
-    /// 0 (below 2¹¹ pixels). Over a region of `w + h < 2¹³` pixels the error stays below 2⁻¹⁰
-    /// LSB. Everything wraps modulo 2⁶⁴ and then 2³²: only the low bits of a huge gradient
-    /// matter for the (in-range) covered values.
-    #[inline(always)]
-    pub(crate) fn new(setup: &CompactSetup, channels: [[u8; 3]; 3]) -> Self {
-        let max = setup
-            .a
-            .iter()
-            .chain(&setup.b)
-            .map(|n| n.unsigned_abs())
-            .max();
-        let scale = GradientScale::new(setup.area2, max.unwrap_or(0));
-        let gx = setup.a.map(|a| scale.of(a));
-        let gy = setup.b.map(|b| scale.of(b));
-        let [c0, c1, c2] = setup
-            .order
-            .map(|k| channels.get(k).copied().unwrap_or([0; 3]));
-        let (px, py) = (setup.dx, setup.dy);
-        // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
-        let mul = wrapping_mul_i32;
-        // Unused channels are 0 at every vertex: their planes are constant.
-        let planes: [[u32; 3]; 3] = core::array::from_fn(|k| {
-            let base = i32::from(c0[k]);
-            let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
-            // 2⁻³² units per pixel.
-            let sx = mul(gx[0], d1).wrapping_add(mul(gx[1], d2));
-            let sy = mul(gy[0], d1).wrapping_add(mul(gy[1], d2));
-            // Value at the first centre, 2⁻⁴⁰ units: c₀ + (sx·px + sy·py) / 256 (px, py in
-            // sub-pixels).
-            let v = (i64::from(base) << 40)
-                .wrapping_add(mul(sx, px))
-                .wrapping_add(mul(sy, py));
-            let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
-            [
-                to_step(v, 16).wrapping_add(1 << 23),
-                to_step(sx, 8),
-                to_step(sy, 8),
-            ]
-        });
-        CompactColors {
-            value: planes.map(|p| p[0]),
-            dx: planes.map(|p| p[1]),
-            dy: planes.map(|p| p[2]),
-        }
     }
 }
 
@@ -484,6 +328,7 @@ mod tests {
 
     use super::*;
     use crate::raster::edge::TriangleSetup;
+    use crate::raster::plane::Planes;
 
     /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
     /// the limit, slivers included, and a 48 × 40 clip somewhere over the bounding box.
@@ -526,22 +371,6 @@ mod tests {
 
     fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
         v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
-    }
-
-    /// The reciprocal gradients are within one unit of the exact quotient, over areas and
-    /// numerators of every magnitude (both sides of the sliver threshold).
-    #[test]
-    fn gradient_scale_is_within_a_unit() {
-        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908);
-        for _ in 0..200_000 {
-            let area2 = (next() >> (26 + next() % 38)).max(1);
-            let n = (next() >> (45 + next() % 19)) as i32 * if next() & 1 == 0 { 1 } else { -1 };
-            let area = NonZeroU64::new(area2).unwrap();
-            let got = GradientScale::new(area, n.unsigned_abs()).of(n);
-            let exact_times_area = i128::from(n) << 40;
-            let err = (i128::from(got) * i128::from(area2) - exact_times_area).abs();
-            assert!(err <= i128::from(area2), "n {n}, area2 {area2}: got {got}");
-        }
     }
 
     /// The compact walk's spans are exactly the pixels the general (`i64`/`i128`) edge functions
@@ -593,7 +422,7 @@ mod tests {
             assert!(triangle.walk().is_ok());
             let setup = triangle.setup;
             let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
-            let colors = CompactColors::new(&setup, channels);
+            let colors = Planes::compact(&setup, channels);
             let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
             let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
                 (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
@@ -613,9 +442,7 @@ mod tests {
                         cross(q, p[0], p[1]),
                     ];
                     for k in 0..3 {
-                        let got = colors.value[k]
-                            .wrapping_add(colors.dy[k].wrapping_mul(row))
-                            .wrapping_add(colors.dx[k].wrapping_mul(column));
+                        let got = colors.at(column, row)[k];
                         let exact: i128 =
                             (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
                         // (got − ½ − exact) · area2, in 2⁻²⁴ units, reduced modulo 2³²·area2.

@@ -52,6 +52,15 @@ fn dot2_wide(a: i64, x: i64, b: i64, y: i64) -> i128 {
     i128::from(a) * i128::from(x) + i128::from(b) * i128::from(y)
 }
 
+/// The fill rule (Direct3D's top-left rule): whether an edge with coefficients `a = y_a − y_b`,
+/// `b = x_b − x_a` of a positively oriented triangle owns the pixel centres that lie exactly on
+/// it. Left edges (`a > 0`) and top edges (`a = 0`, `b > 0`) do; right and bottom ones do not, so
+/// a centre on an edge shared by two triangles is drawn once.
+#[inline(always)]
+pub(crate) const fn owns_centres_on(a: i64, b: i64) -> bool {
+    a > 0 || (a == 0 && b > 0)
+}
+
 /// One edge function, reduced to pixel-centre lattice form.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EdgeFunction {
@@ -72,9 +81,8 @@ impl EdgeFunction {
         let a = va.1 - vb.1;
         let b = vb.0 - va.0;
         let c = dot2(a, HALF_PIXEL - va.0, b, HALF_PIXEL - va.1, narrow);
-        let top_left = a > 0 || (a == 0 && b > 0);
         let on_lattice = c & ((1 << SUBPIXEL_BITS) - 1) == 0;
-        let t = i128::from(on_lattice && !top_left);
+        let t = i128::from(on_lattice && !owns_centres_on(a, b));
         EdgeFunction {
             a,
             b,

@@ -12,6 +12,9 @@
 //!   `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
 //! * [`plane`] — attributes (colour channels now) interpolated barycentrically by fixed-point
 //!   stepping, with a documented error bound.
+//! * `shade` — the one entry: [`shade`] sets a triangle up in the width it needs, walks it and
+//!   hands each covered span with its attributes to a [`SpanShader`] (solid fill, a colour
+//!   format's span loop, `fill_contiguous`, …).
 //! * `arith` — the integer helpers the set-up needs on cores without a long multiply, a divider
 //!   or `clz`.
 
@@ -19,9 +22,11 @@ pub(crate) mod arith;
 pub mod compact;
 pub mod edge;
 pub mod plane;
+mod shade;
 #[cfg(sse2_rows)]
 pub(crate) mod tiny;
 pub mod walk;
 
 pub use plane::AttributePlane;
+pub(crate) use shade::{shade, shade_compact, SpanShader};
 pub use walk::{for_each_span, Region, Span, Spans};

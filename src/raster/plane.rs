@@ -39,9 +39,21 @@
 //! ```
 
 use crate::fixed_point::SUBPIXEL_BITS;
-use crate::raster::arith::{mul_wide, reciprocal_125, reciprocal_63};
+use core::num::NonZeroU64;
+
+use crate::raster::arith::{
+    leading_zeros_32, mul_u32_u33, mul_wide, reciprocal_125, reciprocal_63, wrapping_mul_i32,
+};
+use crate::raster::compact::CompactSetup;
 use crate::raster::edge::{dot2, TriangleSetup};
 use crate::raster::walk::Region;
+
+/// Fractional bits of the attribute values the walk hands out (8.24 fixed point: attributes have
+/// at most 8 integer bits, so a value fits a `u32`).
+pub const STEP_BITS: u32 = 24;
+
+/// Shift from [`AttributePlane::FRACTION_BITS`] to [`STEP_BITS`] fractional bits.
+pub(crate) const PLANE_TO_STEP: u32 = STEP_BITS - AttributePlane::FRACTION_BITS;
 
 /// Fractional bits of the per-row accumulator.
 const ROW_BITS: u32 = 32;
@@ -172,6 +184,229 @@ impl StepContext {
     }
 }
 
+/// Stepped attribute planes: each attribute's value at the walk's first pixel (its region's
+/// top-left pixel centre) and its per-pixel and per-row gradients, in
+/// [`STEP_BITS`] = 24 fractional bits with the +½ rounding offset,
+/// wrapping modulo 2³².
+///
+/// Wrapping makes the value at `(column, row)` the same integer modulo 2³² however it is
+/// reached, and covered pixels have values in `[0, 256)·2²⁴`, so the wrapped value is the true
+/// one. The error against the exact plane, before the final truncation, is below 2⁻⁹ LSB
+/// everywhere a walk asks (see [`Planes::compact`] and [`Planes::general`]), so every attribute
+/// is within ½ LSB + 2⁻⁹ of the exact value.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Planes<const N: usize> {
+    value: [u32; N],
+    dx: [u32; N],
+    dy: [u32; N],
+}
+
+impl<const N: usize> Planes<N> {
+    /// The planes through `values` (per input vertex) of the compact triangle set up as `setup`.
+    ///
+    /// The barycentric gradients of oriented vertices 1 and 2, `256·a/area2` per pixel, are
+    /// found to 32 fractional bits within a unit ([`GradientScale`]); an attribute's gradient is
+    /// `Σ (cₖ − c₀)·gₖ`, within 510 units of 2⁻³² (2⁻²³ LSB a pixel), and its value at the first
+    /// pixel is `c₀` plus the gradients times the offset from vertex 0 (below 2¹¹ pixels). Over a
+    /// region of `w + h < 2¹³` pixels the error stays below 2⁻¹⁰ LSB. Everything wraps modulo
+    /// 2⁶⁴ and then 2³²: only the low bits of a huge gradient matter for the (in-range) covered
+    /// values.
+    #[inline(always)]
+    pub(crate) fn compact(setup: &CompactSetup, values: [[u8; N]; 3]) -> Self {
+        let max = setup
+            .a
+            .iter()
+            .chain(&setup.b)
+            .map(|n| n.unsigned_abs())
+            .max();
+        let scale = GradientScale::new(setup.area2, max.unwrap_or(0));
+        let gx = setup.a.map(|a| scale.of(a));
+        let gy = setup.b.map(|b| scale.of(b));
+        let [c0, c1, c2] = setup
+            .order
+            .map(|k| values.get(k).copied().unwrap_or([0; N]));
+        let (px, py) = (setup.dx, setup.dy);
+        // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
+        let mul = wrapping_mul_i32;
+        let planes: [[u32; 3]; N] = core::array::from_fn(|k| {
+            let base = i32::from(c0[k]);
+            let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
+            // 2⁻³² units per pixel.
+            let sx = mul(gx[0], d1).wrapping_add(mul(gx[1], d2));
+            let sy = mul(gy[0], d1).wrapping_add(mul(gy[1], d2));
+            // Value at the first centre, 2⁻⁴⁰ units: c₀ + (sx·px + sy·py) / 256 (px, py in
+            // sub-pixels).
+            let v = (i64::from(base) << 40)
+                .wrapping_add(mul(sx, px))
+                .wrapping_add(mul(sy, py));
+            let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
+            [
+                to_step(v, 16).wrapping_add(1 << 23),
+                to_step(sx, 8),
+                to_step(sy, 8),
+            ]
+        });
+        Planes {
+            value: planes.map(|p| p[0]),
+            dx: planes.map(|p| p[1]),
+            dy: planes.map(|p| p[2]),
+        }
+    }
+
+    /// The planes through `values` of the triangle `setup` over `region` (any size), or `None`
+    /// if an attribute needs the exact plane ([`AttributePlane`]: regions of more than 2¹⁶
+    /// pixels across, extreme slivers).
+    ///
+    /// Each plane's gradients and corner value are rounded once from the exact quotients
+    /// ([`InverseArea`]) to 32 fractional bits ([`Stepped`]), then to 24: the value at `(x, y)`
+    /// is off by under 2⁻²⁴ per pixel of distance from the corner, below 2⁻⁹ LSB over 2¹⁶
+    /// pixels.
+    #[inline]
+    pub(crate) fn general(
+        setup: &TriangleSetup,
+        region: &Region,
+        values: [[u8; N]; 3],
+    ) -> Option<Self> {
+        let inverse = InverseArea::new(setup.area2);
+        let ctx = StepContext::new(setup, region)?;
+        let mut planes = Planes {
+            value: [0; N],
+            dx: [0; N],
+            dy: [0; N],
+        };
+        // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
+        let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
+        for k in 0..N {
+            let vertex = values.map(|v| v.get(k).copied().map_or(0, u16::from));
+            let p = Stepped::new(&inverse, &ctx, AttributePlane::gradient(setup, vertex))?;
+            (planes.value[k], planes.dx[k], planes.dy[k]) =
+                (round(p.value), round(p.dx), round(p.dy));
+        }
+        Some(planes)
+    }
+
+    /// The per-pixel steps.
+    #[inline(always)]
+    pub(crate) fn step(&self) -> [u32; N] {
+        self.dx
+    }
+
+    /// The per-row steps.
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
+    #[inline(always)]
+    pub(crate) fn row_step(&self) -> [u32; N] {
+        self.dy
+    }
+
+    /// The values at the first pixel.
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
+    #[inline(always)]
+    pub(crate) fn first(&self) -> [u32; N] {
+        self.value
+    }
+
+    /// The values `column` pixels right of and `row` rows below the first pixel.
+    #[inline(always)]
+    pub(crate) fn at(&self, column: u32, row: u32) -> [u32; N] {
+        core::array::from_fn(|k| {
+            self.value[k]
+                .wrapping_add(self.dy[k].wrapping_mul(row))
+                .wrapping_add(self.dx[k].wrapping_mul(column))
+        })
+    }
+}
+
+/// `n / d` rounded (halves away from zero), for `d > 0`.
+#[inline]
+fn div_round_64(n: i64, d: NonZeroU64) -> i64 {
+    let q = (n.unsigned_abs() + d.get() / 2) / d;
+    if n < 0 {
+        (q as i64).wrapping_neg()
+    } else {
+        q as i64
+    }
+}
+
+/// `n·2⁴⁰ / area2` for `|n| < 2¹⁹` and `0 < area2 < 2³⁸` (a barycentric gradient per pixel,
+/// 2⁻³² units), within one unit, from one 32-bit reciprocal of the area per triangle.
+///
+/// The area is normalised to `d ∈ [2³¹, 2³²)` and `r = ⌊2⁶³/d⌋` is exact ([`reciprocal_63`]);
+/// `|n|·r` (below 2⁵¹) shifted back gives the quotient. Areas of 2³² or more are shifted right
+/// by at most 6 bits (a relative change below 2⁻³¹) and their quotients are below 2²⁷, so the
+/// result is within `2⁻³⁰·2²⁷ + ½`. Smaller areas are shifted left by `t` bits, exactly, and
+/// the floor of `r` costs at most `|n|·2^(t−23)`: within a unit while `|n|·2ᵗ ≤ 2²²`. Larger
+/// numerators (slivers under about two pixels across) take an exact 64-bit division, and if the
+/// largest of a triangle does, all do and the reciprocal is skipped.
+#[derive(Debug, Clone, Copy)]
+struct GradientScale {
+    area2: NonZeroU64,
+    r: u64,
+    shift: u32,
+    /// Largest numerator magnitude the reciprocal serves.
+    limit: u64,
+}
+
+impl GradientScale {
+    /// The scale for numerators up to `max` in magnitude.
+    #[inline]
+    fn new(area2: NonZeroU64, max: u32) -> Self {
+        let (area, area2) = (area2, area2.get());
+        let (d, shift, limit) = if area2 >> 32 == 0 {
+            let t = leading_zeros_32(area2 as u32);
+            // t > 23 only for area2 < 2⁹, where the limit admits no numerator but 0.
+            (
+                (area2 << t) as u32,
+                23u32.saturating_sub(t),
+                (1u64 << 22) >> t,
+            )
+        } else {
+            // area2 < 2³⁸: at most 6 bits to drop.
+            let mut s = 1;
+            while area2 >> (32 + s) != 0 {
+                s += 1;
+            }
+            ((area2 >> s) as u32, 23 + s, u64::MAX)
+        };
+        if u64::from(max) > limit {
+            return GradientScale {
+                area2: area,
+                r: 0,
+                shift: 0,
+                limit: 0,
+            };
+        }
+        GradientScale {
+            area2: area,
+            r: reciprocal_63(d),
+            shift,
+            limit,
+        }
+    }
+
+    // One copy for the four gradients (flash on Cortex-M0).
+    #[inline(never)]
+    fn of(&self, n: i32) -> i64 {
+        let m = u64::from(n.unsigned_abs());
+        if m > self.limit {
+            return div_round_64(i64::from(n) << 40, self.area2);
+        }
+        // m < 2¹⁹ and r ≤ 2³²: the product fits.
+        let q =
+            ((mul_u32_u33(m as u32, self.r) + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
+        if crate::arch::CORTEX_M {
+            if n < 0 {
+                q.wrapping_neg()
+            } else {
+                q
+            }
+        } else {
+            // Without a branch on hosts: the signs of a triangle's gradients are random.
+            let sign = i64::from(n >> 31);
+            (q ^ sign).wrapping_sub(sign)
+        }
+    }
+}
+
 /// The row accumulator of a stepped plane ([`ROW_BITS`] fractional bits, +½ included): value at
 /// the region's top-left pixel and gradients per pixel and per row.
 #[derive(Debug, Clone, Copy)]
@@ -218,109 +453,10 @@ impl Stepped {
         (bound < 1 << 62).then_some(Stepped { value, dx, dy })
     }
 
-    /// The accumulator of a constant 0.
-    pub(crate) const ZERO: Stepped = Stepped {
-        value: 0,
-        dx: 0,
-        dy: 0,
-    };
-
     /// The per-pixel step of [`AttributePlane::step`].
     #[inline]
     pub(crate) fn step(&self) -> u32 {
         step_of(i128::from(self.dx))
-    }
-}
-
-/// Largest `width + height` of a region whose planes [`SmallPlanes`] sets up.
-const SMALL_EXTENT: i64 = 64;
-
-/// Stepped planes of 8-bit attributes (colour channels) over small regions, from 32-bit products
-/// and one 32-bit reciprocal per triangle ([`reciprocal_63`]) instead of [`InverseArea`]'s
-/// 64 × 64-bit products.
-///
-/// It applies when the region spans at most [`SMALL_EXTENT`] pixels (width + height), the doubled
-/// area is in `[2⁸, 2³¹)`, and the coefficients `a`, `b` of two edges and the offset of the
-/// region's corner from the first vertex are below 2¹⁷ sub-pixels (small triangles). Then with
-/// `r = ⌊2^(31+n) / area2⌋` (`n` the bit length of `area2`, so `2³¹ < r ≤ 2³²`) a gradient
-/// `q = num·2⁴⁰/area2` is `num·r / 2^(n−9)` to a relative error below 2⁻³¹, plus ½ from rounding:
-/// with `|q| < 2⁴¹` (gradients below 512 LSB a pixel) that is under 2¹⁰ units of 2⁻³², so over the
-/// at most 64 pixels stepped the error stays below 2⁻¹⁶ LSB. The corner value is formed from the
-/// rounded gradients and the corner's offset from the first vertex (below 2¹⁷ sub-pixels): within
-/// 2⁻¹² LSB.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct SmallPlanes {
-    r: i64,
-    shift: u32,
-    /// `(a, b)` of the edges opposite oriented vertices 1 and 2.
-    edges: [(i32, i32); 2],
-    /// Offset of the region's top-left pixel centre from oriented vertex 0 (sub-pixels).
-    px: i64,
-    py: i64,
-    order: [usize; 3],
-}
-
-impl SmallPlanes {
-    /// The set-up of `setup` over `region`, or `None` outside the small case.
-    #[inline]
-    pub(crate) fn new(setup: &TriangleSetup, region: &Region) -> Option<Self> {
-        const LIMIT: u64 = 1 << 17;
-        if !setup.narrow || region.width() + region.height() > SMALL_EXTENT {
-            return None;
-        }
-        let area2 = u32::try_from(setup.area2)
-            .ok()
-            .filter(|a| (1 << 8..1 << 31).contains(a))?;
-        let [_, e1, e2] = &setup.edges;
-        let small = |v: i64| (v.unsigned_abs() < LIMIT).then_some(v as i32);
-        let edges = [(small(e1.a)?, small(e1.b)?), (small(e2.a)?, small(e2.b)?)];
-        let (vx, vy) = setup.vertices.get(setup.order[0]).copied()?;
-        let half = 1 << (SUBPIXEL_BITS - 1);
-        // Narrow setup: |x0|, |vx| < 2^29 sub-pixels, no overflow.
-        let px = (i64::from(region.x0) << SUBPIXEL_BITS) + half - vx;
-        let py = (i64::from(region.y0) << SUBPIXEL_BITS) + half - vy;
-        small(px)?;
-        small(py)?;
-        let n = 32 - area2.leading_zeros();
-        Some(SmallPlanes {
-            // ⌊2^(31+n) / area2⌋ = ⌊2^63 / (area2·2^(32−n))⌋ ∈ (2^31, 2^32].
-            r: reciprocal_63(area2 << (32 - n)) as i64,
-            shift: n - 9,
-            edges,
-            px,
-            py,
-            order: setup.order,
-        })
-    }
-
-    /// The accumulator of the plane through the vertex values `values` (input vertex order), or
-    /// `None` if a gradient reaches 2⁴¹ units (512 LSB a pixel).
-    #[inline]
-    pub(crate) fn plane(&self, values: [u8; 3]) -> Option<Stepped> {
-        let c = self
-            .order
-            .map(|v| i32::from(values.get(v).copied().unwrap_or(0)));
-        let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
-        let [(a1, b1), (a2, b2)] = self.edges;
-        // |d| ≤ 255 and |a|, |b| < 2^17: below 2^26.
-        let (nx, ny) = (d1 * a1 + d2 * a2, d1 * b1 + d2 * b2);
-        let scale = |num: i32| -> Option<i64> {
-            // |num·r| < 2^26 · 2^32; rounded to nearest (halves up).
-            let p = i64::from(num) * self.r;
-            let q = match self.shift {
-                0 => p,
-                s => (p + (1 << (s - 1))) >> s,
-            };
-            (q.unsigned_abs() < 1 << 41).then_some(q)
-        };
-        let (dx, dy) = (scale(nx)?, scale(ny)?);
-        // |dx·px| < 2^41 · 2^17.
-        let offset = (dx * self.px + dy * self.py + (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS;
-        Some(Stepped {
-            value: (i64::from(c[0]) << ROW_BITS) + (1 << (ROW_BITS - 1)) + offset,
-            dx,
-            dy,
-        })
     }
 }
 
@@ -629,53 +765,20 @@ mod tests {
         assert!(checked > 5_000, "{checked}");
     }
 
-    /// The small-triangle planes against exact rational values, within the bounds documented on
-    /// `SmallPlanes`.
+    /// The reciprocal gradients are within one unit of the exact quotient, over areas and
+    /// numerators of every magnitude (both sides of the sliver threshold).
     #[test]
-    fn small_planes_are_within_the_documented_error() {
-        let mut next = crate::xorshift(0x1f2e_3d4c_5b6a_7988_u64);
-        let mut rnd = move |n: u64| next() % n;
-        let clip = Rectangle::new(Point::new(-40, -30), Size::new(400, 300));
-        let mut checked = 0;
-        for _ in 0..50_000 {
-            // Up to about 40 px across, sub-pixel positions, some crossing the clip's corner.
-            let scale = 1 << rnd(14);
-            let (cx, cy) = (
-                rnd(500) as i32 * 256 - 60 * 256,
-                rnd(400) as i32 * 256 - 50 * 256,
-            );
-            let v = [(); 3].map(|_| {
-                let mut r = |n: u64| (rnd(2 * n + 1) as i64 - n as i64) as i32;
-                (r(scale) + cx, r(scale) + cy)
-            });
-            let values = [(); 3].map(|_| rnd(256) as u8);
-            let Some(setup) =
-                TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))
-            else {
-                continue;
-            };
-            let Some(region) = Region::new(&setup, &clip) else {
-                continue;
-            };
-            let Some(small) = SmallPlanes::new(&setup, &region) else {
-                continue;
-            };
-            let Some(p) = small.plane(values) else {
-                continue;
-            };
-            checked += 1;
-            // Gradients within 1025 units; the corner value within 1 unit plus 1025 a pixel of
-            // offset from the first vertex.
-            assert_near_exact(
-                &p,
-                &setup,
-                &region,
-                values.map(u16::from),
-                102_500,
-                |px, py| 100 + i128::from(px.abs() + py.abs()) * 102_500 / 256,
-            );
+    fn gradient_scale_is_within_a_unit() {
+        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908);
+        for _ in 0..200_000 {
+            let area2 = (next() >> (26 + next() % 38)).max(1);
+            let n = (next() >> (45 + next() % 19)) as i32 * if next() & 1 == 0 { 1 } else { -1 };
+            let area = NonZeroU64::new(area2).unwrap();
+            let got = GradientScale::new(area, n.unsigned_abs()).of(n);
+            let exact_times_area = i128::from(n) << 40;
+            let err = (i128::from(got) * i128::from(area2) - exact_times_area).abs();
+            assert!(err <= i128::from(area2), "n {n}, area2 {area2}: got {got}");
         }
-        assert!(checked > 8_000, "{checked}");
     }
 
     #[test]

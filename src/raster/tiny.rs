@@ -41,31 +41,53 @@
 //! assert_ne!(rows, [Rgb565::BLACK; 16 * 8]);
 //! ```
 
-use crate::arch::x86_64::first_covered;
+use super::compact::CompactTriangle;
+use super::edge::owns_centres_on;
+use super::plane::Planes;
+use super::shade::SpanShader;
+use crate::arch::x86_64::{first_covered, ChannelRows};
 use crate::arch::LANES;
 use crate::fixed_point::SUBPIXEL_BITS;
-use crate::raster::compact::CompactTriangle;
 
 /// Width and height of a tiny triangle's vertex bounding box stay below this many sub-pixels
 /// (8 pixels): its box then holds at most 8 × 8 pixel centres, and every edge value there,
 /// `|a·Δx + b·Δy| ≤ 2·w·h < 2²³` sub-pixels², divided by 256 fits an `i16`.
 const TINY: u32 = (LANES as u32) << SUBPIXEL_BITS;
 
-/// Walks the rows of `triangle` (set up over the bounding box of the row-major `pixels`, `width`
-/// wide) if it is tiny and the buffer is at least [`LANES`] pixels wide, handing `fill` each row's eight pixels,
-/// the covered mask, the run's first pixel (8 if the row is empty) and its column from the
-/// walk's first column; `false` (nothing walked) otherwise.
+/// Draws `triangle` (set up over a target `width` pixels wide, its left column 0) with `planes`
+/// through `shader`'s masked rows if it is tiny and the target at least [`LANES`] pixels wide;
+/// `false` (nothing drawn) otherwise. Each row's run gets the attributes of its first pixel, as
+/// the span walk would hand them.
 #[inline(always)]
-pub(crate) fn walk<C>(
-    pixels: &mut [C],
-    width: u32,
+pub(crate) fn shade<const N: usize>(
     triangle: &CompactTriangle,
-    mut fill: impl FnMut(&mut [C; LANES], [i16; LANES], u32, u32),
+    planes: &Planes<N>,
+    width: u32,
+    shader: &mut impl SpanShader<N>,
 ) -> bool {
     let (w, h) = triangle.extent;
     if w >= TINY || h >= TINY || width < LANES as u32 {
         return false;
     }
+    shader.prepare(planes.step());
+    let mut rows = ChannelRows::new(planes.first(), planes.step(), planes.row_step());
+    walk(width, triangle, |y, x, covered, first, column| {
+        let start = rows.next_row(column);
+        shader.masked_row(y, x, covered, first, start);
+    });
+    true
+}
+
+/// Walks the rows of tiny `triangle` (set up over a target `width ≥ LANES` pixels wide), handing
+/// `row` each row's `y`, the first column `x` of its window of [`LANES`] pixels (inside the
+/// target), the covered mask, the run's first lane ([`LANES`] if the row is empty) and its column
+/// from the walk's first column.
+#[inline(always)]
+fn walk(
+    width: u32,
+    triangle: &CompactTriangle,
+    mut row: impl FnMut(i32, i32, [i16; LANES], u32, u32),
+) {
     // The box's columns x0..=x1 (at most 8) inside the window of eight columns from xw,
     // which ends inside the framebuffer (the walk is clipped to it: 0 ≤ x0, x1 < width).
     // Lanes outside the box may be far enough from the vertices for their edge values to
@@ -89,7 +111,7 @@ pub(crate) fn walk<C>(
             setup.dy - s.1,
         );
         let e = a * offset.0 + b * offset.1;
-        let bias = i32::from(!(a > 0 || (a == 0 && b > 0)));
+        let bias = i32::from(!owns_centres_on(a.into(), b.into()));
         let first = ((e - bias) >> SUBPIXEL_BITS) as i16;
         if let (Some(values), Some(step)) = (edge.get_mut(k), row_step.get_mut(k)) {
             *values = lane.map(|i| first.wrapping_add((a as i16).wrapping_mul(i)));
@@ -97,9 +119,7 @@ pub(crate) fn walk<C>(
         }
     }
 
-    let rows = (triangle.y1 - triangle.y0) as u32 + 1;
-    let mut base = triangle.y0 as usize * width as usize + xw as usize;
-    for _ in 0..rows {
+    for y in triangle.y0..=triangle.y1 {
         let mut covered = [0i16; LANES];
         for (i, c) in covered.iter_mut().enumerate() {
             *c = in_box[i] & !((edge[0][i] | edge[1][i] | edge[2][i]) >> 15);
@@ -107,18 +127,11 @@ pub(crate) fn walk<C>(
         // The run's first lane (8 if the row is empty) and its column from x0.
         let first = first_covered(covered);
         let column = first.wrapping_sub(lo as u32);
-        if let Some(row) = pixels
-            .get_mut(base..base + LANES)
-            .and_then(|row| <&mut [C; LANES]>::try_from(row).ok())
-        {
-            fill(row, covered, first, column);
-        }
+        row(y, xw, covered, first, column);
         for (values, step) in edge.iter_mut().zip(row_step) {
             for v in values.iter_mut() {
                 *v = v.wrapping_add(step);
             }
         }
-        base += width as usize;
     }
-    true
 }

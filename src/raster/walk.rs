@@ -40,7 +40,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
 use crate::raster::compact::CompactTriangle;
-use crate::raster::edge::{dot2, TriangleSetup};
+use crate::raster::edge::{dot2, owns_centres_on, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -241,20 +241,20 @@ impl<W: Width> Walk<W> {
             W::Rem::default(),
             W::Rem::default(),
         );
-        Walk::new((none, none), (none, false, 0), (0, 0), -1, 0)
+        Walk::new((none, none), (none, false, 0), (0, 0), -1, (0, 0))
     }
 
-    /// The walk of rows `y0 .. y0 + rows` and columns `x0 ..= x0 + last`, starting with the
-    /// boundaries `left` and `right`; at row offset `switch` (if below `rows`) `next` replaces
-    /// the start boundary (`next_left`) or the end one.
-    #[allow(clippy::too_many_arguments)]
+    /// The walk of row offsets `first .. rows` from row `y0` and of columns `x0 ..= x0 + last`,
+    /// starting with the boundaries `left` and `right` of row offset `first`; at row offset
+    /// `switch` (if below `rows`) `next` replaces the start boundary (`next_left`) or the end
+    /// one.
     #[inline(always)]
     pub(crate) fn new(
         (left, right): (Boundary<W>, Boundary<W>),
         (next, next_left, switch): (Boundary<W>, bool, u32),
         (x0, y0): (i32, i32),
         last: i32,
-        rows: u32,
+        (first, rows): (u32, u32),
     ) -> Self {
         let mut walk = Walk {
             left,
@@ -266,10 +266,10 @@ impl<W: Width> Walk<W> {
             y0,
             last,
             rows,
-            row: 0,
+            row: first,
         };
         // From `switch` on, the walk has taken `next` (the invariant `fold` relies on).
-        if walk.switch == 0 {
+        if walk.switch <= walk.row {
             walk.take_next();
         }
         walk
@@ -553,15 +553,17 @@ impl WideBoundary {
 
 /// The general set-up's walk, in `i32` where it fits.
 #[derive(Debug, Clone, Copy)]
-enum GeneralWalk {
+pub(crate) enum GeneralWalk {
+    /// Columns in `i32`.
     Narrow(Walk<i32>),
+    /// Columns in `i64`.
     Wide(Walk<i64>),
 }
 
 /// The walk of `setup` (any [`Coord`] vertices) over `region`.
 // One copy for all callers; everything it calls is inlined into it.
 #[inline(never)]
-fn general_walk(setup: &TriangleSetup, region: &Region) -> GeneralWalk {
+pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region) -> GeneralWalk {
     match GeneralParts::new(setup, region) {
         None => GeneralWalk::Narrow(Walk::empty()),
         Some(parts) => match parts.narrow() {
@@ -579,11 +581,14 @@ struct GeneralParts {
     first: [WideBoundary; 2],
     next: WideBoundary,
     next_left: bool,
+    /// Offsets from the region's first row: the switch, the first row (below the region's
+    /// first when a horizontal edge trims it) and the end.
     switch: u32,
+    first_row: u32,
+    rows: u32,
     x0: i32,
     y0: i32,
     last: i32,
-    rows: u32,
 }
 
 impl GeneralParts {
@@ -594,12 +599,12 @@ impl GeneralParts {
         if !classify(setup, region, crossings) {
             return None;
         }
-        let (x0, row0) = (i64::from(region.x0), i64::from(region.y0));
+        let row0 = i64::from(region.y0);
         let (mut y0, mut y1) = (row0, i64::from(region.y1));
         // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
         for c in crossings.iter() {
             if let Crossing::Cross { a: 0, b, k } = *c {
-                if b > 0 {
+                if owns_centres_on(0, b) {
                     // First row with b·d + k ≥ 0: d = ⌈−k/b⌉.
                     let (q, r) = div_mod_floor(-k, b);
                     y0 = y0.max(row0 + q + i64::from(r > 0));
@@ -616,7 +621,7 @@ impl GeneralParts {
         // the row it takes over.
         let at =
             |(a, b, k): (i64, i64, i64), row: i64| WideBoundary::new(a, b, k + b * (row - row0));
-        let rows = y1 - y0 + 1;
+        let rows = y1 - row0 + 1;
         let mut first = [WideBoundary::open(false), WideBoundary::open(true)];
         let (mut next, mut next_left, mut switch) = (first[0], true, rows);
         for (side, boundary) in first.iter_mut().enumerate() {
@@ -631,7 +636,7 @@ impl GeneralParts {
                     } else {
                         *boundary = at(upper, y0);
                         if row <= y1 {
-                            (next, next_left, switch) = (at(lower, row), start, row - y0);
+                            (next, next_left, switch) = (at(lower, row), start, row - row0);
                         }
                     }
                 }
@@ -644,17 +649,18 @@ impl GeneralParts {
             next,
             next_left,
             switch: switch as u32,
-            x0: x0 as i32,
-            y0: y0 as i32,
-            last: region.x1 - region.x0,
+            first_row: (y0 - row0) as u32,
             rows: rows as u32,
+            x0: region.x0,
+            y0: region.y0,
+            last: region.x1 - region.x0,
         })
     }
 
     /// The walk in `i32`, if every boundary's columns stay within ±2³⁰ over the rows.
     #[inline(always)]
     fn narrow(&self) -> Option<Walk<i32>> {
-        let rows = i64::from(self.rows);
+        let rows = i64::from(self.rows - self.first_row);
         let [left, right] = self.first;
         let (left, right) = (left.narrow(rows)?, right.narrow(rows)?);
         Some(Walk::new(
@@ -662,7 +668,7 @@ impl GeneralParts {
             (self.next.narrow(rows)?, self.next_left, self.switch),
             (self.x0, self.y0),
             self.last,
-            self.rows,
+            (self.first_row, self.rows),
         ))
     }
 
@@ -675,7 +681,7 @@ impl GeneralParts {
             (self.next.wide(), self.next_left, self.switch),
             (self.x0, self.y0),
             self.last,
-            self.rows,
+            (self.first_row, self.rows),
         )
     }
 }

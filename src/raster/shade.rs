@@ -1,0 +1,202 @@
+//! Span shaders: what the walk hands its covered spans to, and the one entry that sets a triangle
+//! up, walks it and interpolates its attributes.
+//!
+//! [`shade`] picks the arithmetic a triangle needs — the 32-bit compact set-up for bounding boxes
+//! under 2048 px, the `i64`/`i128` one beyond — builds the [`Walk`](super::walk) and the
+//! attribute planes ([`Planes`]) and calls the [`SpanShader`] once per covered span with the
+//! attributes at the span's first pixel. The drawables of `draw` are span shaders: a solid fill,
+//! the colour format's span loop into a slice, or `fill_contiguous` of any `DrawTarget`.
+
+use embedded_graphics::primitives::Rectangle;
+
+use super::compact::{CompactTriangle, TooLarge};
+use super::edge::TriangleSetup;
+use super::plane::{AttributePlane, InverseArea, Planes, MAX_CHUNK, PLANE_TO_STEP};
+use super::walk::{general_walk, GeneralWalk, Region, Span, Spans, Walk, Width};
+use crate::arch::LANES;
+use crate::fixed_point::Coord;
+
+/// What the walk hands each covered span to (like tiny-skia's `Blitter`).
+///
+/// Attributes are the `N` planes of [`shade`]'s vertex values, as [`STEP_BITS`] fixed point
+/// (+½ included, so truncation rounds), wrapping: the value at a span's first pixel comes with the
+/// span, the per-pixel steps once per triangle.
+///
+/// [`STEP_BITS`]: super::plane::STEP_BITS
+pub(crate) trait SpanShader<const N: usize> {
+    /// Once per triangle, before its first span: the attributes' per-pixel steps.
+    fn prepare(&mut self, step: [u32; N]);
+
+    /// One covered span; `start` holds the attributes at its first pixel.
+    fn span(&mut self, span: Span, start: [u32; N]);
+
+    /// The target's width if it takes whole rows of [`LANES`] pixels ([`masked_row`]), the
+    /// strategy for tiny triangles on x86-64; `None` (the default): spans only.
+    ///
+    /// [`masked_row`]: Self::masked_row
+    #[inline(always)]
+    fn row_width(&self) -> Option<u32> {
+        None
+    }
+
+    /// Pixels `x .. x + LANES` of row `y` (inside the target): those with `covered[i] = −1`
+    /// form one run from pixel `first`, which gets the span colours from `start`; the others
+    /// keep theirs. Only called when [`row_width`](Self::row_width) is `Some`.
+    #[inline(always)]
+    fn masked_row(
+        &mut self,
+        _y: i32,
+        _x: i32,
+        _covered: [i16; LANES],
+        _first: u32,
+        _start: [u32; N],
+    ) {
+    }
+}
+
+/// Walks the triangle `v` inside `clip` and hands `shader` its covered spans with the planes
+/// through `values` (per vertex). Degenerate triangles draw nothing.
+#[inline(always)]
+pub(crate) fn shade<const N: usize>(
+    v: [(Coord, Coord); 3],
+    values: [[u8; N]; 3],
+    clip: &Rectangle,
+    shader: &mut impl SpanShader<N>,
+) {
+    match CompactTriangle::new(v, clip) {
+        Ok(None) => return,
+        Ok(Some(triangle)) => {
+            if shade_compact_triangle(&triangle, values, shader).is_ok() {
+                return;
+            }
+        }
+        Err(TooLarge) => {}
+    }
+    shade_general(v, values, clip, shader);
+}
+
+/// [`shade`] for compact triangles only (bounding box under 2048 × 2048 px); `Err(TooLarge)`
+/// without drawing for the others. A firmware drawing only through this links only the 32-bit
+/// set-up and walk.
+#[inline(always)]
+pub(crate) fn shade_compact<const N: usize>(
+    v: [(Coord, Coord); 3],
+    values: [[u8; N]; 3],
+    clip: &Rectangle,
+    shader: &mut impl SpanShader<N>,
+) -> Result<(), TooLarge> {
+    match CompactTriangle::new(v, clip)? {
+        Some(triangle) => shade_compact_triangle(&triangle, values, shader),
+        None => Ok(()),
+    }
+}
+
+/// The compact set-up's walk and planes (the planes after the walk's set-up: on Cortex-M0 fewer
+/// values then live across it).
+#[inline(always)]
+fn shade_compact_triangle<const N: usize>(
+    triangle: &CompactTriangle,
+    values: [[u8; N]; 3],
+    shader: &mut impl SpanShader<N>,
+) -> Result<(), TooLarge> {
+    #[cfg(sse2_rows)]
+    if let Some(width) = shader.row_width() {
+        let planes = Planes::compact(&triangle.setup, values);
+        if super::tiny::shade(triangle, &planes, width, shader) {
+            return Ok(());
+        }
+        let walk = triangle.walk()?;
+        shader.prepare(planes.step());
+        fold_planes(walk, &planes, shader);
+        return Ok(());
+    }
+    let walk = triangle.walk()?;
+    let planes = Planes::compact(&triangle.setup, values);
+    shader.prepare(planes.step());
+    fold_planes(walk, &planes, shader);
+    Ok(())
+}
+
+/// Hands `shader` the spans of `walk` with the stepped planes' values at their first pixels.
+#[inline(always)]
+fn fold_planes<W: Width, const N: usize>(
+    walk: Walk<W>,
+    planes: &Planes<N>,
+    shader: &mut impl SpanShader<N>,
+) {
+    walk.fold((), |(), span, column, row| {
+        shader.span(span, planes.at(column, row));
+    });
+}
+
+/// The general set-up (any [`Coord`]): `i64`/`i128` edge functions, stepped planes where their
+/// error bound holds, exact ones (a division per span chunk) for huge regions and extreme
+/// slivers.
+#[inline(never)]
+fn shade_general<const N: usize>(
+    v: [(Coord, Coord); 3],
+    values: [[u8; N]; 3],
+    clip: &Rectangle,
+    shader: &mut impl SpanShader<N>,
+) {
+    // By reference: moving the setup out of the `Option` would copy it.
+    let setup = TriangleSetup::new(v);
+    let Some(setup) = setup.as_ref() else {
+        return;
+    };
+    let Some(region) = Region::new(setup, clip) else {
+        return;
+    };
+    match Planes::general(setup, &region, values) {
+        Some(planes) => {
+            shader.prepare(planes.step());
+            match general_walk(setup, &region) {
+                GeneralWalk::Narrow(walk) => fold_planes(walk, &planes, shader),
+                GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
+            }
+        }
+        None => shade_exact(setup, &region, values, shader),
+    }
+}
+
+/// Exact planes (regions over 2¹⁶ pixels across, extreme slivers): each span in chunks of at
+/// most [`MAX_CHUNK`] pixels, every chunk started from the exact value (one division per
+/// attribute), so the per-pixel steps add at most 2⁻⁵ LSB.
+#[cold]
+#[inline(never)]
+fn shade_exact<const N: usize>(
+    setup: &TriangleSetup,
+    region: &Region,
+    values: [[u8; N]; 3],
+    shader: &mut impl SpanShader<N>,
+) {
+    let inverse = InverseArea::new(setup.area2);
+    let mut planes: [AttributePlane; N] = core::array::from_fn(|k| {
+        let vertex = values.map(|v| v.get(k).copied().map_or(0, u16::from));
+        AttributePlane::with_inverse(setup, &inverse, vertex, region)
+    });
+    shader.prepare(planes.map(|p| p.step() << PLANE_TO_STEP));
+    for span in Spans::new(setup, *region) {
+        let mut offset = 0;
+        while offset < span.len() {
+            let len = (span.len() - offset).min(MAX_CHUNK);
+            let start = planes.each_mut().map(|p| {
+                let v = if offset == 0 {
+                    p.row_start(span.x_start, span.y)
+                } else {
+                    p.further(offset)
+                };
+                v << PLANE_TO_STEP
+            });
+            // Inside the span, which lies inside the region: no overflow.
+            let x_start = span.x_start.wrapping_add(offset as i32);
+            let chunk = Span {
+                y: span.y,
+                x_start,
+                x_end: x_start.wrapping_add(len as i32),
+            };
+            shader.span(chunk, start);
+            offset += len;
+        }
+    }
+}
