@@ -15,7 +15,7 @@
 //!
 //! Any `Coord` (±2²³ pixels with 1/256-pixel precision) is accepted for vertices. Triangles whose
 //! bounding box is under 2048 × 2048 pixels (anywhere in that range) are set up and walked in
-//! 32-bit arithmetic ([`raster::compact`]; `GouraudTriangle::draw_into_compact` takes only
+//! 32-bit arithmetic (the raster core's compact set-up, [`raster::COMPACT_LIMIT`]; `GouraudTriangle::draw_into_compact` takes only
 //! those, for small firmware); on x86-64 hosts those under 8 × 8 pixels are drawn by
 //! `draw_into` a row of eight lanes at a time (the same pixels). For larger ones setup
 //! is done in `i64` for vertices within ±2²¹ pixels and

@@ -22,9 +22,7 @@ use embedded_graphics::{
     Pixel,
 };
 use embedded_raster::{
-    raster::edge::TriangleSetup,
-    raster::{for_each_span, Region},
-    Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
+    raster::for_each_span, Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
 
 pub const WIDTH: usize = 320;
@@ -380,6 +378,36 @@ fn each(tris: &[Tri], mut draw: impl FnMut(&Tri)) {
     }
 }
 
+/// The bench's own edge set-up for [`block8`] (on-screen triangles, `i64`): the oriented edges'
+/// `(a, b, k)` with pixel `(i, j)` inside an edge iff `a·i + b·j + k ≥ 0` (the top-left rule:
+/// centres on left and top edges are inside), and the pixel bounding box clipped to the screen.
+#[allow(clippy::type_complexity)]
+fn block_setup(t: &Tri) -> Option<([(i64, i64, i64); 3], (i64, i64, i64, i64))> {
+    let p = t
+        .positions
+        .map(|(x, y)| (i64::from(x.to_bits()), i64::from(y.to_bits())));
+    let area2 = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
+    let o = match area2.signum() {
+        0 => return None,
+        1 => p,
+        _ => [p[0], p[2], p[1]],
+    };
+    let edge = |(xa, ya): (i64, i64), (xb, yb): (i64, i64)| {
+        let (a, b) = (ya - yb, xb - xa);
+        // The edge function at the centre of pixel (0, 0), 256² units.
+        let c = a * (128 - xa) + b * (128 - ya);
+        let top_left = a > 0 || (a == 0 && b > 0);
+        (a, b, (c >> 8) - i64::from(c & 255 == 0 && !top_left))
+    };
+    let edges = [edge(o[1], o[2]), edge(o[2], o[0]), edge(o[0], o[1])];
+    let lo = |v: [i64; 3]| (v.iter().min().copied().unwrap_or(0) - 128 + 255) >> 8;
+    let hi = |v: [i64; 3]| (v.iter().max().copied().unwrap_or(0) - 128) >> 8;
+    let (xs, ys) = (p.map(|v| v.0), p.map(|v| v.1));
+    let (x0, y0) = (lo(xs).max(0), lo(ys).max(0));
+    let (x1, y1) = (hi(xs).min(WIDTH as i64 - 1), hi(ys).min(HEIGHT as i64 - 1));
+    (x0 <= x1 && y0 <= y1).then_some((edges, (x0, y0, x1, y1)))
+}
+
 /// 8×8 block traversal (solid): each block of the clipped bounding box is tested against the
 /// three exact edge functions at its extreme corners — skipped if outside one edge, filled row by
 /// row if inside all three — and the blocks an edge crosses are tested pixel by pixel with the
@@ -388,18 +416,9 @@ fn each(tris: &[Tri], mut draw: impl FnMut(&Tri)) {
 #[inline(always)]
 pub fn block8(t: &Tri, mut put: impl FnMut(usize, usize, usize)) {
     const B: i64 = 8;
-    let clip = Rectangle::new(Point::zero(), Size::new(WIDTH as u32, HEIGHT as u32));
-    let Some(setup) = TriangleSetup::new(t.positions) else {
+    let Some((edges, (x0, y0, x1, y1))) = block_setup(t) else {
         return;
     };
-    let Some(region) = Region::new(&setup, &clip) else {
-        return;
-    };
-    // On-screen bench triangles: every edge value fits i64.
-    assert!(setup.narrow, "bench triangles are on screen");
-    let edges = setup.edges.map(|e| (e.a, e.b, e.k as i64));
-    let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
-    let (x1, y1) = (i64::from(region.x1), i64::from(region.y1));
     let mut by = y0;
     while by <= y1 {
         let bh = (y1 - by + 1).min(B);

@@ -3,7 +3,7 @@
 //! [`GouraudColor`] splits a colour into up to three integer channels in its own depth
 //! (`Rgb565`: 5, 6 and 5 bits) and builds it back. Interpolating in the target's own depth is what
 //! makes the "within 1 LSB" guarantee meaningful for every format. The 5-6-5 formats have a
-//! packed span loop of their own ([`packed565`]).
+//! packed span loop of their own (`packed565`).
 //!
 //! ```
 //! use embedded_graphics::pixelcolor::{Rgb565, Gray8};

@@ -88,7 +88,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 
     /// Draws into a [`SliceFramebuffer`] like [`draw_into`](Self::draw_into) if the triangle is
-    /// compact (bounding box under 2048 × 2048 pixels, see [`compact`](crate::raster::compact)),
+    /// compact (bounding box under 2048 × 2048 pixels, see [`COMPACT_LIMIT`](crate::raster::COMPACT_LIMIT)),
     /// else draws nothing and returns [`TooLarge`]. A firmware that draws only through this
     /// method links only the compact rasterizer: a fraction of `draw_into`'s code. It always
     /// walks spans (no rows of lanes): the same pixels.

@@ -22,7 +22,7 @@
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-//! use embedded_raster::{raster::compact::TooLarge, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+//! use embedded_raster::{raster::TooLarge, Coord, GouraudTriangle, SliceFramebuffer, Vertex};
 //!
 //! let mut pixels = [Rgb565::BLACK; 64 * 48];
 //! let mut fb = SliceFramebuffer::new(&mut pixels, 64, 48).unwrap();

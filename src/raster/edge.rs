@@ -14,17 +14,6 @@
 //! nor left. `K` is what the traversal steps: it changes by `A` per pixel and `B` per row, and its
 //! sign is the exact coverage decision — no rounding anywhere.
 //!
-//! ```
-//! use embedded_raster::{raster::edge::TriangleSetup, Coord};
-//!
-//! let c = |x: f32, y: f32| (Coord::from_num(x), Coord::from_num(y));
-//! let setup = TriangleSetup::new([c(0.0, 0.0), c(4.0, 0.0), c(0.0, 4.0)]).unwrap();
-//! // Pixel (0, 0) is inside, pixel (3, 3) is outside.
-//! assert!(setup.covers(0, 0));
-//! assert!(!setup.covers(3, 3));
-//! // Collinear vertices have no interior.
-//! assert!(TriangleSetup::new([c(0.0, 0.0), c(1.0, 1.0), c(2.0, 2.0)]).is_none());
-//! ```
 
 use crate::fixed_point::{raw, Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
@@ -63,17 +52,17 @@ pub(crate) const fn owns_centres_on(a: i64, b: i64) -> bool {
 
 /// One edge function, reduced to pixel-centre lattice form.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct EdgeFunction {
+pub(crate) struct EdgeFunction {
     /// Change of the edge function per pixel step in x (`y_a − y_b`, sub-pixel units).
-    pub a: i64,
+    pub(crate) a: i64,
     /// Change of the edge function per pixel step in y (`x_b − x_a`, sub-pixel units).
-    pub b: i64,
+    pub(crate) b: i64,
     /// Exact edge function at the centre of pixel (0, 0), in squared sub-pixel units.
-    pub c: i128,
+    pub(crate) c: i128,
     /// Coverage offset: pixel (i, j) is inside this edge iff `a·i + b·j + k ≥ 0`.
-    pub k: i128,
+    pub(crate) k: i128,
     /// Whether products of `a`, `b` and pixel coordinates fit `i64` (see [`TriangleSetup`]).
-    pub narrow: bool,
+    pub(crate) narrow: bool,
 }
 
 impl EdgeFunction {
@@ -94,14 +83,15 @@ impl EdgeFunction {
 
     /// The reduced coverage value `K` at pixel `(i, j)`: the pixel is inside this edge iff it is `≥ 0`.
     #[inline]
-    pub fn value_at(&self, i: i64, j: i64) -> i128 {
+    pub(crate) fn value_at(&self, i: i64, j: i64) -> i128 {
         let narrow = self.narrow && i.unsigned_abs() < 1 << 31 && j.unsigned_abs() < 1 << 31;
         dot2(self.a, i, self.b, j, narrow) + self.k
     }
 
+    #[cfg(test)]
     /// The exact edge function at the centre of pixel `(i, j)` (squared sub-pixel units).
     #[inline]
-    pub fn exact_at(&self, i: i64, j: i64) -> i128 {
+    pub(crate) fn exact_at(&self, i: i64, j: i64) -> i128 {
         let narrow = self.narrow && i.unsigned_abs() < 1 << 31 && j.unsigned_abs() < 1 << 31;
         (dot2(self.a, i, self.b, j, narrow) << SUBPIXEL_BITS) + self.c
     }
@@ -109,17 +99,17 @@ impl EdgeFunction {
 
 /// Edge functions of a non-degenerate triangle, in positive orientation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct TriangleSetup {
+pub(crate) struct TriangleSetup {
     /// `edges[k]` is the edge opposite vertex `order[k]`; it evaluates to `area2` at that vertex.
-    pub edges: [EdgeFunction; 3],
+    pub(crate) edges: [EdgeFunction; 3],
     /// Twice the triangle's area in squared sub-pixel units; always positive.
-    pub area2: i128,
+    pub(crate) area2: i128,
     /// Which input vertex each of the oriented vertices is (`[0, 1, 2]` or `[0, 2, 1]`).
-    pub order: [usize; 3],
+    pub(crate) order: [usize; 3],
     /// Raw sub-pixel vertex positions, in input order.
-    pub vertices: [(i64, i64); 3],
+    pub(crate) vertices: [(i64, i64); 3],
     /// All raw coordinates are below 2²⁹ in magnitude, so setup products fit `i64`.
-    pub narrow: bool,
+    pub(crate) narrow: bool,
 }
 
 impl TriangleSetup {
@@ -127,7 +117,7 @@ impl TriangleSetup {
     ///
     /// Every `Coord` value is accepted; products are formed in `i64` for vertices within about
     /// two million pixels of the origin and in `i128` beyond.
-    pub fn new(v: [(Coord, Coord); 3]) -> Option<Self> {
+    pub(crate) fn new(v: [(Coord, Coord); 3]) -> Option<Self> {
         let vertices = v.map(|(x, y)| (raw(x), raw(y)));
         let narrow = vertices
             .iter()
@@ -153,8 +143,9 @@ impl TriangleSetup {
         })
     }
 
+    #[cfg(test)]
     /// Whether the centre of pixel `(i, j)` is covered under the top-left rule.
-    pub fn covers(&self, i: i32, j: i32) -> bool {
+    pub(crate) fn covers(&self, i: i32, j: i32) -> bool {
         self.edges
             .iter()
             .all(|e| e.value_at(i64::from(i), i64::from(j)) >= 0)
@@ -162,7 +153,7 @@ impl TriangleSetup {
 
     /// The inclusive pixel bounding box `(i_min, j_min, i_max, j_max)` of all pixel centres that lie
     /// within the triangle's bounding box (possibly empty: `i_min > i_max`).
-    pub fn pixel_bounds(&self) -> (i64, i64, i64, i64) {
+    pub(crate) fn pixel_bounds(&self) -> (i64, i64, i64, i64) {
         let xs = self.vertices.map(|v| v.0);
         let ys = self.vertices.map(|v| v.1);
         let lo = |v: [i64; 3]| {

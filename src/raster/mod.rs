@@ -2,31 +2,32 @@
 //!
 //! The stages run one way, each in its own file:
 //!
-//! * [`edge`] — the fill rule, stated once: integer edge functions of the oriented triangle with
+//! * `edge` — the fill rule, stated once: integer edge functions of the oriented triangle with
 //!   the Direct3D top-left rule, reduced so that a pixel is covered exactly when three integers
 //!   are non-negative. Set-up arithmetic is chosen here: `i64` for vertices within about two
 //!   million pixels, `i128` beyond.
-//! * [`walk`] — the covered spans of a triangle clipped to a rectangle, top to bottom, by
+//! * `walk` — the covered spans of a triangle clipped to a rectangle, top to bottom, by
 //!   stepping one start and one end boundary column a row (exact quotient and remainder, no
-//!   rounding). [`compact`] is the same walk for triangles under 2048 px in 32-bit set-up, and
+//!   rounding). `compact` is the same walk for triangles under 2048 px in 32-bit set-up, and
 //!   `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
-//! * [`plane`] — attributes (colour channels now) interpolated barycentrically by fixed-point
+//! * `plane` — attributes (colour channels now) interpolated barycentrically by fixed-point
 //!   stepping, with a documented error bound.
-//! * `shade` — the one entry: [`shade`] sets a triangle up in the width it needs, walks it and
-//!   hands each covered span with its attributes to a [`SpanShader`] (solid fill, a colour
+//! * `shade` — the one entry: `shade` sets a triangle up in the width it needs, walks it and
+//!   hands each covered span with its attributes to a `SpanShader` (solid fill, a colour
 //!   format's span loop, `fill_contiguous`, …).
 //! * `arith` — the integer helpers the set-up needs on cores without a long multiply, a divider
 //!   or `clz`.
 
 pub(crate) mod arith;
-pub mod compact;
-pub mod edge;
-pub mod plane;
+pub(crate) mod compact;
+pub(crate) mod edge;
+pub(crate) mod plane;
 mod shade;
 #[cfg(sse2_rows)]
-pub(crate) mod tiny;
-pub mod walk;
+mod tiny;
+pub(crate) mod walk;
 
-pub use plane::AttributePlane;
+pub use compact::{TooLarge, LIMIT as COMPACT_LIMIT};
+pub use plane::{MAX_CHUNK, STEP_BITS};
 pub(crate) use shade::{shade, shade_compact, SpanShader};
-pub use walk::{for_each_span, Region, Span, Spans};
+pub use walk::{for_each_span, Span, Spans};

@@ -23,20 +23,6 @@
 //! grows by under 2⁻²⁴ per pixel of distance from the region's corner (below 2⁻⁹ LSB over 2¹⁶
 //! pixels), and no 64-bit arithmetic is left per row.
 //!
-//! ```
-//! use embedded_raster::{raster::{edge::TriangleSetup, AttributePlane, Region}, Coord};
-//! use embedded_graphics::{prelude::*, primitives::Rectangle};
-//!
-//! let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
-//! let setup = TriangleSetup::new([c(0, 0), c(100, 0), c(0, 100)]).unwrap();
-//! let region = Region::new(&setup, &Rectangle::new(Point::zero(), Size::new(100, 100))).unwrap();
-//! // Value 0 at the first vertex, 200 at the second, 0 at the third: c = 2·x.
-//! let mut plane = AttributePlane::new(&setup, [0, 200, 0], &region);
-//! let start = plane.row_start(10, 20);
-//! assert_eq!(start >> AttributePlane::FRACTION_BITS, 21); // 2 × 10.5
-//! assert_eq!(plane.step(), 2 << AttributePlane::FRACTION_BITS);
-//! // Values are fixed point with 16 fractional bits; steps are added with `wrapping_add`.
-//! ```
 
 use crate::fixed_point::SUBPIXEL_BITS;
 use core::num::NonZeroU64;
@@ -88,7 +74,7 @@ fn div_floor(n: i128, d: i128) -> i128 {
 /// 2⁻⁶¹: one 64 × 64 → 128-bit product. Numerators of 64 bits or more fall back to an exact `i128`
 /// division.
 #[derive(Debug, Clone, Copy)]
-pub struct InverseArea {
+pub(crate) struct InverseArea {
     area2: i128,
     recip: u64,
     shift: u32,
@@ -96,7 +82,7 @@ pub struct InverseArea {
 
 impl InverseArea {
     /// The reciprocal of a triangle's doubled area (`area2 > 0`, as in [`TriangleSetup`]).
-    pub fn new(area2: i128) -> Self {
+    pub(crate) fn new(area2: i128) -> Self {
         // |area2| < 2^65 for any Coord vertices, so shift ≤ 126.
         let bits = 128 - area2.leading_zeros();
         let shift = 61 + bits;
@@ -120,7 +106,7 @@ impl InverseArea {
 
     /// `round(num · 2^k / area2)`, for `k ≤ 40`.
     #[inline]
-    pub fn scale(&self, num: i128, k: u32) -> i128 {
+    pub(crate) fn scale(&self, num: i128, k: u32) -> i128 {
         let s = self.shift.saturating_sub(k);
         let magnitude = num.unsigned_abs();
         if magnitude < 1 << 64 && s > 0 && s < 128 && self.recip > 0 {
@@ -476,7 +462,7 @@ enum Mode {
 
 /// One attribute (a colour channel, later depth) interpolated over a triangle.
 #[derive(Debug, Clone, Copy)]
-pub struct AttributePlane {
+pub(crate) struct AttributePlane {
     mode: Mode,
     nx: i64,
     ny: i64,
@@ -489,16 +475,17 @@ pub struct AttributePlane {
 impl AttributePlane {
     /// Fractional bits of the values returned by [`row_start`](Self::row_start) and
     /// [`step`](Self::step).
-    pub const FRACTION_BITS: u32 = 16;
+    pub(crate) const FRACTION_BITS: u32 = 16;
 
+    #[cfg(test)]
     /// Sets up the plane through the vertex values `values` (in the triangle's input vertex order;
     /// at most 16 bits each) for traversal over `region`.
-    pub fn new(setup: &TriangleSetup, values: [u16; 3], region: &Region) -> Self {
+    pub(crate) fn new(setup: &TriangleSetup, values: [u16; 3], region: &Region) -> Self {
         Self::with_inverse(setup, &InverseArea::new(setup.area2), values, region)
     }
 
     /// [`new`](Self::new) with the triangle's reciprocal area computed once for all attributes.
-    pub fn with_inverse(
+    pub(crate) fn with_inverse(
         setup: &TriangleSetup,
         inverse: &InverseArea,
         values: [u16; 3],
@@ -554,7 +541,7 @@ impl AttributePlane {
     }
 
     /// A plane with the same `value` everywhere.
-    pub const fn constant(value: u16) -> Self {
+    pub(crate) const fn constant(value: u16) -> Self {
         AttributePlane {
             mode: Mode::Exact { x: 0, y: 0 },
             nx: 0,
@@ -574,7 +561,7 @@ impl AttributePlane {
     /// The value (+½, [`FRACTION_BITS`](Self::FRACTION_BITS) fractional bits) at pixel `(x, y)`,
     /// which becomes the reference for [`further`](Self::further). Called once per span.
     #[inline]
-    pub fn row_start(&mut self, x: i32, y: i32) -> u32 {
+    pub(crate) fn row_start(&mut self, x: i32, y: i32) -> u32 {
         let (x, y) = (i64::from(x), i64::from(y));
         match &mut self.mode {
             Mode::Stepped {
@@ -604,7 +591,7 @@ impl AttributePlane {
 
     /// The value `offset` pixels to the right of the last [`row_start`](Self::row_start).
     #[inline]
-    pub fn further(&self, offset: u32) -> u32 {
+    pub(crate) fn further(&self, offset: u32) -> u32 {
         let offset = i64::from(offset);
         match self.mode {
             Mode::Stepped { dx, value, .. } => {
@@ -627,11 +614,12 @@ impl AttributePlane {
     /// two's-complement `u32` to be added with `wrapping_add`. Exact modulo 2³² even when the
     /// gradient exceeds the attribute range (then no span is longer than one pixel).
     #[inline]
-    pub fn step(&self) -> u32 {
+    pub(crate) fn step(&self) -> u32 {
         self.step
     }
+    #[cfg(test)]
     /// Whether the fast stepped path is in use (false: exact per-row division).
-    pub fn is_stepped(&self) -> bool {
+    pub(crate) fn is_stepped(&self) -> bool {
         matches!(self.mode, Mode::Stepped { .. })
     }
 }

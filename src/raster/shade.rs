@@ -34,6 +34,7 @@ pub(crate) trait SpanShader<const N: usize> {
     /// strategy for tiny triangles on x86-64; `None` (the default): spans only.
     ///
     /// [`masked_row`]: Self::masked_row
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
     #[inline(always)]
     fn row_width(&self) -> Option<u32> {
         None
@@ -42,6 +43,7 @@ pub(crate) trait SpanShader<const N: usize> {
     /// Pixels `x .. x + LANES` of row `y` (inside the target): those with `covered[i] = −1`
     /// form one run from pixel `first`, which gets the span colours from `start`; the others
     /// keep theirs. Only called when [`row_width`](Self::row_width) is `Some`.
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
     #[inline(always)]
     fn masked_row(
         &mut self,

@@ -111,55 +111,38 @@ pub(crate) trait Width: Copy + Ord + core::fmt::Debug {
     fn column(self) -> u32;
 }
 
-impl Width for i32 {
-    type Rem = u32;
-    const ZERO: Self = 0;
-    #[inline(always)]
-    fn plus(self, other: Self) -> Self {
-        self.wrapping_add(other)
-    }
-    #[inline(always)]
-    fn carry(self, up: bool) -> Self {
-        if up {
-            self.wrapping_add(1)
-        } else {
-            self.wrapping_sub(1)
+/// [`Width`] for a signed integer type with its unsigned remainder type.
+macro_rules! width {
+    ($t:ty, $rem:ty) => {
+        impl Width for $t {
+            type Rem = $rem;
+            const ZERO: Self = 0;
+            #[inline(always)]
+            fn plus(self, other: Self) -> Self {
+                self.wrapping_add(other)
+            }
+            #[inline(always)]
+            fn carry(self, up: bool) -> Self {
+                if up {
+                    self.wrapping_add(1)
+                } else {
+                    self.wrapping_sub(1)
+                }
+            }
+            #[inline(always)]
+            fn from_column(column: i32) -> Self {
+                column.into()
+            }
+            #[inline(always)]
+            fn column(self) -> u32 {
+                self as u32
+            }
         }
-    }
-    #[inline(always)]
-    fn from_column(column: i32) -> Self {
-        column
-    }
-    #[inline(always)]
-    fn column(self) -> u32 {
-        self as u32
-    }
+    };
 }
 
-impl Width for i64 {
-    type Rem = u64;
-    const ZERO: Self = 0;
-    #[inline(always)]
-    fn plus(self, other: Self) -> Self {
-        self.wrapping_add(other)
-    }
-    #[inline(always)]
-    fn carry(self, up: bool) -> Self {
-        if up {
-            self.wrapping_add(1)
-        } else {
-            self.wrapping_sub(1)
-        }
-    }
-    #[inline(always)]
-    fn from_column(column: i32) -> Self {
-        i64::from(column)
-    }
-    #[inline(always)]
-    fn column(self) -> u32 {
-        self as u32
-    }
-}
+width!(i32, u32);
+width!(i64, u64);
 
 /// One boundary of the rows' spans: the first covered column (an edge with `a > 0`, a start
 /// boundary) or the last one (`a < 0`, an end boundary), as an offset from the region's first
@@ -381,15 +364,15 @@ impl<W: Width> Walk<W> {
 
 /// The pixel rectangle a triangle is traversed over: its pixel bounding box clipped to a target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Region {
+pub(crate) struct Region {
     /// First column.
-    pub x0: i32,
+    pub(crate) x0: i32,
     /// First row.
-    pub y0: i32,
+    pub(crate) y0: i32,
     /// Last column (inclusive).
-    pub x1: i32,
+    pub(crate) x1: i32,
     /// Last row (inclusive).
-    pub y1: i32,
+    pub(crate) y1: i32,
 }
 
 impl Region {
@@ -732,7 +715,7 @@ fn chain(
 }
 
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom: the
-/// [`Walk`] of the compact set-up (bounding boxes under 2048 px) or of the general one.
+/// walk of the compact set-up (bounding boxes under 2048 px) or of the general one.
 #[derive(Debug, Clone)]
 pub struct Spans {
     walk: GeneralWalk,
