@@ -124,7 +124,7 @@ fn shade_compact_triangle<const N: usize>(
 fn fold_planes<W: Width, const N: usize>(
     walk: Walk<W>,
     planes: &Planes<N>,
-    shader: &mut impl SpanShader<N>,
+    shader: &mut (impl SpanShader<N> + ?Sized),
 ) {
     walk.fold((), |(), span, column, row| {
         shader.span(span, planes.at(column, row));
@@ -134,12 +134,15 @@ fn fold_planes<W: Width, const N: usize>(
 /// The general set-up (any [`Coord`]): `i64`/`i128` edge functions, stepped planes where their
 /// error bound holds, exact ones (a division per span chunk) for huge regions and extreme
 /// slivers.
+///
+/// Only triangles 2048 px or more across come here, whose spans are long: the shader is called
+/// through a vtable, so one copy of this path serves every shader (flash on Cortex-M).
 #[inline(never)]
 fn shade_general<const N: usize>(
     v: [(Coord, Coord); 3],
     values: [[u8; N]; 3],
     clip: &Rectangle,
-    shader: &mut impl SpanShader<N>,
+    shader: &mut dyn SpanShader<N>,
 ) {
     // By reference: moving the setup out of the `Option` would copy it.
     let setup = TriangleSetup::new(v);
@@ -170,7 +173,7 @@ fn shade_exact<const N: usize>(
     setup: &TriangleSetup,
     region: &Region,
     values: [[u8; N]; 3],
-    shader: &mut impl SpanShader<N>,
+    shader: &mut dyn SpanShader<N>,
 ) {
     let inverse = InverseArea::new(setup.area2);
     let mut planes: [AttributePlane; N] = core::array::from_fn(|k| {
