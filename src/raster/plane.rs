@@ -253,13 +253,17 @@ impl<const N: usize> Planes<N> {
         region: &Region,
         values: [[u8; N]; 3],
     ) -> Option<Self> {
-        let inverse = InverseArea::new(setup.area2);
-        let ctx = StepContext::new(setup, region)?;
         let mut planes = Planes {
             value: [0; N],
             dx: [0; N],
             dy: [0; N],
         };
+        if N == 0 {
+            // No attributes (solid fills): nothing to set up, whatever the region.
+            return Some(planes);
+        }
+        let inverse = InverseArea::new(setup.area2);
+        let ctx = StepContext::new(setup, region)?;
         // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
         let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
         for k in 0..N {
