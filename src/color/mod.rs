@@ -31,8 +31,6 @@ pub use crate::raster::plane::STEP_BITS;
 
 const F: u32 = STEP_BITS;
 
-pub(crate) use crate::raster::plane::PLANE_TO_STEP;
-
 /// A colour that can be Gouraud-interpolated channel by channel.
 pub trait GouraudColor: PixelColor {
     /// Number of meaningful channels (1 for grey and binary colours, 3 for RGB).

@@ -29,11 +29,11 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::{fill_row, SliceFramebuffer};
 use crate::arch::LANES;
-use crate::color::{GouraudColor, SpanSteps, PLANE_TO_STEP};
+use crate::color::{GouraudColor, SpanSteps};
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
-use crate::raster::plane::{AttributePlane, InverseArea, Planes, MAX_CHUNK};
+use crate::raster::plane::{Attributes, ExactPlanes, Planes, MAX_CHUNK};
 use crate::raster::walk::{Region, Span, Spans};
 use crate::raster::{shade, shade_compact, SpanShader};
 
@@ -84,7 +84,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
         let clip = framebuffer.bounding_box();
         let mut shader = IntoSlice::new(framebuffer, true);
-        shade(self.positions(), self.channels(), &clip, &mut shader);
+        shade(self.positions(), &self.channels(), &clip, &mut shader);
     }
 
     /// Draws into a [`SliceFramebuffer`] like [`draw_into`](Self::draw_into) if the triangle is
@@ -98,7 +98,7 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     ) -> Result<(), TooLarge> {
         let clip = framebuffer.bounding_box();
         let mut shader = IntoSlice::new(framebuffer, false);
-        shade_compact(self.positions(), self.channels(), &clip, &mut shader)
+        shade_compact(self.positions(), &self.channels(), &clip, &mut shader)
     }
 
     /// The covered spans inside `clip` with their colours, each at most
@@ -113,10 +113,10 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         self.vertices.map(|v| v.position())
     }
 
-    /// The vertices' colour channels.
+    /// The vertices' colour channels, the planes' attributes.
     #[inline(always)]
-    fn channels(&self) -> [[u8; 3]; 3] {
-        self.vertices.map(|v| v.color.channels())
+    fn channels(&self) -> Attributes<3> {
+        Attributes::channels(self.vertices.map(|v| v.color.channels()))
     }
 }
 
@@ -134,7 +134,7 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
             step: [0; 3],
             result: Ok(()),
         };
-        shade(self.positions(), self.channels(), &clip, &mut shader);
+        shade(self.positions(), &self.channels(), &clip, &mut shader);
         shader.result
     }
 }
@@ -237,7 +237,12 @@ impl<C: PixelColor> SolidTriangle<C> {
             framebuffer,
             color: self.color,
         };
-        shade(self.points, [[]; 3], &clip, &mut shader);
+        shade(
+            self.points,
+            &Attributes::channels([[]; 3]),
+            &clip,
+            &mut shader,
+        );
     }
 
     /// The covered spans inside `clip`.
@@ -260,7 +265,12 @@ impl<C: PixelColor> Drawable for SolidTriangle<C> {
             color: self.color,
             result: Ok(()),
         };
-        shade(self.points, [[]; 3], &clip, &mut shader);
+        shade(
+            self.points,
+            &Attributes::channels([[]; 3]),
+            &clip,
+            &mut shader,
+        );
         shader.result
     }
 }
@@ -349,7 +359,7 @@ enum Shading {
         origin: (i32, i32),
     },
     /// Exact planes (huge regions or gradients).
-    Exact([AttributePlane; 3]),
+    Exact(ExactPlanes<3>),
 }
 
 impl<C: GouraudColor> ShadedSpans<C> {
@@ -359,7 +369,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
             Ok(None) => return Self::empty(),
             Ok(Some(compact)) => {
                 if let Ok(walk) = compact.walk() {
-                    let planes = Planes::compact(&compact.setup, channels);
+                    let planes = Planes::compact(&compact.setup, &channels);
                     let origin = (compact.x0, compact.y0);
                     return Self::stepped(Spans::compact(walk), planes, origin);
                 }
@@ -375,17 +385,13 @@ impl<C: GouraudColor> ShadedSpans<C> {
             return Self::empty();
         };
         let spans = Spans::new(setup, region);
-        if let Some(planes) = Planes::general(setup, &region, channels) {
+        if let Some(planes) = Planes::general(setup, &region, &channels) {
             return Self::stepped(spans, planes, (region.x0, region.y0));
         }
-        let inverse = InverseArea::new(setup.area2);
-        let planes: [AttributePlane; 3] = core::array::from_fn(|k| {
-            let values = channels.map(|c| u16::from(c[k]));
-            AttributePlane::with_inverse(setup, &inverse, values, &region)
-        });
+        let planes = ExactPlanes::new(setup, &region, &channels);
         ShadedSpans {
             spans,
-            step: planes.map(|p| p.step() << PLANE_TO_STEP),
+            step: planes.step(),
             shading: Shading::Exact(planes),
             current: None,
             _color: PhantomData,
@@ -406,7 +412,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
     fn empty() -> Self {
         ShadedSpans {
             spans: Spans::empty(),
-            shading: Shading::Exact([AttributePlane::constant(0); 3]),
+            shading: Shading::Exact(ExactPlanes::empty()),
             step: [0; 3],
             current: None,
             _color: PhantomData,
@@ -422,9 +428,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
                 let column = span.x_start.wrapping_sub(origin.0) as u32;
                 planes.at(column, span.y.wrapping_sub(origin.1) as u32)
             }
-            Shading::Exact(planes) => planes
-                .each_mut()
-                .map(|p| p.row_start(span.x_start, span.y) << PLANE_TO_STEP),
+            Shading::Exact(planes) => planes.row_start(span.x_start, span.y),
         }
     }
 
@@ -434,7 +438,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
             Shading::Stepped { .. } => {
                 core::array::from_fn(|k| start[k].wrapping_add(self.step[k].wrapping_mul(offset)))
             }
-            Shading::Exact(planes) => planes.map(|p| p.further(offset) << PLANE_TO_STEP),
+            Shading::Exact(planes) => planes.further(offset),
         }
     }
 }

@@ -328,7 +328,7 @@ mod tests {
 
     use super::*;
     use crate::raster::edge::TriangleSetup;
-    use crate::raster::plane::Planes;
+    use crate::raster::plane::{Attributes, Planes};
 
     /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
     /// the limit, slivers included, and a 48 × 40 clip somewhere over the bounding box.
@@ -422,7 +422,7 @@ mod tests {
             assert!(triangle.walk().is_ok());
             let setup = triangle.setup;
             let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
-            let colors = Planes::compact(&setup, channels);
+            let colors = Planes::compact(&setup, &Attributes::channels(channels));
             let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
             let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
                 (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)

@@ -38,9 +38,6 @@ use crate::raster::walk::Region;
 /// at most 8 integer bits, so a value fits a `u32`).
 pub const STEP_BITS: u32 = 24;
 
-/// Shift from [`AttributePlane::FRACTION_BITS`] to [`STEP_BITS`] fractional bits.
-pub(crate) const PLANE_TO_STEP: u32 = STEP_BITS - AttributePlane::FRACTION_BITS;
-
 /// Fractional bits of the per-row accumulator.
 const ROW_BITS: u32 = 32;
 
@@ -170,6 +167,34 @@ impl StepContext {
     }
 }
 
+/// The vertex values a triangle's planes interpolate: `N` attributes per vertex in 8.8 fixed point
+/// of the 8-bit scale the planes hand out (a colour channel `c` is `c << 8`; a 16-bit depth `d` is
+/// `d` itself, 1/256 of that scale), and each plane's rounding offset: half of the unit its
+/// consumer truncates to (`1 << 23` for a channel read as `value >> 24`, `1 << 15` for a depth
+/// read as `value >> 16`), so that truncation rounds to nearest.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Attributes<const N: usize> {
+    pub(crate) values: [[u16; N]; 3],
+    pub(crate) half: [u32; N],
+}
+
+impl<const N: usize> Attributes<N> {
+    /// Colour channels (per vertex), each rounded to its own integer unit.
+    #[inline(always)]
+    pub(crate) fn channels(channels: [[u8; N]; 3]) -> Self {
+        Attributes {
+            values: channels.map(|c| c.map(|v| u16::from(v) << 8)),
+            half: [1 << (STEP_BITS - 1); N],
+        }
+    }
+
+    /// The values of attribute `k` at the three vertices.
+    #[inline(always)]
+    pub(crate) fn vertex_values(&self, k: usize) -> [u16; 3] {
+        self.values.map(|v| v.get(k).copied().unwrap_or(0))
+    }
+}
+
 /// Stepped attribute planes: each attribute's value at the walk's first pixel (its region's
 /// top-left pixel centre) and its per-pixel and per-row gradients, in
 /// [`STEP_BITS`] = 24 fractional bits with the +½ rounding offset,
@@ -198,7 +223,7 @@ impl<const N: usize> Planes<N> {
     /// 2⁶⁴ and then 2³²: only the low bits of a huge gradient matter for the (in-range) covered
     /// values.
     #[inline(always)]
-    pub(crate) fn compact(setup: &CompactSetup, values: [[u8; N]; 3]) -> Self {
+    pub(crate) fn compact(setup: &CompactSetup, attributes: &Attributes<N>) -> Self {
         let max = setup
             .a
             .iter()
@@ -210,26 +235,27 @@ impl<const N: usize> Planes<N> {
         let gy = setup.b.map(|b| scale.of(b));
         let [c0, c1, c2] = setup
             .order
-            .map(|k| values.get(k).copied().unwrap_or([0; N]));
+            .map(|k| attributes.values.get(k).copied().unwrap_or([0; N]));
         let (px, py) = (setup.dx, setup.dy);
         // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
         let mul = wrapping_mul_i32;
         let planes: [[u32; 3]; N] = core::array::from_fn(|k| {
             let base = i32::from(c0[k]);
             let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
-            // 2⁻³² units per pixel.
+            // 2⁻⁴⁰ units (of the 8-bit scale; the values are 8.8) per pixel.
             let sx = mul(gx[0], d1).wrapping_add(mul(gx[1], d2));
             let sy = mul(gy[0], d1).wrapping_add(mul(gy[1], d2));
-            // Value at the first centre, 2⁻⁴⁰ units: c₀ + (sx·px + sy·py) / 256 (px, py in
+            // Value at the first centre, 2⁻⁴⁸ units: c₀ + (sx·px + sy·py) / 256 (px, py in
             // sub-pixels).
             let v = (i64::from(base) << 40)
                 .wrapping_add(mul(sx, px))
                 .wrapping_add(mul(sy, py));
             let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
+            let half = attributes.half.get(k).copied().unwrap_or(0);
             [
-                to_step(v, 16).wrapping_add(1 << 23),
-                to_step(sx, 8),
-                to_step(sy, 8),
+                to_step(v, 24).wrapping_add(half),
+                to_step(sx, 16),
+                to_step(sy, 16),
             ]
         });
         Planes {
@@ -251,7 +277,7 @@ impl<const N: usize> Planes<N> {
     pub(crate) fn general(
         setup: &TriangleSetup,
         region: &Region,
-        values: [[u8; N]; 3],
+        attributes: &Attributes<N>,
     ) -> Option<Self> {
         let mut planes = Planes {
             value: [0; N],
@@ -267,10 +293,12 @@ impl<const N: usize> Planes<N> {
         // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
         let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
         for k in 0..N {
-            let vertex = values.map(|v| v.get(k).copied().map_or(0, u16::from));
-            let p = Stepped::new(&inverse, &ctx, AttributePlane::gradient(setup, vertex))?;
+            let gradient = AttributePlane::gradient(setup, attributes.vertex_values(k));
+            // 8.8 values with 24 fractional bits more: 32 of the 8-bit scale.
+            let p = Stepped::new(&inverse, &ctx, gradient, ROW_BITS - 8, 0)?;
+            let half = attributes.half.get(k).copied().unwrap_or(0);
             (planes.value[k], planes.dx[k], planes.dy[k]) =
-                (round(p.value), round(p.dx), round(p.dy));
+                (round(p.value).wrapping_add(half), round(p.dx), round(p.dy));
         }
         Some(planes)
     }
@@ -397,6 +425,58 @@ impl GradientScale {
     }
 }
 
+/// The exact planes of [`Attributes`] (regions over 2¹⁶ pixels across, extreme slivers): each
+/// span's first value divided out exactly, then stepped; in the units of [`Planes`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ExactPlanes<const N: usize> {
+    planes: [AttributePlane; N],
+    half: [u32; N],
+}
+
+impl<const N: usize> ExactPlanes<N> {
+    /// The planes of `attributes` on the triangle `setup` over `region`.
+    pub(crate) fn new(setup: &TriangleSetup, region: &Region, attributes: &Attributes<N>) -> Self {
+        let inverse = InverseArea::new(setup.area2);
+        ExactPlanes {
+            planes: core::array::from_fn(|k| {
+                AttributePlane::with_inverse(setup, &inverse, attributes.vertex_values(k), region)
+            }),
+            half: attributes.half,
+        }
+    }
+
+    /// Attribute planes of no triangle.
+    pub(crate) fn empty() -> Self {
+        ExactPlanes {
+            planes: [AttributePlane::constant(0); N],
+            half: [0; N],
+        }
+    }
+
+    /// The per-pixel steps.
+    pub(crate) fn step(&self) -> [u32; N] {
+        // 8.8 values with 16 fractional bits: 24 of the 8-bit scale.
+        self.planes.map(|p| p.step())
+    }
+
+    /// The values at pixel `(x, y)`, which becomes the reference for [`further`](Self::further).
+    pub(crate) fn row_start(&mut self, x: i32, y: i32) -> [u32; N] {
+        let starts = self.planes.each_mut().map(|p| p.row_start(x, y));
+        self.with_half(starts)
+    }
+
+    /// The values `offset` pixels right of the last [`row_start`](Self::row_start).
+    pub(crate) fn further(&self, offset: u32) -> [u32; N] {
+        self.with_half(self.planes.map(|p| p.further(offset)))
+    }
+
+    /// The planes' own +½ (of an 8.8 unit) replaced by the attributes' rounding offsets.
+    fn with_half(&self, values: [u32; N]) -> [u32; N] {
+        let own = 1 << (AttributePlane::FRACTION_BITS - 1);
+        core::array::from_fn(|k| values[k].wrapping_sub(own).wrapping_add(self.half[k]))
+    }
+}
+
 /// The row accumulator of a stepped plane ([`ROW_BITS`] fractional bits, +½ included): value at
 /// the region's top-left pixel and gradients per pixel and per row.
 #[derive(Debug, Clone, Copy)]
@@ -407,17 +487,19 @@ pub(crate) struct Stepped {
 }
 
 impl Stepped {
-    /// The accumulator of the plane with value `c0` at oriented vertex 0 and numerator gradients
-    /// `nx`, `ny` (see [`AttributePlane::gradient`]), or `None` when the gradients are too large
-    /// for stepping.
+    /// The accumulator (`bits` fractional bits, `half` added) of the plane with value `c0` at
+    /// oriented vertex 0 and numerator gradients `nx`, `ny` (see [`AttributePlane::gradient`]),
+    /// or `None` when the gradients are too large for stepping.
     #[inline]
     pub(crate) fn new(
         inverse: &InverseArea,
         ctx: &StepContext,
         (c0, nx, ny): (i64, i64, i64),
+        bits: u32,
+        half: i64,
     ) -> Option<Stepped> {
-        let dx = i64::try_from(inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS)).ok()?;
-        let dy = i64::try_from(inverse.scale(i128::from(ny), ROW_BITS + SUBPIXEL_BITS)).ok()?;
+        let dx = i64::try_from(inverse.scale(i128::from(nx), bits + SUBPIXEL_BITS)).ok()?;
+        let dy = i64::try_from(inverse.scale(i128::from(ny), bits + SUBPIXEL_BITS)).ok()?;
         // c(p) = c₀ + (nx·(p_x − x₀) + ny·(p_y − y₀)) / area2 with vertex 0 of the oriented
         // order: a small numerator for on-screen triangles, so no division is needed.
         let (px, py) = (ctx.px, ctx.py);
@@ -425,7 +507,7 @@ impl Stepped {
             < 1 << 31;
         let offset = dot2(nx, px, ny, py, small);
         let value = i64::try_from(
-            (i128::from(c0) << ROW_BITS) + inverse.scale(offset, ROW_BITS) + (1 << (ROW_BITS - 1)),
+            (i128::from(c0) << bits) + inverse.scale(offset, bits) + i128::from(half),
         )
         .ok()?;
         Stepped::checked(value, dx, dy, ctx.extent)
@@ -497,8 +579,9 @@ impl AttributePlane {
     ) -> Self {
         let (c0, nx, ny) = Self::gradient(setup, values);
         let (x, y) = (i64::from(region.x0), i64::from(region.y0));
-        let stepped = StepContext::new(setup, region)
-            .and_then(|ctx| Stepped::new(inverse, &ctx, (c0, nx, ny)));
+        let stepped = StepContext::new(setup, region).and_then(|ctx| {
+            Stepped::new(inverse, &ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
+        });
         if let Some(p) = stepped {
             return AttributePlane {
                 mode: Mode::Stepped {
@@ -747,7 +830,8 @@ mod tests {
                 continue;
             };
             let (c0, nx, ny) = AttributePlane::gradient(&setup, values);
-            let Some(p) = Stepped::new(&inverse, &ctx, (c0, nx, ny)) else {
+            let Some(p) = Stepped::new(&inverse, &ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
+            else {
                 continue;
             };
             checked += 1;

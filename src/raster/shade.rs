@@ -11,7 +11,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
-use super::plane::{AttributePlane, InverseArea, Planes, MAX_CHUNK, PLANE_TO_STEP};
+use super::plane::{Attributes, ExactPlanes, Planes, MAX_CHUNK};
 use super::walk::{general_walk, GeneralWalk, Region, Span, Spans, Walk, Width};
 use crate::arch::LANES;
 use crate::fixed_point::Coord;
@@ -57,24 +57,24 @@ pub(crate) trait SpanShader<const N: usize> {
 }
 
 /// Walks the triangle `v` inside `clip` and hands `shader` its covered spans with the planes
-/// through `values` (per vertex). Degenerate triangles draw nothing.
+/// of `attributes`. Degenerate triangles draw nothing.
 #[inline(always)]
 pub(crate) fn shade<const N: usize>(
     v: [(Coord, Coord); 3],
-    values: [[u8; N]; 3],
+    attributes: &Attributes<N>,
     clip: &Rectangle,
     shader: &mut impl SpanShader<N>,
 ) {
     match CompactTriangle::new(v, clip) {
         Ok(None) => return,
         Ok(Some(triangle)) => {
-            if shade_compact_triangle(&triangle, values, shader).is_ok() {
+            if shade_compact_triangle(&triangle, attributes, shader).is_ok() {
                 return;
             }
         }
         Err(TooLarge) => {}
     }
-    shade_general(v, values, clip, shader);
+    shade_general(v, attributes, clip, shader);
 }
 
 /// [`shade`] for compact triangles only (bounding box under 2048 × 2048 px); `Err(TooLarge)`
@@ -83,12 +83,12 @@ pub(crate) fn shade<const N: usize>(
 #[inline(always)]
 pub(crate) fn shade_compact<const N: usize>(
     v: [(Coord, Coord); 3],
-    values: [[u8; N]; 3],
+    attributes: &Attributes<N>,
     clip: &Rectangle,
     shader: &mut impl SpanShader<N>,
 ) -> Result<(), TooLarge> {
     match CompactTriangle::new(v, clip)? {
-        Some(triangle) => shade_compact_triangle(&triangle, values, shader),
+        Some(triangle) => shade_compact_triangle(&triangle, attributes, shader),
         None => Ok(()),
     }
 }
@@ -98,12 +98,12 @@ pub(crate) fn shade_compact<const N: usize>(
 #[inline(always)]
 fn shade_compact_triangle<const N: usize>(
     triangle: &CompactTriangle,
-    values: [[u8; N]; 3],
+    attributes: &Attributes<N>,
     shader: &mut impl SpanShader<N>,
 ) -> Result<(), TooLarge> {
     #[cfg(sse2_rows)]
     if let Some(width) = shader.row_width() {
-        let planes = Planes::compact(&triangle.setup, values);
+        let planes = Planes::compact(&triangle.setup, attributes);
         if super::tiny::shade(triangle, &planes, width, shader) {
             return Ok(());
         }
@@ -113,7 +113,7 @@ fn shade_compact_triangle<const N: usize>(
         return Ok(());
     }
     let walk = triangle.walk()?;
-    let planes = Planes::compact(&triangle.setup, values);
+    let planes = Planes::compact(&triangle.setup, attributes);
     shader.prepare(planes.step());
     fold_planes(walk, &planes, shader);
     Ok(())
@@ -140,7 +140,7 @@ fn fold_planes<W: Width, const N: usize>(
 #[inline(never)]
 fn shade_general<const N: usize>(
     v: [(Coord, Coord); 3],
-    values: [[u8; N]; 3],
+    attributes: &Attributes<N>,
     clip: &Rectangle,
     shader: &mut dyn SpanShader<N>,
 ) {
@@ -152,7 +152,7 @@ fn shade_general<const N: usize>(
     let Some(region) = Region::new(setup, clip) else {
         return;
     };
-    match Planes::general(setup, &region, values) {
+    match Planes::general(setup, &region, attributes) {
         Some(planes) => {
             shader.prepare(planes.step());
             match general_walk(setup, &region) {
@@ -160,7 +160,7 @@ fn shade_general<const N: usize>(
                 GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
             }
         }
-        None => shade_exact(setup, &region, values, shader),
+        None => shade_exact(setup, &region, attributes, shader),
     }
 }
 
@@ -172,27 +172,20 @@ fn shade_general<const N: usize>(
 fn shade_exact<const N: usize>(
     setup: &TriangleSetup,
     region: &Region,
-    values: [[u8; N]; 3],
+    attributes: &Attributes<N>,
     shader: &mut dyn SpanShader<N>,
 ) {
-    let inverse = InverseArea::new(setup.area2);
-    let mut planes: [AttributePlane; N] = core::array::from_fn(|k| {
-        let vertex = values.map(|v| v.get(k).copied().map_or(0, u16::from));
-        AttributePlane::with_inverse(setup, &inverse, vertex, region)
-    });
-    shader.prepare(planes.map(|p| p.step() << PLANE_TO_STEP));
+    let mut planes = ExactPlanes::new(setup, region, attributes);
+    shader.prepare(planes.step());
     for span in Spans::new(setup, *region) {
         let mut offset = 0;
         while offset < span.len() {
             let len = (span.len() - offset).min(MAX_CHUNK);
-            let start = planes.each_mut().map(|p| {
-                let v = if offset == 0 {
-                    p.row_start(span.x_start, span.y)
-                } else {
-                    p.further(offset)
-                };
-                v << PLANE_TO_STEP
-            });
+            let start = if offset == 0 {
+                planes.row_start(span.x_start, span.y)
+            } else {
+                planes.further(offset)
+            };
             // Inside the span, which lies inside the region: no overflow.
             let x_start = span.x_start.wrapping_add(offset as i32);
             let chunk = Span {

@@ -50,10 +50,10 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
-use crate::color::{GouraudColor, PLANE_TO_STEP};
+use crate::color::GouraudColor;
 use crate::raster::edge::TriangleSetup;
-use crate::raster::plane::{AttributePlane, InverseArea, MAX_CHUNK};
-use crate::raster::walk::{Region, Spans};
+use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
+use crate::raster::{self, Span, SpanShader};
 
 /// How a mesh is lit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -330,8 +330,8 @@ impl NormalPlane {
     }
 }
 
-/// A barycentric coordinate read from an [`AttributePlane`] with vertex values `{65535, 0, 0}`,
-/// as 30 fractional bits: `raw = c·65535·2^16 + 2^15`.
+/// A barycentric coordinate read from a plane with vertex values `{65535, 0, 0}` (8.8: 1/256 of
+/// the planes' 8-bit scale), as 30 fractional bits: `raw = c·65535·2^16 + 2^15`.
 #[inline(always)]
 fn bary_from_plane(raw: u32) -> i64 {
     let r = i64::from(raw) - (1 << 15);
@@ -339,76 +339,168 @@ fn bary_from_plane(raw: u32) -> i64 {
     (r + (r >> 16)) >> 2
 }
 
-/// One span chunk: `len` pixels of row `y` from column `x`, `offset` pixels into its span.
-#[derive(Debug, Clone, Copy)]
-struct Chunk {
-    y: i32,
-    x: i32,
-    x_span: i32,
-    len: u32,
-    offset: u32,
+/// Fractional bits of a depth read from a plane: 16-bit depths are 8.8 values of the planes'
+/// 8-bit scale, which carries 24 fractional bits.
+const DEPTH_SHIFT: u32 = STEP_BITS_PLANES - 8;
+
+/// Half a depth unit, the depth plane's rounding offset.
+const DEPTH_HALF: u32 = 1 << (DEPTH_SHIFT - 1);
+
+/// The planes' attributes: the depths first, then `M` more per vertex with their rounding
+/// offsets.
+#[inline(always)]
+fn with_depth<const M: usize, const N: usize>(
+    vertices: &[ScreenVertex; 3],
+    more: [[u16; M]; 3],
+    half: [u32; M],
+) -> Attributes<N> {
+    debug_assert!(N == M + 1);
+    Attributes {
+        values: core::array::from_fn(|v| {
+            core::array::from_fn(|k| match k {
+                0 => vertices[v].depth,
+                k => more[v].get(k - 1).copied().unwrap_or(0),
+            })
+        }),
+        half: core::array::from_fn(|k| match k {
+            0 => DEPTH_HALF,
+            k => half.get(k - 1).copied().unwrap_or(0),
+        }),
+    }
 }
 
-/// Calls `f` for each chunk of at most [`MAX_CHUNK`] pixels of every span, top to bottom.
-#[inline(always)]
-fn for_each_chunk(spans: Spans, mut f: impl FnMut(Chunk)) {
-    for span in spans {
-        let len = span.len();
-        let mut offset = 0;
-        while offset < len {
-            let n = (len - offset).min(MAX_CHUNK);
-            f(Chunk {
-                y: span.y,
-                x: span.x_start.wrapping_add(offset as i32),
-                x_span: span.x_start,
-                len: n,
-                offset,
-            });
-            offset += n;
+/// A depth-tested fill: the raster core hands it the spans of a triangle with the depth first
+/// among the attributes; the depth test and write are in the span loop, and `pixel` gives the
+/// colour of a pixel that passes from the other attributes (stepped per pixel).
+struct DepthFill<'t, 'a, C, P, const N: usize> {
+    target: &'t mut DepthTarget<'a, C>,
+    step: [u32; N],
+    pixel: P,
+}
+
+/// What a [`DepthFill`] writes at a pixel that passes the depth test.
+trait DepthPixel<C, const N: usize> {
+    /// Once per span: its attributes at the first pixel.
+    fn start(&mut self, _values: &[u32; N]) {}
+    /// The colour of the current pixel, from the attributes `values`.
+    fn color(&mut self, values: &[u32; N]) -> C;
+    /// Moves to the next pixel.
+    fn advance(&mut self) {}
+}
+
+impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
+    for DepthFill<'_, '_, C, P, N>
+{
+    #[inline(always)]
+    fn prepare(&mut self, step: [u32; N]) {
+        self.step = step;
+    }
+
+    #[inline(always)]
+    fn span(&mut self, span: Span, start: [u32; N]) {
+        let Some((colors, depths)) = self.target.rows_mut(span.x_start, span.y, span.len()) else {
+            return;
+        };
+        let mut v = start;
+        self.pixel.start(&v);
+        for (px, d) in colors.iter_mut().zip(depths.iter_mut()) {
+            let z = v.first().map_or(0, |z| (z >> DEPTH_SHIFT) as u16);
+            if z < *d {
+                *d = z;
+                *px = self.pixel.color(&v);
+            }
+            for (value, step) in v.iter_mut().zip(self.step) {
+                *value = value.wrapping_add(step);
+            }
+            self.pixel.advance();
         }
     }
 }
 
-/// The plane's value at the chunk's first pixel: restarts at the span start, then `further`.
+/// Draws the depth-tested triangle `vertices` with `attributes` (the depth first) and `pixel`,
+/// inside `clip` and the target.
 #[inline(always)]
-fn plane_at(plane: &mut AttributePlane, c: &Chunk) -> u32 {
-    if c.offset == 0 {
-        plane.row_start(c.x_span, c.y)
-    } else {
-        plane.further(c.offset)
+fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, const N: usize>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &Rectangle,
+    vertices: &[ScreenVertex; 3],
+    attributes: &Attributes<N>,
+    pixel: P,
+) {
+    let clip = clip.intersection(&target.bounding_box());
+    let mut fill = DepthFill {
+        target,
+        step: [0; N],
+        pixel,
+    };
+    raster::shade(vertices.map(|v| v.position()), attributes, &clip, &mut fill);
+}
+
+/// One colour.
+struct Flat<C>(C);
+
+impl<C: Copy> DepthPixel<C, 1> for Flat<C> {
+    #[inline(always)]
+    fn color(&mut self, _: &[u32; 1]) -> C {
+        self.0
     }
 }
 
-/// Triangle setup shared by the fills: edge functions, clipped region, depth plane.
-struct Setup {
-    setup: TriangleSetup,
-    region: Region,
-    inverse: InverseArea,
-    depth: AttributePlane,
+/// The interpolated colour channels (attributes 1 to 3).
+struct Smooth;
+
+impl<C: GouraudColor> DepthPixel<C, 4> for Smooth {
+    #[inline(always)]
+    fn color(&mut self, values: &[u32; 4]) -> C {
+        C::from_stepped([values[1], values[2], values[3]])
+    }
 }
 
-impl Setup {
-    fn new<C: PixelColor>(
-        target: &DepthTarget<'_, C>,
-        clip: &Rectangle,
-        vertices: &[ScreenVertex; 3],
-    ) -> Option<Setup> {
-        let clip = clip.intersection(&target.bounding_box());
-        let setup = TriangleSetup::new(vertices.map(|v| v.position()))?;
-        let region = Region::new(&setup, &clip)?;
-        let inverse = InverseArea::new(setup.area2);
-        let depth =
-            AttributePlane::with_inverse(&setup, &inverse, vertices.map(|v| v.depth), &region);
-        Some(Setup {
-            setup,
-            region,
-            inverse,
-            depth,
-        })
+/// Lambert lighting of the quadratic normal field at the barycentrics of attributes 1 and 2.
+struct Lit<'l> {
+    field: NormalPlane,
+    /// Second difference of the normal along a row.
+    d2: [i64; 3],
+    /// The normal at the current pixel and its first difference.
+    n: [i64; 3],
+    d1: [i64; 3],
+    /// Light direction with 14 fractional bits.
+    l: [i32; 3],
+    light: &'l Light,
+    base: [u8; 3],
+}
+
+impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
+    #[inline(always)]
+    fn start(&mut self, values: &[u32; 3]) {
+        let (u, v) = (bary_from_plane(values[1]), bary_from_plane(values[2]));
+        (self.n, self.d1) = self.field.start(u, v);
     }
 
-    fn spans(&self) -> Spans {
-        Spans::new(&self.setup, self.region)
+    #[inline(always)]
+    fn color(&mut self, _: &[u32; 3]) -> C {
+        let q = self.n.map(|v| {
+            (v.wrapping_add(1 << (STEP_BITS - 15)) >> (STEP_BITS - 14))
+                .clamp(-(1 << 15) + 1, (1 << 15) - 1) as i32
+        });
+        let l = self.l;
+        let dot = q[0] * l[0] + q[1] * l[1] + q[2] * l[2];
+        let diffuse = if dot <= 0 {
+            0
+        } else {
+            let nn = q.iter().map(|v| v.unsigned_abs().pow(2)).sum::<u32>();
+            let (r, sh) = inv_sqrt(u64::from(nn));
+            ((dot as u64 * u64::from(r)) >> sh.saturating_sub(2)).min(1 << 16) as u32
+        };
+        scale_channels::<C>(self.base, self.light.level_of_diffuse(diffuse))
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        for i in 0..3 {
+            self.n[i] = self.n[i].wrapping_add(self.d1[i]);
+            self.d1[i] = self.d1[i].wrapping_add(self.d2[i]);
+        }
     }
 }
 
@@ -420,24 +512,8 @@ pub fn draw_flat<C: PixelColor>(
     vertices: &[ScreenVertex; 3],
     color: C,
 ) {
-    let Some(mut s) = Setup::new(target, clip, vertices) else {
-        return;
-    };
-    let dz = s.depth.step();
-    for_each_chunk(s.spans(), |c| {
-        let mut z = plane_at(&mut s.depth, &c);
-        let Some((colors, depths)) = target.rows_mut(c.x, c.y, c.len) else {
-            return;
-        };
-        for (px, d) in colors.iter_mut().zip(depths.iter_mut()) {
-            let zi = (z >> AttributePlane::FRACTION_BITS) as u16;
-            if zi < *d {
-                *d = zi;
-                *px = color;
-            }
-            z = z.wrapping_add(dz);
-        }
-    });
+    let attributes = with_depth(vertices, [[]; 3], []);
+    depth_fill(target, clip, vertices, &attributes, Flat(color));
 }
 
 /// Fills the triangle with the vertex colours interpolated barycentrically (as
@@ -448,45 +524,9 @@ pub fn draw_gouraud<C: GouraudColor>(
     vertices: &[ScreenVertex; 3],
     colors: [C; 3],
 ) {
-    let Some(mut s) = Setup::new(target, clip, vertices) else {
-        return;
-    };
-    let channels = colors.map(|c| c.channels());
-    let mut planes = [0, 1, 2].map(|k| {
-        if k < C::CHANNELS {
-            let values = channels.map(|c| u16::from(c[k]));
-            AttributePlane::with_inverse(&s.setup, &s.inverse, values, &s.region)
-        } else {
-            AttributePlane::constant(0)
-        }
-    });
-    let dz = s.depth.step();
-    let step = planes.map(|p| p.step() << PLANE_TO_STEP);
-    for_each_chunk(s.spans(), |c| {
-        let mut z = plane_at(&mut s.depth, &c);
-        let mut v = [0u32; 3];
-        for (k, (value, plane)) in v.iter_mut().zip(planes.iter_mut()).enumerate() {
-            if k < C::CHANNELS {
-                *value = plane_at(plane, &c) << PLANE_TO_STEP;
-            }
-        }
-        let Some((colors, depths)) = target.rows_mut(c.x, c.y, c.len) else {
-            return;
-        };
-        for (px, d) in colors.iter_mut().zip(depths.iter_mut()) {
-            let zi = (z >> AttributePlane::FRACTION_BITS) as u16;
-            if zi < *d {
-                *d = zi;
-                *px = C::from_stepped(v);
-            }
-            z = z.wrapping_add(dz);
-            v[0] = v[0].wrapping_add(step[0]);
-            if C::CHANNELS > 1 {
-                v[1] = v[1].wrapping_add(step[1]);
-                v[2] = v[2].wrapping_add(step[2]);
-            }
-        }
-    });
+    let channels = Attributes::channels(colors.map(|c| c.channels()));
+    let attributes = with_depth(vertices, channels.values, channels.half);
+    depth_fill(target, clip, vertices, &attributes, Smooth);
 }
 
 /// Fills the triangle with per-pixel Lambert lighting of the quadratic normal field `normals`
@@ -500,54 +540,29 @@ pub fn draw_quadratic<C: GouraudColor>(
     light: &Light,
     color: C,
 ) {
-    let Some(mut s) = Setup::new(target, clip, vertices) else {
+    // The field's per-pixel gradients need more precision than the planes': 40 fractional bits
+    // from the exact set-up.
+    let Some(setup) = TriangleSetup::new(vertices.map(|v| v.position())) else {
         return;
     };
-    let field = NormalPlane::new(normals, &s.setup, &s.inverse);
-    let mut bary = [[u16::MAX, 0, 0], [0, u16::MAX, 0]]
-        .map(|values| AttributePlane::with_inverse(&s.setup, &s.inverse, values, &s.region));
-    // Light direction with 14 fractional bits.
-    let l = light
-        .direction
-        .to_bits()
-        .map(|c| (c + 2) >> 2)
-        .map(|c| c.clamp(-(1 << 14), 1 << 14));
-    let base = color.channels();
-    let dz = s.depth.step();
-    let d2 = field.c.map(|c| c.wrapping_mul(2));
-    for_each_chunk(s.spans(), |c| {
-        let mut z = plane_at(&mut s.depth, &c);
-        let u = bary_from_plane(plane_at(&mut bary[0], &c));
-        let v = bary_from_plane(plane_at(&mut bary[1], &c));
-        let (mut n, mut d1) = field.start(u, v);
-        let Some((colors, depths)) = target.rows_mut(c.x, c.y, c.len) else {
-            return;
-        };
-        for (px, d) in colors.iter_mut().zip(depths.iter_mut()) {
-            let zi = (z >> AttributePlane::FRACTION_BITS) as u16;
-            if zi < *d {
-                *d = zi;
-                let q = n.map(|v| {
-                    (v.wrapping_add(1 << (STEP_BITS - 15)) >> (STEP_BITS - 14))
-                        .clamp(-(1 << 15) + 1, (1 << 15) - 1) as i32
-                });
-                let dot = q[0] * l[0] + q[1] * l[1] + q[2] * l[2];
-                let diffuse = if dot <= 0 {
-                    0
-                } else {
-                    let nn = q.iter().map(|v| v.unsigned_abs().pow(2)).sum::<u32>();
-                    let (r, sh) = inv_sqrt(u64::from(nn));
-                    ((dot as u64 * u64::from(r)) >> sh.saturating_sub(2)).min(1 << 16) as u32
-                };
-                *px = scale_channels::<C>(base, light.level_of_diffuse(diffuse));
-            }
-            z = z.wrapping_add(dz);
-            for i in 0..3 {
-                n[i] = n[i].wrapping_add(d1[i]);
-                d1[i] = d1[i].wrapping_add(d2[i]);
-            }
-        }
-    });
+    let field = NormalPlane::new(normals, &setup, &InverseArea::new(setup.area2));
+    let lit = Lit {
+        d2: field.c.map(|c| c.wrapping_mul(2)),
+        field,
+        n: [0; 3],
+        d1: [0; 3],
+        l: light
+            .direction
+            .to_bits()
+            .map(|c| (c + 2) >> 2)
+            .map(|c| c.clamp(-(1 << 14), 1 << 14)),
+        light,
+        base: color.channels(),
+    };
+    // The barycentrics of vertices 0 and 1: 65535 there, 0 at the others.
+    let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
+    let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
+    depth_fill(target, clip, vertices, &attributes, lit);
 }
 
 #[cfg(test)]
