@@ -2,8 +2,11 @@
 //!
 //! [`GouraudColor`] splits a colour into up to three integer channels in its own depth
 //! (`Rgb565`: 5, 6 and 5 bits) and builds it back. Interpolating in the target's own depth is what
-//! makes the "within 1 LSB" guarantee meaningful for every format. The 5-6-5 formats have a
-//! packed span loop of their own (`packed565`).
+//! makes the "within 1 LSB" guarantee meaningful for every format. The colours of a span are
+//! defined once per format, by its span state ([`GouraudColor::span_state`] and the items after
+//! it); the slice loops ([`GouraudColor::fill_prepared`]) and the per-pixel iterator
+//! ([`SpanColors`](crate::SpanColors)) both give them. The 5-6-5 formats have a packed span loop
+//! of their own (`packed565`).
 //!
 //! ```
 //! use embedded_graphics::pixelcolor::{Rgb565, Gray8};
@@ -12,6 +15,8 @@
 //! assert_eq!(Rgb565::new(31, 40, 2).channels(), [31, 40, 2]);
 //! assert_eq!(Gray8::from_channels([77, 0, 0]), Gray8::new(77));
 //! ```
+
+use core::num::NonZeroU32;
 
 use embedded_graphics::pixelcolor::{
     Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, GrayColor, Rgb555, Rgb565,
@@ -23,7 +28,7 @@ pub use crate::arch::LANES;
 
 mod packed565;
 
-use packed565::{fill_565, masked_row_565, prepare_565};
+use packed565::{fill_565, masked_row_565, prepare_565, PACKED_RUN};
 
 /// Fractional bits of the stepped channel values handed to [`GouraudColor::fill_span`] and
 /// [`GouraudColor::from_stepped`]: channels have at most 8 integer bits, so a value fits a `u32`.
@@ -67,19 +72,48 @@ pub trait GouraudColor: PixelColor {
         }
     }
 
-    /// [`fill_span`](Self::fill_span) with steps from [`prepare_steps`](Self::prepare_steps).
-    /// Formats may override both with a faster packed loop that keeps the same accuracy.
+    /// [`fill_span`](Self::fill_span) with steps from [`prepare_steps`](Self::prepare_steps):
+    /// the span's colours as [`span_state`](Self::span_state),
+    /// [`state_color`](Self::state_color), [`next_state`](Self::next_state) and
+    /// [`SPAN_RUN`](Self::SPAN_RUN) define them ([`SpanColors`](crate::SpanColors) hands out the
+    /// same ones). Formats may override both with a faster loop that gives those colours (the
+    /// 5-6-5 formats do).
     #[inline]
     fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
-        let (mut v, step) = (start, steps.step);
-        for px in dst {
-            *px = Self::from_stepped(v);
-            v[0] = v[0].wrapping_add(step[0]);
-            if Self::CHANNELS > 1 {
-                v[1] = v[1].wrapping_add(step[1]);
-                v[2] = v[2].wrapping_add(step[2]);
-            }
+        fill_by_state(dst, start, steps);
+    }
+
+    /// Pixels of a span stepped from one start: every `SPAN_RUN` pixels the span loop restarts
+    /// from the exact channel values there (the start plus that many steps, modulo 2³²), so its
+    /// stepping error never grows beyond that many steps. `None` (the default): the whole span
+    /// is stepped from its start.
+    const SPAN_RUN: Option<NonZeroU32> = None;
+
+    /// The span loop's per-pixel state at a (re)start whose channel values are `value`
+    /// ([`STEP_BITS`] fractional bits, +½ included); by default the values themselves.
+    #[inline(always)]
+    fn span_state(value: [u32; 3]) -> [u32; 3] {
+        value
+    }
+
+    /// The colour of the span loop's state `state`; by default
+    /// [`from_stepped`](Self::from_stepped).
+    #[inline(always)]
+    fn state_color(state: [u32; 3]) -> Self {
+        Self::from_stepped(state)
+    }
+
+    /// The state one pixel to the right of `state`; by default the values plus the steps,
+    /// wrapping.
+    #[inline(always)]
+    fn next_state(state: [u32; 3], steps: &SpanSteps) -> [u32; 3] {
+        let (mut v, step) = (state, steps.step);
+        v[0] = v[0].wrapping_add(step[0]);
+        if Self::CHANNELS > 1 {
+            v[1] = v[1].wrapping_add(step[1]);
+            v[2] = v[2].wrapping_add(step[2]);
         }
+        v
     }
 
     /// Fills the covered pixels of one row of a tiny triangle's box (drawn a row of [`LANES`]
@@ -155,6 +189,38 @@ impl SpanSteps {
     }
 }
 
+/// The channel values `run` pixels after `value` (`steps`' plain steps, wrapping): where the span
+/// loop restarts ([`GouraudColor::SPAN_RUN`]).
+#[inline(always)]
+pub(crate) fn restart_value(value: [u32; 3], steps: &SpanSteps, run: NonZeroU32) -> [u32; 3] {
+    core::array::from_fn(|k| value[k].wrapping_add(steps.step[k].wrapping_mul(run.get())))
+}
+
+/// The colours of a span from its start `start`, one pixel at a time, as the format's
+/// [`span_state`](GouraudColor::span_state), [`state_color`](GouraudColor::state_color),
+/// [`next_state`](GouraudColor::next_state) and [`SPAN_RUN`](GouraudColor::SPAN_RUN) define
+/// them: the default [`GouraudColor::fill_prepared`], and what faster loops must equal.
+#[inline(always)]
+pub(crate) fn fill_by_state<C: GouraudColor>(dst: &mut [C], start: [u32; 3], steps: &SpanSteps) {
+    let run_of = |dst: &mut [C], value: [u32; 3]| {
+        let mut state = C::span_state(value);
+        for px in dst {
+            *px = C::state_color(state);
+            state = C::next_state(state, steps);
+        }
+    };
+    match C::SPAN_RUN {
+        None => run_of(dst, start),
+        Some(run) => {
+            let mut value = start;
+            for part in dst.chunks_mut(run.get() as usize) {
+                run_of(part, value);
+                value = restart_value(value, steps, run);
+            }
+        }
+    }
+}
+
 /// `GouraudColor` for RGB formats; `order = [top, 1, bottom]` selects the 5-6-5 span loop with
 /// that channel order in the raw value.
 macro_rules! rgb_color {
@@ -182,6 +248,19 @@ macro_rules! rgb_color {
                 #[cfg_attr(armv7m, inline(never))]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
                     fill_565(dst, start, steps, $order)
+                }
+                const SPAN_RUN: Option<NonZeroU32> = NonZeroU32::new(PACKED_RUN as u32);
+                #[inline(always)]
+                fn span_state(value: [u32; 3]) -> [u32; 3] {
+                    packed565::span_state(value, $order)
+                }
+                #[inline(always)]
+                fn state_color(state: [u32; 3]) -> Self {
+                    packed565::state_color(state)
+                }
+                #[inline(always)]
+                fn next_state(state: [u32; 3], steps: &SpanSteps) -> [u32; 3] {
+                    packed565::next_state(state, steps)
                 }
                 #[inline(always)]
                 fn fill_masked_row(

@@ -4,7 +4,9 @@
 //! pixels' lanes share a 32-bit word, and one addition steps both; one mask and one shift place a
 //! channel of both pixels at once. Every [`PACKED_RUN`] pixels the lanes restart from the exact
 //! [`STEP_BITS`] values. Cortex-M0 runs the same arithmetic in Thumb-1 assembly
-//! ([`arch::thumbv6m`]), x86-64 computes tiny triangles' rows of eight pixels in SSE2.
+//! ([`arch::thumbv6m`]), x86-64 computes tiny triangles' rows of eight pixels in SSE2, and
+//! `SpanColors` (so `Drawable::draw`) steps the same lanes one pixel at a time ([`span_state`],
+//! [`state_color`], [`next_state`]): every path gives the same colours.
 
 use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 
@@ -15,7 +17,7 @@ const F: u32 = STEP_BITS;
 
 /// Pixels stepped from one restart by the 5-6-5 loop. Their channels carry 11, 10 and 11
 /// fractional bits, so 128 steps add at most 2⁻⁴ LSB of error.
-const PACKED_RUN: usize = 128;
+pub(super) const PACKED_RUN: usize = 128;
 
 /// Spans up to this long skip the packed 5-6-5 loop, whose pair set-up they would not repay, and
 /// step the same lanes one pixel at a time (the same pixels). On x86 LLVM vectorises the packed
@@ -103,6 +105,30 @@ pub(super) fn fill_565<C: From<RawU16>>(
         run_565(run, lanes(value), steps);
         advance(&mut value);
     }
+}
+
+/// The span state of a 5-6-5 layout whose raw value holds channels `order` ([`GouraudColor`]'s
+/// `span_state`): the channel values `value` (channel order) rounded to their lanes, raw order,
+/// as [`fill_565`] restarts from them.
+///
+/// [`GouraudColor`]: super::GouraudColor
+#[inline(always)]
+pub(super) fn span_state(value: [u32; 3], order: [usize; 3]) -> [u32; 3] {
+    lanes(order.map(|k| value.get(k).copied().unwrap_or(0)))
+}
+
+/// The colour of the lanes `lane` (raw order): the low 16 bits of each, as in the pair words of
+/// [`run_565`].
+#[inline(always)]
+pub(super) fn state_color<C: From<RawU16>>(lane: [u32; 3]) -> C {
+    raw_565(pack_565(lane))
+}
+
+/// The lanes one pixel to the right: each plus its lane step, wrapping (modulo 2¹⁶ in the bits
+/// [`state_color`] reads, as in the pair words).
+#[inline(always)]
+pub(super) fn next_state(lane: [u32; 3], steps: &SpanSteps) -> [u32; 3] {
+    core::array::from_fn(|i| lane[i].wrapping_add(steps.lane[i]))
 }
 
 /// Channel values (raw order, [`STEP_BITS`] fractional bits) rounded to their 5-6-5 lanes.
@@ -233,6 +259,7 @@ mod tests {
     use embedded_graphics::pixelcolor::{Bgr565, Rgb565, RgbColor};
 
     use super::*;
+    use crate::color::fill_by_state;
     use crate::GouraudColor;
 
     /// The 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
@@ -275,6 +302,14 @@ mod tests {
                 }
             }
             assert_eq!(other[..n], out[..n]);
+            // And they are the colours the format's span state defines (which `SpanColors`
+            // hands out one by one).
+            let mut by_state = [Rgb565::BLACK; 700];
+            fill_by_state(&mut by_state[..n], start, &steps);
+            assert_eq!(by_state[..n], out[..n]);
+            let mut by_state = [Bgr565::BLACK; 700];
+            fill_by_state(&mut by_state[..n], start, &Bgr565::prepare_steps(step));
+            assert_eq!(by_state[..n], bgr[..n]);
             // Short spans step the packed loop's lanes one pixel at a time: the same pixels.
             let short = n.min(6);
             run_565(&mut other[..short], lanes(start), &steps);

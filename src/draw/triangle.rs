@@ -29,7 +29,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::{fill_row, SliceFramebuffer};
 use crate::arch::LANES;
-use crate::color::{GouraudColor, SpanSteps};
+use crate::color::{restart_value, GouraudColor, SpanSteps};
 use crate::fixed_point::{pixel_corner, Coord};
 use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
@@ -131,7 +131,7 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
         let clip = target.bounding_box();
         let mut shader = ToTarget {
             target,
-            step: [0; 3],
+            steps: SpanSteps::default(),
             result: Ok(()),
         };
         shade(self.positions(), &self.channels(), &clip, &mut shader);
@@ -192,23 +192,22 @@ impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
 /// After an error the remaining spans are skipped, not drawn.
 struct ToTarget<'t, D: DrawTarget> {
     target: &'t mut D,
-    step: [u32; 3],
+    steps: SpanSteps,
     result: Result<(), D::Error>,
 }
 
 impl<C: GouraudColor, D: DrawTarget<Color = C>> SpanShader<3> for ToTarget<'_, D> {
     #[inline(always)]
     fn prepare(&mut self, step: [u32; 3]) {
-        self.step = step;
+        self.steps = C::prepare_steps(step);
     }
 
     #[inline(always)]
     fn span(&mut self, span: Span, start: [u32; 3]) {
         if self.result.is_ok() {
             let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-            self.result = self
-                .target
-                .fill_contiguous(&area, SpanColors::new(start, self.step, span.len()));
+            let colors = SpanColors::<C>::new(start, &self.steps, span.len());
+            self.result = self.target.fill_contiguous(&area, colors);
         }
     }
 }
@@ -341,8 +340,8 @@ impl<D: DrawTarget> SpanShader<0> for SolidToTarget<'_, D> {
 pub struct ShadedSpans<C> {
     spans: Spans,
     shading: Shading,
-    /// Per-pixel steps of the channels.
-    step: [u32; 3],
+    /// Per-pixel steps of the channels, prepared for the colour format's span loop.
+    steps: SpanSteps,
     /// The span being handed out in chunks, how far into it we are, and its first pixel's values.
     current: Option<(Span, u32, [u32; 3])>,
     _color: PhantomData<C>,
@@ -391,7 +390,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
         let planes = ExactPlanes::new(setup, &region, &channels);
         ShadedSpans {
             spans,
-            step: planes.step(),
+            steps: C::prepare_steps(planes.step()),
             shading: Shading::Exact(planes),
             current: None,
             _color: PhantomData,
@@ -401,7 +400,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
     fn stepped(spans: Spans, planes: Planes<3>, origin: (i32, i32)) -> Self {
         ShadedSpans {
             spans,
-            step: planes.step(),
+            steps: C::prepare_steps(planes.step()),
             shading: Shading::Stepped { planes, origin },
             current: None,
             _color: PhantomData,
@@ -413,7 +412,7 @@ impl<C: GouraudColor> ShadedSpans<C> {
         ShadedSpans {
             spans: Spans::empty(),
             shading: Shading::Exact(ExactPlanes::empty()),
-            step: [0; 3],
+            steps: SpanSteps::default(),
             current: None,
             _color: PhantomData,
         }
@@ -436,7 +435,8 @@ impl<C: GouraudColor> ShadedSpans<C> {
     fn further(&self, start: [u32; 3], offset: u32) -> [u32; 3] {
         match &self.shading {
             Shading::Stepped { .. } => {
-                core::array::from_fn(|k| start[k].wrapping_add(self.step[k].wrapping_mul(offset)))
+                let step = self.steps.step();
+                core::array::from_fn(|k| start[k].wrapping_add(step[k].wrapping_mul(offset)))
             }
             Shading::Exact(planes) => planes.further(offset),
         }
@@ -454,7 +454,7 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
                 let span = self.spans.next()?;
                 let start = self.row_start(&span);
                 if span.len() <= MAX_CHUNK {
-                    return Some((span, SpanColors::new(start, self.step, span.len())));
+                    return Some((span, SpanColors::new(start, &self.steps, span.len())));
                 }
                 (span, 0, start)
             }
@@ -472,24 +472,34 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
             x_start: span.x_start.wrapping_add(offset as i32),
             x_end: span.x_start.wrapping_add(done as i32),
         };
-        Some((chunk, SpanColors::new(start, self.step, len)))
+        Some((chunk, SpanColors::new(start, &self.steps, len)))
     }
 }
 
-/// The colours of one span, left to right: one fixed-point addition per channel and pixel.
+/// The colours of one span, left to right: the colour format's span loop
+/// ([`GouraudColor::fill_prepared`]) one pixel at a time, so a target drawing them gets the
+/// colours [`GouraudTriangle::draw_into`] writes.
 #[derive(Debug, Clone)]
 pub struct SpanColors<C> {
+    /// The channel values at the start of the current run (see [`GouraudColor::SPAN_RUN`]).
     value: [u32; 3],
-    step: [u32; 3],
+    /// The span loop's state at the next pixel.
+    state: [u32; 3],
+    steps: SpanSteps,
+    /// Pixels handed out since the current run's start.
+    taken: u32,
     left: u32,
     _color: PhantomData<C>,
 }
 
 impl<C: GouraudColor> SpanColors<C> {
-    fn new(value: [u32; 3], step: [u32; 3], len: u32) -> Self {
+    #[inline(always)]
+    fn new(value: [u32; 3], steps: &SpanSteps, len: u32) -> Self {
         SpanColors {
             value,
-            step,
+            state: C::span_state(value),
+            steps: *steps,
+            taken: 0,
             left: len,
             _color: PhantomData,
         }
@@ -505,11 +515,15 @@ impl<C: GouraudColor> Iterator for SpanColors<C> {
             return None;
         }
         self.left -= 1;
-        let color = C::from_stepped(self.value);
-        self.value[0] = self.value[0].wrapping_add(self.step[0]);
-        if C::CHANNELS > 1 {
-            self.value[1] = self.value[1].wrapping_add(self.step[1]);
-            self.value[2] = self.value[2].wrapping_add(self.step[2]);
+        let color = C::state_color(self.state);
+        self.taken = self.taken.wrapping_add(1);
+        match C::SPAN_RUN {
+            Some(run) if self.taken == run.get() => {
+                self.value = restart_value(self.value, &self.steps, run);
+                self.state = C::span_state(self.value);
+                self.taken = 0;
+            }
+            _ => self.state = C::next_state(self.state, &self.steps),
         }
         Some(color)
     }
@@ -523,13 +537,26 @@ impl<C: GouraudColor> Iterator for SpanColors<C> {
 impl<C: GouraudColor> ExactSizeIterator for SpanColors<C> {}
 
 impl<C: GouraudColor> SpanColors<C> {
-    /// Writes the remaining colours to the start of `dst` (as many as fit) with the colour
-    /// format's fastest loop ([`GouraudColor::fill_span`]).
+    /// Writes the remaining colours to the start of `dst` (as many as fit), the same colours as
+    /// iterating: from the span loop's next restart on with the colour format's fastest loop
+    /// ([`GouraudColor::fill_prepared`]), before it one at a time.
     #[inline]
     pub fn fill(self, dst: &mut [C]) {
         let n = dst.len().min(self.left as usize);
-        if let Some(dst) = dst.get_mut(..n) {
-            C::fill_span(dst, self.value, self.step);
+        let Some(dst) = dst.get_mut(..n) else {
+            return;
+        };
+        let mut colors = self;
+        let mut filled = 0;
+        while colors.taken != 0 {
+            match (dst.get_mut(filled), colors.next()) {
+                (Some(px), Some(color)) => *px = color,
+                _ => return,
+            }
+            filled += 1;
+        }
+        if let Some(rest) = dst.get_mut(filled..) {
+            C::fill_prepared(rest, colors.value, &colors.steps);
         }
     }
 }
