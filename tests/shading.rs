@@ -13,22 +13,11 @@ use embedded_raster::three_d::{DepthTarget, ScreenVertex, DEPTH_CLEAR};
 use embedded_raster::three_d::{Scalar, Vec3};
 use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle};
 
-struct Rng(u64);
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
     fn gauss3(&mut self) -> [f64; 3] {
         // Sum of uniforms: direction only matters, any symmetric distribution will do.
         [0; 3].map(|_| (0..4).map(|_| self.unit() - 0.5).sum::<f64>())
@@ -95,7 +84,7 @@ fn quadratic_field_hits_vertices_and_midpoints() {
     let mut rng = Rng(0x5eed_0001);
     let (one, half, zero) = (Scalar::ONE, Scalar::from_bits(1 << 15), Scalar::ZERO);
     for _ in 0..2000 {
-        let spread = rng.range(0.0, 1.5);
+        let spread = rng.range_f64(0.0, 1.5);
         let n = normals(&mut rng, spread);
         let input = n.map(fx);
         let q = QuadraticNormals::new(input);
@@ -188,17 +177,23 @@ fn barycentrics(p: &[(f64, f64); 3], i: i32, j: i32) -> [f64; 3] {
 
 fn random_triangle(rng: &mut Rng, w: f64, h: f64) -> [ScreenVertex; 3] {
     let big = rng.unit() < 0.5;
-    let (cx, cy) = (rng.range(0.0, w), rng.range(0.0, h));
+    let (cx, cy) = (rng.range_f64(0.0, w), rng.range_f64(0.0, h));
     [0; 3].map(|_| {
         let (x, y) = if big {
-            (rng.range(-0.3 * w, 1.3 * w), rng.range(-0.3 * h, 1.3 * h))
+            (
+                rng.range_f64(-0.3 * w, 1.3 * w),
+                rng.range_f64(-0.3 * h, 1.3 * h),
+            )
         } else {
-            (cx + rng.range(-12.0, 12.0), cy + rng.range(-12.0, 12.0))
+            (
+                cx + rng.range_f64(-12.0, 12.0),
+                cy + rng.range_f64(-12.0, 12.0),
+            )
         };
         ScreenVertex::new(
             Coord::from_num(x),
             Coord::from_num(y),
-            rng.range(0.0, 65534.0) as u16,
+            rng.range_f64(0.0, 65534.0) as u16,
         )
     })
 }
@@ -230,14 +225,14 @@ fn per_pixel_lighting_matches_f64() {
     let (mut pixels, mut worst, mut worst_z) = (0u64, 0.0f64, 0.0f64);
     for _ in 0..400 {
         let tri = random_triangle(&mut rng, f64::from(w), f64::from(h));
-        let spread = rng.range(0.0, 0.9);
+        let spread = rng.range_f64(0.0, 0.9);
         let n = normals(&mut rng, spread);
         let input = n.map(fx);
         let light_dir = rng.gauss3();
         let ambient = if rng.unit() < 0.3 {
             0.0
         } else {
-            rng.range(0.0, 0.5)
+            rng.range_f64(0.0, 0.5)
         };
         let light = Light::new(fx(scale(normalize(light_dir), 3.0)), s(ambient));
         let q = QuadraticNormals::new(input);
@@ -292,11 +287,11 @@ fn gouraud_and_flat_fills_match_f64() {
     for round in 0..600 {
         let tri = random_triangle(&mut rng, f64::from(w), f64::from(h));
         let base = Rgb888::new(
-            rng.range(0.0, 256.0) as u8,
-            rng.range(0.0, 256.0) as u8,
-            rng.range(0.0, 256.0) as u8,
+            rng.range_f64(0.0, 256.0) as u8,
+            rng.range_f64(0.0, 256.0) as u8,
+            rng.range_f64(0.0, 256.0) as u8,
         );
-        let light = Light::new(fx(normalize(rng.gauss3())), s(rng.range(0.0, 0.4)));
+        let light = Light::new(fx(normalize(rng.gauss3())), s(rng.range_f64(0.0, 0.4)));
         let n = normals(&mut rng, 1.0).map(fx);
         let levels = n.map(|n| light.level(n.normalize()));
         let colors = levels.map(|l| shade(base, l));
