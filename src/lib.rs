@@ -90,16 +90,17 @@ pub mod prelude {
     };
 }
 
-/// The unit tests' random numbers: xorshift64 (shifts 13, 7, 17) from `seed`, each call returning
-/// the next state.
+/// The unit tests' random numbers: the generator the integration tests share.
 #[cfg(test)]
-pub(crate) fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
-    move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    }
+#[path = "../tests/support/rng.rs"]
+pub(crate) mod rng;
+
+/// The unit tests' random numbers as a closure: each call returns the next number of
+/// [`rng::Rng`] from `seed`.
+#[cfg(test)]
+pub(crate) fn random(seed: u64) -> impl FnMut() -> u64 {
+    let mut rng = rng::Rng(seed);
+    move || rng.next()
 }
 
 /// The README's code example, compiled and run as a doc test.

@@ -265,19 +265,18 @@ mod tests {
     /// The 5-6-5 loop stays within 2⁻⁴ LSB of plain [`STEP_BITS`]-fractional-bit stepping.
     #[test]
     fn packed_565_matches_plain_stepping() {
-        let mut next = crate::xorshift(0x2545_f491_4f6c_dd1d_u64);
-        let mut rnd = move |n: u64| next() % n;
+        let mut rng = crate::rng::Rng(0x2545_f491_4f6c_dd1d_u64);
         let mut out = [Rgb565::BLACK; 700];
         let mut bgr = [Bgr565::BLACK; 700];
         for _ in 0..2000 {
-            let n = 1 + rnd(700) as usize;
+            let n = 1 + rng.below(700) as usize;
             let mut start = [0u32; 3];
             let mut step = [0u32; 3];
             for k in 0..3 {
                 let max = f64::from(Rgb565::MAX[k]);
                 let (c0, c1) = (
-                    rnd(1 << 20) as f64 / f64::from(1 << 20) * max,
-                    rnd(1 << 20) as f64 / f64::from(1 << 20) * max,
+                    rng.below(1 << 20) as f64 / f64::from(1 << 20) * max,
+                    rng.below(1 << 20) as f64 / f64::from(1 << 20) * max,
                 );
                 let s = if n > 1 {
                     (c1 - c0) / (n - 1) as f64
@@ -336,9 +335,9 @@ mod tests {
     #[cfg(sse2_rows)]
     #[test]
     fn sse2_rows_are_the_portable_rows() {
-        let mut next = crate::xorshift(0x0005_5e20_0001_0001);
+        let mut rng = crate::rng::Rng(0x0005_5e20_0001_0001);
         for _ in 0..100_000 {
-            let (v, s) = (next(), next());
+            let (v, s) = (rng.next(), rng.next());
             let start = [
                 v as u32 >> (v >> 59),
                 (v >> 20) as u32,
@@ -349,7 +348,7 @@ mod tests {
                 (s >> 16) as u32,
                 (s >> 32) as u32 >> (s >> 59),
             ];
-            let first = (next() % 9) as u32;
+            let first = rng.below(9) as u32;
             assert_eq!(
                 arch::x86_64::row_565(start, first, &lane),
                 row_565_portable(start, first, &lane),

@@ -638,7 +638,7 @@ mod tiny_tests {
         seed: u64,
         color: impl Fn(u64) -> C,
     ) {
-        let mut next = crate::xorshift(seed);
+        let mut next = crate::random(seed);
         let mut tiny = 0;
         for n in 0..40_000 {
             let (width, height) = (8 + (next() % 14) as u32, 1 + (next() % 14) as u32);

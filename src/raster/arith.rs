@@ -234,7 +234,7 @@ mod tests {
 
     #[test]
     fn reciprocal_without_division_is_exact() {
-        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
+        let mut rng = crate::rng::Rng(0x9e37_79b9_7f4a_7c15_u64);
         let check = |d: u64| {
             let d = d | 1 << 63;
             assert_eq!(
@@ -247,7 +247,7 @@ mod tests {
             check(d);
         }
         for _ in 0..100_000 {
-            let seed = next();
+            let seed = rng.next();
             check(seed);
             check(seed >> 40);
             check(seed | (u64::MAX >> 30));
@@ -256,9 +256,9 @@ mod tests {
 
     #[test]
     fn limb_products_are_exact() {
-        let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
+        let mut rng = crate::rng::Rng(0x3c6e_f372_fe94_f82b_u64);
         for _ in 0..100_000 {
-            let (a, b) = (next() >> (next() % 64), next() >> (next() % 64));
+            let (a, b) = (rng.next() >> rng.below(64), rng.next() >> rng.below(64));
             assert_eq!(
                 mul_wide_limbs(a, b),
                 u128::from(a) * u128::from(b),
@@ -273,18 +273,18 @@ mod tests {
 
     #[test]
     fn narrow_full_products_match_native() {
-        let mut next = crate::xorshift(0xa54f_f53a_5f1d_36f1_u64);
+        let mut rng = crate::rng::Rng(0xa54f_f53a_5f1d_36f1_u64);
         for _ in 0..200_000 {
             let (a, b) = (
-                (next() as i32) >> (next() % 32),
-                (next() as i32) >> (next() % 32),
+                (rng.next() as i32) >> rng.below(32),
+                (rng.next() as i32) >> rng.below(32),
             );
             assert_eq!(
                 mul_i32_wide_limbs(a, b),
                 i64::from(a) * i64::from(b),
                 "{a} {b}"
             );
-            let c = next() % ((1 << 32) + 1);
+            let c = rng.next() % ((1 << 32) + 1);
             assert_eq!(
                 mul_u32_u33_limbs(a as u32, c),
                 u64::from(a as u32) * c,
@@ -300,10 +300,10 @@ mod tests {
 
     #[test]
     fn narrow_wrapping_products_match_native() {
-        let mut next = crate::xorshift(0x3c6e_f372_fe94_f82b_u64);
+        let mut rng = crate::rng::Rng(0x3c6e_f372_fe94_f82b_u64);
         for _ in 0..200_000 {
-            let g = next() as i64;
-            let d = (next() as i32) >> (next() % 32);
+            let g = rng.next() as i64;
+            let d = (rng.next() as i32) >> rng.below(32);
             assert_eq!(
                 wrapping_mul_i32_limbs(g, d),
                 g.wrapping_mul(i64::from(d)),
@@ -322,7 +322,7 @@ mod tests {
 
     #[test]
     fn reciprocal_63_is_the_exact_floor() {
-        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908_u64);
+        let mut rng = crate::rng::Rng(0x6a09_e667_f3bc_c908_u64);
         let check =
             |d: u32| assert_eq!(reciprocal_63_newton(d), (1u64 << 63) / u64::from(d), "{d}");
         for d in [1 << 31, (1 << 31) + 1, 3 << 30, u32::MAX - 1, u32::MAX] {
@@ -333,7 +333,7 @@ mod tests {
             check((t << 23) - 1 + (1 << 23));
         }
         for _ in 0..200_000 {
-            check((next() as u32) | 1 << 31);
+            check((rng.next() as u32) | 1 << 31);
         }
     }
 }

@@ -333,7 +333,7 @@ mod tests {
     /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
     /// the limit, slivers included, and a 48 × 40 clip somewhere over the bounding box.
     fn random_cases(seed: u64, n: usize, mut check: impl FnMut([(i32, i32); 3], Rectangle)) {
-        let mut next = crate::xorshift(seed);
+        let mut next = crate::random(seed);
         let mut rnd = move |n: u64| next() % n;
         for i in 0..n {
             let size = (1 << rnd(20)).min(LIMIT - 1) as u64;
@@ -413,7 +413,7 @@ mod tests {
     /// 2³² (the covered pixels' values are in range, so wrapping is exact there).
     #[test]
     fn colors_are_within_the_documented_error() {
-        let mut next = crate::xorshift(0x5eed_c010_0000_0001);
+        let mut next = crate::random(0x5eed_c010_0000_0001);
         let mut checked = 0u64;
         random_cases(0x0bad_cafe_8765_4321, 4_000, |v, clip| {
             let Ok(Some(triangle)) = CompactTriangle::new(coords(v), &clip) else {

@@ -748,7 +748,7 @@ mod tests {
 
     #[test]
     fn reciprocal_scaling_matches_division() {
-        let mut rnd = crate::xorshift(0x0123_4567_89ab_cdef_u64);
+        let mut rnd = crate::random(0x0123_4567_89ab_cdef_u64);
         for _ in 0..20_000 {
             let area2 = (i128::from(rnd()) << (rnd() % 2)) >> (rnd() % 64) | 1;
             let num = (i128::from(rnd() as i64) << (rnd() % 20)) >> (rnd() % 60);
@@ -804,7 +804,7 @@ mod tests {
     /// The stepped accumulator against exact rational values (`i128` cross-multiplication).
     #[test]
     fn stepped_planes_are_within_the_documented_error() {
-        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
+        let mut next = crate::random(0x9e37_79b9_7f4a_7c15_u64);
         let mut rnd = move |n: u64| next() % n;
         let clip = Rectangle::new(Point::new(-40, -30), Size::new(400, 300));
         let mut checked = 0;
@@ -845,7 +845,7 @@ mod tests {
     /// numerators of every magnitude (both sides of the sliver threshold).
     #[test]
     fn gradient_scale_is_within_a_unit() {
-        let mut next = crate::xorshift(0x6a09_e667_f3bc_c908);
+        let mut next = crate::random(0x6a09_e667_f3bc_c908);
         for _ in 0..200_000 {
             let area2 = (next() >> (26 + next() % 38)).max(1);
             let n = (next() >> (45 + next() % 19)) as i32 * if next() & 1 == 0 { 1 } else { -1 };

@@ -860,7 +860,7 @@ mod tests {
     #[test]
     fn every_walk_matches_per_pixel_edge_tests() {
         let clip = Rectangle::new(Point::new(-3, -2), Size::new(31, 29));
-        let mut next = crate::xorshift(0x0f1e_2d3c_4b5a_6978_u64);
+        let mut next = crate::random(0x0f1e_2d3c_4b5a_6978_u64);
         let mut rnd = |range: i64| (next() % (2 * range as u64 + 1)) as i64 - range;
         let (mut narrow, mut wide, mut compact) = (0, 0, 0);
         for i in 0..20_000 {
@@ -938,7 +938,7 @@ mod tests {
     fn spans_match_per_pixel_edge_tests() {
         // Per-pixel evaluation of the same edge functions: checks the walking, not the rule.
         let clip = Rectangle::new(Point::new(-2, -1), Size::new(30, 29));
-        let mut next = crate::xorshift(0x1234_5678_9abc_def0_u64);
+        let mut next = crate::random(0x1234_5678_9abc_def0_u64);
         let mut rnd = |range: i32| (next() % (2 * range as u64 + 1)) as i32 - range;
         for _ in 0..3000 {
             let scale = [1, 16, 256][rnd(1).unsigned_abs() as usize + 1];

@@ -566,9 +566,9 @@ mod tests {
 
     #[test]
     fn inverse_square_root_is_accurate() {
-        let mut next = crate::xorshift(0x9e37_79b9_7f4a_7c15_u64);
+        let mut rng = crate::rng::Rng(0x9e37_79b9_7f4a_7c15_u64);
         for k in 0..200_000u64 {
-            let x = (next() >> (k % 64)).max(1);
+            let x = (rng.next() >> (k % 64)).max(1);
             let (r, s) = inv_sqrt(x);
             let got = f64::from(r) / (s as f64).exp2();
             let want = 1.0 / (x as f64).sqrt();

@@ -1,4 +1,5 @@
-//! The deterministic test-case generator shared by the test suites (SplitMix64).
+//! The deterministic test-case generator shared by the test suites and the unit tests (there as
+//! `crate::rng`, see `src/lib.rs`): SplitMix64.
 //! Each suite adds the samplers it needs in its own `impl Rng` block.
 #![allow(dead_code)]
 
