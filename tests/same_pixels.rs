@@ -560,3 +560,49 @@ fn every_path_draws_the_same_pixels() {
         "{counts:?}"
     );
 }
+
+/// The 3D pipeline's depth-tested Gouraud fill draws what `GouraudTriangle::draw_into` draws
+/// where nothing is nearer: the same walk, planes and span colours (depth is one more plane).
+fn depth_fill_matches<C: GouraudColor + Debug>(name: &str, seed: u64) -> usize {
+    use embedded_raster::three_d::{draw_gouraud, ScreenVertex};
+    use embedded_raster::DepthTarget;
+    let mut rng = Rng(seed);
+    let mut drawn = 0;
+    for &(width, height, cases) in &TARGETS[..4] {
+        let len = (width * height) as usize;
+        let clip = Rectangle::new(Point::zero(), Size::new(width, height));
+        for case in 0..cases {
+            let points = triangle(&mut rng, width, height);
+            let colors: [C; 3] = core::array::from_fn(|_| color(&mut rng));
+            let background: Vec<C> = (0..len).map(|_| color(&mut rng)).collect();
+            let (mut want, mut got) = (background.clone(), background);
+            let vertices =
+                core::array::from_fn(|k| Vertex::new(points[k].0, points[k].1, colors[k]));
+            GouraudTriangle::new(vertices)
+                .draw_into(&mut SliceFramebuffer::new(&mut want, width, height).unwrap());
+            let mut depth = vec![0u16; len];
+            let mut target = DepthTarget::new(&mut got, &mut depth, width, height).unwrap();
+            target.clear_depth();
+            let screen: [ScreenVertex; 3] = core::array::from_fn(|k| {
+                let depth = (rng.below(65_000) as u16).max(1);
+                ScreenVertex::new(points[k].0, points[k].1, depth)
+            });
+            draw_gouraud(&mut target, &clip, &screen, colors);
+            drawn += usize::from(target.depth().iter().any(|&d| d != u16::MAX));
+            if let Some((x, y)) = first_difference(&want, target.framebuffer().pixels(), width) {
+                panic!(
+                    "{name} case {case} on {width}×{height}: pixel ({x}, {y}) differs, {points:?}"
+                );
+            }
+        }
+    }
+    drawn
+}
+
+#[test]
+fn depth_tested_gouraud_draws_the_2d_pixels() {
+    let drawn = depth_fill_matches::<Rgb565>("Rgb565", 0x5a3e_3d01)
+        + depth_fill_matches::<Rgb888>("Rgb888", 0x5a3e_3d02)
+        + depth_fill_matches::<Gray8>("Gray8", 0x5a3e_3d03);
+    assert!(drawn > 3_000, "{drawn}");
+}

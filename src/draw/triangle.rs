@@ -493,8 +493,9 @@ pub struct SpanColors<C> {
 }
 
 impl<C: GouraudColor> SpanColors<C> {
+    /// The `len` colours of a span whose channels start at `value`, stepped by `steps`.
     #[inline(always)]
-    fn new(value: [u32; 3], steps: &SpanSteps, len: u32) -> Self {
+    pub(crate) fn new(value: [u32; 3], steps: &SpanSteps, len: u32) -> Self {
         SpanColors {
             value,
             state: C::span_state(value),

@@ -50,7 +50,8 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
-use crate::color::GouraudColor;
+use crate::color::{GouraudColor, SpanSteps};
+use crate::draw::SpanColors;
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
 use crate::raster::{self, Span, SpanShader};
@@ -380,8 +381,10 @@ struct DepthFill<'t, 'a, C, P, const N: usize> {
 
 /// What a [`DepthFill`] writes at a pixel that passes the depth test.
 trait DepthPixel<C, const N: usize> {
-    /// Once per span: its attributes at the first pixel.
-    fn start(&mut self, _values: &[u32; N]) {}
+    /// Once per triangle: the attributes' per-pixel steps.
+    fn prepare(&mut self, _step: &[u32; N]) {}
+    /// Once per span: its attributes at the first pixel and its length.
+    fn start(&mut self, _values: &[u32; N], _len: u32) {}
     /// The colour of the current pixel, from the attributes `values`.
     fn color(&mut self, values: &[u32; N]) -> C;
     /// Moves to the next pixel.
@@ -394,6 +397,7 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     #[inline(always)]
     fn prepare(&mut self, step: [u32; N]) {
         self.step = step;
+        self.pixel.prepare(&step);
     }
 
     #[inline(always)]
@@ -402,7 +406,7 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
             return;
         };
         let mut v = start;
-        self.pixel.start(&v);
+        self.pixel.start(&v, span.len());
         for (px, d) in colors.iter_mut().zip(depths.iter_mut()) {
             let z = v.first().map_or(0, |z| (z >> DEPTH_SHIFT) as u16);
             if z < *d {
@@ -446,13 +450,37 @@ impl<C: Copy> DepthPixel<C, 1> for Flat<C> {
     }
 }
 
-/// The interpolated colour channels (attributes 1 to 3).
-struct Smooth;
+/// The interpolated colour channels (attributes 1 to 3), pixel by pixel as the colour format's
+/// span loop gives them ([`SpanColors`]): the colours of [`GouraudTriangle`](crate::GouraudTriangle)
+/// where nothing is nearer.
+struct Smooth<C> {
+    steps: SpanSteps,
+    colors: SpanColors<C>,
+    current: C,
+}
 
-impl<C: GouraudColor> DepthPixel<C, 4> for Smooth {
+impl<C: GouraudColor> DepthPixel<C, 4> for Smooth<C> {
     #[inline(always)]
-    fn color(&mut self, values: &[u32; 4]) -> C {
-        C::from_stepped([values[1], values[2], values[3]])
+    fn prepare(&mut self, step: &[u32; 4]) {
+        self.steps = C::prepare_steps([step[1], step[2], step[3]]);
+    }
+
+    #[inline(always)]
+    fn start(&mut self, values: &[u32; 4], len: u32) {
+        self.colors = SpanColors::new([values[1], values[2], values[3]], &self.steps, len);
+        self.advance();
+    }
+
+    #[inline(always)]
+    fn color(&mut self, _: &[u32; 4]) -> C {
+        self.current
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        if let Some(color) = self.colors.next() {
+            self.current = color;
+        }
     }
 }
 
@@ -472,7 +500,7 @@ struct Lit<'l> {
 
 impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
     #[inline(always)]
-    fn start(&mut self, values: &[u32; 3]) {
+    fn start(&mut self, values: &[u32; 3], _: u32) {
         let (u, v) = (bary_from_plane(values[1]), bary_from_plane(values[2]));
         (self.n, self.d1) = self.field.start(u, v);
     }
@@ -526,7 +554,13 @@ pub fn draw_gouraud<C: GouraudColor>(
 ) {
     let channels = Attributes::channels(colors.map(|c| c.channels()));
     let attributes = with_depth(vertices, channels.values, channels.half);
-    depth_fill(target, clip, vertices, &attributes, Smooth);
+    let steps = SpanSteps::default();
+    let smooth = Smooth {
+        colors: SpanColors::new([0; 3], &steps, 0),
+        steps,
+        current: colors[0],
+    };
+    depth_fill(target, clip, vertices, &attributes, smooth);
 }
 
 /// Fills the triangle with per-pixel Lambert lighting of the quadratic normal field `normals`
