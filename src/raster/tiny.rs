@@ -14,12 +14,11 @@
 //! [`SolidTriangle::draw_into`](crate::SolidTriangle::draw_into) take this path on x86-64
 //! for triangles whose vertices lie within 8 pixels (less a sub-pixel) of each other on both
 //! axes, drawn into a framebuffer at least 8 pixels wide. Other targets walk spans: on Cortex-M,
-//! without vector units, eight lanes cost more than the span walk (measured under QEMU: a
-//! 16 px² Gouraud triangle takes 1.8 times the instructions on a Cortex-M4, 1.4 times on a
-//! Cortex-M0), and firmware keeps its flash. `Drawable::draw` and `draw_into_compact` always
-//! walk spans.
+//! without vector units, eight lanes cost more than the span walk (see the benchmarks in the
+//! README), and firmware keeps its flash. `Drawable::draw` and `draw_into_compact` always walk
+//! spans.
 //!
-//! The pixels are exactly those of the span walk ([`compact`](crate::raster::compact)): the same edge
+//! The pixels are exactly those of the span walk (the compact set-up's): the same edge
 //! functions and top-left rule decide coverage, and each row's covered run gets the colours
 //! [`fill_masked_row`](crate::GouraudColor::fill_masked_row) gives it from the run's first
 //! pixel, as the span fill does, so a firmware and its host simulation draw the same picture.
