@@ -387,3 +387,30 @@ fn depth_test_keeps_the_nearest() {
         .iter()
         .all(|&(x, y)| (4..8).contains(&x) && (4..8).contains(&y)));
 }
+
+/// A light built from its public fields with a direction of any magnitude (here `i32::MAX` on x)
+/// still lights a surface facing it fully; it used to overflow (a panic in debug builds, a black
+/// pixel in release).
+#[test]
+fn quadratic_fill_takes_any_light_direction() {
+    let (mut px, mut z) = ([Gray8::BLACK; 16 * 16], [0u16; 16 * 16]);
+    let mut target = DepthTarget::new(&mut px, &mut z, 16, 16).unwrap();
+    target.clear(Gray8::BLACK);
+    let light = Light {
+        direction: Vec3::from_bits(i32::MAX, 0, 0),
+        ambient: Scalar::ZERO,
+    };
+    let normals = QuadraticNormals::new([Vec3::from_bits(1 << 16, 0, 0); 3]);
+    let v = |x: i32, y: i32| ScreenVertex::new(Coord::from_num(x), Coord::from_num(y), 1000);
+    let clip = Rectangle::new(Point::zero(), Size::new(16, 16));
+    let triangle = [v(0, 0), v(16, 0), v(0, 16)];
+    draw_quadratic(
+        &mut target,
+        &clip,
+        &triangle,
+        &normals,
+        &light,
+        Gray8::WHITE,
+    );
+    assert_eq!(target.framebuffer().get(2, 2), Some(Gray8::WHITE));
+}

@@ -588,7 +588,7 @@ pub fn draw_quadratic<C: GouraudColor>(
         l: light
             .direction
             .to_bits()
-            .map(|c| (c + 2) >> 2)
+            .map(|c| c.saturating_add(2) >> 2)
             .map(|c| c.clamp(-(1 << 14), 1 << 14)),
         light,
         base: color.channels(),
