@@ -4,11 +4,13 @@
 //! All three fills take a triangle already in screen space ([`ScreenVertex`]: sub-pixel position
 //! and 16-bit depth), cover exactly the pixels [`SolidTriangle`](crate::SolidTriangle) covers, and
 //! test and write a caller-owned z-buffer per pixel ([`DepthTarget`]: smaller is nearer, a pixel is
-//! written only if strictly nearer). Depth is interpolated by the same barycentric stepping as the
-//! Gouraud colours ([`AttributePlane`]).
+//! written only if strictly nearer). They are span shaders of the raster core, like the 2D
+//! drawables: the same set-up, walk and attribute planes, with the depth as the first plane and
+//! the depth test and write in the span loop.
 //!
 //! * [`draw_flat`]: one colour per face, typically `shade(color, light.level(face_normal))`.
-//! * [`draw_gouraud`]: per-vertex colours interpolated like [`GouraudTriangle`](crate::GouraudTriangle).
+//! * [`draw_gouraud`]: per-vertex colours interpolated like [`GouraudTriangle`](crate::GouraudTriangle),
+//!   with its colours where nothing is nearer.
 //! * [`draw_quadratic`]: per-pixel Lambert lighting of the normal field
 //!
 //!   `N(c) = Σ Nᵢ cᵢ(2cᵢ − 1) + Σ 4 N̂ᵢⱼ cᵢ cⱼ`, with `N̂ᵢⱼ = normalize(Nᵢ + Nⱼ)`,
