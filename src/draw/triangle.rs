@@ -489,6 +489,8 @@ pub struct SpanColors<C> {
     /// Pixels handed out since the current run's start.
     taken: u32,
     left: u32,
+    /// Whether the span reaches a restart of the span loop.
+    restarts: bool,
     _color: PhantomData<C>,
 }
 
@@ -502,6 +504,7 @@ impl<C: GouraudColor> SpanColors<C> {
             steps: *steps,
             taken: 0,
             left: len,
+            restarts: C::SPAN_RUN.is_some_and(|run| len > run.get()),
             _color: PhantomData,
         }
     }
@@ -519,7 +522,9 @@ impl<C: GouraudColor> Iterator for SpanColors<C> {
         let color = C::state_color(self.state);
         self.taken = self.taken.wrapping_add(1);
         match C::SPAN_RUN {
-            Some(run) if self.taken == run.get() => {
+            // Only spans that reach a restart test for it: the others' loop is plain stepping,
+            // which compilers vectorise.
+            Some(run) if self.restarts && self.taken == run.get() => {
                 self.value = restart_value(self.value, &self.steps, run);
                 self.state = C::span_state(self.value);
                 self.taken = 0;
