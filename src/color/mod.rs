@@ -172,14 +172,14 @@ pub trait GouraudColor: PixelColor {
 /// assert_eq!(row[7], Rgb565::new(4, 40, 23));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[repr(C)] // The ARMv6-M span loop reads the fields at fixed offsets.
+#[repr(C)] // The ARMv6-M span loop reads `lane` and `double` at fixed offsets.
 pub struct SpanSteps {
-    /// The steps, [`STEP_BITS`] fractional bits, in channel order.
-    step: [u32; 3],
     /// 5-6-5 formats: each channel's step rounded to its lane, in raw order (see [`fill_565`]) …
     lane: [u32; 3],
     /// … and two of them in both halves of a word (see [`run_565`]).
     double: [u32; 3],
+    /// The steps, [`STEP_BITS`] fractional bits, in channel order.
+    step: [u32; 3],
 }
 
 impl SpanSteps {

@@ -243,7 +243,7 @@ fn span_565_thumb1<C: From<RawU16>>(run: &mut [C], value: [u32; 3], steps: &Span
     // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
     const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
     // SAFETY: `run` is `run.len()` consecutive, 2-byte aligned 16-bit pixels; `SpanSteps` is
-    // `repr(C)`, nine `u32`s.
+    // `repr(C)`, nine `u32`s starting with the six of the lane and double steps.
     unsafe {
         arch::thumbv6m::span_565(
             run.as_mut_ptr().cast(),
