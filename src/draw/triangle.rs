@@ -143,7 +143,9 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
 /// slice, and its masked rows of eight pixels for tiny triangles (x86-64) when `rows`.
 struct IntoSlice<'f, 'a, C> {
     framebuffer: &'f mut SliceFramebuffer<'a, C>,
-    steps: SpanSteps,
+    /// The steps, from `prepare` on (`None` before: no zeroed struct to set up, which costs a
+    /// `memclr` call and its flash on Cortex-M0).
+    steps: Option<SpanSteps>,
     rows: bool,
 }
 
@@ -152,7 +154,7 @@ impl<'f, 'a, C: GouraudColor> IntoSlice<'f, 'a, C> {
     fn new(framebuffer: &'f mut SliceFramebuffer<'a, C>, rows: bool) -> Self {
         IntoSlice {
             framebuffer,
-            steps: SpanSteps::default(),
+            steps: None,
             rows,
         }
     }
@@ -161,17 +163,18 @@ impl<'f, 'a, C: GouraudColor> IntoSlice<'f, 'a, C> {
 impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
     #[inline(always)]
     fn prepare(&mut self, step: [u32; 3]) {
-        self.steps = C::prepare_steps(step);
+        self.steps = Some(C::prepare_steps(step));
     }
 
     #[inline(always)]
     fn span(&mut self, span: Span, start: [u32; 3]) {
         // The spans of the walk are clipped to the framebuffer.
-        if let Some(row) = self
-            .framebuffer
-            .clipped_span_mut(span.y, span.x_start, span.x_end)
-        {
-            C::fill_prepared(row, start, &self.steps);
+        if let (Some(row), Some(steps)) = (
+            self.framebuffer
+                .clipped_span_mut(span.y, span.x_start, span.x_end),
+            &self.steps,
+        ) {
+            C::fill_prepared(row, start, steps);
         }
     }
 
@@ -182,8 +185,8 @@ impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
 
     #[inline(always)]
     fn masked_row(&mut self, y: i32, x: i32, covered: [i16; LANES], first: u32, start: [u32; 3]) {
-        if let Some(row) = self.framebuffer.lanes_mut(y, x) {
-            C::fill_masked_row(row, covered, first, start, &self.steps);
+        if let (Some(row), Some(steps)) = (self.framebuffer.lanes_mut(y, x), &self.steps) {
+            C::fill_masked_row(row, covered, first, start, steps);
         }
     }
 }
