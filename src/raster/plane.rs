@@ -1,28 +1,21 @@
-//! Barycentric attribute interpolation by fixed-point stepping.
+//! Attribute planes: barycentric interpolation by fixed-point stepping.
 //!
 //! An attribute with vertex values `c_k` is the plane `c(p) = Σ c_k E_k(p) / (2·area)`, where
-//! `E_k` is the exact edge function opposite vertex `k`. It is evaluated at pixel centres:
+//! `E_k` is the exact edge function opposite vertex `k`, evaluated at pixel centres. Vertex
+//! values are [`Attributes`]: 8.8 fixed point of an 8-bit scale (colour channels `c << 8`, 16-bit
+//! depths and barycentrics as they are) with a rounding offset each.
 //!
-//! * **Per row** the value at the span start comes from a 64-bit accumulator with 32 fractional
-//!   bits, moved by exact multiples of the per-pixel and per-row gradients. Its start value and
-//!   gradients are rounded once from the exact quotients (one multiplication by a shared
-//!   reciprocal of the area, [`InverseArea`]), within 0.51 units of 2⁻³², so its error is below
-//!   2⁻³² per pixel moved plus 2⁻³², under 2⁻¹⁵ over the largest region it is used for.
-//! * **Per pixel** a 32-bit value with 16 fractional bits is stepped by one addition. Spans are
-//!   handed out in chunks of at most [`MAX_CHUNK`] pixels, each restarted from the row value, so the
-//!   stepping error stays below 2⁻⁵.
-//! * Triangles whose gradients or extent are too large for that bound (extreme slivers, regions of
-//!   more than 2¹⁶ pixels) take an exact path instead: every row start is divided out in `i128`.
-//!
-//! Values carry a +½ offset, so truncating the integer part rounds to nearest: every output is
-//! within ½ LSB plus 2⁻⁴ of the exact value, inside the promised 1 LSB.
-//!
-//! Colours ([`GouraudTriangle`](crate::GouraudTriangle)) round these accumulators once per
-//! triangle to 32-bit ones with 24 fractional bits that wrap (see `drawable`): the value at a
-//! pixel is then the same integer modulo 2³² whichever way the traversal reached it, its error
-//! grows by under 2⁻²⁴ per pixel of distance from the region's corner (below 2⁻⁹ LSB over 2¹⁶
-//! pixels), and no 64-bit arithmetic is left per row.
-//!
+//! * [`Planes`] — the one stepped form every walk uses: each attribute's value at the walk's
+//!   first pixel and its per-pixel and per-row gradients, 24 fractional bits (of the 8-bit scale),
+//!   wrapping, so the value at a pixel is the same integer modulo 2³² however it is reached. Built
+//!   by the compact set-up (`Planes::compact`: gradients from one 32-bit reciprocal of the area,
+//!   within 2⁻¹⁰ of a unit over a compact region) or the general one (`Planes::general`: rounded
+//!   once from the exact quotients through [`InverseArea`], under 2⁻²⁴ a pixel of distance, below
+//!   2⁻⁹ over the largest region it takes, 2¹⁶ px across). With the +½ offset every channel is
+//!   within ½ LSB plus that error of the exact value.
+//! * [`ExactPlanes`] — the rare fallback (regions over 2¹⁶ px across, extreme slivers whose
+//!   gradients do not fit): each span chunk of at most [`MAX_CHUNK`] pixels starts from a value
+//!   divided out exactly in `i128` ([`AttributePlane`]), so stepping adds at most 2⁻⁵ LSB.
 
 use crate::fixed_point::SUBPIXEL_BITS;
 use core::num::NonZeroU64;
