@@ -162,9 +162,8 @@ impl CompactTriangle {
         }
         // Vertices relative to the first one: every difference is below 2¹⁹.
         let rel = p.map(|q| (q.0.wrapping_sub(p[0].0), q.1.wrapping_sub(p[0].1)));
-        let cross = |u: (i32, i32), w: (i32, i32)| {
-            i64::from(u.0) * i64::from(w.1) - i64::from(u.1) * i64::from(w.0)
-        };
+        // Products of factors below 2¹⁹: no 64 × 64-bit library calls on Cortex-M0.
+        let cross = |u: (i32, i32), w: (i32, i32)| mul_i32_wide(u.0, w.1) - mul_i32_wide(u.1, w.0);
         let area2 = cross(rel[1], rel[2]);
         let Some(area) = NonZeroU64::new(area2.unsigned_abs()) else {
             return Ok(None);
