@@ -131,7 +131,6 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
         let clip = target.bounding_box();
         let mut shader = ToTarget {
             target,
-            steps: SpanSteps::default(),
             result: Ok(()),
         };
         shade(self.positions(), &self.channels(), &clip, &mut shader);
@@ -143,37 +142,31 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
 /// slice, and its masked rows of eight pixels for tiny triangles (x86-64) when `rows`.
 struct IntoSlice<'f, 'a, C> {
     framebuffer: &'f mut SliceFramebuffer<'a, C>,
-    /// The steps, from `prepare` on (`None` before: no zeroed struct to set up, which costs a
-    /// `memclr` call and its flash on Cortex-M0).
-    steps: Option<SpanSteps>,
     rows: bool,
 }
 
 impl<'f, 'a, C: GouraudColor> IntoSlice<'f, 'a, C> {
     #[inline(always)]
     fn new(framebuffer: &'f mut SliceFramebuffer<'a, C>, rows: bool) -> Self {
-        IntoSlice {
-            framebuffer,
-            steps: None,
-            rows,
-        }
+        IntoSlice { framebuffer, rows }
     }
 }
 
 impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
+    type Steps = SpanSteps;
+
     #[inline(always)]
-    fn prepare(&mut self, step: [u32; 3]) {
-        self.steps = Some(C::prepare_steps(step));
+    fn prepare(&mut self, step: [u32; 3]) -> SpanSteps {
+        C::prepare_steps(step)
     }
 
     #[inline(always)]
-    fn span(&mut self, span: Span, start: [u32; 3]) {
+    fn span(&mut self, steps: &SpanSteps, span: Span, start: [u32; 3]) {
         // The spans of the walk are clipped to the framebuffer.
-        if let (Some(row), Some(steps)) = (
-            self.framebuffer
-                .clipped_span_mut(span.y, span.x_start, span.x_end),
-            &self.steps,
-        ) {
+        if let Some(row) = self
+            .framebuffer
+            .clipped_span_mut(span.y, span.x_start, span.x_end)
+        {
             C::fill_prepared(row, start, steps);
         }
     }
@@ -184,8 +177,16 @@ impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
     }
 
     #[inline(always)]
-    fn masked_row(&mut self, y: i32, x: i32, covered: [i16; LANES], first: u32, start: [u32; 3]) {
-        if let (Some(row), Some(steps)) = (self.framebuffer.lanes_mut(y, x), &self.steps) {
+    fn masked_row(
+        &mut self,
+        steps: &SpanSteps,
+        y: i32,
+        x: i32,
+        covered: [i16; LANES],
+        first: u32,
+        start: [u32; 3],
+    ) {
+        if let Some(row) = self.framebuffer.lanes_mut(y, x) {
             C::fill_masked_row(row, covered, first, start, steps);
         }
     }
@@ -195,21 +196,22 @@ impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
 /// After an error the remaining spans are skipped, not drawn.
 struct ToTarget<'t, D: DrawTarget> {
     target: &'t mut D,
-    steps: SpanSteps,
     result: Result<(), D::Error>,
 }
 
 impl<C: GouraudColor, D: DrawTarget<Color = C>> SpanShader<3> for ToTarget<'_, D> {
+    type Steps = SpanSteps;
+
     #[inline(always)]
-    fn prepare(&mut self, step: [u32; 3]) {
-        self.steps = C::prepare_steps(step);
+    fn prepare(&mut self, step: [u32; 3]) -> SpanSteps {
+        C::prepare_steps(step)
     }
 
     #[inline(always)]
-    fn span(&mut self, span: Span, start: [u32; 3]) {
+    fn span(&mut self, steps: &SpanSteps, span: Span, start: [u32; 3]) {
         if self.result.is_ok() {
             let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-            let colors = SpanColors::<C>::new(start, &self.steps, span.len());
+            let colors = SpanColors::<C>::new(start, steps, span.len());
             self.result = self.target.fill_contiguous(&area, colors);
         }
     }
@@ -285,11 +287,13 @@ struct SolidIntoSlice<'f, 'a, C> {
 }
 
 impl<C: PixelColor> SpanShader<0> for SolidIntoSlice<'_, '_, C> {
+    type Steps = ();
+
     #[inline(always)]
     fn prepare(&mut self, _: [u32; 0]) {}
 
     #[inline(always)]
-    fn span(&mut self, span: Span, _: [u32; 0]) {
+    fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
         // The spans of the walk are clipped to the framebuffer.
         if let Some(row) = self
             .framebuffer
@@ -305,7 +309,7 @@ impl<C: PixelColor> SpanShader<0> for SolidIntoSlice<'_, '_, C> {
     }
 
     #[inline(always)]
-    fn masked_row(&mut self, y: i32, x: i32, covered: [i16; LANES], _: u32, _: [u32; 0]) {
+    fn masked_row(&mut self, _: &(), y: i32, x: i32, covered: [i16; LANES], _: u32, _: [u32; 0]) {
         if let Some(row) = self.framebuffer.lanes_mut(y, x) {
             // The whole row read, then written: a select of values, which LLVM vectorises (a
             // select of a load per pixel becomes a branch per pixel).
@@ -324,11 +328,13 @@ struct SolidToTarget<'t, D: DrawTarget> {
 }
 
 impl<D: DrawTarget> SpanShader<0> for SolidToTarget<'_, D> {
+    type Steps = ();
+
     #[inline(always)]
     fn prepare(&mut self, _: [u32; 0]) {}
 
     #[inline(always)]
-    fn span(&mut self, span: Span, _: [u32; 0]) {
+    fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
         if self.result.is_ok() {
             let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
             self.result = self.target.fill_solid(&area, self.color);

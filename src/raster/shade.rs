@@ -24,11 +24,15 @@ use crate::fixed_point::Coord;
 ///
 /// [`STEP_BITS`]: super::plane::STEP_BITS
 pub(crate) trait SpanShader<const N: usize> {
+    /// What the shader makes of a triangle's per-pixel steps: built once per triangle and handed
+    /// back with every span (a local of the walk's frame, so the shader needs no placeholder).
+    type Steps;
+
     /// Once per triangle, before its first span: the attributes' per-pixel steps.
-    fn prepare(&mut self, step: [u32; N]);
+    fn prepare(&mut self, step: [u32; N]) -> Self::Steps;
 
     /// One covered span; `start` holds the attributes at its first pixel.
-    fn span(&mut self, span: Span, start: [u32; N]);
+    fn span(&mut self, steps: &Self::Steps, span: Span, start: [u32; N]);
 
     /// The target's width if it takes whole rows of [`LANES`] pixels ([`masked_row`]), the
     /// strategy for tiny triangles on x86-64; `None` (the default): spans only.
@@ -47,6 +51,7 @@ pub(crate) trait SpanShader<const N: usize> {
     #[inline(always)]
     fn masked_row(
         &mut self,
+        _steps: &Self::Steps,
         _y: i32,
         _x: i32,
         _covered: [i16; LANES],
@@ -108,27 +113,42 @@ fn shade_compact_triangle<const N: usize>(
             return Ok(());
         }
         let walk = triangle.walk()?;
-        shader.prepare(planes.step());
         fold_planes(walk, &planes, shader);
         return Ok(());
     }
     let walk = triangle.walk()?;
     let planes = Planes::compact(&triangle.setup, attributes);
-    shader.prepare(planes.step());
     fold_planes(walk, &planes, shader);
     Ok(())
 }
 
-/// Hands `shader` the spans of `walk` with the stepped planes' values at their first pixels.
+/// Prepares `shader` for the planes' steps and hands it the spans of `walk` with the stepped
+/// planes' values at their first pixels.
 #[inline(always)]
-fn fold_planes<W: Width, const N: usize>(
+fn fold_planes<W: Width, const N: usize, S: SpanShader<N> + ?Sized>(
     walk: Walk<W>,
     planes: &Planes<N>,
-    shader: &mut (impl SpanShader<N> + ?Sized),
+    shader: &mut S,
 ) {
-    walk.fold((), |(), span, column, row| {
-        shader.span(span, planes.at(column, row));
-    });
+    let steps = shader.prepare(planes.step());
+    // The closures are inlined: each has a call site for every walk of this width, and LLVM
+    // would rather call it than copy it, at a call's cost every span. Steps without data (solid
+    // fills) are moved in: a reference to them would still be a pointer kept live across the
+    // walk. Others stay in this frame and go by reference: the span loops read them from memory.
+    if core::mem::size_of_val(&steps) == 0 {
+        walk.fold(
+            (),
+            #[inline(always)]
+            move |(), span, column, row| shader.span(&steps, span, planes.at(column, row)),
+        );
+    } else {
+        let steps = &steps;
+        walk.fold(
+            (),
+            #[inline(always)]
+            move |(), span, column, row| shader.span(steps, span, planes.at(column, row)),
+        );
+    }
 }
 
 /// The general set-up (any [`Coord`]): `i64`/`i128` edge functions, stepped planes where their
@@ -138,11 +158,11 @@ fn fold_planes<W: Width, const N: usize>(
 /// Only triangles 2048 px or more across come here, whose spans are long: the shader is called
 /// through a vtable, so one copy of this path serves every shader (flash on Cortex-M).
 #[inline(never)]
-fn shade_general<const N: usize>(
+fn shade_general<T, const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
     clip: &Rectangle,
-    shader: &mut dyn SpanShader<N>,
+    shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
     // By reference: moving the setup out of the `Option` would copy it.
     let setup = TriangleSetup::new(v);
@@ -153,13 +173,10 @@ fn shade_general<const N: usize>(
         return;
     };
     match Planes::general(setup, &region, attributes) {
-        Some(planes) => {
-            shader.prepare(planes.step());
-            match general_walk(setup, &region) {
-                GeneralWalk::Narrow(walk) => fold_planes(walk, &planes, shader),
-                GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
-            }
-        }
+        Some(planes) => match general_walk(setup, &region) {
+            GeneralWalk::Narrow(walk) => fold_planes(walk, &planes, shader),
+            GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
+        },
         None => shade_exact(setup, &region, attributes, shader),
     }
 }
@@ -169,14 +186,14 @@ fn shade_general<const N: usize>(
 /// attribute), so the per-pixel steps add at most 2⁻⁵ LSB.
 #[cold]
 #[inline(never)]
-fn shade_exact<const N: usize>(
+fn shade_exact<T, const N: usize>(
     setup: &TriangleSetup,
     region: &Region,
     attributes: &Attributes<N>,
-    shader: &mut dyn SpanShader<N>,
+    shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
     let mut planes = ExactPlanes::new(setup, region, attributes);
-    shader.prepare(planes.step());
+    let steps = shader.prepare(planes.step());
     for span in Spans::new(setup, *region) {
         let mut offset = 0;
         while offset < span.len() {
@@ -193,7 +210,7 @@ fn shade_exact<const N: usize>(
                 x_start,
                 x_end: x_start.wrapping_add(len as i32),
             };
-            shader.span(chunk, start);
+            shader.span(&steps, chunk, start);
             offset += len;
         }
     }

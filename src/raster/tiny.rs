@@ -68,11 +68,11 @@ pub(crate) fn shade<const N: usize>(
     if w >= TINY || h >= TINY || width < LANES as u32 {
         return false;
     }
-    shader.prepare(planes.step());
+    let steps = shader.prepare(planes.step());
     let mut rows = ChannelRows::new(planes.first(), planes.step(), planes.row_step());
     walk(width, triangle, |y, x, covered, first, column| {
         let start = rows.next_row(column);
-        shader.masked_row(y, x, covered, first, start);
+        shader.masked_row(&steps, y, x, covered, first, start);
     });
     true
 }

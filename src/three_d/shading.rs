@@ -396,6 +396,8 @@ trait DepthPixel<C, const N: usize> {
 impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     for DepthFill<'_, '_, C, P, N>
 {
+    type Steps = ();
+
     #[inline(always)]
     fn prepare(&mut self, step: [u32; N]) {
         self.step = step;
@@ -403,7 +405,7 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     }
 
     #[inline(always)]
-    fn span(&mut self, span: Span, start: [u32; N]) {
+    fn span(&mut self, _: &(), span: Span, start: [u32; N]) {
         let Some((colors, depths)) = self.target.rows_mut(span.x_start, span.y, span.len()) else {
             return;
         };
