@@ -3,6 +3,7 @@
 //!
 //! * `math` — [`Scalar`] (`I16F16`), [`Vec3`], [`Vec4`], [`Mat4`] and [`Angle`]: integer
 //!   arithmetic with wide accumulation, no floats.
+//! * `mesh` — [`Mesh`]: positions, normals and triangles, borrowed (typically from flash).
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
 //! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
 //!   per-pixel lighting of quadratically interpolated normals).
@@ -12,6 +13,7 @@
 
 mod depth;
 mod math;
+mod mesh;
 pub mod meshes;
 #[cfg(feature = "std")]
 pub mod obj;
@@ -20,7 +22,8 @@ mod shading;
 
 pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use math::{inv_sqrt, normalize_wide, Angle, Mat4, Scalar, Vec3, Vec4, SCALAR_BITS};
-pub use pipeline::{signed_area2, Cull, DrawStats, Mesh, Pipeline, GUARD_BAND};
+pub use mesh::Mesh;
+pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, GUARD_BAND};
 pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Light, Material, QuadraticNormals, Shading,
 };

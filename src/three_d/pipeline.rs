@@ -68,6 +68,7 @@ use heapless::Vec as HVec;
 
 use super::depth::{DepthTarget, ScreenVertex, DEPTH_FAR};
 use super::math::{normalize_wide, sat32, Mat4, Scalar, Vec3, Vec4};
+use super::mesh::Mesh;
 use super::shading::{self, shade, Bary, Light, Material, QuadraticNormals, Shading, BARY_ONE};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
@@ -83,33 +84,6 @@ const PLANES: usize = 7;
 
 /// Largest viewport side used for the mapping; larger viewports are treated as this size.
 const MAX_VIEWPORT: i64 = 65_535;
-
-/// An indexed triangle mesh, typically in flash (`&'static` slices).
-///
-/// `normals[i]` is the unit normal of `vertices[i]`; when `normals` is shorter, the missing ones
-/// are taken from the face. Triangles with an index out of range are skipped. Front faces are
-/// counter-clockwise seen from outside (right-handed: the face normal `(v1 − v0) × (v2 − v0)`
-/// points out).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct Mesh<'a> {
-    /// Model-space positions.
-    pub vertices: &'a [Vec3],
-    /// Model-space unit normals, one per vertex.
-    pub normals: &'a [Vec3],
-    /// Triangles as vertex indices.
-    pub indices: &'a [[u16; 3]],
-}
-
-impl<'a> Mesh<'a> {
-    /// A mesh from its arrays.
-    pub const fn new(vertices: &'a [Vec3], normals: &'a [Vec3], indices: &'a [[u16; 3]]) -> Self {
-        Mesh {
-            vertices,
-            normals,
-            indices,
-        }
-    }
-}
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
