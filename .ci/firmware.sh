@@ -145,6 +145,43 @@ for board in "${BOARDS[@]}"; do
     check_target "$output" "$cpu" GouraudTriangle::draw_into "${GOURAUD_TARGET[$cpu]:-}"
 done
 
+# ---- 3D frame ---------------------------------------------------------------------------------
+# fw_mesh_bench renders the 3D bench scene (320×240, 300 KB of buffers: MPS2 boards only) and must
+# print the host's frame lines. The Cortex-M0 code (thumbv6m) runs on the mps2-an385 model, linked
+# with the MPS2 memory layout (RUSTFLAGS replaces the micro:bit link flags of .cargo/config.toml):
+# ARMv7-M executes the ARMv6-M instruction stream unchanged.
+echo "--- 3D frame (fw_mesh_bench)"
+FRAMES=$(cargo run --quiet --release --example fw_mesh_bench)
+printf '%s\n' "$FRAMES"
+[ "$(printf '%s\n' "$FRAMES" | grep -c '^frame ')" -ge 2 ] || fail "no host frame lines"
+MESH_BOARDS=(
+    "thumbv7em-none-eabihf mps2-an386 cortex-m4 target"
+    "thumbv7em-none-eabihf mps2-an500 cortex-m7 target"
+    "thumbv7m-none-eabi mps2-an385 cortex-m3 target"
+    "thumbv6m-none-eabi mps2-an385 cortex-m3 target/armv6m-on-mps2"
+)
+for board in "${MESH_BOARDS[@]}"; do
+    read -r target machine cpu dir <<<"$board"
+    if [ "$dir" = target ]; then
+        cargo build --quiet --release --target "$target" --example fw_mesh_bench
+    else
+        RUSTFLAGS="-C link-arg=-Tlink.x" \
+            cargo build --quiet --release --target "$target" --target-dir "$dir" --example fw_mesh_bench
+    fi
+    status=0
+    output=$(timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" "${QEMU_FLAGS[@]}" \
+        -kernel "$dir/$target/release/examples/fw_mesh_bench") || status=$?
+    [ "$status" -eq 0 ] || {
+        printf '%s\n' "$output" >&2
+        fail "fw_mesh_bench ($target) on $machine exited with status $status"
+    }
+    got=$(printf '%s\n' "$output" | grep '^frame ' || true)
+    [ "$got" = "$(printf '%s\n' "$FRAMES" | grep '^frame ')" ] ||
+        fail "fw_mesh_bench ($target) on $machine: frames differ from the host's:\n$got"
+    echo "  ok: fw_mesh_bench ($target) on $machine matches the host"
+    { echo "Board: $machine."; printf '%s\n\n' "$(printf '%s\n' "$output" | grep -v '^frame ')"; } >>"$bench"
+done
+
 # ---- footprint --------------------------------------------------------------------------------
 host=$(rustc -vV | sed -n 's/^host: //p')
 tools="$(rustc --print sysroot)/lib/rustlib/$host/bin"

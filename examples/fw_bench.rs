@@ -8,11 +8,9 @@
 //! cargo run --release --target thumbv6m-none-eabi    --example fw_bench   # micro:bit
 //! ```
 //!
-//! SysTick runs from the core clock as a 24-bit down counter with reload; its exception counts
-//! the wraps. The instructions per tick are calibrated against a loop of known length (40 on
-//! the 25 MHz MPS2 boards, 62.5 on the 16 MHz micro:bit). Each case draws a set of triangles into
-//! a `SliceFramebuffer<Rgb565>`, repeated so that it runs for at least ~10⁵ instructions; the
-//! covered pixels are counted exactly in a separate, untimed pass through a counting draw target.
+//! Instructions are counted by SysTick (`examples/common/clock.rs`). Each case draws a set of
+//! triangles into a `SliceFramebuffer<Rgb565>`, repeated so that it runs for at least ~10⁵
+//! instructions; the covered pixels are counted exactly in a separate, untimed pass through a counting draw target.
 //! Vertices sit on pixel centres, so embedded-graphics' integer `Triangle` (filled with
 //! `PrimitiveStyle`) gets the same triangles; it covers a few more pixels (it includes every
 //! edge), which is why every row reports its own pixel count.
@@ -33,6 +31,10 @@ mod scene;
 #[allow(dead_code)]
 #[path = "common/board.rs"]
 mod board;
+
+#[cfg(target_os = "none")]
+#[path = "common/clock.rs"]
+mod clock;
 
 /// Most triangles in one set.
 const MAX_SET: usize = 32;
@@ -247,10 +249,8 @@ impl core::fmt::Display for Ratio {
 #[cfg(target_os = "none")]
 mod firmware {
     use core::hint::black_box;
-    use core::sync::atomic::{AtomicU32, Ordering};
 
-    use cortex_m::peripheral::{syst::SystClkSource, SYST};
-    use cortex_m_rt::{entry, exception};
+    use cortex_m_rt::entry;
     use cortex_m_semihosting::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_graphics::prelude::*;
@@ -258,75 +258,8 @@ mod firmware {
     use embedded_raster::SliceFramebuffer;
 
     use super::*;
-    use crate::{board, scene};
-
-    /// SysTick reload: the full 24 bits.
-    const RELOAD: u32 = 0x00FF_FFFF;
-
-    /// SysTick wraps since start.
-    static WRAPS: AtomicU32 = AtomicU32::new(0);
-
-    #[exception]
-    fn SysTick() {
-        // Only this handler writes; thumbv6m has no atomic read-modify-write.
-        WRAPS.store(
-            WRAPS.load(Ordering::Relaxed).wrapping_add(1),
-            Ordering::Relaxed,
-        );
-    }
-
-    /// SysTick ticks since it was started.
-    #[inline(always)]
-    fn now() -> u64 {
-        loop {
-            let wraps = WRAPS.load(Ordering::SeqCst);
-            let current = SYST::get_current();
-            // A wrap between the two reads runs the handler at once; then read again.
-            if WRAPS.load(Ordering::SeqCst) == wraps {
-                return u64::from(wraps) * u64::from(RELOAD + 1) + u64::from(RELOAD - current);
-            }
-        }
-    }
-
-    /// Runs `2 n` instructions (`subs` + `bne` per iteration).
-    #[inline(never)]
-    fn spin(n: u32) {
-        // SAFETY: register-only loop.
-        unsafe {
-            core::arch::asm!(
-                "2:",
-                "subs {0}, #1",
-                "bne 2b",
-                inout(reg) n => _,
-                options(nomem, nostack)
-            );
-        }
-    }
-
-    /// Instructions per SysTick tick as a fraction `(instructions, ticks)`.
-    fn calibrate() -> (u64, u64) {
-        let t0 = now();
-        spin(100_000);
-        let t1 = now();
-        spin(1_100_000);
-        let t2 = now();
-        // The two calls differ by exactly 2 000 000 instructions.
-        (2_000_000, (t2 - t1) - (t1 - t0))
-    }
-
-    /// Ticks of `reps` passes of `f`, minus the ticks of as many empty passes.
-    fn measure(reps: u32, mut f: impl FnMut()) -> u64 {
-        let t0 = now();
-        for _ in 0..black_box(reps) {
-            f();
-        }
-        let t1 = now();
-        for _ in 0..black_box(reps) {
-            black_box(());
-        }
-        let t2 = now();
-        (t1 - t0).saturating_sub(t2 - t1)
-    }
+    use crate::clock::{calibrate, measure};
+    use crate::{board, clock, scene};
 
     fn run(renderer: Renderer, set: &Set, fb: &mut SliceFramebuffer<'_, Rgb565>) {
         let set = black_box(set);
@@ -378,7 +311,7 @@ mod firmware {
             let pixels = count_pixels(renderer, set, (size.width, size.height));
             run(renderer, set, fb); // warm-up, untimed
             let ticks = measure(set.reps, || run(renderer, set, fb));
-            let instructions = (ticks * cal_instructions + cal_ticks / 2) / cal_ticks;
+            let instructions = clock::instructions(ticks, (cal_instructions, cal_ticks));
             let passes = u64::from(set.reps);
             let n = set.triangles().len() as u64;
             hprintln!(
@@ -507,13 +440,7 @@ mod firmware {
         paint_below_sp(usize::MAX);
         let main_sp = cortex_m::register::msp::read() as usize;
         let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
-        cp.SYST.set_clock_source(SystClkSource::Core);
-        cp.SYST.set_reload(RELOAD);
-        cp.SYST.clear_current();
-        cp.SYST.enable_interrupt();
-        cp.SYST.enable_counter();
-        // The counter reads 0 until its first reload: start measuring after that.
-        while SYST::get_current() == 0 {}
+        clock::start(&mut cp.SYST);
 
         let (cal_instructions, cal_ticks) = calibrate();
 
@@ -557,8 +484,7 @@ mod firmware {
 
         // Stack depth of one draw call, worst case over every shape of the test scene (including
         // vertices at the ends of the Coord range). SysTick is off so its frames don't count.
-        cp.SYST.disable_interrupt();
-        cp.SYST.disable_counter();
+        clock::stop(&mut cp.SYST);
         hprintln!(
             "\n| draw call | max stack, bytes (over the {} scene triangles) |",
             {

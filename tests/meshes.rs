@@ -4,7 +4,7 @@
 //! (compared ignoring whitespace, since the files are rustfmt-formatted). Set
 //! `REGENERATE_MESHES=1` to rewrite them after changing either.
 
-use embedded_raster::three_d::meshes::{icosphere, to_f64, torus, MeshData};
+use embedded_raster::three_d::meshes::{icosphere, to_f64, torus, torus_knot, MeshData};
 use embedded_raster::three_d::obj;
 use embedded_raster::three_d::{Mesh, Vec3};
 
@@ -12,9 +12,15 @@ fn squeeze(s: &str) -> String {
     s.chars().filter(|c| !c.is_whitespace()).collect()
 }
 
+/// The flash meshes of the crate (`src/three_d/meshes/`).
 fn check_generated(mesh: &MeshData, name: &str, file: &str) {
-    let source = mesh.to_rust_source(name, "crate");
-    let path = format!("{}/src/three_d/meshes/{file}", env!("CARGO_MANIFEST_DIR"));
+    check_source(mesh, name, "crate", &format!("src/three_d/meshes/{file}"));
+}
+
+/// `file` (relative to the package) holds `mesh` as emitted for `crate_path`.
+fn check_source(mesh: &MeshData, name: &str, crate_path: &str, file: &str) {
+    let source = mesh.to_rust_source(name, crate_path);
+    let path = format!("{}/{file}", env!("CARGO_MANIFEST_DIR"));
     if std::env::var_os("REGENERATE_MESHES").is_some() {
         std::fs::write(&path, &source).unwrap();
         let _ = std::process::Command::new("rustfmt")
@@ -46,6 +52,24 @@ fn flash_meshes_match_generators() {
         &ico,
     );
     same_mesh(&embedded_raster::three_d::meshes::torus::TORUS, &tor);
+}
+
+/// The 3D benchmark's knot (`examples/common/scene3d.rs`): 6,144 faces.
+fn bench_knot() -> MeshData {
+    torus_knot((2, 3), 0.33, 0.13, 192, 16)
+}
+
+#[test]
+fn bench_knot_matches_its_generator() {
+    let knot = bench_knot();
+    assert_eq!(knot.indices.len(), 6144);
+    check_closed_and_oriented(&knot);
+    check_source(
+        &knot,
+        "KNOT",
+        "embedded_raster",
+        "examples/common/meshes/knot.rs",
+    );
 }
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -24,6 +24,7 @@ mod host {
     use std::collections::HashMap;
     use std::format;
     use std::string::String;
+    use std::vec;
     use std::vec::Vec;
 
     use crate::three_d::math::{Scalar, Vec3};
@@ -231,6 +232,83 @@ mod host {
         }
         let positions: Vec<[f64; 3]> = points.iter().map(|p| p.map(|c| c * radius)).collect();
         MeshData::from_f64(&positions, &points, &faces)
+    }
+
+    /// A tube around the `(p, q)` torus knot — the curve that winds `p` times around the z axis
+    /// and `q` times through the torus of radii 2 and 1 — scaled by `scale`, with a radius that
+    /// swells and narrows five times along it (between `0.65·tube` and `1.35·tube`, so that its
+    /// triangles differ in size and slant as a scanned model's do): `rings` segments along the
+    /// curve, `sides` around the tube, `2·rings·sides` faces. Normals are the area-weighted means
+    /// of the faces around each vertex. `(2, 3)` is the trefoil.
+    ///
+    /// # Panics
+    ///
+    /// If `rings` or `sides` is below 3 or `rings · sides > 65536`.
+    pub fn torus_knot(
+        (p, q): (u32, u32),
+        scale: f64,
+        tube: f64,
+        rings: usize,
+        sides: usize,
+    ) -> MeshData {
+        assert!(
+            rings >= 3 && sides >= 3 && rings * sides <= 65536,
+            "a knot needs 3 × 3 to 65536 segments"
+        );
+        let tau = core::f64::consts::TAU;
+        let (p, q) = (f64::from(p), f64::from(q));
+        let curve = |t: f64| {
+            let r = 2.0 + (q * t).cos();
+            [r * (p * t).cos(), r * (p * t).sin(), -(q * t).sin()].map(|c| c * scale)
+        };
+        // Frenet frame from central differences (a torus knot's curvature never vanishes).
+        let h = 1e-4;
+        let mut positions = Vec::with_capacity(rings * sides);
+        let mut radial = Vec::with_capacity(rings * sides);
+        for i in 0..rings {
+            let t = tau * i as f64 / rings as f64;
+            let (c, prev, next) = (curve(t), curve(t - h), curve(t + h));
+            let tangent = normalize(sub(next, prev));
+            let second = [0, 1, 2].map(|k| next[k] - 2.0 * c[k] + prev[k]);
+            let along = dot(second, tangent);
+            let normal = normalize([0, 1, 2].map(|k| second[k] - along * tangent[k]));
+            let binormal = cross(tangent, normal);
+            let radius = tube * (1.0 + 0.35 * (5.0 * t).sin());
+            for j in 0..sides {
+                let (s, co) = (tau * j as f64 / sides as f64).sin_cos();
+                let d = [0, 1, 2].map(|k| co * normal[k] + s * binormal[k]);
+                positions.push([0, 1, 2].map(|k| c[k] + radius * d[k]));
+                radial.push(d);
+            }
+        }
+        let at = |i: usize, j: usize| (i % rings) * sides + (j % sides);
+        let faces: Vec<[usize; 3]> = (0..rings)
+            .flat_map(|i| {
+                (0..sides).flat_map(move |j| {
+                    let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                    [[a, b, c], [a, c, d]]
+                })
+            })
+            .collect();
+        // Orient by the radial directions, then take the faces' mean normals.
+        let oriented = MeshData::from_f64(&positions, &radial, &faces);
+        let mut normals = vec![[0.0; 3]; positions.len()];
+        for face in &oriented.indices {
+            let [a, b, c] = face.map(usize::from);
+            let n = cross(
+                sub(positions[b], positions[a]),
+                sub(positions[c], positions[a]),
+            );
+            for v in [a, b, c] {
+                normals[v] = [0, 1, 2].map(|k| normals[v][k] + n[k]);
+            }
+        }
+        let faces: Vec<[usize; 3]> = oriented
+            .indices
+            .iter()
+            .map(|f| f.map(usize::from))
+            .collect();
+        MeshData::from_f64(&positions, &normals, &faces)
     }
 
     /// A torus around the z axis: tube centre at distance `major` from the axis, tube radius

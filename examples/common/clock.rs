@@ -1,0 +1,103 @@
+//! Instruction counting for the firmware benchmarks (`fw_bench`, `fw_mesh_bench`; firmware
+//! builds only, included with `#[path]`).
+//!
+//! Under QEMU's `-icount shift=0` every executed instruction advances the virtual clock by
+//! exactly 1 ns, so SysTick — a 24-bit down counter from the core clock, whose exception counts
+//! the wraps — measures instructions deterministically. The instructions per tick are calibrated
+//! against a loop of known length (40 on the 25 MHz MPS2 boards, 62.5 on the 16 MHz micro:bit).
+
+use core::hint::black_box;
+use core::sync::atomic::{AtomicU32, Ordering};
+
+use cortex_m::peripheral::{syst::SystClkSource, SYST};
+use cortex_m_rt::exception;
+
+/// SysTick reload: the full 24 bits.
+const RELOAD: u32 = 0x00FF_FFFF;
+
+/// SysTick wraps since start.
+static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+#[exception]
+fn SysTick() {
+    // Only this handler writes; thumbv6m has no atomic read-modify-write.
+    WRAPS.store(
+        WRAPS.load(Ordering::Relaxed).wrapping_add(1),
+        Ordering::Relaxed,
+    );
+}
+
+/// Starts SysTick from the core clock with its wrap interrupt, and waits for its first reload
+/// (the counter reads 0 until then).
+pub fn start(syst: &mut SYST) {
+    syst.set_clock_source(SystClkSource::Core);
+    syst.set_reload(RELOAD);
+    syst.clear_current();
+    syst.enable_interrupt();
+    syst.enable_counter();
+    while SYST::get_current() == 0 {}
+}
+
+/// Stops SysTick (so that its exception frames do not count in stack measurements).
+pub fn stop(syst: &mut SYST) {
+    syst.disable_interrupt();
+    syst.disable_counter();
+}
+
+/// SysTick ticks since it was started.
+#[inline(always)]
+pub fn now() -> u64 {
+    loop {
+        let wraps = WRAPS.load(Ordering::SeqCst);
+        let current = SYST::get_current();
+        // A wrap between the two reads runs the handler at once; then read again.
+        if WRAPS.load(Ordering::SeqCst) == wraps {
+            return u64::from(wraps) * u64::from(RELOAD + 1) + u64::from(RELOAD - current);
+        }
+    }
+}
+
+/// Runs `2 n` instructions (`subs` + `bne` per iteration).
+#[inline(never)]
+fn spin(n: u32) {
+    // SAFETY: register-only loop.
+    unsafe {
+        core::arch::asm!(
+            "2:",
+            "subs {0}, #1",
+            "bne 2b",
+            inout(reg) n => _,
+            options(nomem, nostack)
+        );
+    }
+}
+
+/// Instructions per SysTick tick as a fraction `(instructions, ticks)`.
+pub fn calibrate() -> (u64, u64) {
+    let t0 = now();
+    spin(100_000);
+    let t1 = now();
+    spin(1_100_000);
+    let t2 = now();
+    // The two calls differ by exactly 2 000 000 instructions.
+    (2_000_000, (t2 - t1) - (t1 - t0))
+}
+
+/// Ticks of `reps` passes of `f`, minus the ticks of as many empty passes.
+pub fn measure(reps: u32, mut f: impl FnMut()) -> u64 {
+    let t0 = now();
+    for _ in 0..black_box(reps) {
+        f();
+    }
+    let t1 = now();
+    for _ in 0..black_box(reps) {
+        black_box(());
+    }
+    let t2 = now();
+    (t1 - t0).saturating_sub(t2 - t1)
+}
+
+/// `ticks` in instructions, with the calibration `(instructions, ticks)` of [`calibrate`].
+pub fn instructions(ticks: u64, (cal_instructions, cal_ticks): (u64, u64)) -> u64 {
+    (ticks * cal_instructions + cal_ticks / 2) / cal_ticks
+}

@@ -1,0 +1,195 @@
+//! The 3D benchmark scene, shared by the firmware benchmark (`fw_mesh_bench`), the host's
+//! checksums and `bench_report` (included with `#[path]`): a mesh rendered into a 320×240 Rgb565
+//! framebuffer with a 16-bit z-buffer, back faces culled, Gouraud-lit by one directional light
+//! plus ambient, colour and depth cleared first, from a fixed camera and pose.
+//!
+//! Two meshes:
+//!
+//! * [`KNOT`]: a tube around the trefoil knot, 6,144 faces (3,072 vertices) whose radius swells
+//!   and narrows along it, stored in flash (`meshes/knot.rs`, generated on the host by
+//!   `meshes::torus_knot` and checked by `tests/meshes.rs`). It overlaps itself, so the depth
+//!   test decides many pixels.
+//! * the torus of [`torus`]: 10,000 faces (5,000 vertices), generated at start-up in fixed point
+//!   (the same bits on every target), into RAM the caller provides.
+//!
+//! Everything here is integer code, so the host and every Cortex-M render the same pixels.
+
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_raster::three_d::{
+    Angle, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading, Vec3,
+    DEPTH_CLEAR,
+};
+
+#[allow(clippy::all)]
+#[rustfmt::skip]
+#[path = "meshes/knot.rs"]
+mod knot;
+
+pub use knot::KNOT;
+
+/// The frame: 320×240, a common SPI display's size.
+pub const SIZE: (u32, u32) = (320, 240);
+
+/// Pixels of the frame.
+pub const PIXELS: usize = (SIZE.0 * SIZE.1) as usize;
+
+/// Rings around the torus's axis and sides around its tube.
+pub const TORUS_RINGS: usize = 100;
+/// Sides around the torus's tube.
+pub const TORUS_SIDES: usize = 50;
+/// Vertices of the torus.
+pub const TORUS_VERTICES: usize = TORUS_RINGS * TORUS_SIDES;
+/// Faces of the torus.
+pub const TORUS_FACES: usize = 2 * TORUS_VERTICES;
+
+/// The two bench meshes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Model {
+    /// [`KNOT`].
+    Knot,
+    /// The torus of [`torus`].
+    Torus,
+}
+
+impl Model {
+    /// Both, in report order.
+    pub const ALL: [Model; 2] = [Model::Knot, Model::Torus];
+
+    /// The name in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::Knot => "knot",
+            Model::Torus => "torus",
+        }
+    }
+
+    /// The model's pose: a rotation that shows the mesh overlapping itself.
+    fn pose(self) -> Mat4 {
+        match self {
+            Model::Knot => {
+                Mat4::rotation_x(Angle::from_degrees(-35))
+                    * Mat4::rotation_y(Angle::from_degrees(20))
+            }
+            Model::Torus => {
+                Mat4::rotation_x(Angle::from_degrees(-60))
+                    * Mat4::rotation_z(Angle::from_degrees(15))
+            }
+        }
+    }
+}
+
+/// The background colour.
+pub const BACKGROUND: Rgb565 = Rgb565::new(3, 6, 4);
+
+/// The surface: a warm colour, Gouraud-lit.
+pub const MATERIAL: Material<Rgb565> = Material::new(Rgb565::new(30, 48, 16), Shading::Gouraud);
+
+/// The pipeline of `model`'s frame: a 60° perspective camera 2.5 units from the origin, the
+/// light from the upper left and in front, ambient 0.15.
+pub fn pipeline(model: Model) -> Pipeline {
+    let (w, h) = SIZE;
+    let projection = Mat4::perspective(
+        Angle::from_degrees(60),
+        Scalar::from_num(w) / Scalar::from_num(h),
+        Scalar::from_bits(1 << 15),
+        Scalar::from_num(8),
+    );
+    let view = Mat4::translation(Vec3::from_bits(0, 0, -(5 << 16) / 2));
+    let light = Light::new(
+        Vec3::from_bits(-26214, 39322, 45875),
+        Scalar::from_bits(9830),
+    );
+    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
+    Pipeline::new(model.pose(), projection * view, viewport, light)
+}
+
+/// The torus into the caller's arrays: major radius 1, tube radius 0.35, [`TORUS_RINGS`] ×
+/// [`TORUS_SIDES`], faces counter-clockwise seen from outside; all in fixed point.
+pub fn torus<'a>(
+    vertices: &'a mut [Vec3; TORUS_VERTICES],
+    normals: &'a mut [Vec3; TORUS_VERTICES],
+    indices: &'a mut [[u16; 3]; TORUS_FACES],
+) -> Mesh<'a> {
+    let (major, minor) = (Scalar::ONE, Scalar::from_bits(22938));
+    for i in 0..TORUS_RINGS {
+        let theta = Angle::from_turns(i as i32, TORUS_RINGS as i32);
+        let (st, ct) = (theta.sin(), theta.cos());
+        for j in 0..TORUS_SIDES {
+            let phi = Angle::from_turns(j as i32, TORUS_SIDES as i32);
+            let (sp, cp) = (phi.sin(), phi.cos());
+            let ring = major + minor * cp;
+            vertices[i * TORUS_SIDES + j] = Vec3::new(ring * ct, ring * st, minor * sp);
+            normals[i * TORUS_SIDES + j] = Vec3::new(cp * ct, cp * st, sp).normalize();
+        }
+    }
+    let at = |i: usize, j: usize| ((i % TORUS_RINGS) * TORUS_SIDES + (j % TORUS_SIDES)) as u16;
+    for i in 0..TORUS_RINGS {
+        for j in 0..TORUS_SIDES {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            let k = 2 * (i * TORUS_SIDES + j);
+            indices[k] = [a, b, c];
+            indices[k + 1] = [a, c, d];
+        }
+    }
+    Mesh::new(&vertices[..], &normals[..], &indices[..])
+}
+
+/// One frame of `mesh` posed as `model`: clears colour and depth, draws.
+pub fn render(model: Model, mesh: &Mesh<'_>, target: &mut DepthTarget<'_, Rgb565>) -> DrawStats {
+    target.clear(BACKGROUND);
+    pipeline(model).draw_mesh(mesh, &MATERIAL, target)
+}
+
+/// Pixels the frame covers: those whose depth was written.
+pub fn covered(depth: &[u16]) -> u32 {
+    depth.iter().filter(|&&d| d != DEPTH_CLEAR).count() as u32
+}
+
+/// FNV-1a over the colours and the depths.
+pub fn checksum(colors: &[Rgb565], depth: &[u16]) -> u32 {
+    let mut h = 0x811c_9dc5u32;
+    let words = colors
+        .iter()
+        .map(|c| c.into_storage())
+        .chain(depth.iter().copied());
+    for w in words {
+        for b in w.to_le_bytes() {
+            h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
+}
+
+/// The line the host and the firmware print for a frame, compared by `.ci/firmware.sh`.
+pub struct FrameLine {
+    /// The mesh.
+    pub model: Model,
+    /// The pipeline's counts.
+    pub stats: DrawStats,
+    /// [`covered`] pixels.
+    pub covered: u32,
+    /// [`checksum`] of colours and depths.
+    pub checksum: u32,
+}
+
+impl core::fmt::Display for FrameLine {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let s = &self.stats;
+        write!(
+            f,
+            "frame {} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
+            self.model.name(),
+            SIZE.0,
+            SIZE.1,
+            s.drawn,
+            s.culled,
+            s.clipped,
+            s.rejected,
+            s.degenerate,
+            self.covered,
+            self.checksum
+        )
+    }
+}

@@ -1,0 +1,172 @@
+//! Firmware benchmark of the 3D pipeline: the frame of `examples/common/scene3d.rs` (320×240
+//! Rgb565, 16-bit z-buffer, back faces culled, Gouraud, colour and depth cleared) for each bench
+//! mesh, in instructions counted by SysTick under QEMU's `-icount` (`examples/common/clock.rs`).
+//!
+//! ```text
+//! cargo run --release --target thumbv7em-none-eabihf --example fw_mesh_bench   # mps2-an386, M4F
+//! cargo run --release --target thumbv7m-none-eabi    --example fw_mesh_bench   # mps2-an385, M3
+//! cargo run --release --example fw_mesh_bench                                  # host: checksums
+//! ```
+//!
+//! The buffers take 300 KB of RAM, so this runs on the MPS2 boards (4 MiB). `.ci/firmware.sh`
+//! also runs the Cortex-M0 build (thumbv6m) on the mps2-an385 model: ARMv7-M executes the
+//! ARMv6-M instruction stream unchanged, so the count is the Cortex-M0 code's.
+//!
+//! Each board prints one `frame …` line per mesh (the pipeline's counts, covered pixels and a
+//! checksum of colours and depths), which must equal the host's, then a table.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[allow(dead_code)]
+#[path = "common/scene3d.rs"]
+mod scene3d;
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/clock.rs"]
+mod clock;
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::hint::black_box;
+
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::hprintln;
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_raster::three_d::{DepthTarget, Mesh, Vec3};
+
+    use crate::scene3d::{self, FrameLine, Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
+    use crate::{board, clock};
+
+    /// The instruction set this build runs.
+    #[cfg(not(target_has_atomic = "32"))]
+    const CODE: &str = "thumbv6m-none-eabi (Cortex-M0 code)";
+    #[cfg(all(target_has_atomic = "32", target_abi = "eabihf"))]
+    const CODE: &str = "thumbv7em-none-eabihf (Cortex-M4F code)";
+    #[cfg(all(target_has_atomic = "32", not(target_abi = "eabihf")))]
+    const CODE: &str = "thumbv7m-none-eabi (Cortex-M3 code)";
+
+    /// `n / d` with two decimals.
+    struct Ratio(u64, u64);
+
+    impl core::fmt::Display for Ratio {
+        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+            if self.1 == 0 {
+                return write!(f, "–");
+            }
+            let hundredths = (self.0 * 100 + self.1 / 2) / self.1;
+            write!(f, "{}.{:02}", hundredths / 100, hundredths % 100)
+        }
+    }
+
+    #[entry]
+    fn main() -> ! {
+        static mut COLORS: [Rgb565; PIXELS] = [Rgb565::new(0, 0, 0); PIXELS];
+        static mut DEPTH: [u16; PIXELS] = [0; PIXELS];
+        static mut TORUS_V: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
+        static mut TORUS_N: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
+        static mut TORUS_I: [[u16; 3]; TORUS_FACES] = [[0; 3]; TORUS_FACES];
+
+        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
+        clock::start(&mut cp.SYST);
+        let calibration = clock::calibrate();
+        let torus = scene3d::torus(TORUS_V, TORUS_N, TORUS_I);
+        let (width, height) = SIZE;
+        let mut target = DepthTarget::new(COLORS, DEPTH, width, height).expect("buffers fit");
+
+        let mut lines = [None, None];
+        let mut rows = [(0u64, 0u32); 2];
+        for (k, model) in Model::ALL.into_iter().enumerate() {
+            let mesh: &Mesh<'_> = match model {
+                Model::Knot => &scene3d::KNOT,
+                Model::Torus => &torus,
+            };
+            // One untimed frame for the counts and the checksum, then the timed one.
+            let stats = scene3d::render(model, mesh, &mut target);
+            let covered = scene3d::covered(target.depth());
+            let checksum = scene3d::checksum(target.framebuffer().pixels(), target.depth());
+            let ticks = clock::measure(1, || {
+                black_box(scene3d::render(model, black_box(mesh), &mut target));
+            });
+            rows[k] = (
+                clock::instructions(ticks, calibration),
+                mesh.indices.len() as u32,
+            );
+            lines[k] = Some(FrameLine {
+                model,
+                stats,
+                covered,
+                checksum,
+            });
+        }
+        for line in lines.iter().flatten() {
+            hprintln!("{}", line);
+        }
+        hprintln!("\n### 3D frame, {}\n", CODE);
+        hprintln!(
+            "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px |"
+        );
+        hprintln!("|---|---:|---:|---:|---:|---:|---:|---:|");
+        for (line, (instructions, faces)) in lines.iter().flatten().zip(rows) {
+            hprintln!(
+                "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                line.model.name(),
+                faces,
+                line.stats.drawn,
+                line.covered,
+                instructions,
+                Ratio(instructions, u64::from(faces)),
+                Ratio(instructions, u64::from(line.stats.drawn)),
+                Ratio(instructions, u64::from(line.covered))
+            );
+        }
+        hprintln!();
+        board::exit(true)
+    }
+
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo) -> ! {
+        hprintln!("panic: {}", info);
+        board::exit(false)
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    use embedded_raster::three_d::{DepthTarget, Vec3};
+    use scene3d::{FrameLine, Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
+
+    let mut v = Box::new([Vec3::ZERO; TORUS_VERTICES]);
+    let mut n = Box::new([Vec3::ZERO; TORUS_VERTICES]);
+    let mut i = Box::new([[0u16; 3]; TORUS_FACES]);
+    let torus = scene3d::torus(&mut v, &mut n, &mut i);
+    let (mut colors, mut depth) = (vec![Rgb565::new(0, 0, 0); PIXELS], vec![0u16; PIXELS]);
+    let mut target = DepthTarget::new(&mut colors, &mut depth, SIZE.0, SIZE.1).expect("buffers");
+    for model in Model::ALL {
+        let mesh = match model {
+            Model::Knot => &scene3d::KNOT,
+            Model::Torus => &torus,
+        };
+        let stats = scene3d::render(model, mesh, &mut target);
+        let line = FrameLine {
+            model,
+            stats,
+            covered: scene3d::covered(target.depth()),
+            checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
+        };
+        println!("{line}");
+        if let Some(dir) = std::env::args().nth(1) {
+            let path = format!("{dir}/{}.ppm", model.name());
+            let mut ppm = format!("P6 {} {} 255\n", SIZE.0, SIZE.1).into_bytes();
+            for c in target.framebuffer().pixels() {
+                ppm.extend([c.r() << 3, c.g() << 2, c.b() << 3]);
+            }
+            std::fs::write(&path, ppm).expect("write the picture");
+        }
+    }
+}
