@@ -2,9 +2,12 @@
 # Instruction profile of the rasterizer on an emulated Cortex-M (developer tool, not part of CI).
 #
 #   bash .ci/profile.sh <target> <solid|gouraud>-<large|small|tiny> [functions] [blocks]
+#   bash .ci/profile.sh <target> mesh-<knot|torus>[-faces] [functions] [blocks]
 #   bash .ci/profile.sh thumbv6m-none-eabi gouraud-tiny 20 10
 #
-# Builds examples/fw_profile.rs for <target> with that workload, runs it under QEMU with its
+# Builds examples/fw_profile.rs for <target> with that workload (or, for mesh-*, the 3D frame of
+# examples/fw_mesh_bench.rs four times: with the vertex scratch, or per face with -faces; on the
+# MPS2 boards, thumbv6m code on mps2-an385's model), runs it under QEMU with its
 # execution log (-d in_asm,exec,nochain; -icount as in CI), and prints the executed instructions
 # per function and, optionally, the hottest translation blocks (addresses to look up with
 # llvm-objdump). Inlined code counts towards its caller.
@@ -17,8 +20,20 @@ case $target in
     thumbv6m-none-eabi) machine=(-machine microbit -cpu cortex-m0) ;;
     *) echo "unknown target $target" >&2; exit 2 ;;
 esac
-PROFILE=$profile cargo build -q --release --target "$target" --example fw_profile
-elf=target/$target/release/examples/fw_profile
+export PATH="$PATH:$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
+case $profile in
+    mesh-*)
+        example=fw_mesh_bench dir=target/profile-mesh
+        [ "$target" = thumbv6m-none-eabi ] && machine=(-machine mps2-an385 -cpu cortex-m3)
+        MESH_PROFILE=${profile#mesh-} RUSTFLAGS="-C link-arg=-Tlink.x" \
+            cargo build -q --release --target "$target" --target-dir "$dir" --example "$example"
+        elf=$dir/$target/release/examples/$example
+        ;;
+    *)
+        PROFILE=$profile cargo build -q --release --target "$target" --example fw_profile
+        elf=target/$target/release/examples/fw_profile
+        ;;
+esac
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 qemu-system-arm "${machine[@]}" -nographic -semihosting-config enable=on,target=native \

@@ -44,5 +44,9 @@ for name, n in per.most_common(int(sys.argv[3]) if len(sys.argv) > 3 else 25):
 print(total, 'total')
 if len(sys.argv) > 4:
     tbs = sorted(((n * tb_len.get(pc, 0), pc, n) for pc, n in counts.items()), reverse=True)
-    for tot, pc, n in tbs[:int(sys.argv[4])]:
-        print(f'  tb {pc:#x} len {tb_len.get(pc,0):3} x {n:8} = {tot}')
+    top = tbs[:int(sys.argv[4])]
+    locs = iter(subprocess.run(['llvm-addr2line', '-e', elf, '-C'] + [hex(pc) for _, pc, _ in top],
+                               capture_output=True, text=True).stdout.splitlines())
+    for tot, pc, n in top:
+        loc = re.sub(r'.*/(src|library)/', '', next(locs, '?'))
+        print(f'  tb {pc:#x} len {tb_len.get(pc,0):3} x {n:8} = {tot:>10}  {loc}')

@@ -13,7 +13,9 @@
 //! ARMv6-M instruction stream unchanged, so the count is the Cortex-M0 code's.
 //!
 //! Each board prints one `frame …` line per mesh (the pipeline's counts, covered pixels and a
-//! checksum of colours and depths), which must equal the host's, then a table.
+//! checksum of colours and depths), which must equal the host's, then a table: the frame with
+//! each vertex transformed once into a scratch slice (`Pipeline::draw_mesh_with`) and without
+//! (`draw_mesh`, once per face using the vertex). Both must give the same frame, or the run fails.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[allow(dead_code)]
@@ -37,9 +39,10 @@ mod firmware {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
-    use embedded_raster::three_d::{DepthTarget, Mesh, Vec3};
+    use embedded_raster::three_d::{DepthTarget, Mesh, ProjectedVertex, Vec3};
 
-    use crate::scene3d::{self, FrameLine, Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
+    use crate::scene3d::{self, FrameLine, Model, MAX_VERTICES, PIXELS, SIZE};
+    use crate::scene3d::{TORUS_FACES, TORUS_VERTICES};
     use crate::{board, clock};
 
     /// The instruction set this build runs.
@@ -70,6 +73,8 @@ mod firmware {
         static mut TORUS_V: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
         static mut TORUS_N: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
         static mut TORUS_I: [[u16; 3]; TORUS_FACES] = [[0; 3]; TORUS_FACES];
+        static mut SCRATCH: [ProjectedVertex; MAX_VERTICES] =
+            [ProjectedVertex::EMPTY; MAX_VERTICES];
 
         let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
         clock::start(&mut cp.SYST);
@@ -78,22 +83,58 @@ mod firmware {
         let (width, height) = SIZE;
         let mut target = DepthTarget::new(COLORS, DEPTH, width, height).expect("buffers fit");
 
+        if let Some(profile) = option_env!("MESH_PROFILE") {
+            // Profiling build (.ci/profile.sh): only this frame, a few times.
+            let model = if profile.starts_with("torus") {
+                Model::Torus
+            } else {
+                Model::Knot
+            };
+            let mesh: &Mesh<'_> = if model == Model::Torus {
+                &torus
+            } else {
+                &scene3d::KNOT
+            };
+            for _ in 0..4 {
+                let scratch = (!profile.ends_with("faces")).then_some(&mut SCRATCH[..]);
+                black_box(scene3d::render(
+                    model,
+                    black_box(mesh),
+                    &mut target,
+                    scratch,
+                ));
+            }
+            board::exit(true)
+        }
         let mut lines = [None, None];
-        let mut rows = [(0u64, 0u32); 2];
+        let mut rows = [(0u64, 0u64, 0u32); 2];
+        let mut same = true;
         for (k, model) in Model::ALL.into_iter().enumerate() {
             let mesh: &Mesh<'_> = match model {
                 Model::Knot => &scene3d::KNOT,
                 Model::Torus => &torus,
             };
-            // One untimed frame for the counts and the checksum, then the timed one.
-            let stats = scene3d::render(model, mesh, &mut target);
+            // Untimed frames for the counts and the checksums, then the timed ones.
+            let stats = scene3d::render(model, mesh, &mut target, Some(&mut SCRATCH[..]));
             let covered = scene3d::covered(target.depth());
             let checksum = scene3d::checksum(target.framebuffer().pixels(), target.depth());
-            let ticks = clock::measure(1, || {
-                black_box(scene3d::render(model, black_box(mesh), &mut target));
+            scene3d::render(model, mesh, &mut target, None);
+            same &= checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
+            let with = clock::measure(1, || {
+                let scratch = Some(&mut SCRATCH[..]);
+                black_box(scene3d::render(
+                    model,
+                    black_box(mesh),
+                    &mut target,
+                    scratch,
+                ));
+            });
+            let without = clock::measure(1, || {
+                black_box(scene3d::render(model, black_box(mesh), &mut target, None));
             });
             rows[k] = (
-                clock::instructions(ticks, calibration),
+                clock::instructions(with, calibration),
+                clock::instructions(without, calibration),
                 mesh.indices.len() as u32,
             );
             lines[k] = Some(FrameLine {
@@ -108,12 +149,12 @@ mod firmware {
         }
         hprintln!("\n### 3D frame, {}\n", CODE);
         hprintln!(
-            "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px |"
+            "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px | without scratch |"
         );
-        hprintln!("|---|---:|---:|---:|---:|---:|---:|---:|");
-        for (line, (instructions, faces)) in lines.iter().flatten().zip(rows) {
+        hprintln!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+        for (line, (instructions, without, faces)) in lines.iter().flatten().zip(rows) {
             hprintln!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 line.model.name(),
                 faces,
                 line.stats.drawn,
@@ -121,11 +162,15 @@ mod firmware {
                 instructions,
                 Ratio(instructions, u64::from(faces)),
                 Ratio(instructions, u64::from(line.stats.drawn)),
-                Ratio(instructions, u64::from(line.covered))
+                Ratio(instructions, u64::from(line.covered)),
+                without
             );
         }
         hprintln!();
-        board::exit(true)
+        if !same {
+            hprintln!("error: the frames with and without the vertex scratch differ");
+        }
+        board::exit(same)
     }
 
     #[panic_handler]
@@ -138,8 +183,8 @@ mod firmware {
 #[cfg(not(target_os = "none"))]
 fn main() {
     use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-    use embedded_raster::three_d::{DepthTarget, Vec3};
-    use scene3d::{FrameLine, Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
+    use embedded_raster::three_d::{DepthTarget, ProjectedVertex, Vec3};
+    use scene3d::{FrameLine, Model, MAX_VERTICES, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
 
     let mut v = Box::new([Vec3::ZERO; TORUS_VERTICES]);
     let mut n = Box::new([Vec3::ZERO; TORUS_VERTICES]);
@@ -147,18 +192,25 @@ fn main() {
     let torus = scene3d::torus(&mut v, &mut n, &mut i);
     let (mut colors, mut depth) = (vec![Rgb565::new(0, 0, 0); PIXELS], vec![0u16; PIXELS]);
     let mut target = DepthTarget::new(&mut colors, &mut depth, SIZE.0, SIZE.1).expect("buffers");
+    let mut scratch = vec![ProjectedVertex::EMPTY; MAX_VERTICES];
     for model in Model::ALL {
         let mesh = match model {
             Model::Knot => &scene3d::KNOT,
             Model::Torus => &torus,
         };
-        let stats = scene3d::render(model, mesh, &mut target);
+        scene3d::render(model, mesh, &mut target, None);
+        let without = scene3d::checksum(target.framebuffer().pixels(), target.depth());
+        let stats = scene3d::render(model, mesh, &mut target, Some(&mut scratch));
         let line = FrameLine {
             model,
             stats,
             covered: scene3d::covered(target.depth()),
             checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
         };
+        assert_eq!(
+            line.checksum, without,
+            "the frames with and without scratch differ"
+        );
         println!("{line}");
         if let Some(dir) = std::env::args().nth(1) {
             let path = format!("{dir}/{}.ppm", model.name());

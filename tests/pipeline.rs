@@ -671,3 +671,95 @@ fn extreme_inputs_do_not_panic() {
     println!("{drawn} triangles drawn, {clipped} clipped, {filled} pixels");
     assert!(drawn > 100 && clipped > 100 && filled > 10_000);
 }
+
+/// Each vertex transformed once into a scratch slice (`draw_mesh_with`) or once per face
+/// (`draw_mesh`): the same frame, bit for bit, over random poses (some crossing the near plane
+/// and the guard band), every shading and culling mode, meshes with and without normals; and a
+/// scratch too short is an error that draws nothing.
+#[test]
+fn vertex_scratch_gives_the_same_frame() {
+    use embedded_raster::three_d::{ProjectedVertex, ScratchTooSmall};
+    let mut rng = Rng(0xfeed_0006);
+    let sphere = icosphere(1.0, 2);
+    let viewport = Rectangle::new(Point::new(-7, 3), Size::new(W + 20, H - 10));
+    let (mut px_a, mut z_a) = (
+        vec![Rgb888::BLACK; (W * H) as usize],
+        vec![0u16; (W * H) as usize],
+    );
+    let (mut px_b, mut z_b) = (px_a.clone(), z_a.clone());
+    let mut scratch = vec![ProjectedVertex::EMPTY; sphere.vertices.len()];
+    let (mut clipped, mut drawn) = (0, 0);
+    for round in 0..400 {
+        let pos = [
+            rng.range_f64(-2.0, 2.0),
+            rng.range_f64(-2.0, 2.0),
+            rng.range_f64(-5.0, 0.5),
+        ];
+        let cull = [Cull::None, Cull::Back, Cull::Front][round % 3];
+        let scene = Scene::new(
+            Angle::from_degrees(70),
+            0.3,
+            9.0,
+            rng.angle(),
+            rng.angle(),
+            pos,
+            viewport,
+            cull,
+        );
+        let shading = [
+            Shading::Unlit,
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Quadratic,
+        ][round % 4];
+        let material = Material::new(Rgb888::new(200, 150, 90), shading);
+        // Every other round without normals: levels from the faces.
+        let normals: &[Vec3] = if round % 8 < 4 { &sphere.normals } else { &[] };
+        let mesh = Mesh::new(&sphere.vertices, normals, &sphere.indices);
+        let mut a = DepthTarget::new(&mut px_a, &mut z_a, W, H).unwrap();
+        a.clear(Rgb888::BLACK);
+        let per_face = scene.pipeline.draw_mesh(&mesh, &material, &mut a);
+        let mut b = DepthTarget::new(&mut px_b, &mut z_b, W, H).unwrap();
+        b.clear(Rgb888::BLACK);
+        let once = scene
+            .pipeline
+            .draw_mesh_with(&mesh, &material, &mut b, &mut scratch)
+            .unwrap();
+        assert_eq!(per_face, once, "round {round}");
+        assert!(
+            px_a == px_b && z_a == z_b,
+            "round {round}: the frames differ"
+        );
+        clipped += once.clipped;
+        drawn += once.drawn;
+    }
+    assert!(
+        clipped > 200 && drawn > 20_000,
+        "{clipped} clipped, {drawn} drawn"
+    );
+
+    let mesh = sphere.as_mesh();
+    let mut b = DepthTarget::new(&mut px_b, &mut z_b, W, H).unwrap();
+    b.clear(Rgb888::BLACK);
+    let pipeline = Scene::new(
+        Angle::from_degrees(60),
+        0.5,
+        20.0,
+        Angle::ZERO,
+        Angle::ZERO,
+        [0.0, 0.0, -3.0],
+        viewport,
+        Cull::Back,
+    )
+    .pipeline;
+    let short = &mut scratch[..sphere.vertices.len() - 1];
+    let material = Material::new(Rgb888::WHITE, Shading::Gouraud);
+    assert_eq!(
+        pipeline.draw_mesh_with(&mesh, &material, &mut b, short),
+        Err(ScratchTooSmall {
+            needed: sphere.vertices.len(),
+            given: sphere.vertices.len() - 1
+        })
+    );
+    assert!(z_b.iter().all(|&d| d == DEPTH_CLEAR), "nothing drawn");
+}

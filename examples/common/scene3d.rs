@@ -18,8 +18,8 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::three_d::{
-    Angle, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading, Vec3,
-    DEPTH_CLEAR,
+    Angle, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline, ProjectedVertex, Scalar,
+    Shading, Vec3, DEPTH_CLEAR,
 };
 
 #[allow(clippy::all)]
@@ -43,6 +43,9 @@ pub const TORUS_SIDES: usize = 50;
 pub const TORUS_VERTICES: usize = TORUS_RINGS * TORUS_SIDES;
 /// Faces of the torus.
 pub const TORUS_FACES: usize = 2 * TORUS_VERTICES;
+
+/// Vertices of the larger mesh: the scratch the frames need.
+pub const MAX_VERTICES: usize = TORUS_VERTICES;
 
 /// The two bench meshes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -136,10 +139,23 @@ pub fn torus<'a>(
     Mesh::new(&vertices[..], &normals[..], &indices[..])
 }
 
-/// One frame of `mesh` posed as `model`: clears colour and depth, draws.
-pub fn render(model: Model, mesh: &Mesh<'_>, target: &mut DepthTarget<'_, Rgb565>) -> DrawStats {
+/// One frame of `mesh` posed as `model`: clears colour and depth, draws — each vertex
+/// transformed once into `scratch` if given (it must hold a vertex per mesh vertex), or once per
+/// face without.
+pub fn render(
+    model: Model,
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: Option<&mut [ProjectedVertex]>,
+) -> DrawStats {
     target.clear(BACKGROUND);
-    pipeline(model).draw_mesh(mesh, &MATERIAL, target)
+    let pipeline = pipeline(model);
+    match scratch {
+        Some(scratch) => pipeline
+            .draw_mesh_with(mesh, &MATERIAL, target, scratch)
+            .unwrap_or_default(),
+        None => pipeline.draw_mesh(mesh, &MATERIAL, target),
+    }
 }
 
 /// Pixels the frame covers: those whose depth was written.

@@ -27,5 +27,9 @@ pub(crate) const NO_CLZ: bool = cfg!(armv6m);
 /// matters more than a host's branch predictor.
 pub(crate) const CORTEX_M: bool = cfg!(any(armv6m, armv7m));
 
+/// A 32-bit hardware divider (ARMv7-M, and every host): a 32-bit division is one instruction
+/// (on Cortex-M0 it is a library loop).
+pub(crate) const HAS_DIVIDER: bool = !cfg!(armv6m);
+
 /// A 64-bit host: a 64-bit division is one instruction (on Cortex-M it is a long library call).
 pub(crate) const FAST_WIDE_DIVISION: bool = cfg!(target_pointer_width = "64");

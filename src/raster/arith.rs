@@ -3,7 +3,9 @@
 //! Newton steps where there is no divider, leading zeros by halving where there is no `clz`.
 //! Each form is checked against the native operation on the host.
 
-use crate::arch::{FAST_WIDE_DIVISION, NO_CLZ, NO_LONG_MULTIPLY};
+use core::num::NonZeroU32;
+
+use crate::arch::{FAST_WIDE_DIVISION, HAS_DIVIDER, NO_CLZ, NO_LONG_MULTIPLY};
 
 /// `a · b` in full. Without a long multiply it is formed from 16-bit limbs ([`mul_32_limbs`]):
 /// sixteen 32-bit multiplies instead of four 64-bit library calls.
@@ -111,16 +113,56 @@ const RECIPROCAL_SEED_8: [u8; 128] = {
     table
 };
 
-/// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`: a hardware division on 64-bit hosts,
+/// `⌊2^63 / d⌋` for `2^31 ≤ d < 2^32`: a hardware division on 64-bit hosts, two 32-bit
+/// hardware divisions where there is a divider ([`reciprocal_63_by_digits`]), and
 /// [`reciprocal_63_newton`] elsewhere (a 64-bit library division costs hundreds of instructions
-/// on Cortex-M). Both give the exact floor.
+/// on Cortex-M). All give the exact floor.
 #[inline]
 pub(crate) fn reciprocal_63(d: u32) -> u64 {
     if FAST_WIDE_DIVISION {
         (1u64 << 63) / u64::from(d.max(1))
+    } else if HAS_DIVIDER {
+        reciprocal_63_by_digits(d)
     } else {
         reciprocal_63_newton(d)
     }
+}
+
+/// [`reciprocal_63`] from two 32-bit divisions: schoolbook division of 2⁶³ by the normalised
+/// `d` in 16-bit digits, each digit estimated from `d`'s top half and corrected (at most twice),
+/// as in Hacker's Delight's `divlu`.
+#[inline]
+fn reciprocal_63_by_digits(d: u32) -> u64 {
+    if d <= 1 << 31 {
+        // 2³², the one quotient that does not fit 32 bits (and the floor for smaller inputs).
+        return 1 << 32;
+    }
+    // d > 2³¹: the top half is at least 2¹⁵.
+    let high = NonZeroU32::new(d >> 16).unwrap_or(NonZeroU32::MIN);
+    let low = d & 0xFFFF;
+    // One digit of (remainder·2¹⁶ + next) / d: the estimate from the divisor's top half is at
+    // most two too large.
+    let digit = |rem: u32| {
+        let mut q = rem / high;
+        let mut rhat = rem - q * high.get();
+        while q >> 16 != 0 || q * low > rhat << 16 {
+            q -= 1;
+            rhat += high.get();
+            if rhat >> 16 != 0 {
+                break;
+            }
+        }
+        q
+    };
+    // 2⁶³ = 2³¹·2³² with 2³¹ < d: two digits below 2¹⁶ each; the next digits of the dividend
+    // are 0.
+    let q1 = digit(1 << 31);
+    // (2³¹·2¹⁶ − q1·d) mod 2³²: the true remainder is below d.
+    let rem = (1u32 << 31)
+        .wrapping_shl(16)
+        .wrapping_sub(q1.wrapping_mul(d));
+    let q0 = digit(rem);
+    u64::from(q1 << 16 | q0)
 }
 
 /// [`reciprocal_63`] without a division.
@@ -323,8 +365,11 @@ mod tests {
     #[test]
     fn reciprocal_63_is_the_exact_floor() {
         let mut rng = crate::rng::Rng(0x6a09_e667_f3bc_c908_u64);
-        let check =
-            |d: u32| assert_eq!(reciprocal_63_newton(d), (1u64 << 63) / u64::from(d), "{d}");
+        let check = |d: u32| {
+            let exact = (1u64 << 63) / u64::from(d);
+            assert_eq!(reciprocal_63_newton(d), exact, "{d}");
+            assert_eq!(reciprocal_63_by_digits(d), exact, "{d}");
+        };
         for d in [1 << 31, (1 << 31) + 1, 3 << 30, u32::MAX - 1, u32::MAX] {
             check(d);
         }

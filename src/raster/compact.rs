@@ -67,8 +67,9 @@ fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
 
 /// The boundary (see [`Walk`]) of the edge with coefficients `a ≠ 0`, `b` from the pixel centre at
 /// `offset` (sub-pixels) from the edge's start vertex on; `None` if the edge's value there
-/// does not fit (never inside a compact triangle's bounding box).
-#[inline(never)]
+/// does not fit (never inside a compact triangle's bounding box). One copy on Cortex-M0 (flash).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
 fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary<i32>> {
     // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
     let e = mul_i32_wide(a, offset.0) + mul_i32_wide(b, offset.1);
@@ -107,6 +108,9 @@ pub(crate) struct CompactSetup {
     /// Offset of the first pixel centre of the walk from oriented vertex 0, sub-pixel units.
     pub(crate) dx: i32,
     pub(crate) dy: i32,
+    /// The bounding box's width plus height in pixels, plus 2: a bound on the distance (in x
+    /// plus y) from vertex 0 to any pixel the walk visits, below 2¹³.
+    pub(crate) reach: u32,
 }
 
 /// A compact triangle oriented and placed over a clip rectangle: what its walks and colour
@@ -220,6 +224,7 @@ impl CompactTriangle {
                 area2: area,
                 dx: px,
                 dy: py,
+                reach: ((extent.0 + extent.1) >> SUBPIXEL_BITS) + 2,
             },
             origin: p[0],
             o,
@@ -239,83 +244,67 @@ impl CompactTriangle {
     /// (never for a compact triangle).
     #[inline(always)]
     pub(crate) fn walk(&self) -> Result<Walk<i32>, TooLarge> {
-        let CompactTriangle {
-            setup,
-            origin,
-            o,
-            coef,
-            starts,
-            x0,
-            x1,
-            y0,
-            y1,
-            ..
-        } = *self;
-        let (px, py) = (setup.dx, setup.dy);
-
-        // One edge bounds one side of every row; the other side has one edge too (and the third
-        // is horizontal) or two, which meet at that side's middle vertex: above its row the
-        // upper one binds, from its row on the lower one (in the row through the vertex both
-        // give the same column).
-        let lefts = coef.map(|(a, _)| a > 0);
-        let pair_left = lefts.iter().filter(|&&l| l).count() == 2;
-        let mut single = 0;
-        let mut pair = [0usize; 2];
-        let mut n = 0;
-        for (k, (&(a, _), &left)) in coef.iter().zip(&lefts).enumerate() {
-            if a == 0 {
-                continue;
-            }
-            if left == pair_left {
-                if let Some(slot) = pair.get_mut(n) {
-                    *slot = k;
-                }
-                n += 1;
-            } else {
-                single = k;
+        let (px, py) = (self.setup.dx, self.setup.dy);
+        let o = &self.o;
+        // Without bounds checks: k is always 0, 1 or 2.
+        let pick = |k: usize| match k {
+            0 => (self.coef[0], self.starts[0], o[0].1),
+            1 => (self.coef[1], self.starts[1], o[1].1),
+            _ => (self.coef[2], self.starts[2], o[2].1),
+        };
+        // The vertices by height: top, middle, bottom. The long edge (top to bottom, opposite
+        // the middle vertex) bounds one side of every row; the other side has the upper edge
+        // (opposite the bottom vertex) above the middle vertex's row and the lower one (opposite
+        // the top vertex) from that row on — in the row through the vertex both give the same
+        // column (convexity, and the exact column rounding). A horizontal upper or lower edge
+        // only limits the rows (set up in `new`).
+        let (mut top, mut middle, mut bottom) = (0, 1, 2);
+        if o[1].1 < o[0].1 {
+            (top, middle) = (1, 0);
+        }
+        if pick(bottom).2 < pick(middle).2 {
+            (middle, bottom) = (bottom, middle);
+            if pick(middle).2 < pick(top).2 {
+                (top, middle) = (middle, top);
             }
         }
         // Edge k's boundary from the first pixel of row `row` (an offset from y0) on.
         let boundary = |k: usize, row: i32| {
-            let (a, b) = coef.get(k).copied().unwrap_or_default();
-            let s = starts.get(k).copied().unwrap_or_default();
+            let ((a, b), s, _) = pick(k);
             // Inside the bounding box: below 2¹⁹ (and the row offset below 2¹¹ pixels).
             let offset = (px - s.0, py.wrapping_add(row << SUBPIXEL_BITS) - s.1);
             boundary(a, b, offset).ok_or(TooLarge)
         };
-        let rows = y1 - y0;
-        let (first, next, switch) = if n == 2 {
-            // Edge pair[0] runs between the middle vertex and vertex pair[1], and vice versa.
-            let [k1, k2] = pair;
-            let far_y = |k: usize| o.get(k).map_or(0, |v| v.1);
-            let (upper, lower) = if far_y(k2) < far_y(k1) {
-                (k1, k2)
-            } else {
-                (k2, k1)
-            };
-            let middle_y = far_y(3 - k1 - k2).wrapping_add(origin.1);
+        let rows = self.y1 - self.y0;
+        let (upper, lower) = (pick(bottom).0 .0, pick(top).0 .0);
+        let (first, next, switch) = if upper == 0 {
+            let only = boundary(top, 0)?;
+            (only, only, rows + 1)
+        } else if lower == 0 {
+            let only = boundary(bottom, 0)?;
+            (only, only, rows + 1)
+        } else {
+            let middle_y = pick(middle).2.wrapping_add(self.origin.1);
             // First row whose centre is not above the middle vertex, as an offset from y0.
-            let switch = (first_centre_from(middle_y) - y0).clamp(0, rows + 1);
+            let switch = (first_centre_from(middle_y) - self.y0).clamp(0, rows + 1);
             (
-                boundary(upper, 0)?,
-                boundary(lower, switch.min(rows))?,
+                boundary(bottom, 0)?,
+                boundary(top, switch.min(rows))?,
                 switch,
             )
-        } else {
-            let only = boundary(pair[0], 0)?;
-            (only, only, rows + 1)
         };
-        let single = boundary(single, 0)?;
-        let (left, right) = if pair_left {
-            (first, single)
+        let long = pick(middle).0 .0;
+        let single = boundary(middle, 0)?;
+        let (left, right, pair_left) = if long > 0 {
+            (single, first, false)
         } else {
-            (single, first)
+            (first, single, true)
         };
         Ok(Walk::new(
             (left, right),
             (next, pair_left, switch as u32),
-            (x0, y0),
-            x1 - x0,
+            (self.x0, self.y0),
+            self.x1 - self.x0,
             (0, rows as u32 + 1),
         ))
     }

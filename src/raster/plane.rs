@@ -21,7 +21,8 @@ use crate::fixed_point::SUBPIXEL_BITS;
 use core::num::NonZeroU64;
 
 use crate::raster::arith::{
-    leading_zeros_32, mul_u32_u33, mul_wide, reciprocal_125, reciprocal_63, wrapping_mul_i32,
+    leading_zeros_32, mul_i32_wide, mul_u32_u33, mul_wide, reciprocal_125, reciprocal_63,
+    wrapping_mul_i32,
 };
 use crate::raster::compact::CompactSetup;
 use crate::raster::edge::{dot2, TriangleSetup};
@@ -209,27 +210,27 @@ impl<const N: usize> Planes<N> {
     /// The planes through `values` (per input vertex) of the compact triangle set up as `setup`.
     ///
     /// The barycentric gradients of oriented vertices 1 and 2, `256·a/area2` per pixel, are
-    /// found to 32 fractional bits within a unit ([`GradientScale`]); an attribute's gradient is
-    /// `Σ (cₖ − c₀)·gₖ`, within 510 units of 2⁻³² (2⁻²³ LSB a pixel), and its value at the first
-    /// pixel is `c₀` plus the gradients times the offset from vertex 0 (below 2¹¹ pixels). Over a
-    /// region of `w + h < 2¹³` pixels the error stays below 2⁻¹⁰ LSB. Everything wraps modulo
+    /// found to 32 fractional bits ([`GradientScale`]) within `U` units, where `U·X < 2¹³` for
+    /// pixels within `X` pixels of vertex 0; an attribute's gradient is `Σ (cₖ − c₀)·gₖ`, within
+    /// `510·U` units of 2⁻³² (`U·2⁻²³` LSB a pixel), and its value at a pixel is `c₀` plus the
+    /// gradients times the offset from vertex 0 (at most `X` pixels): the error stays below
+    /// 2⁻¹⁰ LSB. Everything wraps modulo
     /// 2⁶⁴ and then 2³²: only the low bits of a huge gradient matter for the (in-range) covered
     /// values.
     #[inline(always)]
     pub(crate) fn compact(setup: &CompactSetup, attributes: &Attributes<N>) -> Self {
-        let max = setup
-            .a
-            .iter()
-            .chain(&setup.b)
-            .map(|n| n.unsigned_abs())
-            .max();
-        let scale = GradientScale::new(setup.area2, max.unwrap_or(0));
+        let scale = GradientScale::new(setup.area2, setup.reach);
         let gx = setup.a.map(|a| scale.of(a));
         let gy = setup.b.map(|b| scale.of(b));
         let [c0, c1, c2] = setup
             .order
             .map(|k| attributes.values.get(k).copied().unwrap_or([0; N]));
         let (px, py) = (setup.dx, setup.dy);
+        if let Some(planes) =
+            Self::compact_narrow((gx, gy), (px, py), [c0, c1, c2], &attributes.half)
+        {
+            return planes;
+        }
         // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
         let mul = wrapping_mul_i32;
         let planes: [[u32; 3]; N] = core::array::from_fn(|k| {
@@ -256,6 +257,57 @@ impl<const N: usize> Planes<N> {
             dx: planes.map(|p| p[1]),
             dy: planes.map(|p| p[2]),
         }
+    }
+
+    /// [`compact`](Self::compact) for triangles whose barycentric gradients `(gx, gy)` are below
+    /// 2³¹ units (under ½ a pixel: no slivers) and whose barycentrics at the first pixel (offset
+    /// `(px, py)` from vertex 0) are below 2⁷: 32 × 32-bit products only. The steps are the same
+    /// integers; the value at the first pixel comes from barycentrics rounded to 24 fractional
+    /// bits (2⁻¹⁷ LSB more error), or `None` for the others.
+    #[inline(always)]
+    fn compact_narrow(
+        (gx, gy): ([i64; 2], [i64; 2]),
+        (px, py): (i32, i32),
+        [c0, c1, c2]: [[u16; N]; 3],
+        half: &[u32; N],
+    ) -> Option<Self> {
+        let narrow = |g: [i64; 2]| g.map(|g| i32::try_from(g).ok());
+        let (Some(gx0), Some(gx1), Some(gy0), Some(gy1)) =
+            (narrow(gx)[0], narrow(gx)[1], narrow(gy)[0], narrow(gy)[1])
+        else {
+            return None;
+        };
+        // Barycentrics of vertices 1 and 2 at the first pixel, 24 fractional bits: the
+        // gradients (2⁻³² a pixel) times the offset (sub-pixels) are 2⁻⁴⁰ units, below 2⁵¹.
+        let at = |gx: i32, gy: i32| {
+            let l = mul_i32_wide(gx, px) + mul_i32_wide(gy, py);
+            i32::try_from((l + (1 << 15)) >> 16).ok()
+        };
+        let (Some(l1), Some(l2)) = (at(gx0, gy0), at(gx1, gy1)) else {
+            return None;
+        };
+        if l1.unsigned_abs() >= 1 << 31 || l2.unsigned_abs() >= 1 << 31 {
+            return None;
+        }
+        let mut planes = Planes {
+            value: [0; N],
+            dx: [0; N],
+            dy: [0; N],
+        };
+        for k in 0..N {
+            let base = i32::from(c0[k]);
+            let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
+            // |d| ≤ 2¹⁶ and |g| < 2³¹: the sums are below 2⁴⁸, exact, as in `compact`.
+            let step = |g1: i32, g2: i32| {
+                ((mul_i32_wide(g1, d1) + mul_i32_wide(g2, d2) + (1 << 15)) >> 16) as u32
+            };
+            // 2⁻³² units of the 8-bit scale: below 2⁴⁸.
+            let v = (i64::from(base) << 24) + mul_i32_wide(d1, l1) + mul_i32_wide(d2, l2);
+            planes.value[k] = (((v + (1 << 7)) >> 8) as u32).wrapping_add(half[k]);
+            planes.dx[k] = step(gx0, gx1);
+            planes.dy[k] = step(gy0, gy1);
+        }
+        Some(planes)
     }
 
     /// The planes through `values` of the triangle `setup` over `region` (any size), or `None`
@@ -327,83 +379,85 @@ impl<const N: usize> Planes<N> {
     }
 }
 
-/// `n / d` rounded (halves away from zero), for `d > 0`.
-#[inline]
-fn div_round_64(n: i64, d: NonZeroU64) -> i64 {
-    let q = (n.unsigned_abs() + d.get() / 2) / d;
-    if n < 0 {
-        (q as i64).wrapping_neg()
-    } else {
-        q as i64
-    }
-}
-
 /// `n·2⁴⁰ / area2` for `|n| < 2¹⁹` and `0 < area2 < 2³⁸` (a barycentric gradient per pixel,
-/// 2⁻³² units), within one unit, from one 32-bit reciprocal of the area per triangle.
+/// 2⁻³² units), from one 32-bit reciprocal of the area per triangle, within `2¹²/X + 1` units
+/// for a triangle whose pixels lie within `X` pixels (x plus y) of its vertex 0 — so that over
+/// those pixels the gradient's error adds up to at most `2¹² + X` units-pixels, below 2¹³.
 ///
 /// The area is normalised to `d ∈ [2³¹, 2³²)` and `r = ⌊2⁶³/d⌋` is exact ([`reciprocal_63`]);
 /// `|n|·r` (below 2⁵¹) shifted back gives the quotient. Areas of 2³² or more are shifted right
 /// by at most 6 bits (a relative change below 2⁻³¹) and their quotients are below 2²⁷, so the
 /// result is within `2⁻³⁰·2²⁷ + ½`. Smaller areas are shifted left by `t` bits, exactly, and
-/// the floor of `r` costs at most `|n|·2^(t−23)`: within a unit while `|n|·2ᵗ ≤ 2²²`. Larger
-/// numerators (slivers under about two pixels across) take an exact 64-bit division, and if the
-/// largest of a triangle does, all do and the reciprocal is skipped.
+/// the floor of `r` costs at most `|n|·2^(t−23)` units: within the bound while
+/// `|n|·X ≤ 2^(35−t)`, which small triangles meet whatever their shape. Larger numerators (long
+/// thin triangles of small area) are refined: the remainder of that estimate, below 2³⁰, times
+/// `r` gives the rest of the quotient, and one correction makes it the exactly rounded
+/// `⌊(|n|·2⁴⁰ + ⌊area2/2⌋) / area2⌋` — no division. Only areas below 2⁹ (1/128 px²), where
+/// `t > 23`, divide.
 #[derive(Debug, Clone, Copy)]
 struct GradientScale {
     area2: NonZeroU64,
     r: u64,
     shift: u32,
-    /// Largest numerator magnitude the reciprocal serves.
-    limit: u64,
+    /// The plain estimate serves numerators `m` with `m·reach ≤ limit`.
+    limit: u32,
+    reach: u32,
+    /// Half of `2^shift`: rounds the plain estimate.
+    half: u64,
 }
 
 impl GradientScale {
-    /// The scale for numerators up to `max` in magnitude.
+    /// The scale of `area2`, for pixels within `reach` (below 2¹³) of vertex 0.
     #[inline]
-    fn new(area2: NonZeroU64, max: u32) -> Self {
+    fn new(area2: NonZeroU64, reach: u32) -> Self {
         let (area, area2) = (area2, area2.get());
         let (d, shift, limit) = if area2 >> 32 == 0 {
             let t = leading_zeros_32(area2 as u32);
-            // t > 23 only for area2 < 2⁹, where the limit admits no numerator but 0.
-            (
-                (area2 << t) as u32,
-                23u32.saturating_sub(t),
-                (1u64 << 22) >> t,
-            )
+            if t > 23 {
+                // Below 2⁹: every numerator but 0 divides.
+                return GradientScale {
+                    area2: area,
+                    r: 0,
+                    shift: 0,
+                    limit: 0,
+                    reach,
+                    half: 0,
+                };
+            }
+            // 2^(35−t), and every m·reach < 2³² for t < 4.
+            let limit = u32::try_from((1u64 << 35) >> t).unwrap_or(u32::MAX);
+            ((area2 << t) as u32, 23 - t, limit)
         } else {
             // area2 < 2³⁸: at most 6 bits to drop.
             let mut s = 1;
             while area2 >> (32 + s) != 0 {
                 s += 1;
             }
-            ((area2 >> s) as u32, 23 + s, u64::MAX)
+            ((area2 >> s) as u32, 23 + s, u32::MAX)
         };
-        if u64::from(max) > limit {
-            return GradientScale {
-                area2: area,
-                r: 0,
-                shift: 0,
-                limit: 0,
-            };
-        }
         GradientScale {
             area2: area,
             r: reciprocal_63(d),
             shift,
             limit,
+            reach,
+            half: (1u64 << shift) >> 1,
         }
     }
 
-    // One copy for the four gradients (flash on Cortex-M0).
-    #[inline(never)]
+    // One copy for the four gradients on Cortex-M0 (flash); inlined elsewhere.
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
     fn of(&self, n: i32) -> i64 {
-        let m = u64::from(n.unsigned_abs());
-        if m > self.limit {
-            return div_round_64(i64::from(n) << 40, self.area2);
-        }
-        // m < 2¹⁹ and r ≤ 2³²: the product fits.
-        let q =
-            ((mul_u32_u33(m as u32, self.r) + ((1u64 << self.shift) >> 1)) >> self.shift) as i64;
+        let m = n.unsigned_abs();
+        // m < 2¹⁹ and reach < 2¹³: the product fits.
+        let q = if m * self.reach <= self.limit {
+            // m < 2¹⁹ and r ≤ 2³²: the product fits.
+            (mul_u32_u33(m, self.r) + self.half) >> self.shift
+        } else {
+            self.exact(m)
+        };
+        let q = q as i64;
         if crate::arch::CORTEX_M {
             if n < 0 {
                 q.wrapping_neg()
@@ -415,6 +469,27 @@ impl GradientScale {
             let sign = i64::from(n >> 31);
             (q ^ sign).wrapping_sub(sign)
         }
+    }
+
+    /// `⌊(m·2⁴⁰ + ⌊area2/2⌋) / area2⌋` for the numerators the plain estimate does not serve
+    /// (long thin triangles of small area): out of line, so that it costs the common case
+    /// nothing.
+    #[cold]
+    #[inline(never)]
+    fn exact(&self, m: u32) -> u64 {
+        let area2 = self.area2.get();
+        if self.r == 0 {
+            return ((u64::from(m) << 40) + area2 / 2) / self.area2;
+        }
+        // Here 4 ≤ t ≤ 23 (the limit admits every m < 2¹⁹ for smaller t) and area2 < 2^(32−t).
+        // q0 is at most the exact quotient and below it by under m·2^(t−23) + 1, so the
+        // remainder is below (m·2^(t−23) + 3)·area2 < 2³⁰, and rem·r < 2⁶².
+        let q0 = mul_u32_u33(m, self.r) >> self.shift;
+        let rem = (u64::from(m) << 40) + (area2 >> 1) - q0.wrapping_mul(area2);
+        // r·2^(t−63) is 1/area2 rounded down: c is the quotient or one below it.
+        let c = rem.wrapping_mul(self.r) >> (40 + self.shift);
+        let left = rem - c.wrapping_mul(area2);
+        q0 + c + u64::from(left >= area2)
     }
 }
 
@@ -834,20 +909,38 @@ mod tests {
         assert!(checked > 5_000, "{checked}");
     }
 
-    /// The reciprocal gradients are within one unit of the exact quotient, over areas and
-    /// numerators of every magnitude (both sides of the sliver threshold).
+    /// The reciprocal gradients are within their bound of the exact quotient, over areas,
+    /// numerators and reaches of every magnitude (both sides of the refinement threshold), and
+    /// exactly rounded where refined.
     #[test]
     fn gradient_scale_is_within_a_unit() {
         let mut next = crate::random(0x6a09_e667_f3bc_c908);
+        let mut refined = 0;
         for _ in 0..200_000 {
             let area2 = (next() >> (26 + next() % 38)).max(1);
             let n = (next() >> (45 + next() % 19)) as i32 * if next() & 1 == 0 { 1 } else { -1 };
+            let reach = 2 + (next() >> (next() % 64)) as u32 % 4097;
             let area = NonZeroU64::new(area2).unwrap();
-            let got = GradientScale::new(area, n.unsigned_abs()).of(n);
+            let scale = GradientScale::new(area, reach);
+            let got = scale.of(n);
             let exact_times_area = i128::from(n) << 40;
+            // Within 2¹²/reach + 1 units.
             let err = (i128::from(got) * i128::from(area2) - exact_times_area).abs();
-            assert!(err <= i128::from(area2), "n {n}, area2 {area2}: got {got}");
+            let bound = i128::from(area2) * ((1 << 12) + i128::from(reach)) / i128::from(reach);
+            assert!(
+                err <= bound,
+                "n {n}, area2 {area2}, reach {reach}: got {got}"
+            );
+            if n.unsigned_abs() * reach > scale.limit {
+                // Refined (or divided): exactly rounded, halves away from zero.
+                let d = i128::from(area2);
+                let rounded = ((i128::from(n.unsigned_abs()) << 40) + d / 2) / d;
+                let want = if n < 0 { -rounded } else { rounded };
+                assert_eq!(i128::from(got), want, "n {n}, area2 {area2}");
+                refined += 1;
+            }
         }
+        assert!(refined > 20_000, "{refined}");
     }
 
     #[test]

@@ -11,6 +11,7 @@
 //! * [`meshes`] — meshes in flash (an icosphere and a torus) and, on the host, mesh data to
 //!   generate them; [`obj`] reads Wavefront OBJ files (host).
 
+mod clip;
 mod depth;
 mod math;
 mod mesh;
@@ -19,11 +20,13 @@ pub mod meshes;
 pub mod obj;
 mod pipeline;
 mod shading;
+mod vertex;
 
 pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use math::{inv_sqrt, normalize_wide, Angle, Mat4, Scalar, Vec3, Vec4, SCALAR_BITS};
 pub use mesh::Mesh;
-pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, GUARD_BAND};
+pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Light, Material, QuadraticNormals, Shading,
 };
+pub use vertex::ProjectedVertex;

@@ -1,32 +1,29 @@
-//! A fixed-point 3D pipeline: transform, clip, project, cull, and depth-tested shading of meshes
-//! stored in flash.
+//! A fixed-point 3D pipeline: meshes transformed, clipped, projected, culled, lit and drawn with
+//! a 16-bit z-buffer.
 //!
-//! Per triangle of a [`Mesh`]:
+//! A draw runs in two stages:
 //!
-//! 1. **Transform** the three model-space vertices by the model-view-projection matrix
-//!    ([`Mat4`], `I16F16` with `i64` accumulation) into homogeneous clip space.
-//! 2. **Clip** in clip space, before any division: triangles wholly outside one plane are
-//!    dropped; triangles crossing one are clipped (Sutherland–Hodgman into a
-//!    `heapless::Vec`) against the near plane `z ≥ −w`, the far plane `z ≤ w`, `w ≥ 2⁻⁸`, and a
-//!    guard band `|x|, |y| ≤ 64·w` that keeps every projected vertex well inside [`Coord`]. The
-//!    intersection on an edge is always computed from its inside end, so two triangles sharing an
-//!    edge get bit-identical clipped vertices and stay watertight.
-//! 3. **Project**: one division per vertex (`2^46 / w`), then the viewport mapping to sub-pixel
-//!    [`Coord`]s and a 16-bit depth `(1 + z/w)/2 · 65534` (0 at the near plane).
-//! 4. **Cull** by the sign of the exact doubled screen-space area of the projected polygon
-//!    (`i128` from the `Coord` vertices). Front faces are counter-clockwise in normalised device
-//!    coordinates (y up), as in OpenGL; on screen (y down) that is a negative area.
-//! 5. **Shade and fill** (see [`shading`](super::shading)): flat, Gouraud or per-pixel quadratic
-//!    normals, with the z-buffer tested and written per pixel (smaller is nearer).
+//! 1. **Vertices** ([`vertex`](super::vertex)): each mesh vertex is transformed by the
+//!    model-view-projection matrix into clip space, classified against the view volume (near and
+//!    far planes, `w ≥ 2⁻⁸`, a guard band reaching about 1000 px from the viewport's centre),
+//!    projected to sub-pixel [`Coord`]s and a 16-bit depth `(1 + z/w)/2 · 65534` (0 at the near
+//!    plane), and lit (Gouraud). With a scratch slice ([`Pipeline::draw_mesh_with`], one
+//!    [`ProjectedVertex`] of 16 bytes per mesh vertex) this happens once per vertex; without one
+//!    ([`Pipeline::draw_mesh`]), once per face using it — the same bits either way.
+//! 2. **Faces**: a face with all three vertices inside the volume (almost all of them) is culled by
+//!    the sign of its exact doubled screen area and handed to the raster core; its bounding box
+//!    is under 2048 px, so the 32-bit set-up takes it. A face outside one plane is dropped; a face
+//!    crossing one is clipped in clip space ([`clip`](super::clip), watertight) and drawn as a fan.
+//!    Fills: flat, Gouraud (the light level interpolated, the material colour looked up at 256
+//!    levels) or per-pixel quadratic normals ([`shading`](super::shading)), the depth test and
+//!    write in the span loop (smaller is nearer).
 //!
-//! Each face transforms its own three vertices, so nothing proportional to the mesh is kept in
-//! RAM (shared vertices are transformed once per face using them, about twice on closed meshes).
+//! Front faces are counter-clockwise in normalised device coordinates (y up), as in OpenGL; on
+//! screen (y down) that is a negative area. Normals are transformed by
+//! [`Pipeline::normal_matrix`] (the model matrix by default, exact for rotations); the light is
+//! given in the same (world) space. Attributes are interpolated affinely in screen space (no
+//! perspective correction); depth, being `z/w`, is affine in screen space and therefore exact.
 //! All state lives on the stack: the clipped polygon holds at most 10 vertices.
-//!
-//! Normals are transformed by [`Pipeline::normal_matrix`] (the model matrix by default, exact for
-//! rotations with uniform scale) and renormalised; the light is given in the same (world) space.
-//! Attributes are interpolated affinely in screen space (no perspective correction); depth,
-//! being `z/w`, is affine in screen space and therefore exact.
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
@@ -62,28 +59,18 @@
 //! assert_eq!(target.framebuffer().get(32, 24), Some(Rgb565::WHITE));
 //! ```
 
-use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use heapless::Vec as HVec;
 
-use super::depth::{DepthTarget, ScreenVertex, DEPTH_FAR};
-use super::math::{normalize_wide, sat32, Mat4, Scalar, Vec3, Vec4};
+use super::clip::{ClipVertex, Polygon};
+use super::depth::{DepthTarget, ScreenVertex};
+use super::math::{normalize_wide, Mat4, Vec3, Vec4};
 use super::mesh::Mesh;
-use super::shading::{self, shade, Bary, Light, Material, QuadraticNormals, Shading, BARY_ONE};
+use super::shading::{
+    self, Bary, Light, Material, QuadraticNormals, ShadeTable, Shading, TargetClip, BARY_ONE,
+};
+use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
-
-/// Guard-band factor: clip space is clipped to `|x|, |y| ≤ GUARD_BAND·w`.
-pub const GUARD_BAND: i64 = 64;
-
-/// Smallest `w` kept by clipping (raw `I16F16`, 2⁻⁸).
-const W_MIN: i64 = 256;
-
-/// Number of clip planes.
-const PLANES: usize = 7;
-
-/// Largest viewport side used for the mapping; larger viewports are treated as this size.
-const MAX_VIEWPORT: i64 = 65_535;
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -112,89 +99,6 @@ pub struct DrawStats {
     pub degenerate: u32,
 }
 
-/// A clip-space vertex with its barycentric coordinates in the original triangle.
-#[derive(Debug, Clone, Copy)]
-struct ClipVertex {
-    /// Raw `I16F16` `[x, y, z, w]`.
-    p: [i32; 4],
-    bary: Bary,
-}
-
-/// Up to 3 + [`PLANES`] vertices.
-type Polygon = HVec<ClipVertex, 12>;
-
-/// Signed distance of `p` to clip plane `k` (inside where `≥ 0`), in raw units.
-#[inline]
-fn plane_distance(k: usize, p: &[i32; 4]) -> i64 {
-    let [x, y, z, w] = p.map(i64::from);
-    match k {
-        0 => z + w,
-        1 => w - z,
-        2 => w - W_MIN,
-        3 => GUARD_BAND * w - x,
-        4 => GUARD_BAND * w + x,
-        5 => GUARD_BAND * w - y,
-        _ => GUARD_BAND * w + y,
-    }
-}
-
-/// Bit `k` is set when `p` is outside plane `k`.
-#[inline]
-fn outcode(p: &[i32; 4]) -> u8 {
-    (0..PLANES).fold(0, |code, k| {
-        code | (u8::from(plane_distance(k, p) < 0) << k)
-    })
-}
-
-/// The point where the edge from `inside` (distance `di ≥ 0`) to `outside` (`d_o < 0`) crosses
-/// the plane. Always evaluated from the inside end, so both triangles sharing the edge agree.
-fn intersect(inside: &ClipVertex, di: i64, outside: &ClipVertex, d_o: i64) -> ClipVertex {
-    let den = di - d_o;
-    // t = di / den with 30 fractional bits; shift both down so that di·2^30 fits.
-    let s = (64 - den.leading_zeros()).saturating_sub(32);
-    let (n, d) = (di >> s, (den >> s).max(1));
-    let t = ((n << 30) / d).clamp(0, 1 << 30);
-    let lerp = |a: i32, b: i32| {
-        let (a, b) = (i64::from(a), i64::from(b));
-        sat32(a + (((b - a) * t + (1 << 29)) >> 30))
-    };
-    ClipVertex {
-        p: [0, 1, 2, 3].map(|k| lerp(inside.p[k], outside.p[k])),
-        bary: [0, 1, 2].map(|k| lerp(inside.bary[k], outside.bary[k])),
-    }
-}
-
-/// Clips `poly` against every plane (Sutherland–Hodgman). Returns `false` if nothing is left.
-fn clip_polygon(poly: &mut Polygon) -> bool {
-    let mut out = Polygon::new();
-    for k in 0..PLANES {
-        out.clear();
-        let n = poly.len();
-        for i in 0..n {
-            let (Some(a), Some(b)) = (poly.get(i), poly.get((i + 1) % n)) else {
-                continue;
-            };
-            let (da, db) = (plane_distance(k, &a.p), plane_distance(k, &b.p));
-            if da >= 0 {
-                let _ = out.push(*a);
-            }
-            if (da >= 0) != (db >= 0) {
-                let v = if da >= 0 {
-                    intersect(a, da, b, db)
-                } else {
-                    intersect(b, db, a, da)
-                };
-                let _ = out.push(v);
-            }
-        }
-        core::mem::swap(poly, &mut out);
-        if poly.len() < 3 {
-            return false;
-        }
-    }
-    true
-}
-
 /// Doubled signed area of a screen triangle in squared sub-pixel units (positive when clockwise
 /// on screen, i.e. counter-clockwise with y up).
 pub fn signed_area2(v: [(Coord, Coord); 3]) -> i128 {
@@ -220,6 +124,16 @@ pub struct Pipeline {
     pub light: Light,
 }
 
+/// [`Pipeline::draw_mesh_with`]'s scratch slice has fewer entries than the mesh has vertices;
+/// nothing was drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ScratchTooSmall {
+    /// Entries the mesh needs: one per vertex.
+    pub needed: usize,
+    /// Entries given.
+    pub given: usize,
+}
+
 impl Pipeline {
     /// A pipeline drawing meshes placed by `model` through the camera `view_projection`
     /// (projection · view) into `viewport`, culling back faces. Normals are transformed by
@@ -242,31 +156,18 @@ impl Pipeline {
     /// The screen position and depth of a clip-space point inside the view volume (within the
     /// near and far planes and the guard band), or `None` if it is outside.
     pub fn project(&self, clip: Vec4) -> Option<ScreenVertex> {
-        (outcode(&clip.to_bits()) == 0).then(|| self.project_raw(&clip.to_bits()))
+        let stage = self.stage(0, None);
+        let p = clip.to_bits();
+        (stage.volume.outcode(&p) == 0).then(|| stage.project(&p))
     }
 
-    /// Perspective divide and viewport mapping of a point (assumed inside the view volume).
-    fn project_raw(&self, p: &[i32; 4]) -> ScreenVertex {
-        let [x, y, z, w] = p.map(i64::from);
-        let r = (1i64 << 46) / w.max(1);
-        // Normalised device coordinates with 30 fractional bits.
-        let ndc = |c: i64| c.saturating_mul(r) >> 16;
-        let width = i64::from(self.viewport.size.width).min(MAX_VIEWPORT);
-        let height = i64::from(self.viewport.size.height).min(MAX_VIEWPORT);
-        let half_w = width * 128;
-        let half_h = height * 128;
-        let x0 = i64::from(self.viewport.top_left.x) * 256 + half_w;
-        let y0 = i64::from(self.viewport.top_left.y) * 256 + half_h;
-        let map = |centre: i64, half: i64, n: i64| {
-            let off = (half.saturating_mul(n).saturating_add(1 << 29)) >> 30;
-            Coord::from_bits(sat32(centre.saturating_add(off)))
-        };
-        let depth = 32767 + ((32767 * ndc(z).clamp(-(1 << 31), 1 << 31) + (1 << 29)) >> 30);
-        ScreenVertex {
-            x: map(x0, half_w, ndc(x)),
-            y: map(y0, half_h, -ndc(y)),
-            depth: depth.clamp(0, i64::from(DEPTH_FAR)) as u16,
-        }
+    /// The vertex stage of one draw, for positions within `bound` (raw) of the origin on each
+    /// axis.
+    fn stage(&self, bound: u32, light: Option<VertexLight>) -> VertexStage {
+        let size = self.viewport.size;
+        let corner = self.viewport.top_left;
+        let viewport = ((corner.x, corner.y), (size.width, size.height));
+        VertexStage::new(&self.mvp, bound, viewport, light)
     }
 
     /// The unit world-space normal of a model-space normal.
@@ -277,15 +178,17 @@ impl Pipeline {
     }
 
     /// Draws every triangle of `mesh` with `material` into `target`, depth-tested, clipped to the
-    /// viewport and the target.
+    /// viewport and the target, transforming each vertex once per face that uses it (no memory
+    /// per vertex). [`draw_mesh_with`](Self::draw_mesh_with) transforms each vertex once; both
+    /// draw the same pixels.
     pub fn draw_mesh<C: GouraudColor>(
         &self,
         mesh: &Mesh<'_>,
         material: &Material<C>,
         target: &mut DepthTarget<'_, C>,
     ) -> DrawStats {
+        let frame = Frame::new(self, mesh, material, target);
         let mut stats = DrawStats::default();
-        let clip = self.viewport.intersection(&target.bounding_box());
         for face in mesh.indices {
             let idx = face.map(usize::from);
             let (Some(a), Some(b), Some(c)) = (
@@ -297,50 +200,258 @@ impl Pipeline {
                 continue;
             };
             let model = [*a, *b, *c];
-            self.draw_face(mesh, &idx, &model, material, &clip, target, &mut stats);
+            let projected = [0, 1, 2].map(|k| frame.vertex(mesh, idx[k], model[k]));
+            frame.face(mesh, &idx, &model, &projected, target, &mut stats);
         }
         stats
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn draw_face<C: GouraudColor>(
+    /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed, projected and lit once, into
+    /// `scratch` (at least one entry per mesh vertex: [`ProjectedVertex`] is 16 bytes, so a
+    /// 3,000-vertex mesh needs 48 KB). The same pixels as `draw_mesh`; `Err` without drawing
+    /// anything if `scratch` is too short.
+    pub fn draw_mesh_with<C: GouraudColor>(
+        &self,
+        mesh: &Mesh<'_>,
+        material: &Material<C>,
+        target: &mut DepthTarget<'_, C>,
+        scratch: &mut [ProjectedVertex],
+    ) -> Result<DrawStats, ScratchTooSmall> {
+        let needed = mesh.vertices.len();
+        let given = scratch.len();
+        let scratch = scratch
+            .get_mut(..needed)
+            .ok_or(ScratchTooSmall { needed, given })?;
+        let frame = Frame::new(self, mesh, material, target);
+        for (k, (out, p)) in scratch.iter_mut().zip(mesh.vertices).enumerate() {
+            *out = frame.vertex(mesh, k, *p);
+        }
+        let scratch = &*scratch;
+        let mut stats = DrawStats::default();
+        for face in mesh.indices {
+            let idx = face.map(usize::from);
+            let (Some(a), Some(b), Some(c)) = (
+                scratch.get(idx[0]),
+                scratch.get(idx[1]),
+                scratch.get(idx[2]),
+            ) else {
+                stats.degenerate += 1;
+                continue;
+            };
+            let projected = [*a, *b, *c];
+            // In range: the scratch has one entry per vertex.
+            let model = idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+            frame.face(mesh, &idx, &model, &projected, target, &mut stats);
+        }
+        Ok(stats)
+    }
+}
+
+/// A bound on the magnitude of every raw coordinate of `positions`: the OR of them all (at
+/// least each, under twice the largest).
+fn bound(positions: &[Vec3]) -> u32 {
+    positions.iter().fold(0, |bits, p| {
+        let [x, y, z] = p.to_bits().map(i32::unsigned_abs);
+        bits | x | y | z
+    })
+}
+
+/// How a draw colours its faces.
+enum Fill<C> {
+    /// The material colour.
+    Unlit(C),
+    /// One level per face.
+    Flat(ShadeTable<C>),
+    /// Levels per vertex, interpolated.
+    Gouraud(ShadeTable<C>),
+    /// Per-pixel lighting of the quadratic normal field.
+    Quadratic(C),
+}
+
+/// The state of one draw: the vertex stage, the clip rectangle and the fill.
+struct Frame<'p, C> {
+    pipeline: &'p Pipeline,
+    stage: VertexStage,
+    light: VertexLight,
+    clip: TargetClip,
+    fill: Fill<C>,
+}
+
+impl<'p, C: GouraudColor> Frame<'p, C> {
+    fn new(
+        pipeline: &'p Pipeline,
+        mesh: &Mesh<'_>,
+        material: &Material<C>,
+        target: &DepthTarget<'_, C>,
+    ) -> Self {
+        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
+        let color = material.color;
+        let (fill, vertex_light) = match material.shading {
+            Shading::Unlit => (Fill::Unlit(color), None),
+            Shading::Flat => (Fill::Flat(ShadeTable::new(color)), None),
+            Shading::Gouraud => (Fill::Gouraud(ShadeTable::new(color)), Some(light)),
+            Shading::Quadratic => (Fill::Quadratic(color), None),
+        };
+        Frame {
+            pipeline,
+            stage: pipeline.stage(bound(mesh.vertices), vertex_light),
+            light,
+            clip: TargetClip::new(&pipeline.viewport, target),
+            fill,
+        }
+    }
+
+    /// Vertex `k` of `mesh`, at `p`.
+    #[inline(always)]
+    fn vertex(&self, mesh: &Mesh<'_>, k: usize, p: Vec3) -> ProjectedVertex {
+        self.stage.vertex(p, mesh.normals.get(k))
+    }
+
+    /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
+    fn face_level(&self, model: &[Vec3; 3]) -> u16 {
+        let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
+        self.light.level(normalize_wide(e1.cross_wide(e2)))
+    }
+
+    /// The face's unit world-space normals at its vertices, for the quadratic field.
+    fn world_normals(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [Vec3; 3] {
+        let pipeline = self.pipeline;
+        let face = || {
+            let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
+            pipeline.world_normal(normalize_wide(e1.cross_wide(e2)))
+        };
+        idx.map(|i| {
+            mesh.normals
+                .get(i)
+                .map_or_else(face, |n| pipeline.world_normal(*n))
+        })
+    }
+
+    /// Draws the face `idx` at `model` with its projected vertices `v`.
+    #[inline(always)]
+    fn face(
         &self,
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
         model: &[Vec3; 3],
-        material: &Material<C>,
-        clip: &Rectangle,
+        v: &[ProjectedVertex; 3],
         target: &mut DepthTarget<'_, C>,
         stats: &mut DrawStats,
     ) {
-        let corners = [0, 1, 2].map(|k| {
-            let mut bary = [0; 3];
-            bary[k] = BARY_ONE;
-            ClipVertex {
-                p: self.clip_position(model[k]).to_bits(),
-                bary,
-            }
-        });
-        let codes = corners.map(|v| outcode(&v.p));
+        let codes = v.map(|v| v.outside());
         if codes[0] & codes[1] & codes[2] != 0 {
             stats.rejected += 1;
             return;
         }
-        let mut poly = Polygon::new();
-        for v in corners {
-            let _ = poly.push(v);
+        if codes[0] | codes[1] | codes[2] != 0 {
+            self.clipped_face(mesh, idx, model, v, target, stats);
+            return;
         }
-        let clipped = codes[0] | codes[1] | codes[2] != 0;
-        if clipped {
-            stats.clipped += 1;
-            if !clip_polygon(&mut poly) {
-                stats.rejected += 1;
-                return;
+        // Inside the guard band every coordinate is within 2²⁴ sub-pixels of the viewport's
+        // centre (or saturated towards it): the products fit i64.
+        let [p0, p1, p2] = v.map(|v| v.position_bits());
+        let d = |a: i32, b: i32| i64::from(a) - i64::from(b);
+        let area = d(p1.0, p0.0) * d(p2.1, p0.1) - d(p2.0, p0.0) * d(p1.1, p0.1);
+        if area == 0 {
+            stats.degenerate += 1;
+            return;
+        }
+        if !self.keeps(area < 0) {
+            stats.culled += 1;
+            return;
+        }
+        stats.drawn += 1;
+        let tri = v.map(|v| v.screen());
+        let levels = || {
+            let face = v.iter().all(|v| v.has_normal()).then_some(0);
+            let face = face.unwrap_or_else(|| self.face_level(model));
+            v.map(|v| if v.has_normal() { v.level() } else { face })
+        };
+        self.fill(mesh, idx, model, &tri, levels, None, target);
+    }
+
+    /// Whether a face that is `front`-facing is drawn.
+    #[inline(always)]
+    fn keeps(&self, front: bool) -> bool {
+        match self.pipeline.cull {
+            Cull::None => true,
+            Cull::Back => front,
+            Cull::Front => !front,
+        }
+    }
+
+    /// Fills one screen triangle of the face; `bary` places its vertices in the face (clipped
+    /// faces' fans).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn fill(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: &[Vec3; 3],
+        tri: &[ScreenVertex; 3],
+        levels: impl FnOnce() -> [u16; 3],
+        bary: Option<[Bary; 3]>,
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let clip = &self.clip;
+        match &self.fill {
+            Fill::Unlit(color) => shading::fill_flat(target, clip, tri, *color),
+            Fill::Flat(table) => {
+                let level = self.face_level(model);
+                shading::fill_flat(target, clip, tri, table.at(level));
+            }
+            Fill::Gouraud(table) => {
+                let levels = levels();
+                let levels = match bary {
+                    None => levels,
+                    Some(bary) => bary.map(|b| {
+                        let l: i64 = (0..3).map(|k| i64::from(b[k]) * i64::from(levels[k])).sum();
+                        ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
+                    }),
+                };
+                shading::draw_levels(target, clip, tri, levels, table);
+            }
+            Fill::Quadratic(color) => {
+                let normals = QuadraticNormals::new(self.world_normals(mesh, idx, model));
+                let normals = match bary {
+                    None => normals,
+                    Some(bary) => normals.restricted(bary),
+                };
+                let light = &self.pipeline.light;
+                shading::fill_quadratic(target, clip, tri, &normals, light, *color);
             }
         }
-        let mut screen: HVec<(ScreenVertex, Bary), 12> = HVec::new();
-        for v in &poly {
-            let _ = screen.push((self.project_raw(&v.p), v.bary));
+    }
+
+    /// A face crossing the view volume's boundary: clipped in clip space and drawn as a fan.
+    #[inline(never)]
+    fn clipped_face(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: &[Vec3; 3],
+        v: &[ProjectedVertex; 3],
+        target: &mut DepthTarget<'_, C>,
+        stats: &mut DrawStats,
+    ) {
+        stats.clipped += 1;
+        let mut poly = Polygon::new();
+        for (k, p) in model.iter().enumerate() {
+            let mut bary = [0; 3];
+            bary[k] = BARY_ONE;
+            let _ = poly.push(ClipVertex {
+                p: self.stage.clip_position(*p),
+                bary,
+            });
+        }
+        if !self.stage.volume.clip(&mut poly) {
+            stats.rejected += 1;
+            return;
+        }
+        let mut screen: heapless::Vec<(ScreenVertex, Bary), 12> = heapless::Vec::new();
+        for c in &poly {
+            let _ = screen.push((self.stage.project(&c.p), c.bary));
         }
         // Orientation of the whole (convex) polygon: the sum of its fan's areas.
         let area: i128 = (1..screen.len().saturating_sub(1))
@@ -357,35 +468,14 @@ impl Pipeline {
             stats.degenerate += 1;
             return;
         }
-        let front = area < 0;
-        if (self.cull == Cull::Back && !front) || (self.cull == Cull::Front && front) {
+        if !self.keeps(area < 0) {
             stats.culled += 1;
             return;
         }
         stats.drawn += 1;
-
-        // Shading inputs of the original triangle.
-        let face_normal = || {
-            let e1 = model[1] - model[0];
-            let e2 = model[2] - model[0];
-            self.world_normal(normalize_wide(e1.cross_wide(e2)))
-        };
-        let vertex_normals = || {
-            let face = face_normal();
-            idx.map(|i| mesh.normals.get(i).map_or(face, |n| self.world_normal(*n)))
-        };
-        enum Fill<C> {
-            Solid(C),
-            Levels([Scalar; 3]),
-            Normals(QuadraticNormals),
-        }
-        let fill = match material.shading {
-            Shading::Unlit => Fill::Solid(material.color),
-            Shading::Flat => Fill::Solid(shade(material.color, self.light.level(face_normal()))),
-            Shading::Gouraud => Fill::Levels(vertex_normals().map(|n| self.light.level(n))),
-            Shading::Quadratic => Fill::Normals(QuadraticNormals::new(vertex_normals())),
-        };
-
+        let face = v.iter().all(|v| v.has_normal()).then_some(0);
+        let face = face.unwrap_or_else(|| self.face_level(model));
+        let levels = v.map(|v| if v.has_normal() { v.level() } else { face });
         for k in 1..screen.len().saturating_sub(1) {
             let (Some(s0), Some(s1), Some(s2)) = (screen.first(), screen.get(k), screen.get(k + 1))
             else {
@@ -393,86 +483,7 @@ impl Pipeline {
             };
             let tri = [s0.0, s1.0, s2.0];
             let bary = [s0.1, s1.1, s2.1];
-            match &fill {
-                Fill::Solid(color) => shading::draw_flat(target, clip, &tri, *color),
-                Fill::Levels(levels) => {
-                    let colors = bary.map(|b| {
-                        let l: i64 = b
-                            .iter()
-                            .zip(levels.iter())
-                            .map(|(b, l)| i64::from(*b) * i64::from(l.to_bits()))
-                            .sum();
-                        shade(
-                            material.color,
-                            Scalar::from_bits(sat32((l + (1 << 29)) >> 30)),
-                        )
-                    });
-                    shading::draw_gouraud(target, clip, &tri, colors);
-                }
-                Fill::Normals(normals) => {
-                    let normals = if clipped {
-                        normals.restricted(bary)
-                    } else {
-                        *normals
-                    };
-                    shading::draw_quadratic(
-                        target,
-                        clip,
-                        &tri,
-                        &normals,
-                        &self.light,
-                        material.color,
-                    );
-                }
-            }
+            self.fill(mesh, idx, model, &tri, || levels, Some(bary), target);
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn cv(p: [i32; 4]) -> ClipVertex {
-        ClipVertex { p, bary: [0; 3] }
-    }
-
-    #[test]
-    fn clipping_is_symmetric_in_edge_direction() {
-        let a = cv([1 << 16, 2 << 16, -5 << 16, 3 << 16]);
-        let b = cv([-3 << 16, 1 << 16, 2 << 16, 1 << 15]);
-        let mut p1 = Polygon::new();
-        let mut p2 = Polygon::new();
-        for v in [a, b, cv([0, 0, 0, 2 << 16])] {
-            let _ = p1.push(v);
-        }
-        for v in [b, a, cv([1 << 16, -(1 << 16), 0, 2 << 16])] {
-            let _ = p2.push(v);
-        }
-        assert!(clip_polygon(&mut p1) && clip_polygon(&mut p2));
-        let on_near = |p: &Polygon| {
-            let mut v: std::vec::Vec<[i32; 4]> = p
-                .iter()
-                .map(|v| v.p)
-                .filter(|p| plane_distance(0, p).abs() <= 2)
-                .collect();
-            v.sort();
-            v
-        };
-        extern crate std;
-        assert!(!on_near(&p1).is_empty());
-        let shared: std::vec::Vec<_> = on_near(&p1)
-            .into_iter()
-            .filter(|p| on_near(&p2).contains(p))
-            .collect();
-        assert_eq!(shared.len(), 1);
-    }
-
-    #[test]
-    fn outcodes() {
-        assert_eq!(outcode(&[0, 0, 0, 1 << 16]), 0);
-        assert_eq!(outcode(&[0, 0, -(2 << 16), 1 << 16]), 1);
-        assert_eq!(outcode(&[0, 0, 2 << 16, 1 << 16]), 2);
-        assert_eq!(outcode(&[65 << 16, 0, 0, 1 << 16]), 1 << 3);
     }
 }

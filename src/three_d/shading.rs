@@ -425,23 +425,39 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     }
 }
 
+/// A clip rectangle inside a target's bounds: what the fills draw within. The pipeline makes one
+/// per draw; the public fills one per call.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TargetClip(Rectangle);
+
+impl TargetClip {
+    /// The part of `clip` inside `target`.
+    pub(crate) fn new<C: PixelColor>(clip: &Rectangle, target: &DepthTarget<'_, C>) -> Self {
+        TargetClip(clip.intersection(&target.bounding_box()))
+    }
+}
+
 /// Draws the depth-tested triangle `vertices` with `attributes` (the depth first) and `pixel`,
-/// inside `clip` and the target.
+/// inside `clip`.
 #[inline(always)]
 fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, const N: usize>(
     target: &mut DepthTarget<'_, C>,
-    clip: &Rectangle,
+    clip: &TargetClip,
     vertices: &[ScreenVertex; 3],
     attributes: &Attributes<N>,
     pixel: P,
 ) {
-    let clip = clip.intersection(&target.bounding_box());
     let mut fill = DepthFill {
         target,
         step: [0; N],
         pixel,
     };
-    raster::shade(vertices.map(|v| v.position()), attributes, &clip, &mut fill);
+    raster::shade(
+        vertices.map(|v| v.position()),
+        attributes,
+        &clip.0,
+        &mut fill,
+    );
 }
 
 /// One colour.
@@ -536,11 +552,75 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
     }
 }
 
+/// A material colour at the 256 light levels of a Gouraud-lit mesh: `table[i]` is
+/// `shade(color, i/255)`. Built once per draw.
+pub(crate) struct ShadeTable<C> {
+    colors: [C; 256],
+}
+
+impl<C: GouraudColor> ShadeTable<C> {
+    /// The levels of `color`.
+    pub(crate) fn new(color: C) -> Self {
+        let base = color.channels();
+        ShadeTable {
+            colors: core::array::from_fn(|i| {
+                // i/255 with 16 fractional bits, rounded.
+                let level = ((i as u32) * 65536 + 127) / 255;
+                scale_channels::<C>(base, level)
+            }),
+        }
+    }
+
+    /// The colour at `level` (8.8 fixed point of the 0–255 scale), rounded to the nearest of the
+    /// 256.
+    #[inline(always)]
+    pub(crate) fn at(&self, level: u16) -> C {
+        let index = ((u32::from(level) + 128) >> 8).min(255);
+        self.colors[index as usize]
+    }
+}
+
+/// The colour at the interpolated light level (attribute 1).
+struct Leveled<'t, C>(&'t [C; 256]);
+
+impl<C: Copy> DepthPixel<C, 2> for Leveled<'_, C> {
+    #[inline(always)]
+    fn color(&mut self, values: &[u32; 2]) -> C {
+        // 8.24 of the 0–255 scale, +½: the nearest level.
+        self.0[(values[1] >> STEP_BITS_PLANES) as u8 as usize]
+    }
+}
+
+/// Fills the triangle with the material colour of `table` at the light levels `levels`
+/// (8.8 fixed point of the 0–255 scale, per vertex) interpolated across it, depth-tested: the
+/// pipeline's Gouraud fill.
+pub(crate) fn draw_levels<C: PixelColor>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip,
+    vertices: &[ScreenVertex; 3],
+    levels: [u16; 3],
+    table: &ShadeTable<C>,
+) {
+    let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
+    depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
+}
+
 /// Fills the triangle with `color` where it is nearer than the z-buffer, inside `clip` and the
 /// target. Depth is interpolated from the vertex depths.
 pub fn draw_flat<C: PixelColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &Rectangle,
+    vertices: &[ScreenVertex; 3],
+    color: C,
+) {
+    let clip = TargetClip::new(clip, target);
+    fill_flat(target, &clip, vertices, color);
+}
+
+/// [`draw_flat`] inside a clip already within the target.
+pub(crate) fn fill_flat<C: PixelColor>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip,
     vertices: &[ScreenVertex; 3],
     color: C,
 ) {
@@ -564,7 +644,8 @@ pub fn draw_gouraud<C: GouraudColor>(
         steps,
         current: colors[0],
     };
-    depth_fill(target, clip, vertices, &attributes, smooth);
+    let clip = TargetClip::new(clip, target);
+    depth_fill(target, &clip, vertices, &attributes, smooth);
 }
 
 /// Fills the triangle with per-pixel Lambert lighting of the quadratic normal field `normals`
@@ -573,6 +654,19 @@ pub fn draw_gouraud<C: GouraudColor>(
 pub fn draw_quadratic<C: GouraudColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &Rectangle,
+    vertices: &[ScreenVertex; 3],
+    normals: &QuadraticNormals,
+    light: &Light,
+    color: C,
+) {
+    let clip = TargetClip::new(clip, target);
+    fill_quadratic(target, &clip, vertices, normals, light, color);
+}
+
+/// [`draw_quadratic`] inside a clip already within the target.
+pub(crate) fn fill_quadratic<C: GouraudColor>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip,
     vertices: &[ScreenVertex; 3],
     normals: &QuadraticNormals,
     light: &Light,

@@ -1,0 +1,355 @@
+//! The vertex stage: each mesh vertex transformed to clip space, classified against the view
+//! volume, projected and lit — once per draw when the caller gives the pipeline a scratch slice
+//! ([`ProjectedVertex`], 16 bytes a vertex), once per face using it otherwise. Both give the same
+//! bits, so the frame does not depend on the choice.
+//!
+//! * **Transform**: the model-view-projection matrix times `(p, 1)` with `i64` accumulation. When
+//!   the matrix and the mesh's largest coordinate (found once per draw) keep every sum below 2⁴⁶
+//!   (any real camera and model), the products are summed without checks; otherwise through
+//!   [`Mat4::transform_point`]'s saturating sums (the same result whenever nothing saturates).
+//! * **Project**: one exact 32-bit reciprocal of `w` ([`reciprocal_63`]: a division on 64-bit
+//!   hosts, two Newton steps and a correction on Cortex-M — the same integer everywhere), then
+//!   one product per coordinate to sub-pixels (within ½ sub-pixel + 2⁻⁷ of the exact quotient)
+//!   and to a 16-bit depth.
+//! * **Light** (Gouraud): when the normal matrix is a rotation (`RᵀR = I` within 2⁻¹², checked
+//!   once per draw), unit model normals stay unit, so the light is turned into model space once
+//!   (`Rᵀl`) and each vertex costs one 3-term dot product of 14-bit components: the diffuse
+//!   term is within 2⁻¹² of the exact one. Other normal matrices transform and renormalise each
+//!   normal ([`normalize_wide`]).
+
+use super::clip::{ClipVolume, W_MIN};
+use super::depth::{ScreenVertex, DEPTH_FAR};
+use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
+use super::shading::Light;
+use crate::fixed_point::Coord;
+use crate::raster::arith::{leading_zeros_32, reciprocal_63};
+
+/// Largest viewport side used for the mapping; larger viewports are treated as this size.
+const MAX_VIEWPORT: i64 = 65_535;
+
+/// Set in [`ProjectedVertex`]'s code when the mesh has no normal for the vertex: its light level
+/// comes from the face.
+pub(crate) const NO_NORMAL: u8 = 1 << 7;
+
+/// A mesh vertex as one draw transformed, projected and lit it: the element of the scratch slice
+/// of [`Pipeline::draw_mesh_with`](super::Pipeline::draw_mesh_with) (16 bytes). Its contents are
+/// private to the pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct ProjectedVertex {
+    /// Sub-pixel screen position (valid when the vertex is inside the view volume).
+    x: i32,
+    y: i32,
+    depth: u16,
+    /// Light level, 8.8 fixed point of the 0–255 scale (Gouraud only).
+    level: u16,
+    /// Outside which clip planes (bit `k` for plane `k`), and [`NO_NORMAL`].
+    code: u8,
+}
+
+impl ProjectedVertex {
+    /// An entry for a scratch array: `[ProjectedVertex::EMPTY; N]`.
+    pub const EMPTY: ProjectedVertex = ProjectedVertex {
+        x: 0,
+        y: 0,
+        depth: 0,
+        level: 0,
+        code: 0,
+    };
+
+    /// The clip planes the vertex is outside of (0: inside the view volume).
+    #[inline(always)]
+    pub(crate) fn outside(&self) -> u8 {
+        self.code & !NO_NORMAL
+    }
+
+    /// Whether the mesh has a normal for this vertex.
+    #[inline(always)]
+    pub(crate) fn has_normal(&self) -> bool {
+        self.code & NO_NORMAL == 0
+    }
+
+    /// Position and depth (meaningful when [`outside`](Self::outside) is 0).
+    #[inline(always)]
+    pub(crate) fn screen(&self) -> ScreenVertex {
+        ScreenVertex::new(
+            Coord::from_bits(self.x),
+            Coord::from_bits(self.y),
+            self.depth,
+        )
+    }
+
+    /// Raw sub-pixel position.
+    #[inline(always)]
+    pub(crate) fn position_bits(&self) -> (i32, i32) {
+        (self.x, self.y)
+    }
+
+    /// The Gouraud light level (8.8 of the 0–255 scale).
+    #[inline(always)]
+    pub(crate) fn level(&self) -> u16 {
+        self.level
+    }
+}
+
+/// The light of one draw, ready for per-vertex levels.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct VertexLight {
+    /// The light direction in the space the normals are dotted in (model space when
+    /// `rotation`, world space otherwise), 14 fractional bits, components within ±2¹⁴.
+    direction: [i32; 3],
+    /// The normal matrix's 3×3 block (raw), for normal matrices that are not rotations.
+    normal_matrix: Option<[[i32; 3]; 3]>,
+    /// The ambient level, 16 fractional bits, in `[0, 2¹⁶]`.
+    ambient: u32,
+}
+
+impl VertexLight {
+    /// The light `light` for normals transformed by `normal_matrix`.
+    pub(crate) fn new(light: &Light, normal_matrix: &Mat4) -> Self {
+        let m = normal_matrix.to_bits();
+        let block: [[i32; 3]; 3] = core::array::from_fn(|r| core::array::from_fn(|c| m[r][c]));
+        let rotation = is_rotation(&block);
+        let l = light.direction.to_bits().map(i64::from);
+        let direction = if rotation {
+            // Rᵀl: the light in model space.
+            core::array::from_fn(|c| {
+                let acc = (0..3)
+                    .map(|r| i64::from(block[r][c]) * l[r])
+                    .fold(0i64, i64::saturating_add);
+                sat32(acc >> SCALAR_BITS)
+            })
+        } else {
+            light.direction.to_bits()
+        };
+        VertexLight {
+            direction: direction.map(to_14_bits),
+            normal_matrix: (!rotation).then_some(block),
+            ambient: light.ambient.to_bits().clamp(0, 1 << 16) as u32,
+        }
+    }
+
+    /// The light level of a vertex with model-space unit normal `n`: 8.8 fixed point of the
+    /// 0–255 scale, `255·(ambient + (1 − ambient)·max(0, n·l))`.
+    #[inline]
+    pub(crate) fn level(&self, n: Vec3) -> u16 {
+        let n = match &self.normal_matrix {
+            None => n,
+            Some(m) => {
+                let v = n.to_bits().map(i64::from);
+                normalize_wide(m.map(|row| {
+                    (0..3)
+                        .map(|c| i64::from(row[c]) * v[c])
+                        .fold(0i64, i64::saturating_add)
+                }))
+            }
+        };
+        self.level_of_unit(n)
+    }
+
+    /// [`level`](Self::level) for a normal already in the light's space and of unit length.
+    #[inline]
+    pub(crate) fn level_of_unit(&self, n: Vec3) -> u16 {
+        let n = n.to_bits().map(to_14_bits);
+        let l = self.direction;
+        // Components within ±2¹⁴: the sum stays below 2³⁰. 28 fractional bits.
+        let dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        let diffuse = ((dot + (1 << 11)) >> 12).clamp(0, (1 << 16) - 1) as u32;
+        // Below 2³²: (2¹⁶ − a)·d with d < 2¹⁶.
+        let lit = (((1 << 16) - self.ambient) * diffuse + (1 << 15)) >> 16;
+        let level = (self.ambient + lit).min(1 << 16);
+        ((level * 255) >> 8) as u16
+    }
+}
+
+/// A raw `I16F16` component as 14 fractional bits, clamped to `±1`.
+#[inline(always)]
+fn to_14_bits(c: i32) -> i32 {
+    (c >> 2).clamp(-(1 << 14), 1 << 14)
+}
+
+/// `RᵀR = I` within 2⁻¹² per entry.
+fn is_rotation(r: &[[i32; 3]; 3]) -> bool {
+    (0..3).all(|i| {
+        (0..3).all(|j| {
+            let dot: i64 = (0..3)
+                .map(|k| i64::from(r[k][i]) * i64::from(r[k][j]))
+                .fold(0, i64::saturating_add);
+            let want = if i == j { 1i64 << 32 } else { 0 };
+            (dot - want).unsigned_abs() <= 1 << 20
+        })
+    })
+}
+
+/// What one draw needs to transform, project and light its vertices.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct VertexStage {
+    mvp: [[i32; 4]; 4],
+    /// No sum of the transform can leave ±2⁴⁶ for the mesh's positions: no saturation needed.
+    direct: bool,
+    pub(crate) volume: ClipVolume,
+    /// The viewport's centre, sub-pixels (clamped to ±(2³¹ − 2²⁵): beyond, nothing is on a
+    /// target anyway), and its half sizes times 2ᵉ (in `[2²², 2²³)` for the larger).
+    centre: (i32, i32),
+    half: (u64, u64),
+    /// `e`, and the rounding of a product shifted right by `32 + e`.
+    exponent: u32,
+    round: i64,
+    /// The light, when vertex levels are wanted.
+    light: Option<VertexLight>,
+}
+
+impl VertexStage {
+    /// The stage of `mvp` into the viewport at `(x, y)` of `width × height` pixels, for
+    /// positions whose raw components are at most `bound` in magnitude, lighting vertices with
+    /// `light` when given.
+    pub(crate) fn new(
+        mvp: &Mat4,
+        bound: u32,
+        ((x, y), (width, height)): ((i32, i32), (u32, u32)),
+        light: Option<VertexLight>,
+    ) -> Self {
+        let mvp = mvp.to_bits();
+        let direct = mvp.iter().all(|row| {
+            let linear: u64 = row[..3].iter().map(|m| u64::from(m.unsigned_abs())).sum();
+            let translation = u64::from(row[3].unsigned_abs()) << SCALAR_BITS;
+            linear
+                .saturating_mul(u64::from(bound))
+                .saturating_add(translation)
+                < 1 << 46
+        });
+        let width = i64::from(width).min(MAX_VIEWPORT);
+        let height = i64::from(height).min(MAX_VIEWPORT);
+        let half = (width * 128, height * 128);
+        // The larger half size to [2²², 2²³) (it is below 2²³: viewports up to 65535 px).
+        let exponent = (half.0.max(half.1).max(1) as u32)
+            .leading_zeros()
+            .saturating_sub(9);
+        let limit = i64::from(i32::MAX) - (1 << 25);
+        let centre = |corner: i32, half: i64| (i64::from(corner) * 256 + half).clamp(-limit, limit);
+        VertexStage {
+            mvp,
+            direct,
+            volume: ClipVolume::new(width, height),
+            centre: (centre(x, half.0) as i32, centre(y, half.1) as i32),
+            half: ((half.0 as u64) << exponent, (half.1 as u64) << exponent),
+            exponent,
+            round: 1 << (31 + exponent),
+            light,
+        }
+    }
+
+    /// The clip-space position of a model-space point (raw `I16F16` `[x, y, z, w]`): the same
+    /// as [`Mat4::transform_point`].
+    #[inline(always)]
+    pub(crate) fn clip_position(&self, p: Vec3) -> [i32; 4] {
+        if !self.direct {
+            return Mat4::from_bits(self.mvp).transform_point(p).to_bits();
+        }
+        let [x, y, z] = p.to_bits().map(i64::from);
+        self.mvp.map(|row| {
+            // Below 2⁴⁶ (the bound of `new`): the result fits, nothing saturates.
+            let acc = i64::from(row[0]) * x
+                + i64::from(row[1]) * y
+                + i64::from(row[2]) * z
+                + (i64::from(row[3]) << SCALAR_BITS);
+            ((acc + (1 << 15)) >> SCALAR_BITS) as i32
+        })
+    }
+
+    /// Perspective divide and viewport mapping of a clip-space point inside the view volume
+    /// (`w ≥ 2⁻⁸`, `|x|, |y|` within the guard band, `|z| ≤ w`).
+    ///
+    /// With `w` normalised to `w·2ˢ ∈ [2³¹, 2³²)` and `r = ⌊2⁶³/(w·2ˢ)⌋`, `c/w = c·2ˢ·r/2⁶³`.
+    /// Inside the guard band `|x|, |y| ≤ 64·w < 2^(38−s)`, so `c·2^(s−7)` fits 32 bits; the half
+    /// size `h` is normalised once per draw to `h·2ᵉ ∈ [2²², 2²³)`, so `k = h·2ᵉ·r/2²⁴` is
+    /// below 2³¹ and the offset `c·2^(s−7)·k / 2^(32+e)` is one 32 × 32-bit product and fixed
+    /// shifts (rounded; the truncations of `k` and of `c` for far points, `s < 7`, cost under
+    /// 2⁻²¹ of the offset, below 0.2 sub-pixels a thousand pixels out). The depth likewise with
+    /// `z·2^(s−1)` and `32767·r/2¹⁶`.
+    #[inline(always)]
+    pub(crate) fn project(&self, p: &[i32; 4]) -> ScreenVertex {
+        let w = p[3].max(W_MIN as i32) as u32;
+        // w in [2⁸, 2³¹): s in [1, 23].
+        let s = leading_zeros_32(w);
+        // r ≤ 2³², and 2³² only for w·2ˢ = 2³¹: clamping it changes c/w by 2⁻³².
+        let r = reciprocal_63(w << s).min(u64::from(u32::MAX));
+        let scale = |c: i32| {
+            if s >= 7 {
+                c << (s - 7)
+            } else {
+                c >> (7 - s)
+            }
+        };
+        let (e, round) = (self.exponent, self.round);
+        let offset = |c: i32, half: u64| {
+            let k = ((half * r) >> 24) as i64;
+            (((i64::from(scale(c)) * k + round) >> 32) as i32) >> e
+        };
+        let x = self.centre.0.wrapping_add(offset(p[0], self.half.0));
+        let y = self.centre.1.wrapping_sub(offset(p[1], self.half.1));
+        // 32767·z/w: |z| ≤ w < 2^(32−s), so z·2^(s−1) fits and the depth is in [0, 65534].
+        let kz = ((32767 * r) >> 16) as i64;
+        let dz = ((i64::from(p[2] << (s - 1)) * kz + (1 << 45)) >> 32) as i32 >> 14;
+        ScreenVertex {
+            x: Coord::from_bits(x),
+            y: Coord::from_bits(y),
+            depth: (32767 + dz).clamp(0, i32::from(DEPTH_FAR)) as u16,
+        }
+    }
+
+    /// The light level of a model-space normal (0 without a light).
+    #[inline(always)]
+    pub(crate) fn level(&self, n: Vec3) -> u16 {
+        self.light.map_or(0, |l| l.level(n))
+    }
+
+    /// Transforms, classifies, projects (if inside) and lights the vertex at `p` with normal `n`.
+    #[inline(always)]
+    pub(crate) fn vertex(&self, p: Vec3, n: Option<&Vec3>) -> ProjectedVertex {
+        let clip = self.clip_position(p);
+        let code = self.volume.outcode(&clip);
+        let screen = if code == 0 {
+            self.project(&clip)
+        } else {
+            ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0)
+        };
+        let (level, flag) = match n {
+            Some(n) => (self.level(*n), 0),
+            None => (0, NO_NORMAL),
+        };
+        ProjectedVertex {
+            x: screen.x.to_bits(),
+            y: screen.y.to_bits(),
+            depth: screen.depth,
+            level,
+            code: code | flag,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::three_d::{Angle, Scalar};
+
+    #[test]
+    fn rotations_are_recognised() {
+        let r = Mat4::rotation_x(Angle::from_degrees(-35))
+            * Mat4::rotation_y(Angle::from_degrees(20))
+            * Mat4::rotation_z(Angle::from_degrees(71));
+        let block = |m: Mat4| {
+            let m = m.to_bits();
+            core::array::from_fn(|r| core::array::from_fn(|c| m[r][c]))
+        };
+        assert!(is_rotation(&block(r)));
+        assert!(!is_rotation(&block(
+            r * Mat4::scaling(Scalar::from_num(1.01))
+        )));
+        assert!(!is_rotation(&block(Mat4::from_bits([[0; 4]; 4]))));
+    }
+
+    #[test]
+    fn scratch_entries_are_16_bytes() {
+        assert_eq!(core::mem::size_of::<ProjectedVertex>(), 16);
+    }
+}
