@@ -226,11 +226,20 @@ impl<const N: usize> Planes<N> {
             .order
             .map(|k| attributes.values.get(k).copied().unwrap_or([0; N]));
         let (px, py) = (setup.dx, setup.dy);
-        if let Some(planes) =
-            Self::compact_narrow((gx, gy), (px, py), [c0, c1, c2], &attributes.half)
-        {
-            return planes;
-        }
+        let vertices = [c0, c1, c2];
+        Self::compact_narrow((gx, gy), (px, py), vertices, &attributes.half)
+            .unwrap_or_else(|| Self::compact_wide((gx, gy), (px, py), vertices, &attributes.half))
+    }
+
+    /// [`compact`](Self::compact) from the barycentric gradients `(gx, gy)`, the offset
+    /// `(px, py)` of the first pixel from vertex 0 and the oriented vertices' values.
+    #[inline(always)]
+    fn compact_wide(
+        (gx, gy): ([i64; 2], [i64; 2]),
+        (px, py): (i32, i32),
+        [c0, c1, c2]: [[u16; N]; 3],
+        half: &[u32; N],
+    ) -> Self {
         // Products of 32-bit factors: no 64 × 64-bit library calls on Cortex-M0.
         let mul = wrapping_mul_i32;
         let planes: [[u32; 3]; N] = core::array::from_fn(|k| {
@@ -245,9 +254,8 @@ impl<const N: usize> Planes<N> {
                 .wrapping_add(mul(sx, px))
                 .wrapping_add(mul(sy, py));
             let to_step = |u: i64, bits: u32| (u.wrapping_add(1 << (bits - 1)) >> bits) as u32;
-            let half = attributes.half.get(k).copied().unwrap_or(0);
             [
-                to_step(v, 24).wrapping_add(half),
+                to_step(v, 24).wrapping_add(half[k]),
                 to_step(sx, 16),
                 to_step(sy, 16),
             ]
@@ -260,10 +268,11 @@ impl<const N: usize> Planes<N> {
     }
 
     /// [`compact`](Self::compact) for triangles whose barycentric gradients `(gx, gy)` are below
-    /// 2³¹ units (under ½ a pixel: no slivers) and whose barycentrics at the first pixel (offset
-    /// `(px, py)` from vertex 0) are below 2⁷: 32 × 32-bit products only. The steps are the same
-    /// integers; the value at the first pixel comes from barycentrics rounded to 24 fractional
-    /// bits (2⁻¹⁷ LSB more error), or `None` for the others.
+    /// 2³¹ units in magnitude (no slivers): the same integers from 32 × 32-bit products, and the
+    /// value at the first pixel (offset `(px, py)` from vertex 0) as `c₀ + Σ dₖ·Lₖ` from the
+    /// barycentrics `Lₖ = gxₖ·px + gyₖ·py` (exact, below 2⁵¹), modulo 2⁶⁴ like `compact`'s
+    /// `sx·px + sy·py`. `None` for the others. Not on Cortex-M0, where its flash is dearer
+    /// than its speed: the result is the same.
     #[inline(always)]
     fn compact_narrow(
         (gx, gy): ([i64; 2], [i64; 2]),
@@ -271,24 +280,18 @@ impl<const N: usize> Planes<N> {
         [c0, c1, c2]: [[u16; N]; 3],
         half: &[u32; N],
     ) -> Option<Self> {
-        let narrow = |g: [i64; 2]| g.map(|g| i32::try_from(g).ok());
+        if crate::arch::NO_LONG_MULTIPLY {
+            return None;
+        }
+        let narrow = |g: i64| i32::try_from(g).ok();
         let (Some(gx0), Some(gx1), Some(gy0), Some(gy1)) =
-            (narrow(gx)[0], narrow(gx)[1], narrow(gy)[0], narrow(gy)[1])
+            (narrow(gx[0]), narrow(gx[1]), narrow(gy[0]), narrow(gy[1]))
         else {
             return None;
         };
-        // Barycentrics of vertices 1 and 2 at the first pixel, 24 fractional bits: the
-        // gradients (2⁻³² a pixel) times the offset (sub-pixels) are 2⁻⁴⁰ units, below 2⁵¹.
-        let at = |gx: i32, gy: i32| {
-            let l = mul_i32_wide(gx, px) + mul_i32_wide(gy, py);
-            i32::try_from((l + (1 << 15)) >> 16).ok()
-        };
-        let (Some(l1), Some(l2)) = (at(gx0, gy0), at(gx1, gy1)) else {
-            return None;
-        };
-        if l1.unsigned_abs() >= 1 << 31 || l2.unsigned_abs() >= 1 << 31 {
-            return None;
-        }
+        // 2⁻⁴⁰ units: gradients (2⁻³² a pixel) times offsets (sub-pixels).
+        let l1 = mul_i32_wide(gx0, px) + mul_i32_wide(gy0, py);
+        let l2 = mul_i32_wide(gx1, px) + mul_i32_wide(gy1, py);
         let mut planes = Planes {
             value: [0; N],
             dx: [0; N],
@@ -301,9 +304,11 @@ impl<const N: usize> Planes<N> {
             let step = |g1: i32, g2: i32| {
                 ((mul_i32_wide(g1, d1) + mul_i32_wide(g2, d2) + (1 << 15)) >> 16) as u32
             };
-            // 2⁻³² units of the 8-bit scale: below 2⁴⁸.
-            let v = (i64::from(base) << 24) + mul_i32_wide(d1, l1) + mul_i32_wide(d2, l2);
-            planes.value[k] = (((v + (1 << 7)) >> 8) as u32).wrapping_add(half[k]);
+            // 2⁻⁴⁸ units, modulo 2⁶⁴: d₁·L₁ + d₂·L₂ = sx·px + sy·py.
+            let v = (i64::from(base) << 40)
+                .wrapping_add(wrapping_mul_i32(l1, d1))
+                .wrapping_add(wrapping_mul_i32(l2, d2));
+            planes.value[k] = ((v.wrapping_add(1 << 23) >> 24) as u32).wrapping_add(half[k]);
             planes.dx[k] = step(gx0, gx1);
             planes.dy[k] = step(gy0, gy1);
         }
@@ -478,7 +483,9 @@ impl GradientScale {
     #[inline(never)]
     fn exact(&self, m: u32) -> u64 {
         let area2 = self.area2.get();
-        if self.r == 0 {
+        // The same quotient by division for the tiniest areas, and on Cortex-M0, where the
+        // refinement's 64-bit products cost flash the compact path does not have.
+        if self.r == 0 || crate::arch::NO_LONG_MULTIPLY {
             return ((u64::from(m) << 40) + area2 / 2) / self.area2;
         }
         // Here 4 ≤ t ≤ 23 (the limit admits every m < 2¹⁹ for smaller t) and area2 < 2^(32−t).
@@ -781,6 +788,40 @@ impl AttributePlane {
 
 #[cfg(test)]
 mod tests {
+    /// The narrow planes are the wide ones, bit for bit, wherever they apply.
+    #[test]
+    fn narrow_planes_equal_wide_ones() {
+        let mut next = crate::random(0x1f83_d9ab_fb41_bd6b);
+        let mut narrow = 0;
+        for _ in 0..200_000 {
+            let area2 = NonZeroU64::new((next() >> (26 + next() % 38)).max(1)).unwrap();
+            let reach = 2 + (next() % 4097) as u32;
+            let scale = GradientScale::new(area2, reach);
+            let mut n = || {
+                let m = (next() >> (45 + next() % 19)) as i32;
+                if next() & 1 == 0 {
+                    m
+                } else {
+                    -m
+                }
+            };
+            let a = [n(), n()];
+            let b = [n(), n()];
+            let (gx, gy) = (a.map(|a| scale.of(a)), b.map(|b| scale.of(b)));
+            let px = (next() % (1 << 20)) as i32 - (1 << 19);
+            let py = (next() % (1 << 20)) as i32 - (1 << 19);
+            let values: [[u16; 3]; 3] =
+                core::array::from_fn(|_| core::array::from_fn(|_| next() as u16));
+            let half = [1 << 23, 1 << 15, 7];
+            let wide = Planes::compact_wide((gx, gy), (px, py), values, &half);
+            if let Some(p) = Planes::compact_narrow((gx, gy), (px, py), values, &half) {
+                assert_eq!((p.value, p.dx, p.dy), (wide.value, wide.dx, wide.dy));
+                narrow += 1;
+            }
+        }
+        assert!(narrow > 20_000, "{narrow}");
+    }
+
     use super::*;
     use crate::Coord;
     use embedded_graphics::{prelude::*, primitives::Rectangle};
