@@ -10,11 +10,27 @@
 //! cargo run --release --example bench_report
 //! ```
 //!
-//! Prints the table and writes it to `target/bench-report.md`.
+//! Then the 3D bench frame (`examples/common/scene3d.rs`: 320×240 Rgb565, 16-bit z, back faces
+//! culled, Gouraud, one directional light plus ambient) of each bench mesh, rendered by this crate
+//! and by euc 0.5 (`examples/common/euc3d.rs`: the same mesh, camera, viewport, culling, depth test
+//! and light, in `f32`), in interleaved rounds: frames/s medians and the median per-round ratio.
+//!
+//! Prints the tables and writes them to `target/bench-report.md`; `bench_report 3d` prints only
+//! the 3D table.
 //!
 //! For profilers, `bench_report <method id> <size class id> [passes]` only draws that set
 //! `passes` times (default 200), e.g.
-//! `valgrind --tool=callgrind target/release/examples/bench_report ours_solid_draw_into_slice small_16px2 20`.
+//! `valgrind --tool=callgrind target/release/examples/bench_report ours_solid_draw_into_slice small_16px2 20`;
+//! `bench_report 3d <knot|torus> [frames]` (this crate) and `bench_report 3d-euc <knot|torus>
+//! [frames]` (euc) only render that frame `frames` times (default 200), inside `frames_3d`, so
+//! that callgrind counts the frames alone:
+//!
+//! ```text
+//! valgrind --tool=callgrind --toggle-collect='*frames_3d*' target/release/examples/bench_report 3d knot 20
+//! ```
+//!
+//! prints `Collected : <instructions of 20 frames>`. `bench_report pictures <dir>` writes both
+//! renderers' frames as PPM files and prints where their coverage differs.
 
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use std::fmt::Write as _;
@@ -24,6 +40,15 @@ use std::time::{Duration, Instant};
 #[path = "../benches/fill_rate/workload.rs"]
 mod workload;
 
+#[allow(dead_code)]
+#[path = "common/scene3d.rs"]
+mod scene3d;
+
+#[path = "common/euc3d.rs"]
+mod euc3d;
+
+use embedded_raster::three_d::{DepthTarget, Mesh, Vec3};
+use scene3d::{Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
 use workload::{draw_set, pixel_count, triangles, Method, SizeClass, Targets, Tri};
 
 /// Rounds of interleaved measurements.
@@ -47,6 +72,24 @@ fn median(v: &mut [f64]) -> f64 {
         v[n / 2]
     } else {
         0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Repetitions of a sample that take about `sample`, from `time(reps)` (after one warm-up pass).
+fn reps_for(sample: Duration, mut time: impl FnMut(u32) -> Duration) -> u32 {
+    time(1);
+    let once = time(3) / 3;
+    ((sample.as_secs_f64() / once.as_secs_f64().max(1e-9)).ceil() as u32).max(1)
+}
+
+/// Interleaved rounds: `measure` every cell once per round, starting `stride` cells further on
+/// each round, so that slow drift of the machine spreads over all cells.
+fn interleave<T>(cells: &mut [T], rounds: usize, stride: usize, mut measure: impl FnMut(&mut T)) {
+    let n = cells.len();
+    for round in 0..rounds {
+        for i in 0..n {
+            measure(&mut cells[(i + round * stride) % n]);
+        }
     }
 }
 
@@ -83,6 +126,29 @@ fn profile(method: &str, class: &str, passes: u32) {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    match args
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .as_slice()
+    {
+        ["3d"] => {
+            let md = report_3d();
+            print!("{md}");
+            return;
+        }
+        [mode @ ("3d" | "3d-euc"), mesh, rest @ ..] => {
+            let renderer = if *mode == "3d" {
+                Renderer::Ours
+            } else {
+                Renderer::Euc
+            };
+            let frames = rest.first().map_or(200, |n| n.parse().expect("frames"));
+            return profile_3d(renderer, parse_model(mesh), frames);
+        }
+        ["pictures", dir] => return pictures(dir),
+        _ => {}
+    }
     if let [method, class, rest @ ..] = args.as_slice() {
         let passes = rest.first().map_or(200, |p| p.parse().expect("passes"));
         return profile(method, class, passes);
@@ -109,29 +175,21 @@ fn main() {
     for (class, tris) in sets.iter().enumerate() {
         for method in Method::ALL {
             let pixels = pixel_count(method, tris);
-            time(method, tris, &mut targets, 1); // warm-up
-            let once = time(method, tris, &mut targets, 3) / 3;
-            let reps = (SAMPLE.as_secs_f64() / once.as_secs_f64().max(1e-9)).ceil() as u32;
             cells.push(Cell {
                 class,
                 method,
                 pixels,
-                reps: reps.max(1),
+                reps: reps_for(SAMPLE, |reps| time(method, tris, &mut targets, reps)),
                 rates: Vec::with_capacity(ROUNDS),
             });
         }
     }
 
-    // Interleaved rounds: every cell once per round, starting at a different cell each round.
-    for round in 0..ROUNDS {
-        let n = cells.len();
-        for i in 0..n {
-            let cell = &mut cells[(i + round * 7) % n];
-            let elapsed = time(cell.method, &sets[cell.class], &mut targets, cell.reps);
-            let mpx = (cell.pixels * u64::from(cell.reps)) as f64 / elapsed.as_secs_f64() / 1e6;
-            cell.rates.push(mpx);
-        }
-    }
+    interleave(&mut cells, ROUNDS, 7, |cell| {
+        let elapsed = time(cell.method, &sets[cell.class], &mut targets, cell.reps);
+        let mpx = (cell.pixels * u64::from(cell.reps)) as f64 / elapsed.as_secs_f64() / 1e6;
+        cell.rates.push(mpx);
+    });
 
     let find = |class: usize, method: Method| {
         cells
@@ -276,10 +334,260 @@ fn main() {
     )
     .unwrap();
 
+    md.push('\n');
+    md.push_str(&report_3d());
+
     print!("{md}");
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/target/bench-report.md");
     match std::fs::write(path, &md) {
         Ok(()) => println!("\nwrote {path}"),
         Err(e) => eprintln!("could not write {path}: {e}"),
     }
+}
+
+// ---- 3D frame ---------------------------------------------------------------------------------
+
+/// Rounds of interleaved 3D frame measurements.
+const ROUNDS_3D: usize = 31;
+/// Target duration of one timed 3D sample.
+const SAMPLE_3D: Duration = Duration::from_millis(40);
+
+/// Who renders the 3D frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Renderer {
+    /// This crate's fixed-point pipeline (`scene3d::render`).
+    Ours,
+    /// Euc 0.5 (`euc3d`).
+    Euc,
+}
+
+impl Renderer {
+    const ALL: [Renderer; 2] = [Renderer::Ours, Renderer::Euc];
+}
+
+fn parse_model(name: &str) -> Model {
+    Model::ALL
+        .into_iter()
+        .find(|m| m.name() == name)
+        .unwrap_or_else(|| panic!("meshes: {:?}", Model::ALL.map(Model::name)))
+}
+
+/// The bench mesh of `model` (the torus generated once, kept for the process).
+fn mesh(model: Model) -> &'static Mesh<'static> {
+    static TORUS: std::sync::OnceLock<Mesh<'static>> = std::sync::OnceLock::new();
+    match model {
+        Model::Knot => &scene3d::KNOT,
+        Model::Torus => TORUS.get_or_init(|| {
+            scene3d::torus(
+                Box::leak(Box::new([Vec3::ZERO; TORUS_VERTICES])),
+                Box::leak(Box::new([Vec3::ZERO; TORUS_VERTICES])),
+                Box::leak(Box::new([[0; 3]; TORUS_FACES])),
+            )
+        }),
+    }
+}
+
+/// Both renderers' buffers and euc's scenes.
+struct Frames3d {
+    colors: Vec<embedded_graphics::pixelcolor::Rgb565>,
+    depth: Vec<u16>,
+    euc_scenes: Vec<(Model, euc3d::Scene)>,
+    euc: euc3d::Frame,
+}
+
+impl Frames3d {
+    /// Buffers for both renderers; euc's `f32` copies of the meshes of `models`.
+    fn new(models: &[Model]) -> Self {
+        Frames3d {
+            colors: vec![Rgb565::BLACK; PIXELS],
+            depth: vec![0; PIXELS],
+            euc_scenes: models
+                .iter()
+                .map(|&m| (m, euc3d::Scene::new(m, mesh(m))))
+                .collect(),
+            euc: euc3d::Frame::new(),
+        }
+    }
+
+    /// One frame of `model` by `renderer`.
+    fn render(&mut self, renderer: Renderer, model: Model) {
+        match renderer {
+            Renderer::Ours => {
+                let mut target =
+                    DepthTarget::new(&mut self.colors, &mut self.depth, SIZE.0, SIZE.1)
+                        .expect("buffers of the frame's size");
+                black_box(scene3d::render(model, black_box(mesh(model)), &mut target));
+            }
+            Renderer::Euc => {
+                let (_, scene) = self
+                    .euc_scenes
+                    .iter()
+                    .find(|(m, _)| *m == model)
+                    .expect("an euc scene for the mesh");
+                scene.render(&mut self.euc);
+                black_box(&mut self.euc);
+            }
+        }
+    }
+
+    /// Which pixels `renderer`'s last frame drew.
+    fn covered(&self, renderer: Renderer) -> Vec<bool> {
+        match renderer {
+            Renderer::Ours => self
+                .depth
+                .iter()
+                .map(|&d| d != embedded_raster::three_d::DEPTH_CLEAR)
+                .collect(),
+            Renderer::Euc => self.euc.covered().collect(),
+        }
+    }
+
+    /// `renderer`'s last frame as a binary PPM.
+    fn ppm(&self, renderer: Renderer) -> Vec<u8> {
+        let mut ppm = format!("P6 {} {} 255\n", SIZE.0, SIZE.1).into_bytes();
+        let rgb = |c: Rgb565| [c.r() << 3, c.g() << 2, c.b() << 3];
+        match renderer {
+            Renderer::Ours => self.colors.iter().for_each(|&c| ppm.extend(rgb(c))),
+            Renderer::Euc => self.euc.pixels().for_each(|c| ppm.extend(rgb(c))),
+        }
+        ppm
+    }
+}
+
+/// `frames` frames of `model` by `renderer`: the function callgrind's `--toggle-collect` names.
+#[inline(never)]
+fn frames_3d(frames3d: &mut Frames3d, renderer: Renderer, model: Model, frames: u32) {
+    for _ in 0..frames {
+        frames3d.render(renderer, model);
+    }
+}
+
+/// Profiling mode: `frames` frames of one mesh by one renderer.
+fn profile_3d(renderer: Renderer, model: Model, frames: u32) {
+    let euc_models: &[Model] = if renderer == Renderer::Euc {
+        &[model]
+    } else {
+        &[]
+    };
+    let mut frames3d = Frames3d::new(euc_models);
+    let start = Instant::now();
+    frames_3d(&mut frames3d, renderer, model, frames);
+    let elapsed = start.elapsed();
+    let covered = frames3d.covered(renderer).iter().filter(|&&c| c).count();
+    println!(
+        "{renderer:?} {}: {frames} frames, {covered} px covered, {:.0} frames/s",
+        model.name(),
+        f64::from(frames) / elapsed.as_secs_f64()
+    );
+}
+
+/// Writes `<dir>/<mesh>-ours.ppm` and `<dir>/<mesh>-euc.ppm`; prints where coverage differs.
+fn pictures(dir: &str) {
+    let mut frames3d = Frames3d::new(&Model::ALL);
+    for model in Model::ALL {
+        let mut covered = Vec::new();
+        for renderer in Renderer::ALL {
+            frames3d.render(renderer, model);
+            covered.push(frames3d.covered(renderer));
+            let name = format!("{}-{renderer:?}", model.name()).to_lowercase();
+            let path = format!("{dir}/{name}.ppm");
+            std::fs::write(&path, frames3d.ppm(renderer)).expect("write the picture");
+            println!("wrote {path}");
+        }
+        let count = |v: &[bool]| v.iter().filter(|&&c| c).count();
+        let differ = covered[0].iter().zip(&covered[1]).filter(|(a, b)| a != b);
+        println!(
+            "{}: ours covers {} px, euc {} px, {} px covered by only one",
+            model.name(),
+            count(&covered[0]),
+            count(&covered[1]),
+            differ.count()
+        );
+    }
+}
+
+/// The 3D table: frames/s of both renderers on both meshes, interleaved rounds.
+fn report_3d() -> String {
+    let started = Instant::now();
+    let mut frames3d = Frames3d::new(&Model::ALL);
+    struct Cell3d {
+        model: Model,
+        renderer: Renderer,
+        covered: usize,
+        reps: u32,
+        /// Frames/s of each round.
+        rates: Vec<f64>,
+    }
+    let time = |frames3d: &mut Frames3d, renderer: Renderer, model: Model, reps: u32| {
+        let start = Instant::now();
+        frames_3d(frames3d, renderer, model, reps);
+        start.elapsed()
+    };
+    let mut cells = Vec::new();
+    for model in Model::ALL {
+        for renderer in Renderer::ALL {
+            let reps = reps_for(SAMPLE_3D, |reps| time(&mut frames3d, renderer, model, reps));
+            cells.push(Cell3d {
+                model,
+                renderer,
+                covered: frames3d.covered(renderer).iter().filter(|&&c| c).count(),
+                reps,
+                rates: Vec::with_capacity(ROUNDS_3D),
+            });
+        }
+    }
+    interleave(&mut cells, ROUNDS_3D, 1, |cell| {
+        let elapsed = time(&mut frames3d, cell.renderer, cell.model, cell.reps);
+        cell.rates
+            .push(f64::from(cell.reps) / elapsed.as_secs_f64());
+    });
+
+    let find = |model: Model, renderer: Renderer| {
+        cells
+            .iter()
+            .find(|c| c.model == model && c.renderer == renderer)
+            .expect("cell")
+    };
+    let mut md = String::new();
+    writeln!(
+        md,
+        "### 3D frame, 320×240 Rgb565, z-buffer, culled, Gouraud (frames/s, median of \
+         {ROUNDS_3D} interleaved rounds)\n"
+    )
+    .unwrap();
+    md.push_str(
+        "| mesh | faces | ours frames/s | euc frames/s | ours / euc | covered px, ours / euc |\n",
+    );
+    md.push_str("|---|---:|---:|---:|---:|---:|\n");
+    for model in Model::ALL {
+        let (ours, euc) = (find(model, Renderer::Ours), find(model, Renderer::Euc));
+        let mut ratios: Vec<f64> = ours
+            .rates
+            .iter()
+            .zip(&euc.rates)
+            .map(|(a, b)| a / b)
+            .collect();
+        writeln!(
+            md,
+            "| {} | {} | {:.0} | {:.0} | {:.2}× | {} / {} |",
+            model.name(),
+            mesh(model).indices.len(),
+            median(&mut ours.rates.clone()),
+            median(&mut euc.rates.clone()),
+            median(&mut ratios),
+            ours.covered,
+            euc.covered
+        )
+        .unwrap();
+    }
+    writeln!(
+        md,
+        "\n{ROUNDS_3D} rounds × {} cells × ~{} ms, {:.1} s. Ours: fixed point, 16-bit z; euc 0.5: \
+         `f32`, `f32` z, its own coverage rule.",
+        cells.len(),
+        SAMPLE_3D.as_millis(),
+        started.elapsed().as_secs_f64()
+    )
+    .unwrap();
+    md
 }
