@@ -47,7 +47,7 @@ mod scene3d;
 #[path = "common/euc3d.rs"]
 mod euc3d;
 
-use embedded_raster::three_d::{DepthTarget, Mesh, Vec3};
+use embedded_raster::three_d::{DepthTarget, Mesh, ProjectedVertex, Vec3};
 use scene3d::{Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
 use workload::{draw_set, pixel_count, triangles, Method, SizeClass, Targets, Tri};
 
@@ -393,6 +393,8 @@ struct Frames3d {
     depth: Vec<u16>,
     euc_scenes: Vec<(Model, euc3d::Scene)>,
     euc: euc3d::Frame,
+    /// The vertex scratch of our pipeline (one entry per vertex of the larger mesh).
+    scratch: Vec<ProjectedVertex>,
 }
 
 impl Frames3d {
@@ -406,6 +408,7 @@ impl Frames3d {
                 .map(|&m| (m, euc3d::Scene::new(m, mesh(m))))
                 .collect(),
             euc: euc3d::Frame::new(),
+            scratch: vec![ProjectedVertex::EMPTY; scene3d::MAX_VERTICES],
         }
     }
 
@@ -416,7 +419,13 @@ impl Frames3d {
                 let mut target =
                     DepthTarget::new(&mut self.colors, &mut self.depth, SIZE.0, SIZE.1)
                         .expect("buffers of the frame's size");
-                black_box(scene3d::render(model, black_box(mesh(model)), &mut target));
+                let scratch = Some(&mut self.scratch[..]);
+                black_box(scene3d::render(
+                    model,
+                    black_box(mesh(model)),
+                    &mut target,
+                    scratch,
+                ));
             }
             Renderer::Euc => {
                 let (_, scene) = self
