@@ -138,8 +138,21 @@ pub(crate) struct CompactTriangle {
 
 /// The first pixel whose centre is at or after `m` (sub-pixels) on its axis.
 #[inline(always)]
-fn first_centre_from(m: i32) -> i32 {
+pub(crate) fn first_centre_from(m: i32) -> i32 {
     (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80)
+}
+
+/// The last pixel whose centre is at or before `m` (sub-pixels) on its axis.
+#[inline(always)]
+pub(crate) fn last_centre_to(m: i32) -> i32 {
+    (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF < 0x80)
+}
+
+/// The last pixel of `len` from `start` (saturating at the ends of `i32`).
+#[inline(always)]
+pub(crate) fn last_of(start: i32, len: u32) -> i32 {
+    let end = i64::from(start) + i64::from(len) - 1;
+    end.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
 impl CompactTriangle {
@@ -177,13 +190,8 @@ impl CompactTriangle {
 
         // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first
         // centre at or after m, the last at or before it and the last strictly before it:
-        let lo = first_centre_from;
-        let hi = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF < 0x80);
+        let (lo, hi, last) = (first_centre_from, last_centre_to, last_of);
         let hi_before = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF <= 0x80);
-        let last = |start: i32, len: u32| {
-            let end = i64::from(start) + i64::from(len) - 1;
-            end.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
-        };
         let (cx, cy) = (clip.top_left.x, clip.top_left.y);
         let x0 = lo(min_x).max(cx);
         let x1 = hi(max_x).min(last(cx, clip.size.width));
@@ -401,16 +409,30 @@ mod tests {
     /// 2³² (the covered pixels' values are in range, so wrapping is exact there).
     #[test]
     fn colors_are_within_the_documented_error() {
+        let checked = check_planes(4_000, |setup, attributes| {
+            Some(Planes::compact(setup, attributes))
+        });
+        assert!(checked > 1_000_000, "{checked}");
+    }
+
+    /// Checks the planes `planes` makes (where it makes them) of random compact triangles over
+    /// random clips; returns the values checked.
+    fn check_planes(
+        n: usize,
+        planes: impl Fn(&CompactSetup, &Attributes<3>) -> Option<Planes<3>>,
+    ) -> u64 {
         let mut next = crate::random(0x5eed_c010_0000_0001);
         let mut checked = 0u64;
-        random_cases(0x0bad_cafe_8765_4321, 4_000, |v, clip| {
+        random_cases(0x0bad_cafe_8765_4321, n, |v, clip| {
             let Ok(Some(triangle)) = CompactTriangle::new(coords(v), &clip) else {
                 return;
             };
             assert!(triangle.walk().is_ok());
             let setup = triangle.setup;
             let channels = [(); 3].map(|_| [(); 3].map(|_| next() as u8));
-            let colors = Planes::compact(&setup, &Attributes::channels(channels));
+            let Some(colors) = planes(&setup, &Attributes::channels(channels)) else {
+                return;
+            };
             let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
             let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
                 (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
@@ -450,6 +472,6 @@ mod tests {
                 }
             }
         });
-        assert!(checked > 1_000_000, "{checked}");
+        checked
     }
 }

@@ -10,6 +10,8 @@
 //!   stepping one start and one end boundary column a row (exact quotient and remainder, no
 //!   rounding). `compact` is the same walk for triangles under 2048 px in 32-bit set-up, and
 //!   `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
+//! * `scan` — small triangles (under 16 px) for shaders that opt in: each row's run found by
+//!   testing its pixels' edge values, the same spans without the walk's divisions.
 //! * `plane` — attributes (colour channels now) interpolated barycentrically by fixed-point
 //!   stepping, with a documented error bound.
 //! * `shade` — the one entry: `shade` sets a triangle up in the width it needs, walks it and
@@ -22,6 +24,7 @@ pub(crate) mod arith;
 pub(crate) mod compact;
 pub(crate) mod edge;
 pub(crate) mod plane;
+mod scan;
 mod shade;
 #[cfg(sse2_rows)]
 mod tiny;

@@ -267,6 +267,28 @@ impl<const N: usize> Planes<N> {
         }
     }
 
+    /// Planes all zero, to [`set`](Self::set).
+    #[inline(always)]
+    pub(crate) fn zero() -> Self {
+        Planes {
+            value: [0; N],
+            dx: [0; N],
+            dy: [0; N],
+        }
+    }
+
+    /// Sets attribute `k`'s value at the first pixel and its per-pixel and per-row steps.
+    #[inline(always)]
+    pub(crate) fn set(&mut self, k: usize, value: u32, dx: u32, dy: u32) {
+        if let (Some(v), Some(x), Some(y)) = (
+            self.value.get_mut(k),
+            self.dx.get_mut(k),
+            self.dy.get_mut(k),
+        ) {
+            (*v, *x, *y) = (value, dx, dy);
+        }
+    }
+
     /// [`compact`](Self::compact) for triangles whose barycentric gradients `(gx, gy)` are below
     /// 2³¹ units in magnitude (no slivers): the same integers from 32 × 32-bit products, and the
     /// value at the first pixel (offset `(px, py)` from vertex 0) as `c₀ + Σ dₖ·Lₖ` from the

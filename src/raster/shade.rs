@@ -34,6 +34,14 @@ pub(crate) trait SpanShader<const N: usize> {
     /// One covered span; `start` holds the attributes at its first pixel.
     fn span(&mut self, steps: &Self::Steps, span: Span, start: [u32; N]);
 
+    /// Whether triangles under [`SMALL`](super::scan::SMALL) pixels are scanned row by row
+    /// instead of walked (the same spans, no divisions; see [`scan`](super::scan)). `false` (the
+    /// default) keeps a firmware that draws only with this shader from linking the scan.
+    #[inline(always)]
+    fn scans_small(&self) -> bool {
+        false
+    }
+
     /// The target's width if it takes whole rows of [`LANES`] pixels ([`masked_row`]), the
     /// strategy for tiny triangles on x86-64; `None` (the default): spans only.
     ///
@@ -70,6 +78,9 @@ pub(crate) fn shade<const N: usize>(
     clip: &Rectangle,
     shader: &mut impl SpanShader<N>,
 ) {
+    if shader.scans_small() && super::scan::shade(v, attributes, clip, shader) {
+        return;
+    }
     match CompactTriangle::new(v, clip) {
         Ok(None) => return,
         Ok(Some(triangle)) => {
@@ -101,10 +112,10 @@ pub(crate) fn shade_compact<const N: usize>(
 /// The compact set-up's walk and planes (the planes after the walk's set-up: on Cortex-M0 fewer
 /// values then live across it).
 #[inline(always)]
-fn shade_compact_triangle<const N: usize>(
+fn shade_compact_triangle<const N: usize, S: SpanShader<N>>(
     triangle: &CompactTriangle,
     attributes: &Attributes<N>,
-    shader: &mut impl SpanShader<N>,
+    shader: &mut S,
 ) -> Result<(), TooLarge> {
     #[cfg(sse2_rows)]
     if let Some(width) = shader.row_width() {

@@ -201,7 +201,7 @@ impl Pipeline {
             };
             let model = [*a, *b, *c];
             let projected = [0, 1, 2].map(|k| frame.vertex(mesh, idx[k], model[k]));
-            frame.face(mesh, &idx, &model, &projected, target, &mut stats);
+            frame.face(mesh, &idx, || model, &projected, target, &mut stats);
         }
         stats
     }
@@ -239,9 +239,10 @@ impl Pipeline {
                 continue;
             };
             let projected = [*a, *b, *c];
-            // In range: the scratch has one entry per vertex.
-            let model = idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
-            frame.face(mesh, &idx, &model, &projected, target, &mut stats);
+            // Only flat shading, faces without normals and clipping need the positions again:
+            // in range, as the scratch has one entry per vertex.
+            let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+            frame.face(mesh, &idx, model, &projected, target, &mut stats);
         }
         Ok(stats)
     }
@@ -333,7 +334,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         &self,
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
-        model: &[Vec3; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
         v: &[ProjectedVertex; 3],
         target: &mut DepthTarget<'_, C>,
         stats: &mut DrawStats,
@@ -364,7 +365,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         let tri = v.map(|v| v.screen());
         let levels = || {
             let face = v.iter().all(|v| v.has_normal()).then_some(0);
-            let face = face.unwrap_or_else(|| self.face_level(model));
+            let face = face.unwrap_or_else(|| self.face_level(&model()));
             v.map(|v| if v.has_normal() { v.level() } else { face })
         };
         self.fill(mesh, idx, model, &tri, levels, None, target);
@@ -388,7 +389,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         &self,
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
-        model: &[Vec3; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
         tri: &[ScreenVertex; 3],
         levels: impl FnOnce() -> [u16; 3],
         bary: Option<[Bary; 3]>,
@@ -398,7 +399,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         match &self.fill {
             Fill::Unlit(color) => shading::fill_flat(target, clip, tri, *color),
             Fill::Flat(table) => {
-                let level = self.face_level(model);
+                let level = self.face_level(&model());
                 shading::fill_flat(target, clip, tri, table.at(level));
             }
             Fill::Gouraud(table) => {
@@ -413,7 +414,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
                 shading::draw_levels(target, clip, tri, levels, table);
             }
             Fill::Quadratic(color) => {
-                let normals = QuadraticNormals::new(self.world_normals(mesh, idx, model));
+                let normals = QuadraticNormals::new(self.world_normals(mesh, idx, &model()));
                 let normals = match bary {
                     None => normals,
                     Some(bary) => normals.restricted(bary),
@@ -430,14 +431,14 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         &self,
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
-        model: &[Vec3; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
         v: &[ProjectedVertex; 3],
         target: &mut DepthTarget<'_, C>,
         stats: &mut DrawStats,
     ) {
         stats.clipped += 1;
         let mut poly = Polygon::new();
-        for (k, p) in model.iter().enumerate() {
+        for (k, p) in model().iter().enumerate() {
             let mut bary = [0; 3];
             bary[k] = BARY_ONE;
             let _ = poly.push(ClipVertex {
@@ -474,7 +475,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         }
         stats.drawn += 1;
         let face = v.iter().all(|v| v.has_normal()).then_some(0);
-        let face = face.unwrap_or_else(|| self.face_level(model));
+        let face = face.unwrap_or_else(|| self.face_level(&model()));
         let levels = v.map(|v| if v.has_normal() { v.level() } else { face });
         for k in 1..screen.len().saturating_sub(1) {
             let (Some(s0), Some(s1), Some(s2)) = (screen.first(), screen.get(k), screen.get(k + 1))

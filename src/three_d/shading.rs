@@ -383,6 +383,11 @@ struct DepthFill<'t, 'a, C, P, const N: usize> {
 
 /// What a [`DepthFill`] writes at a pixel that passes the depth test.
 trait DepthPixel<C, const N: usize> {
+    /// Whether small triangles may take the scan with its own planes ([`Planes::small`]): not
+    /// where the colours must be [`GouraudTriangle`](crate::GouraudTriangle)'s.
+    ///
+    /// [`Planes::small`]: crate::raster::plane::Planes
+    const SCANS_SMALL: bool = true;
     /// Once per triangle: the attributes' per-pixel steps.
     fn prepare(&mut self, _step: &[u32; N]) {}
     /// Once per span: its attributes at the first pixel and its length.
@@ -397,6 +402,11 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     for DepthFill<'_, '_, C, P, N>
 {
     type Steps = ();
+
+    #[inline(always)]
+    fn scans_small(&self) -> bool {
+        P::SCANS_SMALL
+    }
 
     #[inline(always)]
     fn prepare(&mut self, step: [u32; N]) {
@@ -480,6 +490,8 @@ struct Smooth<C> {
 }
 
 impl<C: GouraudColor> DepthPixel<C, 4> for Smooth<C> {
+    const SCANS_SMALL: bool = false;
+
     #[inline(always)]
     fn prepare(&mut self, step: &[u32; 4]) {
         self.steps = C::prepare_steps([step[1], step[2], step[3]]);

@@ -1,0 +1,404 @@
+//! Small triangles scanned: the size class under [`SMALL`] pixels, set up in 32-bit products
+//! and drawn a row at a time by testing each pixel's edge values — no division an edge.
+//!
+//! A triangle of a few pixels has rows of one to four pixels, and the walk's set-up (two
+//! divisions an edge, the edges sorted by height, the switch at the middle vertex) and the
+//! compact planes' 64-bit gradients cost more than its pixels. Under 16 pixels across, every
+//! edge coefficient and every edge value in the box fits far inside an `i32`, so the set-up is
+//! a handful of 32-bit products: the doubled area, the three reduced edge values `K` at the
+//! first pixel (inside iff `K ≥ 0`, the fill rule of [`owns_centres_on`] in the bias), stepped
+//! by `a` per column and `b` per row — the integers the walk's boundaries derive from, so the
+//! same pixels — and the attribute planes from one reciprocal of the area ([`small_planes`]).
+//! Each row is scanned from the region's first column to the end of its run (a triangle is
+//! convex: one run a row).
+//!
+//! The planes are within the compact planes' error bound but are not their integers, so
+//! shaders opt in ([`SpanShader::scans_small`]): the 3D pipeline's depth-tested fills, whose
+//! triangles are mostly this small. Firmware drawing only 2D triangles does not link it.
+
+use embedded_graphics::primitives::Rectangle;
+
+use super::arith::{leading_zeros_32, reciprocal_63};
+use super::compact::{first_centre_from, last_centre_to, last_of};
+use super::edge::owns_centres_on;
+use super::plane::{Attributes, Planes};
+use super::shade::SpanShader;
+use super::walk::Span;
+use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
+
+/// Width and height of a small triangle's vertex bounding box stay below this many pixels.
+pub(crate) const SMALL: u32 = 16;
+
+/// An edge: coefficients `a` (per column) and `b` (per row) and its reduced value `K` at the
+/// first pixel.
+#[derive(Clone, Copy)]
+struct Edge {
+    a: i32,
+    b: i32,
+    k: i32,
+}
+
+impl Edge {
+    /// The edge from `s` to `e` (sub-pixels, relative to vertex 0), with `K` at the pixel
+    /// centre `(cx, cy)` (relative to vertex 0 too), and its edge value there.
+    #[inline(always)]
+    fn new(s: (i32, i32), e: (i32, i32), (cx, cy): (i32, i32)) -> (Edge, i32) {
+        let (a, b) = (s.1 - e.1, e.0 - s.0);
+        // Within the box: coefficients and offsets below 2¹³, the value below 2²⁷.
+        let value = a * (cx - s.0) + b * (cy - s.1);
+        let bias = i32::from(!owns_centres_on(a.into(), b.into()));
+        let k = (value - bias) >> SUBPIXEL_BITS;
+        (Edge { a, b, k }, value)
+    }
+}
+
+/// A small triangle set up over a clip rectangle: its pixel region, edges and planes.
+struct SmallTriangle<const N: usize> {
+    /// Pixels of the scan: columns `x0 ..= x0 + last`, rows `y0 ..= y0 + rows`.
+    x0: i32,
+    y0: i32,
+    last: u32,
+    rows: u32,
+    edges: [Edge; 3],
+    planes: Planes<N>,
+}
+
+/// Why a triangle is not drawn here.
+enum NotSmall {
+    /// Nothing of it is inside the clip, or its vertices are collinear: nothing to draw at all.
+    Empty,
+    /// Too large, or a sliver whose planes need the compact set-up.
+    Other,
+}
+
+impl<const N: usize> SmallTriangle<N> {
+    /// The triangle `v` with `attributes` over `clip`, if it is small (its vertices within
+    /// [`SMALL`] pixels of each other on both axes, less a sub-pixel) and not a sliver.
+    #[inline(always)]
+    fn new(
+        v: [(Coord, Coord); 3],
+        attributes: &Attributes<N>,
+        clip: &Rectangle,
+    ) -> Result<Self, NotSmall> {
+        let [p0, p1, p2] = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
+        let span = |a: i32, b: i32, c: i32| (a.min(b).min(c), a.max(b).max(c));
+        let (min_x, max_x) = span(p0.0, p1.0, p2.0);
+        let (min_y, max_y) = span(p0.1, p1.1, p2.1);
+        // The wrapping differences are the true ones (below 2³²).
+        let limit = SMALL << SUBPIXEL_BITS;
+        if max_x.wrapping_sub(min_x) as u32 >= limit || max_y.wrapping_sub(min_y) as u32 >= limit {
+            return Err(NotSmall::Other);
+        }
+        // Relative to vertex 0: below 2¹², so the doubled area is below 2²⁵.
+        let rel = |p: (i32, i32)| (p.0.wrapping_sub(p0.0), p.1.wrapping_sub(p0.1));
+        let (q1, q2) = (rel(p1), rel(p2));
+        let area2 = q1.0 * q2.1 - q1.1 * q2.0;
+        if area2 == 0 {
+            return Err(NotSmall::Empty);
+        }
+        // Positive orientation: oriented vertices 1 and 2 swapped for a negative area.
+        let (o1, o2, order) = if area2 > 0 {
+            (q1, q2, [0, 1, 2])
+        } else {
+            (q2, q1, [0, 2, 1])
+        };
+
+        let (cx, cy) = (clip.top_left.x, clip.top_left.y);
+        let x0 = first_centre_from(min_x).max(cx);
+        let x1 = last_centre_to(max_x).min(last_of(cx, clip.size.width));
+        let y0 = first_centre_from(min_y).max(cy);
+        let y1 = last_centre_to(max_y).min(last_of(cy, clip.size.height));
+        if x0 > x1 || y0 > y1 {
+            return Err(NotSmall::Empty);
+        }
+        // The first pixel centre relative to vertex 0: inside the box.
+        let centre = |i: i32, v: i32| {
+            (i << SUBPIXEL_BITS)
+                .wrapping_add(HALF_PIXEL as i32)
+                .wrapping_sub(v)
+        };
+        let first = (centre(x0, p0.0), centre(y0, p0.1));
+        // Edges opposite oriented vertices 0, 1, 2; the last two's values at the first pixel
+        // are the barycentrics of vertices 1 and 2 times the doubled area.
+        let (e0, _) = Edge::new(o1, o2, first);
+        let (e1, l1) = Edge::new(o2, (0, 0), first);
+        let (e2, l2) = Edge::new((0, 0), o1, first);
+        let planes = small_planes(attributes, order, area2.unsigned_abs(), (e1, l1), (e2, l2))
+            .ok_or(NotSmall::Other)?;
+        Ok(SmallTriangle {
+            x0,
+            y0,
+            last: (x1 - x0) as u32,
+            rows: (y1 - y0) as u32,
+            edges: [e0, e1, e2],
+            planes,
+        })
+    }
+
+    /// Hands `shader` the covered span of each row with the planes' values at its first pixel.
+    #[inline(always)]
+    fn draw<S: SpanShader<N>>(&self, shader: &mut S) {
+        let planes = &self.planes;
+        let steps = shader.prepare(planes.step());
+        let [e0, e1, e2] = self.edges;
+        let last = self.last;
+        let (mut k0, mut k1, mut k2) = (e0.k, e1.k, e2.k);
+        for row in 0..=self.rows {
+            let (mut c0, mut c1, mut c2) = (k0, k1, k2);
+            let mut column = 0;
+            // Before the run, then the run.
+            while (c0 | c1 | c2) < 0 && column <= last {
+                (c0, c1, c2) = (c0 + e0.a, c1 + e1.a, c2 + e2.a);
+                column += 1;
+            }
+            let start = column;
+            while (c0 | c1 | c2) >= 0 && column <= last {
+                (c0, c1, c2) = (c0 + e0.a, c1 + e1.a, c2 + e2.a);
+                column += 1;
+            }
+            if column > start {
+                let span = Span {
+                    y: self.y0 + row as i32,
+                    x_start: self.x0 + start as i32,
+                    x_end: self.x0 + column as i32,
+                };
+                shader.span(&steps, span, planes.at(start, row));
+            }
+            (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
+        }
+    }
+}
+
+/// Draws the triangle `v` with `attributes` inside `clip` through `shader` if it is small and
+/// not a sliver (see [`SmallTriangle::new`]): `true` if it is done (drawn, or nothing to draw),
+/// `false` with nothing drawn otherwise.
+#[inline(always)]
+pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    shader: &mut S,
+) -> bool {
+    match SmallTriangle::new(v, attributes, clip) {
+        Ok(triangle) => {
+            triangle.draw(shader);
+            true
+        }
+        Err(NotSmall::Empty) => true,
+        Err(NotSmall::Other) => false,
+    }
+}
+
+/// The planes of a small triangle of doubled area `area2` (below 2²⁵; `order` maps oriented
+/// to input vertices) whose edges opposite oriented vertices 1 and 2 are `e1`, `e2` with their
+/// values `l1`, `l2` at the first pixel; `None` for slivers whose attributes change by more than
+/// 2¹⁵ LSB a pixel.
+///
+/// With `r = ⌊2⁶³/(area2·2ᵗ)⌋` (`t ≥ 7`), an attribute's step is `Nx·2²⁴/area2 = Nx·r >> s`,
+/// `s = 39 − t`, for the exact numerator `Nx = Σ dₖ·aₖ` (below 2³⁰), within `|step|·2⁻³¹ + ½`
+/// units (below 2⁻¹⁶ LSB for steps under 2¹⁵ LSB); the barycentrics at the first pixel likewise
+/// from the exact edge values (within 2⁻²³). Over the at most 34 pixels (x plus y) of such a
+/// triangle from its vertex 0, every value stays within 2⁻¹⁰ LSB of the exact plane, the bound
+/// of [`Planes::compact`].
+#[inline(always)]
+fn small_planes<const N: usize>(
+    attributes: &Attributes<N>,
+    order: [usize; 3],
+    area2: u32,
+    (e1, l1): (Edge, i32),
+    (e2, l2): (Edge, i32),
+) -> Option<Planes<N>> {
+    let t = leading_zeros_32(area2);
+    // 2³² only for a normalised area of 2³¹: clamped, a relative change of 2⁻³².
+    let r = reciprocal_63(area2 << t).min(u64::from(u32::MAX)) as i64;
+    let shift = 39 - t;
+    let round = 1i64 << (shift - 1);
+    // A product below 2⁶² shifted to 24 fractional bits (modulo 2³² for steps).
+    let scaled = |n: i32| (i64::from(n) * r + round) >> shift;
+    // Barycentrics of oriented vertices 1 and 2 at the first pixel, 24 fractional bits: below
+    // 2⁸ for a first pixel in the box.
+    let (b1, b2) = (scaled(l1), scaled(l2));
+    if b1.unsigned_abs() >= 1 << 31 || b2.unsigned_abs() >= 1 << 31 {
+        return None;
+    }
+    let (b1, b2) = (b1 as i32, b2 as i32);
+    let value = |k: usize| attributes.values[order[k] % 3];
+    let (c0, c1, c2) = (value(0), value(1), value(2));
+    // Steps of at most 2¹⁵ LSB a pixel: |Nx| < area2·2¹⁵.
+    let limit = (u64::from(area2) << 15).min(1 << 31) as u32;
+    let mut planes = Planes::zero();
+    for k in 0..N {
+        let base = i32::from(c0[k]);
+        let (d1, d2) = (i32::from(c1[k]) - base, i32::from(c2[k]) - base);
+        // |d| ≤ 2¹⁶ and |a|, |b| < 2¹³: below 2³⁰.
+        let (nx, ny) = (d1 * e1.a + d2 * e2.a, d1 * e1.b + d2 * e2.b);
+        if nx.unsigned_abs() >= limit || ny.unsigned_abs() >= limit {
+            return None;
+        }
+        // 2⁻³² units: below 2⁴⁸.
+        let v =
+            (i64::from(base) << 24) + i64::from(d1) * i64::from(b1) + i64::from(d2) * i64::from(b2);
+        let half = attributes.half[k];
+        planes.set(
+            k,
+            (((v + (1 << 7)) >> 8) as u32).wrapping_add(half),
+            scaled(nx) as u32,
+            scaled(ny) as u32,
+        );
+    }
+    Some(planes)
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec::Vec;
+
+    use embedded_graphics::prelude::*;
+
+    use super::*;
+    use crate::raster::edge::TriangleSetup;
+
+    /// Random small triangles: boxes from a sub-pixel to 16 px (slivers and collinear ones
+    /// included) anywhere in the `Coord` range, clips over and across them.
+    fn cases(seed: u64, n: usize, mut check: impl FnMut([(Coord, Coord); 3], Rectangle)) {
+        let mut next = crate::random(seed);
+        for i in 0..n {
+            let size = ((1 + next() % u64::from(SMALL << SUBPIXEL_BITS)) >> (next() % 5)).max(1);
+            let origin = if i % 2 == 0 {
+                ((next() % 4096) as i32 - 2048, (next() % 4096) as i32 - 2048)
+            } else {
+                (next() as i32, next() as i32)
+            };
+            let mut v = [(); 3].map(|_| {
+                (
+                    origin.0.wrapping_add((next() % size) as i32),
+                    origin.1.wrapping_add((next() % size) as i32),
+                )
+            });
+            if i % 5 == 0 {
+                // On a line, or a hair off it.
+                let (d0, d1) = (v[1].0.wrapping_sub(v[0].0), v[1].1.wrapping_sub(v[0].1));
+                v[2] = (
+                    v[1].0
+                        .wrapping_add(d0)
+                        .wrapping_add((next() % 3) as i32 - 1),
+                    v[1].1.wrapping_add(d1),
+                );
+            }
+            let mut px = |c: i32| (c >> SUBPIXEL_BITS).saturating_sub(4) + (next() % 6) as i32;
+            let clip = Rectangle::new(
+                Point::new(px(v[0].0), px(v[0].1)),
+                Size::new((next() % 24) as u32, (next() % 24) as u32),
+            );
+            check(
+                v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))),
+                clip,
+            );
+        }
+    }
+
+    /// Records the spans and their values.
+    struct Record(Vec<(Span, [u32; 2])>);
+
+    impl SpanShader<2> for Record {
+        type Steps = [u32; 2];
+        fn prepare(&mut self, step: [u32; 2]) -> [u32; 2] {
+            step
+        }
+        fn span(&mut self, _: &[u32; 2], span: Span, start: [u32; 2]) {
+            self.0.push((span, start));
+        }
+        fn scans_small(&self) -> bool {
+            true
+        }
+    }
+
+    /// Exactly the pixels of the per-pixel edge tests of the general set-up, once each, and
+    /// attribute values within 2⁻¹⁰ LSB of the exact plane at every pixel of the region.
+    #[test]
+    fn spans_and_planes_are_exact() {
+        let (mut drawn, mut values) = (0, 0u64);
+        let mut next = crate::random(0x5ca1_ab1e_0000_0001);
+        cases(0x5ca1_ab1e_0000_0002, 200_000, |v, clip| {
+            let channels = [(); 3].map(|_| [next() as u8, next() as u8]);
+            let attributes = Attributes::channels(channels);
+            let mut record = Record(Vec::new());
+            let done = shade(v, &attributes, &clip, &mut record);
+            let setup = TriangleSetup::new(v);
+            let in_clip = |x: i32, y: i32| {
+                let (cx, cy) = (clip.top_left.x, clip.top_left.y);
+                x >= cx
+                    && y >= cy
+                    && i64::from(x) < i64::from(cx) + i64::from(clip.size.width)
+                    && i64::from(y) < i64::from(cy) + i64::from(clip.size.height)
+            };
+            if !done {
+                assert!(record.0.is_empty());
+                return;
+            }
+            let mut seen = std::collections::HashSet::new();
+            for (span, _) in &record.0 {
+                for x in span.x_start..span.x_end {
+                    assert!(seen.insert((x, span.y)), "{v:?}: ({x}, {}) twice", span.y);
+                }
+            }
+            // Every pixel of the box: covered iff the edge tests say so.
+            let (x, y) = (v.map(|p| p.0.to_bits()), v.map(|p| p.1.to_bits()));
+            let lo = |m: [i32; 3]| first_centre_from(m[0].min(m[1]).min(m[2]));
+            let hi = |m: [i32; 3]| last_centre_to(m[0].max(m[1]).max(m[2]));
+            for j in lo(y)..=hi(y) {
+                for i in lo(x)..=hi(x) {
+                    let want = in_clip(i, j) && setup.as_ref().is_some_and(|s| s.covers(i, j));
+                    assert_eq!(seen.contains(&(i, j)), want, "{v:?} {clip:?} ({i}, {j})");
+                }
+            }
+            drawn += seen.len();
+            // Values against the exact barycentric interpolation, at each span's first pixel
+            // and stepped along it.
+            let Some(setup) = setup else { return };
+            let p = v.map(|(x, y)| (i128::from(x.to_bits()), i128::from(y.to_bits())));
+            let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
+                (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+            };
+            let area2 = cross(p[0], p[1], p[2]);
+            let _ = setup;
+            let triangle = SmallTriangle::new(v, &attributes, &clip).ok();
+            let Some(triangle) = triangle else { return };
+            let modulus = area2.abs() << 32;
+            for row in 0..=triangle.rows {
+                for column in 0..=triangle.last {
+                    let q = (
+                        i128::from(triangle.x0 + column as i32) * 256 + 128,
+                        i128::from(triangle.y0 + row as i32) * 256 + 128,
+                    );
+                    let lambda = [
+                        cross(q, p[1], p[2]),
+                        cross(q, p[2], p[0]),
+                        cross(q, p[0], p[1]),
+                    ];
+                    for k in 0..2 {
+                        let got = triangle.planes.at(column, row)[k];
+                        let exact: i128 =
+                            (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
+                        let mut err = ((i128::from(got) - (1 << 23)) * area2 - (exact << 24))
+                            .rem_euclid(modulus);
+                        if err > modulus / 2 {
+                            err -= modulus;
+                        }
+                        assert!(
+                            err.abs() <= area2.abs() << 14,
+                            "{v:?} {channels:?} ({column}, {row}) {k}: {} units",
+                            err as f64 / area2.abs() as f64
+                        );
+                        values += 1;
+                    }
+                }
+            }
+        });
+        assert!(
+            drawn > 80_000 && values > 500_000,
+            "{drawn} pixels, {values} values"
+        );
+    }
+}
