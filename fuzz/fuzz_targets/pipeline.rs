@@ -3,15 +3,17 @@
 //! (huge rectangles too), lights built from their public fields, every `Shading` and `Cull`, in
 //! Rgb565 and Rgb888, into a `DepthTarget` of up to 48 × 48: no panic; no colour or depth
 //! written outside viewport ∩ target (checked per pixel in `i64` against a cleared buffer);
-//! every depth written is at most `DEPTH_FAR`; every face is counted once in the statistics.
+//! every depth written is at most `DEPTH_FAR`; every face is counted once in the statistics;
+//! `draw_mesh_with` (a scratch of any length) draws the same pixels and depths with the same
+//! statistics, or nothing and `ScratchTooSmall` when the scratch is shorter than the mesh.
 #![no_main]
 
 use arbitrary::Arbitrary;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_raster::three_d::{
-    Angle, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading, Vec3,
-    DEPTH_CLEAR, DEPTH_FAR,
+    Angle, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, ProjectedVertex, Scalar,
+    Shading, Vec3, DEPTH_CLEAR, DEPTH_FAR,
 };
 use embedded_raster::GouraudColor;
 use embedded_raster_fuzz::{inside, AnyRect, Int};
@@ -88,6 +90,7 @@ struct Input {
     vertices: Vec<[Int; 3]>,
     normals: Vec<[Int; 3]>,
     faces: Vec<[u8; 3]>,
+    scratch: u8,
 }
 
 fn vec3(v: &[Int; 3]) -> Vec3 {
@@ -130,6 +133,37 @@ fn run<C: GouraudColor>(
                 pipeline.viewport
             );
             assert!(z <= DEPTH_FAR, "depth {z} at ({x}, {y})");
+        }
+    }
+
+    let (mut pixels_with, mut depth_with) = (vec![background; n], vec![DEPTH_CLEAR; n]);
+    let mut target_with =
+        DepthTarget::new(&mut pixels_with, &mut depth_with, width, height).unwrap();
+    let mut scratch = vec![ProjectedVertex::default(); usize::from(input.scratch % 10)];
+    let material = Material::new(color, shading);
+    match pipeline.draw_mesh_with(mesh, &material, &mut target_with, &mut scratch) {
+        Ok(stats_with) => {
+            assert!(
+                scratch.len() >= mesh.vertices.len(),
+                "drew with a short scratch"
+            );
+            assert_eq!(stats_with, stats, "draw_mesh_with counted differently");
+            assert!(pixels_with == pixels, "draw_mesh_with drew other colours");
+            assert!(depth_with == depth, "draw_mesh_with drew other depths");
+        }
+        Err(e) => {
+            assert!(
+                scratch.len() < mesh.vertices.len(),
+                "ScratchTooSmall with enough: {e:?}"
+            );
+            assert!(
+                pixels_with.iter().all(|&c| c == background),
+                "drew and said ScratchTooSmall"
+            );
+            assert!(
+                depth_with.iter().all(|&z| z == DEPTH_CLEAR),
+                "drew and said ScratchTooSmall"
+            );
         }
     }
 }
