@@ -9,8 +9,9 @@
 //! the types allow. Debug builds keep their panics, so there the handler just exits with failure.
 //!
 //! It draws the shared scene (checksum printed like `fw_scene`, so the run is checked too), the
-//! same triangles in other colour formats through both `draw` and `draw_into`, and their spans
-//! under arbitrary clip rectangles.
+//! same triangles in other colour formats through both `draw` and `draw_into`, their spans
+//! under arbitrary clip rectangles, and the framebuffer's `DrawTarget` fills on arbitrary
+//! rectangles.
 //!
 //! ```text
 //! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
@@ -36,6 +37,7 @@ mod firmware {
 
     use cortex_m_rt::entry;
     use cortex_m_semihosting::hio;
+    use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
@@ -158,6 +160,24 @@ mod firmware {
             );
         });
         black_box(spans);
+
+        // The framebuffer's DrawTarget methods on opaque rectangles and pixels (any corner in
+        // i32, any size, past i32::MAX too).
+        let areas = black_box([
+            Rectangle::new(Point::new(-5, 3), Size::new(3_000_000_000, 1 << 31)),
+            Rectangle::new(Point::new(i32::MAX - 1, 0), Size::new(2, 1)),
+            Rectangle::new(Point::new(2, 1), Size::new(7, 5)),
+        ]);
+        for area in &areas {
+            let _ = fb.fill_solid(area, black_box(Rgb565::WHITE));
+            // A slice iterator skips off-screen colours in constant time.
+            let colors: [Rgb565; 64] = black_box(core::array::from_fn(|i| {
+                Rgb565::from(RawU16::new(i as u16))
+            }));
+            let _ = fb.fill_contiguous(area, colors.iter().copied());
+        }
+        let _ = fb.draw_iter(black_box([Pixel(Point::new(-1, 7), Rgb565::RED); 2]));
+        black_box(fb.pixels());
         black_box((
             rgb888.as_ref().map(|f| f.pixels()),
             gray8.as_ref().map(|f| f.pixels()),

@@ -59,13 +59,14 @@
 #[cfg(feature = "std")]
 extern crate std;
 
-// Layers, each using only those above it: target code, the raster core, colours, drawing into
-// embedded-graphics targets, the 3D pipeline. `geometry` and `reference` stand apart.
+// Layers, each using only those above it: target code, rectangle arithmetic (`rect`), the raster
+// core, colours, drawing into embedded-graphics targets, the 3D pipeline. `geometry` and `reference` stand apart.
 mod arch;
 pub mod color;
 pub mod draw;
 pub mod fixed_point;
 pub mod raster;
+mod rect;
 pub mod three_d;
 
 pub mod geometry;

@@ -23,6 +23,21 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
 use crate::arch::LANES;
+use crate::rect;
+
+/// Drops the next `n` items of `colors`; `false` if it ran out first. In steps of at most
+/// `usize::MAX` items (`nth` takes a `usize`; `n` may exceed it on 32-bit targets).
+#[inline]
+fn skip_colors<I: Iterator>(colors: &mut I, mut n: u64) -> bool {
+    while n > 0 {
+        let step = usize::try_from(n).unwrap_or(usize::MAX);
+        if colors.nth(step - 1).is_none() {
+            return false;
+        }
+        n -= step as u64;
+    }
+    true
+}
 
 /// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
 /// pixel on Cortex-M4 against 3 for `slice::fill`, which LLVM leaves as one store per iteration
@@ -39,6 +54,28 @@ pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
 }
 
 /// A `width × height` framebuffer stored row-major in a borrowed slice of colours.
+///
+/// # Areas outside the buffer
+///
+/// Every `DrawTarget` method takes any input: `fill_solid` and `fill_contiguous` accept any
+/// `Rectangle` (corners anywhere in `i32`, sides up to `u32::MAX`, so reaching past `i32::MAX`)
+/// and write exactly its pixels that lie inside the buffer, nothing when none do; the clip is
+/// computed in `i64`, and only the rows inside are visited. `draw_iter` ignores pixels outside.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
+/// use embedded_raster::SliceFramebuffer;
+///
+/// let mut pixels = [Gray8::BLACK; 8 * 4];
+/// let mut fb = SliceFramebuffer::new(&mut pixels, 8, 4).unwrap();
+/// // Columns 6 to 6 + 3·10⁹ of rows 1 to 2³¹: columns 6 and 7 of rows 1 to 3 are inside.
+/// let area = Rectangle::new(Point::new(6, 1), Size::new(3_000_000_000, 1 << 31));
+/// fb.fill_solid(&area, Gray8::WHITE).unwrap();
+/// let lit = fb.pixels().iter().filter(|&&p| p == Gray8::WHITE).count();
+/// assert_eq!(lit, 6);
+/// assert_eq!(fb.get(6, 1), Some(Gray8::WHITE));
+/// assert_eq!(fb.get(5, 1), Some(Gray8::BLACK));
+/// ```
 #[derive(Debug)]
 pub struct SliceFramebuffer<'a, C> {
     pixels: &'a mut [C],
@@ -77,7 +114,8 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
         self.index(x, y).and_then(|i| self.pixels.get(i)).copied()
     }
 
-    fn index(&self, x: i32, y: i32) -> Option<usize> {
+    /// The row-major index of `(x, y)`, or `None` outside the buffer.
+    pub(crate) fn index(&self, x: i32, y: i32) -> Option<usize> {
         let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
         (x < self.width && y < self.height).then(|| y as usize * self.width as usize + x as usize)
     }
@@ -156,6 +194,7 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     type Color = C;
     type Error = Infallible;
 
+    /// Writes each pixel inside the buffer; pixels outside it are ignored.
     fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
     where
         I: IntoIterator<Item = Pixel<C>>,
@@ -168,6 +207,13 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
         Ok(())
     }
 
+    /// Writes the colours of the pixels of `area` inside the buffer, for any `area` (see
+    /// [`SliceFramebuffer`]). The colours are taken in embedded-graphics' order, row by row over
+    /// the whole `area`: those of pixels outside the buffer are skipped with `Iterator::nth`
+    /// (free for slice iterators), and none is taken after the last pixel inside, as
+    /// embedded-graphics' own clipped targets do. The cost is the pixels inside plus what the
+    /// iterator's `nth` costs for those skipped up to the last row inside. Fewer colours than
+    /// pixels fill the area as far as they go.
     fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
     where
         I: IntoIterator<Item = C>,
@@ -178,34 +224,47 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
             }
             return Ok(());
         }
-        let inside = area.intersection(&self.bounding_box());
-        if inside != *area {
-            // Partly outside: skip the colours of clipped pixels one by one.
-            return self.draw_iter(area.points().zip(colors).map(|(p, c)| Pixel(p, c)));
+        let visible = rect::intersection(area, &self.bounding_box());
+        if visible.is_zero_sized() {
+            return Ok(());
         }
+        let (Point { x, y }, Size { width, height }) = (visible.top_left, visible.size);
+        // Colours before the first pixel inside (the rows above it, then the columns to its
+        // left), and between two rows inside: below (2³² − 1)² + 2³², so exact in u64.
+        let area_width = u64::from(area.size.width);
+        let above = (i64::from(y) - i64::from(area.top_left.y)) as u64;
+        let left = (i64::from(x) - i64::from(area.top_left.x)) as u64;
+        let mut skip = above * area_width + left;
+        let gap = area_width - u64::from(width);
         let mut colors = colors.into_iter();
-        let Size { width, height } = area.size;
+        // Inside the buffer: y + dy < height ≤ i32::MAX.
         for dy in 0..height {
-            let Some(row) = self.row_mut(area.top_left.x, area.top_left.y + dy as i32, width)
-            else {
+            if !skip_colors(&mut colors, skip) {
+                break;
+            }
+            let Some(row) = self.row_mut(x, y + dy as i32, width) else {
                 break;
             };
             for (dst, c) in row.iter_mut().zip(&mut colors) {
                 *dst = c;
             }
+            skip = gap;
         }
         Ok(())
     }
 
+    /// Fills the pixels of `area` inside the buffer, for any `area` (see [`SliceFramebuffer`]):
+    /// only the rows inside are visited.
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
         if let Some(row) = self.one_row(area) {
             fill_row(row, color);
             return Ok(());
         }
-        let area = area.intersection(&self.bounding_box());
-        let Size { width, height } = area.size;
+        let visible = rect::intersection(area, &self.bounding_box());
+        let (Point { x, y }, Size { width, height }) = (visible.top_left, visible.size);
+        // Inside the buffer (or empty): y + dy < height ≤ i32::MAX.
         for dy in 0..height {
-            if let Some(row) = self.row_mut(area.top_left.x, area.top_left.y + dy as i32, width) {
+            if let Some(row) = self.row_mut(x, y + dy as i32, width) {
                 fill_row(row, color);
             }
         }

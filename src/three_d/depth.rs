@@ -57,12 +57,11 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
 
     /// The depth at `(x, y)`, or `None` outside the buffer.
     pub fn depth_at(&self, x: i32, y: i32) -> Option<u16> {
-        let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
-        if x >= self.width {
-            return None;
-        }
-        self.depth
-            .get(y as usize * self.width as usize + x as usize)
+        // The colour buffer's index checks both coordinates (a row past the last could wrap the
+        // index on 32-bit targets).
+        self.color
+            .index(x, y)
+            .and_then(|i| self.depth.get(i))
             .copied()
     }
 
@@ -143,5 +142,30 @@ impl ScreenVertex {
     /// The position as a coordinate pair.
     pub fn position(&self) -> (Coord, Coord) {
         (self.x, self.y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::Gray8;
+
+    /// Rows past the last read nothing. (Before, the row alone was unchecked: on 32-bit targets
+    /// `y · width` wrapped, so row 2³⁰ of a 4-pixel-wide target read row 0.)
+    #[test]
+    fn depth_outside_the_buffer_is_none() {
+        let (mut px, mut z) = ([Gray8::BLACK; 16], [7u16; 16]);
+        let target = DepthTarget::new(&mut px, &mut z, 4, 4).unwrap();
+        assert_eq!(target.depth_at(3, 3), Some(7));
+        for (x, y) in [
+            (0, 4),
+            (4, 0),
+            (-1, 0),
+            (0, -1),
+            (0, 1 << 30),
+            (i32::MAX, i32::MAX),
+        ] {
+            assert_eq!(target.depth_at(x, y), None, "({x}, {y})");
+        }
     }
 }

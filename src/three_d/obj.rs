@@ -177,8 +177,12 @@ fn vec_zero(n: usize) -> Vec<[f64; 3]> {
     std::vec![[0.0; 3]; n]
 }
 
-/// Writes a mesh as OBJ text (`v`, `vn`, and `f v//vn` lines). Parsing the result with
-/// [`parse`] gives back the same mesh, bit for bit.
+/// Writes a mesh as OBJ text (`v`, `vn`, and `f v//vn` lines), whatever its fields hold.
+///
+/// For a mesh [`parse`] could have produced — one normal per vertex, every index in range, every
+/// vertex used by a face — parsing the result gives back the same mesh, bit for bit. Otherwise
+/// `parse` rejects the text (a face naming a missing vertex or normal) or drops the unused
+/// vertices.
 pub fn to_obj(mesh: &MeshData) -> String {
     let mut s = String::from("# written by embedded_raster::three_d::obj\n");
     for v in &mesh.vertices {

@@ -116,7 +116,8 @@ pub struct Pipeline {
     /// model matrix itself.
     pub normal_matrix: Mat4,
     /// Where normalised device coordinates `[−1, 1]²` land on the target (at most 65535 pixels
-    /// a side); also the scissor rectangle.
+    /// a side); also the scissor rectangle. Any `Rectangle` is accepted: only its part inside the
+    /// target is drawn (nothing when they do not overlap), computed without overflow.
     pub viewport: Rectangle,
     /// Which faces to skip.
     pub cull: Cull,
@@ -178,8 +179,8 @@ impl Pipeline {
     }
 
     /// Draws every triangle of `mesh` with `material` into `target`, depth-tested, clipped to the
-    /// viewport and the target, transforming each vertex once per face that uses it (no memory
-    /// per vertex). [`draw_mesh_with`](Self::draw_mesh_with) transforms each vertex once; both
+    /// viewport and the target (for any viewport, no pixel outside both is written), transforming
+    /// each vertex once per face that uses it (no memory per vertex). [`draw_mesh_with`](Self::draw_mesh_with) transforms each vertex once; both
     /// draw the same pixels.
     pub fn draw_mesh<C: GouraudColor>(
         &self,

@@ -441,9 +441,10 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
 pub(crate) struct TargetClip(Rectangle);
 
 impl TargetClip {
-    /// The part of `clip` inside `target`.
+    /// The part of `clip` inside `target`, for any `clip` (reaching past `i32::MAX` too): computed
+    /// in `i64`, empty when they do not overlap.
     pub(crate) fn new<C: PixelColor>(clip: &Rectangle, target: &DepthTarget<'_, C>) -> Self {
-        TargetClip(clip.intersection(&target.bounding_box()))
+        TargetClip(crate::rect::intersection(clip, &target.bounding_box()))
     }
 }
 
@@ -619,6 +620,9 @@ pub(crate) fn draw_levels<C: PixelColor>(
 
 /// Fills the triangle with `color` where it is nearer than the z-buffer, inside `clip` and the
 /// target. Depth is interpolated from the vertex depths.
+///
+/// `clip` may be any `Rectangle` (reaching past `i32::MAX` too): only pixels inside both it and
+/// the target are written, nothing when they do not overlap. The same holds for every fill here.
 pub fn draw_flat<C: PixelColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &Rectangle,
@@ -641,7 +645,8 @@ pub(crate) fn fill_flat<C: PixelColor>(
 }
 
 /// Fills the triangle with the vertex colours interpolated barycentrically (as
-/// [`GouraudTriangle`](crate::GouraudTriangle) does), depth-tested.
+/// [`GouraudTriangle`](crate::GouraudTriangle) does), depth-tested, inside `clip` (any
+/// `Rectangle`, as for [`draw_flat`]) and the target.
 pub fn draw_gouraud<C: GouraudColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &Rectangle,
@@ -661,8 +666,8 @@ pub fn draw_gouraud<C: GouraudColor>(
 }
 
 /// Fills the triangle with per-pixel Lambert lighting of the quadratic normal field `normals`
-/// (vertex `k` of `normals` belongs to `vertices[k]`), depth-tested. The colour is
-/// `shade(color, light level)`.
+/// (vertex `k` of `normals` belongs to `vertices[k]`), depth-tested, inside `clip` (any
+/// `Rectangle`, as for [`draw_flat`]) and the target. The colour is `shade(color, light level)`.
 pub fn draw_quadratic<C: GouraudColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &Rectangle,
