@@ -189,17 +189,26 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
     }
 }
 
+/// `(n·r + 2^(s−1)) >> s` modulo 2³² for `s` in `[7, 31]`: a 32 × 32-bit product and shifts of
+/// its halves, no 64-bit shift.
+#[inline(always)]
+fn scaled(n: i32, r: i32, s: u32) -> u32 {
+    let p = (i64::from(n) * i64::from(r)).wrapping_add(i64::from(1u32 << (s - 1)));
+    let (lo, hi) = (p as u32, (p >> 32) as u32);
+    lo.wrapping_shr(s) | hi.wrapping_shl(32 - s)
+}
+
 /// The planes of a small triangle of doubled area `area2` (below 2²⁵; `order` maps oriented
 /// to input vertices) whose edges opposite oriented vertices 1 and 2 are `e1`, `e2` with their
 /// values `l1`, `l2` at the first pixel; `None` for slivers whose attributes change by more than
-/// 2¹⁵ LSB a pixel.
+/// 2¹⁴ LSB a pixel.
 ///
-/// With `r = ⌊2⁶³/(area2·2ᵗ)⌋` (`t ≥ 7`), an attribute's step is `Nx·2²⁴/area2 = Nx·r >> s`,
-/// `s = 39 − t`, for the exact numerator `Nx = Σ dₖ·aₖ` (below 2³⁰), within `|step|·2⁻³¹ + ½`
-/// units (below 2⁻¹⁶ LSB for steps under 2¹⁵ LSB); the barycentrics at the first pixel likewise
-/// from the exact edge values (within 2⁻²³). Over the at most 34 pixels (x plus y) of such a
-/// triangle from its vertex 0, every value stays within 2⁻¹⁰ LSB of the exact plane, the bound
-/// of [`Planes::compact`].
+/// With `r = ⌊2⁶²/(area2·2ᵗ)⌋` (`t ≥ 7`, `r < 2³¹`), an attribute's step is
+/// `Nx·2²⁴/area2 = Nx·r >> s`, `s = 38 − t`, for the exact numerator `Nx = Σ dₖ·aₖ` (below
+/// 2³⁰), within `|step|·2⁻³⁰ + ½` units (below 2⁻¹⁶ LSB for steps under 2¹⁴ LSB); the
+/// barycentrics at the first pixel likewise from the exact edge values (within 2⁻²³). Over the
+/// at most 34 pixels (x plus y) of such a triangle from its vertex 0, every value stays within
+/// 2⁻¹⁰ LSB of the exact plane, the bound of [`Planes::compact`].
 #[inline(always)]
 fn small_planes<const N: usize>(
     attributes: &Attributes<N>,
@@ -209,23 +218,20 @@ fn small_planes<const N: usize>(
     (e2, l2): (Edge, i32),
 ) -> Option<Planes<N>> {
     let t = leading_zeros_32(area2);
-    // 2³² only for a normalised area of 2³¹: clamped, a relative change of 2⁻³².
-    let r = reciprocal_63(area2 << t).min(u64::from(u32::MAX)) as i64;
-    let shift = 39 - t;
-    let round = 1i64 << (shift - 1);
-    // A product below 2⁶² shifted to 24 fractional bits (modulo 2³² for steps).
-    let scaled = |n: i32| (i64::from(n) * r + round) >> shift;
+    // ⌊2⁶³/d⌋ ≤ 2³², halved and clamped below 2³¹: a relative change under 2⁻³⁰.
+    let r = (reciprocal_63(area2 << t) >> 1).min(i32::MAX as u64) as i32;
+    let s = 38 - t;
     // Barycentrics of oriented vertices 1 and 2 at the first pixel, 24 fractional bits: below
-    // 2⁸ for a first pixel in the box.
-    let (b1, b2) = (scaled(l1), scaled(l2));
-    if b1.unsigned_abs() >= 1 << 31 || b2.unsigned_abs() >= 1 << 31 {
+    // 2⁸ for a first pixel in the box, and below 2³⁰ (else a sliver: `None`).
+    let fits = |l: i32| (((i64::from(l) * i64::from(r)) >> (s + 29)) + 1) as u64 <= 1;
+    if !fits(l1) || !fits(l2) {
         return None;
     }
-    let (b1, b2) = (b1 as i32, b2 as i32);
+    let (b1, b2) = (scaled(l1, r, s) as i32, scaled(l2, r, s) as i32);
     let value = |k: usize| attributes.values[order[k] % 3];
     let (c0, c1, c2) = (value(0), value(1), value(2));
-    // Steps of at most 2¹⁵ LSB a pixel: |Nx| < area2·2¹⁵.
-    let limit = (u64::from(area2) << 15).min(1 << 31) as u32;
+    // Steps of at most 2¹⁴ LSB a pixel: |Nx| < area2·2¹⁴ (below 2³⁹, and 2³⁰ suffices).
+    let limit = (u64::from(area2) << 14).min(1 << 30) as u32;
     let mut planes = Planes::zero();
     for k in 0..N {
         let base = i32::from(c0[k]);
@@ -242,8 +248,8 @@ fn small_planes<const N: usize>(
         planes.set(
             k,
             (((v + (1 << 7)) >> 8) as u32).wrapping_add(half),
-            scaled(nx) as u32,
-            scaled(ny) as u32,
+            scaled(nx, r, s),
+            scaled(ny, r, s),
         );
     }
     Some(planes)

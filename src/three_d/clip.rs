@@ -78,6 +78,28 @@ impl ClipVolume {
     /// Bit `k` is set when `p` is outside plane `k`.
     #[inline(always)]
     pub(crate) fn outcode(&self, p: &[i32; 4]) -> u8 {
+        if self.inside(p) {
+            0
+        } else {
+            self.outcode_outside(p)
+        }
+    }
+
+    /// Whether `p` is inside every plane: the common case, tested first.
+    #[inline(always)]
+    fn inside(&self, p: &[i32; 4]) -> bool {
+        let [x, y, z, w] = p.map(i64::from);
+        let [gx, gy] = self.guard;
+        w >= W_MIN
+            && z + w >= 0
+            && w - z >= 0
+            && (x << 8).abs() <= gx * w
+            && (y << 8).abs() <= gy * w
+    }
+
+    /// [`outcode`](Self::outcode) of a point outside some plane.
+    #[inline(never)]
+    fn outcode_outside(&self, p: &[i32; 4]) -> u8 {
         (0..PLANES).fold(0, |code, k| code | (u8::from(self.distance(k, p) < 0) << k))
     }
 

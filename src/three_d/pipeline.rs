@@ -201,8 +201,8 @@ impl Pipeline {
                 continue;
             };
             let model = [*a, *b, *c];
-            let projected = [0, 1, 2].map(|k| frame.vertex(mesh, idx[k], model[k]));
-            frame.face(mesh, &idx, || model, &projected, target, &mut stats);
+            let [a, b, c] = [0, 1, 2].map(|k| frame.vertex(mesh, idx[k], model[k]));
+            frame.face(mesh, &idx, || model, [&a, &b, &c], target, &mut stats);
         }
         stats
     }
@@ -239,11 +239,10 @@ impl Pipeline {
                 stats.degenerate += 1;
                 continue;
             };
-            let projected = [*a, *b, *c];
             // Only flat shading, faces without normals and clipping need the positions again:
             // in range, as the scratch has one entry per vertex.
             let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
-            frame.face(mesh, &idx, model, &projected, target, &mut stats);
+            frame.face(mesh, &idx, model, [a, b, c], target, &mut stats);
         }
         Ok(stats)
     }
@@ -336,7 +335,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
-        v: &[ProjectedVertex; 3],
+        v: [&ProjectedVertex; 3],
         target: &mut DepthTarget<'_, C>,
         stats: &mut DrawStats,
     ) {
@@ -346,7 +345,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             return;
         }
         if codes[0] | codes[1] | codes[2] != 0 {
-            self.clipped_face(mesh, idx, model, v, target, stats);
+            self.clipped_face(mesh, idx, model, v.map(|v| *v), target, stats);
             return;
         }
         // Inside the guard band every coordinate is within 2²⁴ sub-pixels of the viewport's
@@ -433,7 +432,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
-        v: &[ProjectedVertex; 3],
+        v: [ProjectedVertex; 3],
         target: &mut DepthTarget<'_, C>,
         stats: &mut DrawStats,
     ) {

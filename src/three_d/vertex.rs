@@ -149,11 +149,12 @@ impl VertexLight {
     /// [`level`](Self::level) for a normal already in the light's space and of unit length.
     #[inline]
     pub(crate) fn level_of_unit(&self, n: Vec3) -> u16 {
-        let n = n.to_bits().map(to_14_bits);
-        let l = self.direction;
-        // Components within ±2¹⁴: the sum stays below 2³⁰. 28 fractional bits.
+        let n = n.to_bits().map(i64::from);
+        let l = self.direction.map(i64::from);
+        // Raw components (below 2³¹) times the light's (within ±2¹⁴): below 2⁴⁷, 30 fractional
+        // bits.
         let dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        let diffuse = ((dot + (1 << 11)) >> 12).clamp(0, (1 << 16) - 1) as u32;
+        let diffuse = ((dot + (1 << 13)) >> 14).clamp(0, (1 << 16) - 1) as u32;
         // Below 2³²: (2¹⁶ − a)·d with d < 2¹⁶.
         let lit = (((1 << 16) - self.ambient) * diffuse + (1 << 15)) >> 16;
         let level = (self.ambient + lit).min(1 << 16);
@@ -190,7 +191,7 @@ pub(crate) struct VertexStage {
     /// The viewport's centre, sub-pixels (clamped to ±(2³¹ − 2²⁵): beyond, nothing is on a
     /// target anyway), and its half sizes times 2ᵉ (in `[2²², 2²³)` for the larger).
     centre: (i32, i32),
-    half: (u64, u64),
+    half: (u32, u32),
     /// `e`, and the rounding of a product shifted right by `32 + e`.
     exponent: u32,
     round: i64,
@@ -231,7 +232,7 @@ impl VertexStage {
             direct,
             volume: ClipVolume::new(width, height),
             centre: (centre(x, half.0) as i32, centre(y, half.1) as i32),
-            half: ((half.0 as u64) << exponent, (half.1 as u64) << exponent),
+            half: ((half.0 as u32) << exponent, (half.1 as u32) << exponent),
             exponent,
             round: 1 << (31 + exponent),
             light,
@@ -272,7 +273,7 @@ impl VertexStage {
         // w in [2⁸, 2³¹): s in [1, 23].
         let s = leading_zeros_32(w);
         // r ≤ 2³², and 2³² only for w·2ˢ = 2³¹: clamping it changes c/w by 2⁻³².
-        let r = reciprocal_63(w << s).min(u64::from(u32::MAX));
+        let r = reciprocal_63(w << s).min(u64::from(u32::MAX)) as u32;
         let scale = |c: i32| {
             if s >= 7 {
                 c << (s - 7)
@@ -281,15 +282,16 @@ impl VertexStage {
             }
         };
         let (e, round) = (self.exponent, self.round);
-        let offset = |c: i32, half: u64| {
-            let k = ((half * r) >> 24) as i64;
-            (((i64::from(scale(c)) * k + round) >> 32) as i32) >> e
+        // 32 × 32-bit products throughout: h·2ᵉ < 2²³ and r < 2³², so k < 2³¹.
+        let offset = |c: i32, half: u32| {
+            let k = ((u64::from(half) * u64::from(r)) >> 24) as i32;
+            (((i64::from(scale(c)) * i64::from(k) + round) >> 32) as i32) >> e
         };
         let x = self.centre.0.wrapping_add(offset(p[0], self.half.0));
         let y = self.centre.1.wrapping_sub(offset(p[1], self.half.1));
         // 32767·z/w: |z| ≤ w < 2^(32−s), so z·2^(s−1) fits and the depth is in [0, 65534].
-        let kz = ((32767 * r) >> 16) as i64;
-        let dz = ((i64::from(p[2] << (s - 1)) * kz + (1 << 45)) >> 32) as i32 >> 14;
+        let kz = ((32767 * u64::from(r)) >> 16) as i32;
+        let dz = ((i64::from(p[2] << (s - 1)) * i64::from(kz) + (1 << 45)) >> 32) as i32 >> 14;
         ScreenVertex {
             x: Coord::from_bits(x),
             y: Coord::from_bits(y),
