@@ -382,14 +382,12 @@ impl<const N: usize> Planes<N> {
     }
 
     /// The per-row steps.
-    #[cfg_attr(not(sse2_rows), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn row_step(&self) -> [u32; N] {
         self.dy
     }
 
     /// The values at the first pixel.
-    #[cfg_attr(not(sse2_rows), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn first(&self) -> [u32; N] {
         self.value

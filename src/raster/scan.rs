@@ -139,11 +139,16 @@ impl<const N: usize> SmallTriangle<N> {
     #[inline(always)]
     fn draw<S: SpanShader<N>>(&self, shader: &mut S) {
         let planes = &self.planes;
-        let steps = shader.prepare(planes.step());
+        let (dx, dy) = (planes.step(), planes.row_step());
+        let steps = shader.prepare(dx);
         let [e0, e1, e2] = self.edges;
         let last = self.last;
         let (mut k0, mut k1, mut k2) = (e0.k, e1.k, e2.k);
-        for row in 0..=self.rows {
+        // The attributes at the row's first column, stepped row by row (wrapping, like
+        // `Planes::at`).
+        let mut row_values = planes.first();
+        let mut y = self.y0;
+        for _ in 0..self.rows + 1 {
             let (mut c0, mut c1, mut c2) = (k0, k1, k2);
             let mut column = 0;
             // Before the run, then the run.
@@ -158,13 +163,17 @@ impl<const N: usize> SmallTriangle<N> {
             }
             if column > start {
                 let span = Span {
-                    y: self.y0 + row as i32,
+                    y,
                     x_start: self.x0 + start as i32,
                     x_end: self.x0 + column as i32,
                 };
-                shader.span(&steps, span, planes.at(start, row));
+                let values =
+                    core::array::from_fn(|k| row_values[k].wrapping_add(dx[k].wrapping_mul(start)));
+                shader.span(&steps, span, values);
             }
             (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
+            row_values = core::array::from_fn(|k| row_values[k].wrapping_add(dy[k]));
+            y += 1;
         }
     }
 }
