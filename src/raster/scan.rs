@@ -173,7 +173,8 @@ impl<const N: usize> SmallTriangle<N> {
             }
             (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
             row_values = core::array::from_fn(|k| row_values[k].wrapping_add(dy[k]));
-            y += 1;
+            // Past the last row only after it (which may be i32::MAX).
+            y = y.wrapping_add(1);
         }
     }
 }
