@@ -348,10 +348,10 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             self.clipped_face(mesh, idx, model, v.map(|v| *v), target, stats);
             return;
         }
-        // Inside the guard band every coordinate is within 2²⁴ sub-pixels of the viewport's
-        // centre (or saturated towards it): the products fit i64.
+        // Inside the guard band every coordinate is within 2²⁵ sub-pixels of the viewport's
+        // centre (itself clamped inside i32): the differences fit i32, their products i64.
         let [p0, p1, p2] = v.map(|v| v.position_bits());
-        let d = |a: i32, b: i32| i64::from(a) - i64::from(b);
+        let d = |a: i32, b: i32| i64::from(a.wrapping_sub(b));
         let area = d(p1.0, p0.0) * d(p2.1, p0.1) - d(p2.0, p0.0) * d(p1.1, p0.1);
         if area == 0 {
             stats.degenerate += 1;
