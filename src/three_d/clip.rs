@@ -42,7 +42,7 @@ pub(crate) type Polygon = HVec<ClipVertex, 12>;
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ClipVolume {
     /// Guard band factors `g_x`, `g_y` with 8 fractional bits, in `[1, 64]`.
-    guard: [i64; 2],
+    guard: [i32; 2],
 }
 
 impl ClipVolume {
@@ -54,7 +54,7 @@ impl ClipVolume {
             (GUARD_PIXELS * 256 / half).clamp(256, MAX_GUARD)
         };
         ClipVolume {
-            guard: [factor(width), factor(height)],
+            guard: [factor(width), factor(height)].map(|g| g as i32),
         }
     }
 
@@ -63,7 +63,7 @@ impl ClipVolume {
     #[inline(always)]
     fn distance(&self, k: usize, p: &[i32; 4]) -> i64 {
         let [x, y, z, w] = p.map(i64::from);
-        let [gx, gy] = self.guard;
+        let [gx, gy] = self.guard.map(i64::from);
         match k {
             0 => z + w,
             1 => w - z,
@@ -89,7 +89,8 @@ impl ClipVolume {
     #[inline(always)]
     fn inside(&self, p: &[i32; 4]) -> bool {
         let [x, y, z, w] = p.map(i64::from);
-        let [gx, gy] = self.guard;
+        // 32 × 32-bit products: the factors are below 2¹⁵.
+        let [gx, gy] = self.guard.map(i64::from);
         w >= W_MIN
             && z + w >= 0
             && w - z >= 0
@@ -205,6 +206,6 @@ mod tests {
         assert_eq!(volume.outcode(&[(25 << 16) / 4 + 1, 0, 0, 1 << 16]), 1 << 3);
         assert_eq!(volume.outcode(&[0, -(9 << 16), 0, 1 << 16]), 1 << 6);
         // A huge viewport keeps at least the viewport itself; a tiny one at most 64 times it.
-        assert_eq!(ClipVolume::new(60_000, 2).guard, [256, MAX_GUARD]);
+        assert_eq!(ClipVolume::new(60_000, 2).guard, [256, MAX_GUARD as i32]);
     }
 }

@@ -5,7 +5,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::draw::SliceFramebuffer;
+use crate::draw::{fill_row, SliceFramebuffer};
 use crate::fixed_point::Coord;
 
 /// The z-buffer value of an empty pixel; nothing is ever drawn at this depth.
@@ -67,12 +67,12 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
 
     /// Resets every depth to [`DEPTH_CLEAR`].
     pub fn clear_depth(&mut self) {
-        self.depth.fill(DEPTH_CLEAR);
+        fill_row(self.depth, DEPTH_CLEAR);
     }
 
     /// Fills the colour buffer with `color` and resets the z-buffer.
     pub fn clear(&mut self, color: C) {
-        self.color.pixels_mut().fill(color);
+        fill_row(self.color.pixels_mut(), color);
         self.clear_depth();
     }
 
