@@ -60,8 +60,10 @@
 extern crate std;
 
 // Layers, each using only those above it: target code, rectangle arithmetic (`rect`), the raster
-// core, colours, drawing into embedded-graphics targets, the 3D pipeline. `geometry` and `reference` stand apart.
+// core, colours, drawing into embedded-graphics targets, the 3D pipeline, band rendering.
+// `geometry` and `reference` stand apart.
 mod arch;
+pub mod band;
 pub mod color;
 pub mod draw;
 pub mod fixed_point;

@@ -28,7 +28,7 @@ use crate::rect;
 /// Drops the next `n` items of `colors`; `false` if it ran out first. In steps of at most
 /// `usize::MAX` items (`nth` takes a `usize`; `n` may exceed it on 32-bit targets).
 #[inline]
-fn skip_colors<I: Iterator>(colors: &mut I, mut n: u64) -> bool {
+pub(crate) fn skip_colors<I: Iterator>(colors: &mut I, mut n: u64) -> bool {
     while n > 0 {
         let step = usize::try_from(n).unwrap_or(usize::MAX);
         if colors.nth(step - 1).is_none() {
@@ -97,6 +97,15 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
             width,
             height,
         })
+    }
+
+    /// A framebuffer of no pixels.
+    pub(crate) fn empty() -> Self {
+        SliceFramebuffer {
+            pixels: &mut [],
+            width: 0,
+            height: 0,
+        }
     }
 
     /// The pixels, row-major, exactly `width · height` of them.

@@ -7,5 +7,6 @@
 mod framebuffer;
 mod triangle;
 
+pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{fill_row, SliceFramebuffer};
 pub use triangle::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};

@@ -31,6 +31,7 @@ use super::framebuffer::{fill_row, SliceFramebuffer};
 use crate::arch::LANES;
 use crate::color::{restart_value, GouraudColor, SpanSteps};
 use crate::fixed_point::{pixel_corner, Coord};
+use crate::raster::band::RowWindow;
 use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, ExactPlanes, Planes, MAX_CHUNK};
@@ -99,6 +100,19 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         let clip = framebuffer.bounding_box();
         let mut shader = IntoSlice::new(framebuffer, false);
         shade_compact(self.positions(), &self.channels(), &clip, &mut shader)
+    }
+
+    /// Draws the rows of `window` into `framebuffer` (a band's buffer) as
+    /// [`draw_into`](Self::draw_into) draws them into a framebuffer whose bounds are `clip`.
+    #[inline]
+    pub(crate) fn draw_rows(
+        &self,
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+        clip: &Rectangle,
+        window: &impl RowWindow,
+    ) {
+        let mut shader = IntoSlice::new(framebuffer, false);
+        window.shade(self.positions(), &self.channels(), clip, &mut shader);
     }
 
     /// The covered spans inside `clip` with their colours, each at most
@@ -247,6 +261,23 @@ impl<C: PixelColor> SolidTriangle<C> {
             &clip,
             &mut shader,
         );
+    }
+
+    /// Draws the rows of `window` into `framebuffer` (a band's buffer) as
+    /// [`draw_into`](Self::draw_into) draws them into a framebuffer whose bounds are `clip`.
+    #[inline]
+    pub(crate) fn draw_rows(
+        &self,
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+        clip: &Rectangle,
+        window: &impl RowWindow,
+    ) {
+        let mut shader = SolidIntoSlice {
+            framebuffer,
+            color: self.color,
+        };
+        let attributes = Attributes::channels([[]; 3]);
+        window.shade(self.points, &attributes, clip, &mut shader);
     }
 
     /// The covered spans inside `clip`.

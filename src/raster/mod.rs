@@ -17,10 +17,13 @@
 //! * `shade` — the one entry: `shade` sets a triangle up in the width it needs, walks it and
 //!   hands each covered span with its attributes to a `SpanShader` (solid fill, a colour
 //!   format's span loop, `fill_contiguous`, …).
+//! * `band` — a band's rows of a triangle (`shade_rows`): set up over the frame's clip, the walk
+//!   started at the band's first row, the same spans and values as the whole walk's there.
 //! * `arith` — the integer helpers the set-up needs on cores without a long multiply, a divider
 //!   or `clz`.
 
 pub(crate) mod arith;
+pub(crate) mod band;
 pub(crate) mod compact;
 pub(crate) mod edge;
 pub(crate) mod plane;

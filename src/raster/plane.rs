@@ -393,6 +393,18 @@ impl<const N: usize> Planes<N> {
         self.value
     }
 
+    /// The planes from `rows` rows below the first pixel on: their `at(column, row)` is this
+    /// one's `at(column, rows + row)`, the same integers modulo 2³² (a band's walk that starts
+    /// lower than the region).
+    #[inline(always)]
+    pub(crate) fn advanced(&self, rows: u32) -> Self {
+        Planes {
+            value: self.at(0, rows),
+            dx: self.dx,
+            dy: self.dy,
+        }
+    }
+
     /// The values `column` pixels right of and `row` rows below the first pixel.
     #[inline(always)]
     pub(crate) fn at(&self, column: u32, row: u32) -> [u32; N] {

@@ -19,6 +19,7 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::arith::{leading_zeros_32, reciprocal_63};
+use super::band::Band;
 use super::compact::{first_centre_from, last_centre_to, last_of};
 use super::edge::owns_centres_on;
 use super::plane::{Attributes, Planes};
@@ -192,6 +193,38 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
     match SmallTriangle::new(v, attributes, clip) {
         Ok(triangle) => {
             triangle.draw(shader);
+            true
+        }
+        Err(NotSmall::Empty) => true,
+        Err(NotSmall::Other) => false,
+    }
+}
+
+/// [`shade`] for the rows of `band` only (see [`band`](super::band)): the triangle is set up
+/// over `clip` as `shade` sets it up, then its scan starts at the band's first row — the edge
+/// values and the planes stepped there by whole rows, the integers the scan reaches — and
+/// stops after the band's last.
+#[inline(always)]
+pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    band: &Band,
+    shader: &mut S,
+) -> bool {
+    match SmallTriangle::new(v, attributes, clip) {
+        Ok(mut triangle) => {
+            // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
+            let last = triangle.y0 + triangle.rows as i32;
+            if let Some((y0, y1, skip)) = band.restrict(triangle.y0, last) {
+                for e in &mut triangle.edges {
+                    e.k += e.b * skip as i32;
+                }
+                triangle.planes = triangle.planes.advanced(skip);
+                triangle.y0 = y0;
+                triangle.rows = (y1 - y0) as u32;
+                triangle.draw(shader);
+            }
             true
         }
         Err(NotSmall::Empty) => true,

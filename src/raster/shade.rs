@@ -9,6 +9,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
+use super::band::Band;
 use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, Planes, MAX_CHUNK};
@@ -90,7 +91,7 @@ pub(crate) fn shade<const N: usize>(
         }
         Err(TooLarge) => {}
     }
-    shade_general(v, attributes, clip, shader);
+    shade_general(v, attributes, clip, None, shader);
 }
 
 /// [`shade`] for compact triangles only (bounding box under 2048 × 2048 px); `Err(TooLarge)`
@@ -136,7 +137,7 @@ fn shade_compact_triangle<const N: usize, S: SpanShader<N>>(
 /// Prepares `shader` for the planes' steps and hands it the spans of `walk` with the stepped
 /// planes' values at their first pixels.
 #[inline(always)]
-fn fold_planes<W: Width, const N: usize, S: SpanShader<N> + ?Sized>(
+pub(super) fn fold_planes<W: Width, const N: usize, S: SpanShader<N> + ?Sized>(
     walk: Walk<W>,
     planes: &Planes<N>,
     shader: &mut S,
@@ -168,11 +169,15 @@ fn fold_planes<W: Width, const N: usize, S: SpanShader<N> + ?Sized>(
 ///
 /// Only triangles 2048 px or more across come here, whose spans are long: the shader is called
 /// through a vtable, so one copy of this path serves every shader (flash on Cortex-M).
+///
+/// With a `band`, only its rows are walked (see [`band`](super::band)): the planes (stepped or
+/// exact) are still those of the whole region over `clip`, advanced to the band's first row.
 #[inline(never)]
-fn shade_general<T, const N: usize>(
+pub(super) fn shade_general<T, const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
     clip: &Rectangle,
+    band: Option<Band>,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
     // By reference: moving the setup out of the `Option` would copy it.
@@ -183,29 +188,42 @@ fn shade_general<T, const N: usize>(
     let Some(region) = Region::new(setup, clip) else {
         return;
     };
-    match Planes::general(setup, &region, attributes) {
-        Some(planes) => match general_walk(setup, &region) {
-            GeneralWalk::Narrow(walk) => fold_planes(walk, &planes, shader),
-            GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
+    let (rows, skip) = match band {
+        None => (region, 0),
+        Some(band) => match band.restrict(region.y0, region.y1) {
+            Some((y0, y1, skip)) => (Region { y0, y1, ..region }, skip),
+            None => return,
         },
-        None => shade_exact(setup, &region, attributes, shader),
+    };
+    match Planes::general(setup, &region, attributes) {
+        Some(planes) => {
+            let planes = planes.advanced(skip);
+            match general_walk(setup, &rows) {
+                GeneralWalk::Narrow(walk) => fold_planes(walk, &planes, shader),
+                GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
+            }
+        }
+        None => shade_exact(setup, &region, &rows, attributes, shader),
     }
 }
 
 /// Exact planes (regions over 2¹⁶ pixels across, extreme slivers): each span in chunks of at
 /// most [`MAX_CHUNK`] pixels, every chunk started from the exact value (one division per
 /// attribute), so the per-pixel steps add at most 2⁻⁵ LSB.
+/// The planes are set up over `region`, the spans walked over `rows` (the region, or a band's
+/// part of it): the values at a pixel do not depend on where the walk starts.
 #[cold]
 #[inline(never)]
 fn shade_exact<T, const N: usize>(
     setup: &TriangleSetup,
     region: &Region,
+    rows: &Region,
     attributes: &Attributes<N>,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
     let mut planes = ExactPlanes::new(setup, region, attributes);
     let steps = shader.prepare(planes.step());
-    for span in Spans::new(setup, *region) {
+    for span in Spans::new(setup, *rows) {
         let mut offset = 0;
         while offset < span.len() {
             let len = (span.len() - offset).min(MAX_CHUNK);

@@ -11,6 +11,7 @@
 //! * [`meshes`] — meshes in flash (an icosphere and a torus) and, on the host, mesh data to
 //!   generate them; [`obj`] reads Wavefront OBJ files (host).
 
+mod band;
 mod clip;
 mod depth;
 mod math;
@@ -25,7 +26,9 @@ mod vertex;
 pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use math::{inv_sqrt, normalize_wide, Angle, Mat4, Scalar, Vec3, Vec4, SCALAR_BITS};
 pub use mesh::Mesh;
+pub(crate) use pipeline::{fit_scratch, FaceSink, Frame};
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
+pub(crate) use shading::TargetClip;
 pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Light, Material, QuadraticNormals, Shading,
 };

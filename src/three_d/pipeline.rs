@@ -61,6 +61,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
+use super::band::BandPlanes;
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{normalize_wide, Mat4, Vec3, Vec4};
@@ -71,6 +72,7 @@ use super::shading::{
 use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
+use crate::raster::band::{AllRows, RowWindow};
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -188,23 +190,8 @@ impl Pipeline {
         material: &Material<C>,
         target: &mut DepthTarget<'_, C>,
     ) -> DrawStats {
-        let frame = Frame::new(self, mesh, material, target);
-        let mut stats = DrawStats::default();
-        for face in mesh.indices {
-            let idx = face.map(usize::from);
-            let (Some(a), Some(b), Some(c)) = (
-                mesh.vertices.get(idx[0]),
-                mesh.vertices.get(idx[1]),
-                mesh.vertices.get(idx[2]),
-            ) else {
-                stats.degenerate += 1;
-                continue;
-            };
-            let model = [*a, *b, *c];
-            let [a, b, c] = [0, 1, 2].map(|k| frame.vertex(mesh, idx[k], model[k]));
-            frame.face(mesh, &idx, || model, [&a, &b, &c], target, &mut stats);
-        }
-        stats
+        let clip = TargetClip::new(&self.viewport, target);
+        Frame::new(self, mesh, material, clip).each_face(mesh, target)
     }
 
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed, projected and lit once, into
@@ -218,34 +205,28 @@ impl Pipeline {
         target: &mut DepthTarget<'_, C>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall> {
-        let needed = mesh.vertices.len();
-        let given = scratch.len();
-        let scratch = scratch
-            .get_mut(..needed)
-            .ok_or(ScratchTooSmall { needed, given })?;
-        let frame = Frame::new(self, mesh, material, target);
-        for (k, (out, p)) in scratch.iter_mut().zip(mesh.vertices).enumerate() {
-            *out = frame.vertex(mesh, k, *p);
-        }
-        let scratch = &*scratch;
-        let mut stats = DrawStats::default();
-        for face in mesh.indices {
-            let idx = face.map(usize::from);
-            let (Some(a), Some(b), Some(c)) = (
-                scratch.get(idx[0]),
-                scratch.get(idx[1]),
-                scratch.get(idx[2]),
-            ) else {
-                stats.degenerate += 1;
-                continue;
-            };
-            // Only flat shading, faces without normals and clipping need the positions again:
-            // in range, as the scratch has one entry per vertex.
-            let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
-            frame.face(mesh, &idx, model, [a, b, c], target, &mut stats);
-        }
-        Ok(stats)
+        let scratch = fit_scratch(mesh, scratch)?;
+        let frame = Frame::new(
+            self,
+            mesh,
+            material,
+            TargetClip::new(&self.viewport, target),
+        );
+        frame.project(mesh, scratch);
+        Ok(frame.scratch_faces(mesh, scratch, target))
     }
+}
+
+/// The first entry of `scratch` for each vertex of `mesh`, or the error if it is too short.
+pub(crate) fn fit_scratch<'s>(
+    mesh: &Mesh<'_>,
+    scratch: &'s mut [ProjectedVertex],
+) -> Result<&'s mut [ProjectedVertex], ScratchTooSmall> {
+    let needed = mesh.vertices.len();
+    let given = scratch.len();
+    scratch
+        .get_mut(..needed)
+        .ok_or(ScratchTooSmall { needed, given })
 }
 
 /// A bound on the magnitude of every raw coordinate of `positions`: the OR of them all (at
@@ -258,6 +239,7 @@ fn bound(positions: &[Vec3]) -> u32 {
 }
 
 /// How a draw colours its faces.
+#[derive(Clone)]
 enum Fill<C> {
     /// The material colour.
     Unlit(C),
@@ -269,21 +251,128 @@ enum Fill<C> {
     Quadratic(C),
 }
 
-/// The state of one draw: the vertex stage, the clip rectangle and the fill.
-struct Frame<'p, C> {
+/// Where the face stage hands the faces it keeps: a target to fill them into now (a frame's, or a
+/// band's through a [`RowWindow`]), or a record of them (a band renderer's bin).
+pub(crate) trait FaceSink<C> {
+    /// Face `k` of the mesh (vertices `idx` at `model`, projected `v`): inside the view volume,
+    /// not culled, of non-zero area.
+    #[allow(clippy::too_many_arguments)]
+    fn face<R: RowWindow>(
+        &mut self,
+        frame: &Frame<'_, C, R>,
+        mesh: &Mesh<'_>,
+        k: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+    );
+
+    /// Face `k`, crossing the view volume's boundary (to be clipped; it may still be dropped:
+    /// `stats` counts it).
+    #[allow(clippy::too_many_arguments)]
+    fn clipped<R: RowWindow>(
+        &mut self,
+        frame: &Frame<'_, C, R>,
+        mesh: &Mesh<'_>,
+        k: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [ProjectedVertex; 3],
+        stats: &mut DrawStats,
+    );
+}
+
+impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
+    #[inline(always)]
+    fn face<R: RowWindow>(
+        &mut self,
+        frame: &Frame<'_, C, R>,
+        mesh: &Mesh<'_>,
+        _: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+    ) {
+        let tri = v.map(|v| v.screen());
+        let levels = || {
+            let face = v.iter().all(|v| v.has_normal()).then_some(0);
+            let face = face.unwrap_or_else(|| frame.face_level(&model()));
+            v.map(|v| if v.has_normal() { v.level() } else { face })
+        };
+        frame.fill(mesh, idx, model, &tri, levels, None, self);
+    }
+
+    #[inline(always)]
+    fn clipped<R: RowWindow>(
+        &mut self,
+        frame: &Frame<'_, C, R>,
+        mesh: &Mesh<'_>,
+        _: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [ProjectedVertex; 3],
+        stats: &mut DrawStats,
+    ) {
+        frame.clipped_face(mesh, idx, model, v, self, stats);
+    }
+}
+
+/// Why the face stage drops a face it does not reject outright.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Dropped {
+    /// Nothing of it is left inside the view volume.
+    Rejected,
+    /// Zero area.
+    Degenerate,
+    /// Facing the culled way.
+    Culled,
+}
+
+impl Dropped {
+    /// Counts it in `stats`.
+    pub(crate) fn count(self, stats: &mut DrawStats) {
+        match self {
+            Dropped::Rejected => stats.rejected += 1,
+            Dropped::Degenerate => stats.degenerate += 1,
+            Dropped::Culled => stats.culled += 1,
+        }
+    }
+}
+
+/// A face clipped to the view volume and projected: the fan's vertices with their barycentric
+/// coordinates in the face, and the face's vertex light levels.
+pub(crate) struct ClippedFace {
+    screen: heapless::Vec<(ScreenVertex, Bary), 12>,
+    levels: [u16; 3],
+}
+
+impl ClippedFace {
+    /// The sub-pixel heights of the fan's highest and lowest vertices.
+    pub(crate) fn heights(&self) -> (i32, i32) {
+        let y = self.screen.iter().map(|s| s.0.y.to_bits());
+        let top = y.clone().min().unwrap_or(0);
+        (top, y.max().unwrap_or(top))
+    }
+}
+
+/// The state of one draw: the vertex stage, the clip rectangle and its rows, and the fill.
+pub(crate) struct Frame<'p, C, R = AllRows> {
     pipeline: &'p Pipeline,
     stage: VertexStage,
     light: VertexLight,
-    clip: TargetClip,
+    clip: TargetClip<R>,
+    /// The band's rows as planes in clip space, for a band's draw.
+    band: Option<BandPlanes>,
     fill: Fill<C>,
 }
 
-impl<'p, C: GouraudColor> Frame<'p, C> {
-    fn new(
+impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
+    /// The draw of `mesh` with `material` by `pipeline` inside `clip`.
+    pub(crate) fn new(
         pipeline: &'p Pipeline,
         mesh: &Mesh<'_>,
         material: &Material<C>,
-        target: &DepthTarget<'_, C>,
+        clip: TargetClip<R>,
     ) -> Self {
         let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         let color = material.color;
@@ -293,12 +382,26 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             Shading::Gouraud => (Fill::Gouraud(ShadeTable::new(color)), Some(light)),
             Shading::Quadratic => (Fill::Quadratic(color), None),
         };
+        let stage = pipeline.stage(bound(mesh.vertices), vertex_light);
         Frame {
             pipeline,
-            stage: pipeline.stage(bound(mesh.vertices), vertex_light),
+            band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
+            stage,
             light,
-            clip: TargetClip::new(&pipeline.viewport, target),
+            clip,
             fill,
+        }
+    }
+
+    /// The same draw inside `clip`: a band's rows of it.
+    pub(crate) fn with_clip<Q: RowWindow>(&self, clip: TargetClip<Q>) -> Frame<'p, C, Q> {
+        Frame {
+            pipeline: self.pipeline,
+            stage: self.stage,
+            light: self.light,
+            band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
+            clip,
+            fill: self.fill.clone(),
         }
     }
 
@@ -306,6 +409,111 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
     #[inline(always)]
     fn vertex(&self, mesh: &Mesh<'_>, k: usize, p: Vec3) -> ProjectedVertex {
         self.stage.vertex(p, mesh.normals.get(k))
+    }
+
+    /// Hands every face of `mesh` to `sink`, transforming each vertex once per face using it:
+    /// [`Pipeline::draw_mesh`]. A band's draw rejects the faces wholly above or below its rows
+    /// from their clip-space heights, before projecting them.
+    #[inline(always)]
+    pub(crate) fn each_face<S: FaceSink<C>>(&self, mesh: &Mesh<'_>, sink: &mut S) -> DrawStats {
+        let mut stats = DrawStats::default();
+        for (k, face) in mesh.indices.iter().enumerate() {
+            let idx = face.map(usize::from);
+            let (Some(a), Some(b), Some(c)) = (
+                mesh.vertices.get(idx[0]),
+                mesh.vertices.get(idx[1]),
+                mesh.vertices.get(idx[2]),
+            ) else {
+                stats.degenerate += 1;
+                continue;
+            };
+            let model = [*a, *b, *c];
+            if self.misses(&model) {
+                stats.rejected += 1;
+                continue;
+            }
+            let [a, b, c] = [0, 1, 2].map(|k| self.vertex(mesh, idx[k], model[k]));
+            self.face(mesh, k, &idx, || model, [&a, &b, &c], sink, &mut stats);
+        }
+        stats
+    }
+
+    /// Whether a band's draw can tell from their clip-space heights that the vertices `model`
+    /// make a face outside its rows (never for a frame's draw: no code at all).
+    #[inline(always)]
+    fn misses(&self, model: &[Vec3; 3]) -> bool {
+        self.clip.rows().band().is_some()
+            && self
+                .band
+                .as_ref()
+                .is_some_and(|b| b.misses(&self.stage, model))
+    }
+
+    /// Every vertex of `mesh` transformed, projected and lit into `scratch` (one entry each).
+    #[inline(never)]
+    pub(crate) fn project(&self, mesh: &Mesh<'_>, scratch: &mut [ProjectedVertex]) {
+        for (k, (out, p)) in scratch.iter_mut().zip(mesh.vertices).enumerate() {
+            *out = self.vertex(mesh, k, *p);
+        }
+    }
+
+    /// Hands every face of `mesh` to `sink`, its vertices read from `scratch` (one entry per
+    /// vertex, filled by [`project`](Self::project)): [`Pipeline::draw_mesh_with`].
+    #[inline]
+    pub(crate) fn scratch_faces<S: FaceSink<C>>(
+        &self,
+        mesh: &Mesh<'_>,
+        scratch: &[ProjectedVertex],
+        sink: &mut S,
+    ) -> DrawStats {
+        let mut stats = DrawStats::default();
+        for (k, face) in mesh.indices.iter().enumerate() {
+            let idx = face.map(usize::from);
+            let (Some(a), Some(b), Some(c)) = (
+                scratch.get(idx[0]),
+                scratch.get(idx[1]),
+                scratch.get(idx[2]),
+            ) else {
+                stats.degenerate += 1;
+                continue;
+            };
+            // Only flat shading, faces without normals and clipping need the positions again:
+            // in range, as the scratch has one entry per vertex.
+            let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+            self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
+        }
+        stats
+    }
+
+    /// Fills face `k` of `mesh` (a face [`scratch_faces`](Self::scratch_faces) handed a sink,
+    /// `clipped` if through [`FaceSink::clipped`]) into `target`, its vertices read from
+    /// `scratch`: the same pixels as then. Nothing for a face not in the mesh.
+    pub(crate) fn refill(
+        &self,
+        mesh: &Mesh<'_>,
+        scratch: &[ProjectedVertex],
+        k: usize,
+        clipped: bool,
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
+            return;
+        };
+        let (Some(a), Some(b), Some(c)) = (
+            scratch.get(idx[0]),
+            scratch.get(idx[1]),
+            scratch.get(idx[2]),
+        ) else {
+            return;
+        };
+        let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+        if clipped {
+            if let Ok(face) = self.clip_face(model, &[*a, *b, *c]) {
+                self.fill_fan(mesh, &idx, model, &face, target);
+            }
+        } else {
+            target.face(self, mesh, k, &idx, model, [a, b, c]);
+        }
     }
 
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
@@ -328,15 +536,17 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         })
     }
 
-    /// Draws the face `idx` at `model` with its projected vertices `v`.
+    /// Face `k` (vertices `idx` at `model`, projected `v`): rejected, culled, or handed to `sink`.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn face(
+    fn face<S: FaceSink<C>>(
         &self,
         mesh: &Mesh<'_>,
+        k: usize,
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
-        target: &mut DepthTarget<'_, C>,
+        sink: &mut S,
         stats: &mut DrawStats,
     ) {
         let codes = v.map(|v| v.outside());
@@ -345,12 +555,17 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             return;
         }
         if codes[0] | codes[1] | codes[2] != 0 {
-            self.clipped_face(mesh, idx, model, v.map(|v| *v), target, stats);
+            sink.clipped(self, mesh, k, idx, model, v.map(|v| *v), stats);
+            return;
+        }
+        let [p0, p1, p2] = v.map(|v| v.position_bits());
+        // A band's draw: nothing of a face outside its rows.
+        if !self.clip.rows().touches([p0.1, p1.1, p2.1]) {
+            stats.rejected += 1;
             return;
         }
         // Inside the guard band every coordinate is within 2²⁵ sub-pixels of the viewport's
         // centre (itself clamped inside i32): the differences fit i32, their products i64.
-        let [p0, p1, p2] = v.map(|v| v.position_bits());
         let d = |a: i32, b: i32| i64::from(a.wrapping_sub(b));
         let area = d(p1.0, p0.0) * d(p2.1, p0.1) - d(p2.0, p0.0) * d(p1.1, p0.1);
         if area == 0 {
@@ -362,13 +577,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             return;
         }
         stats.drawn += 1;
-        let tri = v.map(|v| v.screen());
-        let levels = || {
-            let face = v.iter().all(|v| v.has_normal()).then_some(0);
-            let face = face.unwrap_or_else(|| self.face_level(&model()));
-            v.map(|v| if v.has_normal() { v.level() } else { face })
-        };
-        self.fill(mesh, idx, model, &tri, levels, None, target);
+        sink.face(self, mesh, k, idx, model, v);
     }
 
     /// Whether a face that is `front`-facing is drawn.
@@ -437,6 +646,22 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
         stats: &mut DrawStats,
     ) {
         stats.clipped += 1;
+        match self.clip_face(model, &v) {
+            Ok(face) => {
+                stats.drawn += 1;
+                self.fill_fan(mesh, idx, model, &face, target);
+            }
+            Err(dropped) => dropped.count(stats),
+        }
+    }
+
+    /// The face at `model` (projected `v`), clipped in clip space and projected, or why it is
+    /// dropped: nothing left, zero area or culled (the orientation of the whole polygon).
+    pub(crate) fn clip_face(
+        &self,
+        model: impl Fn() -> [Vec3; 3],
+        v: &[ProjectedVertex; 3],
+    ) -> Result<ClippedFace, Dropped> {
         let mut poly = Polygon::new();
         for (k, p) in model().iter().enumerate() {
             let mut bary = [0; 3];
@@ -447,8 +672,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             });
         }
         if !self.stage.volume.clip(&mut poly) {
-            stats.rejected += 1;
-            return;
+            return Err(Dropped::Rejected);
         }
         let mut screen: heapless::Vec<(ScreenVertex, Bary), 12> = heapless::Vec::new();
         for c in &poly {
@@ -466,17 +690,27 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             })
             .sum();
         if area == 0 {
-            stats.degenerate += 1;
-            return;
+            return Err(Dropped::Degenerate);
         }
         if !self.keeps(area < 0) {
-            stats.culled += 1;
-            return;
+            return Err(Dropped::Culled);
         }
-        stats.drawn += 1;
         let face = v.iter().all(|v| v.has_normal()).then_some(0);
         let face = face.unwrap_or_else(|| self.face_level(&model()));
         let levels = v.map(|v| if v.has_normal() { v.level() } else { face });
+        Ok(ClippedFace { screen, levels })
+    }
+
+    /// Fills the fan of the clipped face `face` (vertices `idx` at `model`).
+    pub(crate) fn fill_fan(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        face: &ClippedFace,
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let screen = &face.screen;
         for k in 1..screen.len().saturating_sub(1) {
             let (Some(s0), Some(s1), Some(s2)) = (screen.first(), screen.get(k), screen.get(k + 1))
             else {
@@ -484,7 +718,7 @@ impl<'p, C: GouraudColor> Frame<'p, C> {
             };
             let tri = [s0.0, s1.0, s2.0];
             let bary = [s0.1, s1.1, s2.1];
-            self.fill(mesh, idx, model, &tri, || levels, Some(bary), target);
+            self.fill(mesh, idx, model, &tri, || face.levels, Some(bary), target);
         }
     }
 }

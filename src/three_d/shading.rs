@@ -54,9 +54,10 @@ use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
+use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
-use crate::raster::{self, Span, SpanShader};
+use crate::raster::{Span, SpanShader};
 
 /// How a mesh is lit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -435,25 +436,50 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     }
 }
 
-/// A clip rectangle inside a target's bounds: what the fills draw within. The pipeline makes one
-/// per draw; the public fills one per call.
+/// A clip rectangle inside a frame's bounds, and which of its rows the fills draw where
+/// ([`RowWindow`]: all of them into a target of the frame's size, or a band's into the band's
+/// buffer). The pipeline makes one per draw; the public fills one per call.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct TargetClip(Rectangle);
+pub(crate) struct TargetClip<R = AllRows> {
+    rect: Rectangle,
+    rows: R,
+}
 
 impl TargetClip {
     /// The part of `clip` inside `target`, for any `clip` (reaching past `i32::MAX` too): computed
     /// in `i64`, empty when they do not overlap.
     pub(crate) fn new<C: PixelColor>(clip: &Rectangle, target: &DepthTarget<'_, C>) -> Self {
-        TargetClip(crate::rect::intersection(clip, &target.bounding_box()))
+        TargetClip::of_frame(clip, &target.bounding_box(), AllRows)
+    }
+}
+
+impl<R: RowWindow> TargetClip<R> {
+    /// The part of `clip` inside `frame`, drawn through `rows`.
+    pub(crate) fn of_frame(clip: &Rectangle, frame: &Rectangle, rows: R) -> Self {
+        TargetClip {
+            rect: crate::rect::intersection(clip, frame),
+            rows,
+        }
+    }
+
+    /// The rows drawn.
+    #[inline(always)]
+    pub(crate) fn rows(&self) -> &R {
+        &self.rows
+    }
+
+    /// The rectangle drawn in.
+    pub(crate) fn rect(&self) -> Rectangle {
+        self.rect
     }
 }
 
 /// Draws the depth-tested triangle `vertices` with `attributes` (the depth first) and `pixel`,
 /// inside `clip`.
 #[inline(always)]
-fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, const N: usize>(
+fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, R: RowWindow, const N: usize>(
     target: &mut DepthTarget<'_, C>,
-    clip: &TargetClip,
+    clip: &TargetClip<R>,
     vertices: &[ScreenVertex; 3],
     attributes: &Attributes<N>,
     pixel: P,
@@ -463,10 +489,10 @@ fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, const N: usize>(
         step: [0; N],
         pixel,
     };
-    raster::shade(
+    clip.rows.shade(
         vertices.map(|v| v.position()),
         attributes,
-        &clip.0,
+        &clip.rect,
         &mut fill,
     );
 }
@@ -567,6 +593,7 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
 
 /// A material colour at the 256 light levels of a Gouraud-lit mesh: `table[i]` is
 /// `shade(color, i/255)`. Built once per draw.
+#[derive(Clone)]
 pub(crate) struct ShadeTable<C> {
     colors: [C; 256],
 }
@@ -607,9 +634,9 @@ impl<C: Copy> DepthPixel<C, 2> for Leveled<'_, C> {
 /// Fills the triangle with the material colour of `table` at the light levels `levels`
 /// (8.8 fixed point of the 0–255 scale, per vertex) interpolated across it, depth-tested: the
 /// pipeline's Gouraud fill.
-pub(crate) fn draw_levels<C: PixelColor>(
+pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
-    clip: &TargetClip,
+    clip: &TargetClip<R>,
     vertices: &[ScreenVertex; 3],
     levels: [u16; 3],
     table: &ShadeTable<C>,
@@ -634,9 +661,9 @@ pub fn draw_flat<C: PixelColor>(
 }
 
 /// [`draw_flat`] inside a clip already within the target.
-pub(crate) fn fill_flat<C: PixelColor>(
+pub(crate) fn fill_flat<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
-    clip: &TargetClip,
+    clip: &TargetClip<R>,
     vertices: &[ScreenVertex; 3],
     color: C,
 ) {
@@ -681,9 +708,9 @@ pub fn draw_quadratic<C: GouraudColor>(
 }
 
 /// [`draw_quadratic`] inside a clip already within the target.
-pub(crate) fn fill_quadratic<C: GouraudColor>(
+pub(crate) fn fill_quadratic<C: GouraudColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
-    clip: &TargetClip,
+    clip: &TargetClip<R>,
     vertices: &[ScreenVertex; 3],
     normals: &QuadraticNormals,
     light: &Light,

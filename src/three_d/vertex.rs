@@ -181,6 +181,17 @@ fn is_rotation(r: &[[i32; 3]; 3]) -> bool {
     })
 }
 
+/// One row of the model-view-projection matrix (raw) times `(p, 1)` for a draw whose sums stay
+/// below 2⁴⁶ (the bound of [`VertexStage::new`]): the result fits, nothing saturates.
+#[inline(always)]
+fn direct_row(row: &[i32; 4], p: &[i64; 3]) -> i32 {
+    let acc = i64::from(row[0]) * p[0]
+        + i64::from(row[1]) * p[1]
+        + i64::from(row[2]) * p[2]
+        + (i64::from(row[3]) << SCALAR_BITS);
+    ((acc + (1 << 15)) >> SCALAR_BITS) as i32
+}
+
 /// What one draw needs to transform, project and light its vertices.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct VertexStage {
@@ -246,15 +257,26 @@ impl VertexStage {
         if !self.direct {
             return Mat4::from_bits(self.mvp).transform_point(p).to_bits();
         }
-        let [x, y, z] = p.to_bits().map(i64::from);
-        self.mvp.map(|row| {
-            // Below 2⁴⁶ (the bound of `new`): the result fits, nothing saturates.
-            let acc = i64::from(row[0]) * x
-                + i64::from(row[1]) * y
-                + i64::from(row[2]) * z
-                + (i64::from(row[3]) << SCALAR_BITS);
-            ((acc + (1 << 15)) >> SCALAR_BITS) as i32
-        })
+        let p = p.to_bits().map(i64::from);
+        self.mvp.map(|row| direct_row(&row, &p))
+    }
+
+    /// The `y` and `w` of [`clip_position`](Self::clip_position), the same integers (a band's
+    /// test of a face against its rows, before the rest of the vertex).
+    #[inline(always)]
+    pub(crate) fn clip_height(&self, p: Vec3) -> (i32, i32) {
+        if !self.direct {
+            let [_, y, _, w] = Mat4::from_bits(self.mvp).transform_point(p).to_bits();
+            return (y, w);
+        }
+        let p = p.to_bits().map(i64::from);
+        (direct_row(&self.mvp[1], &p), direct_row(&self.mvp[3], &p))
+    }
+
+    /// The viewport's vertical centre (sub-pixels) and its half height (sub-pixels from the
+    /// centre to the edge, where `y/w = ±1`) as [`project`](Self::project) maps them.
+    pub(crate) fn vertical(&self) -> (i32, u32) {
+        (self.centre.1, self.half.1 >> self.exponent)
     }
 
     /// Perspective divide and viewport mapping of a clip-space point inside the view volume

@@ -1,0 +1,506 @@
+//! Bins: each triangle of a frame recorded once, with the bands it touches, in the caller's
+//! storage; each band then draws only its own triangles, in the frame's order.
+//!
+//! The storage is a slice of [`BinEntry`] (12 bytes): one per band (the head of the list of
+//! the triangles whose first band it is) and one per triangle kept (its number, its first and
+//! last band, the link to the next of its list). The triangles are recorded in the frame's
+//! order, so a list's order is theirs. Drawing the bands top to bottom, the triangles of a band
+//! are those still open from the bands above (a list kept in order) merged with those starting
+//! there: each band costs the triangles it touches. Drawn in any other order, a band finds its
+//! triangles by reading every entry (the same pixels, more work).
+
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+
+use super::target::{BandDrawable, ColorBand, DepthBand};
+use super::{BandError, BandLayout};
+use crate::color::GouraudColor;
+use crate::raster::band::{AllRows, RowWindow};
+use crate::raster::compact::{first_centre_from, last_centre_to};
+use crate::three_d::{
+    fit_scratch, DrawStats, FaceSink, Frame, Material, Mesh, Pipeline, ProjectedVertex, TargetClip,
+};
+use crate::Vec3;
+
+/// One entry of a bin's storage, 12 bytes: a band's list head or a triangle kept. A bin needs
+/// one per band plus one per triangle kept (for a mesh: the faces inside the view volume, not
+/// culled, of non-zero area; for a 2D list: the triangles that reach the frame's rows); the
+/// bin reports how many it needs when its storage is too short.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BinEntry {
+    /// The triangle's number (and [`CLIPPED`]); for a band's head, the last entry of its list.
+    item: u32,
+    /// The next entry of the list.
+    next: u32,
+    /// The triangle's first and last band.
+    first: u16,
+    last: u16,
+}
+
+impl BinEntry {
+    /// An entry for a storage array: `[BinEntry::EMPTY; N]`.
+    pub const EMPTY: BinEntry = BinEntry {
+        item: NONE,
+        next: NONE,
+        first: 0,
+        last: 0,
+    };
+}
+
+impl Default for BinEntry {
+    fn default() -> Self {
+        BinEntry::EMPTY
+    }
+}
+
+/// No entry.
+const NONE: u32 = u32::MAX;
+
+/// Set in a mesh face's number when the face crosses the view volume's boundary: it is clipped
+/// again when drawn.
+const CLIPPED: u32 = 1 << 31;
+
+/// The bands' lists in a caller's storage.
+#[derive(Debug)]
+struct Lists<'b> {
+    entries: &'b mut [BinEntry],
+    /// Bands (the first entries), and triangles recorded (or counted past the storage's end).
+    bands: u32,
+    records: u32,
+    /// More triangles than fit `u32` or the flag's range.
+    limit: bool,
+    /// The list of triangles still open after the band drawn last, and the band expected next.
+    active: u32,
+    next_band: u32,
+}
+
+impl<'b> Lists<'b> {
+    /// Empty lists for the bands of `layout` in `entries`.
+    fn new(layout: &BandLayout, entries: &'b mut [BinEntry]) -> Result<Self, BandError> {
+        let bands = layout.count();
+        if bands > u32::from(u16::MAX) + 1 {
+            return Err(BandError::BinLimit);
+        }
+        for head in entries.iter_mut().take(bands as usize) {
+            *head = BinEntry::EMPTY;
+        }
+        Ok(Lists {
+            entries,
+            bands,
+            records: 0,
+            limit: false,
+            active: NONE,
+            next_band: 0,
+        })
+    }
+
+    /// Records `item`, in bands `first ..= last` (below the number of bands).
+    fn push(&mut self, item: u32, first: u32, last: u32) {
+        let slot = u64::from(self.bands) + u64::from(self.records);
+        let Some(records) = self.records.checked_add(1) else {
+            self.limit = true;
+            return;
+        };
+        self.records = records;
+        let slot = u32::try_from(slot).unwrap_or(NONE);
+        if slot == NONE || slot as usize >= self.entries.len() {
+            // Counted, not stored: `finish` reports the storage too small.
+            return;
+        }
+        let (first16, last16) = (first as u16, last as u16);
+        if let Some(e) = self.entries.get_mut(slot as usize) {
+            *e = BinEntry {
+                item,
+                next: NONE,
+                first: first16,
+                last: last16,
+            };
+        }
+        // Appended to its first band's list (the head keeps the tail in `item`).
+        let Some(head) = self.entries.get_mut(first as usize) else {
+            return;
+        };
+        let tail = head.item;
+        head.item = slot;
+        if tail == NONE {
+            head.next = slot;
+        } else if let Some(t) = self.entries.get_mut(tail as usize) {
+            t.next = slot;
+        }
+    }
+
+    /// Whether everything fitted.
+    fn finish(&self) -> Result<(), BandError> {
+        if self.limit {
+            return Err(BandError::BinLimit);
+        }
+        let needed = self.bands as usize + self.records as usize;
+        if needed > self.entries.len() {
+            return Err(BandError::BinTooSmall {
+                needed,
+                given: self.entries.len(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Triangles recorded.
+    fn len(&self) -> usize {
+        self.records as usize
+    }
+
+    /// Calls `f` with every item touching `band`, in the order they were recorded.
+    fn each(&mut self, band: u32, mut f: impl FnMut(u32)) {
+        if band >= self.bands {
+            return;
+        }
+        if band != self.next_band {
+            // Out of order: every entry, read.
+            let records = self.entries.iter().skip(self.bands as usize);
+            for e in records.take(self.records as usize) {
+                if u32::from(e.first) <= band && band <= u32::from(e.last) {
+                    f(e.item);
+                }
+            }
+            return;
+        }
+        // The open triangles merged with those starting here, by slot (their order); those
+        // reaching further down stay open.
+        let (mut open, mut starting) = (self.active, self.head(band));
+        let (mut head, mut tail) = (NONE, NONE);
+        loop {
+            let slot = open.min(starting);
+            let Some(e) = self.entries.get(slot as usize).copied() else {
+                break;
+            };
+            if slot == open {
+                open = e.next;
+            } else {
+                starting = e.next;
+            }
+            f(e.item);
+            if u32::from(e.last) > band {
+                match self.entries.get_mut(tail as usize) {
+                    Some(t) => t.next = slot,
+                    None => head = slot,
+                }
+                tail = slot;
+            }
+        }
+        if let Some(t) = self.entries.get_mut(tail as usize) {
+            t.next = NONE;
+        }
+        self.active = head;
+        self.next_band = band + 1;
+    }
+
+    /// The first entry of `band`'s list.
+    fn head(&self, band: u32) -> u32 {
+        self.entries.get(band as usize).map_or(NONE, |h| h.next)
+    }
+}
+
+/// The first and last band of frame rows `top ..= bottom`, if they meet `rows` (the frame's
+/// clip).
+fn bands_of(layout: &BandLayout, rows: &Rectangle, top: i32, bottom: i32) -> Option<(u32, u32)> {
+    let first_row = rows.top_left.y;
+    let last_row = first_row.checked_add(rows.size.height as i32)? - 1;
+    let (top, bottom) = (top.max(first_row), bottom.min(last_row));
+    (top <= bottom && !rows.is_zero_sized()).then(|| (layout.band_of(top), layout.band_of(bottom)))
+}
+
+/// A 2D list's triangles sorted into the bands of a frame once, drawn band by band.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Gray8, prelude::*};
+/// use embedded_raster::band::{BandError, BandLayout, BinEntry, ColorBand, TriangleBin};
+/// use embedded_raster::{Coord, SolidTriangle};
+///
+/// let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
+/// let scene = [
+///     SolidTriangle::new([c(0, 0), c(30, 2), c(4, 9)], Gray8::WHITE),
+///     SolidTriangle::new([c(0, 20), c(30, 22), c(4, 31)], Gray8::new(128)),
+/// ];
+/// let layout = BandLayout::new(Size::new(32, 32), 8)?;
+/// // Four bands and two triangles.
+/// let mut too_small = [BinEntry::EMPTY; 5];
+/// let error = TriangleBin::new(&layout, &scene, &mut too_small).unwrap_err();
+/// assert_eq!(error, BandError::BinTooSmall { needed: 6, given: 5 });
+///
+/// let mut storage = [BinEntry::EMPTY; 6];
+/// let mut bin = TriangleBin::new(&layout, &scene, &mut storage)?;
+/// let mut rows = [Gray8::BLACK; 32 * 8];
+/// for index in 0..layout.count() {
+///     let mut band = ColorBand::new(&mut rows, &layout, index)?;
+///     band.clear(Gray8::BLACK);
+///     bin.draw(&mut band)?;
+/// }
+/// # Ok::<(), BandError>(())
+/// ```
+#[derive(Debug)]
+pub struct TriangleBin<'b, 't, T> {
+    lists: Lists<'b>,
+    items: &'t [T],
+    layout: BandLayout,
+}
+
+impl<'b, 't, T> TriangleBin<'b, 't, T> {
+    /// The triangles of `items` that reach the rows of `layout`'s frame, recorded in `storage`
+    /// (one entry per band and per such triangle). `Err(BinTooSmall)` (with the number
+    /// needed) if it is too short.
+    pub fn new<C: PixelColor>(
+        layout: &BandLayout,
+        items: &'t [T],
+        storage: &'b mut [BinEntry],
+    ) -> Result<Self, BandError>
+    where
+        T: BandDrawable<C>,
+    {
+        let mut lists = Lists::new(layout, storage)?;
+        let frame = Rectangle::new(Point::zero(), layout.size());
+        for (k, item) in items.iter().enumerate() {
+            let Some((top, bottom)) = item.rows() else {
+                continue;
+            };
+            let Some((first, last)) = bands_of(layout, &frame, top, bottom) else {
+                continue;
+            };
+            match u32::try_from(k) {
+                Ok(k) if k < CLIPPED => lists.push(k, first, last),
+                _ => return Err(BandError::BinLimit),
+            }
+        }
+        lists.finish()?;
+        Ok(TriangleBin {
+            lists,
+            items,
+            layout: *layout,
+        })
+    }
+
+    /// Triangles recorded.
+    pub fn len(&self) -> usize {
+        self.lists.len()
+    }
+
+    /// Whether no triangle reaches the frame.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Draws `band`'s triangles into it, in the list's order: the pixels of
+    /// [`ColorBand::draw_all`] with the whole list. Fastest when the bands are drawn top to
+    /// bottom once; `Err(OtherLayout)` (nothing drawn) for a band of another layout.
+    pub fn draw<C: PixelColor>(&mut self, band: &mut ColorBand<'_, C>) -> Result<(), BandError>
+    where
+        T: BandDrawable<C>,
+    {
+        if band.layout() != &self.layout {
+            return Err(BandError::OtherLayout);
+        }
+        let items = self.items;
+        self.lists.each(band.index(), |k| {
+            if let Some(item) = items.get(k as usize) {
+                item.draw_band(band);
+            }
+        });
+        Ok(())
+    }
+}
+
+/// A mesh transformed, culled and sorted into the bands of a frame once, drawn band by band.
+///
+/// [`new`](Self::new) runs the vertex stage into the caller's scratch (16 bytes a vertex, as
+/// [`Pipeline::draw_mesh_with`]) and the face stage (rejection, culling by area, clipping
+/// decisions) once, recording each face it keeps with the bands it touches; each band then fills
+/// only its faces. The pixels and depths are those of `draw_mesh_with` on the whole frame, and
+/// [`stats`](Self::stats) its counts.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+/// use embedded_raster::band::{BandLayout, BinEntry, ColorBands, DepthBands, MeshBin, ToDisplay};
+/// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+/// use embedded_raster::three_d::{Angle, Light, Mat4, Material, Pipeline, ProjectedVertex, Scalar, Shading, Vec3};
+/// use embedded_raster::SliceFramebuffer;
+///
+/// let layout = BandLayout::new(Size::new(64, 48), 8)?;
+/// let projection = Mat4::perspective(Angle::from_degrees(60), Scalar::from_num(4) / 3,
+///     Scalar::from_num(0.5), Scalar::from_num(20));
+/// let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
+/// let viewport = Rectangle::new(Point::zero(), layout.size());
+/// let pipeline = Pipeline::new(Mat4::IDENTITY, projection * view, viewport, Light::default());
+/// let material = Material::new(Rgb565::CYAN, Shading::Gouraud);
+///
+/// let mut scratch = [ProjectedVertex::EMPTY; 42];
+/// let mut storage = [BinEntry::EMPTY; 6 + 80];
+/// let mut bin = MeshBin::new(&pipeline, &ICOSPHERE, &material, &layout, &mut scratch, &mut storage)?;
+/// assert_eq!(bin.stats().drawn + bin.stats().culled, 80);
+///
+/// let mut screen = [Rgb565::BLACK; 64 * 48];
+/// let mut display = SliceFramebuffer::new(&mut screen, 64, 48).unwrap();
+/// let (mut colors, mut depth) = ([Rgb565::BLACK; 64 * 8], [0u16; 64 * 8]);
+/// let mut bands = DepthBands::new(ColorBands::new(layout, &mut colors)?, &mut depth)?;
+/// bands
+///     .render(&mut ToDisplay(&mut display), |band| {
+///         band.clear(Rgb565::BLACK);
+///         bin.draw(band).unwrap(); // the band is of the bin's layout
+///     })
+///     .unwrap();
+/// assert_ne!(display.get(32, 24), Some(Rgb565::BLACK));
+/// # Ok::<(), embedded_raster::band::BandError>(())
+/// ```
+pub struct MeshBin<'a, C> {
+    lists: Lists<'a>,
+    pipeline: &'a Pipeline,
+    frame: Frame<'a, C>,
+    mesh: Mesh<'a>,
+    scratch: &'a [ProjectedVertex],
+    layout: BandLayout,
+    stats: DrawStats,
+}
+
+impl<C> core::fmt::Debug for MeshBin<'_, C> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("MeshBin")
+            .field("layout", &self.layout)
+            .field("faces", &self.lists.len())
+            .field("stats", &self.stats)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, C: GouraudColor> MeshBin<'a, C> {
+    /// Runs the vertex and face stages of `mesh` with `material` through `pipeline` for the frame
+    /// of `layout`, its vertices into `scratch` (one [`ProjectedVertex`] per mesh vertex), its
+    /// faces into `storage` (one entry per band and per face kept). Errors, before anything is
+    /// drawn: the scratch too short, the storage too short (`BinTooSmall` with the number
+    /// needed), more than 2³¹ faces.
+    pub fn new(
+        pipeline: &'a Pipeline,
+        mesh: &Mesh<'a>,
+        material: &Material<C>,
+        layout: &BandLayout,
+        scratch: &'a mut [ProjectedVertex],
+        storage: &'a mut [BinEntry],
+    ) -> Result<Self, BandError> {
+        let scratch = fit_scratch(mesh, scratch)?;
+        let lists = Lists::new(layout, storage)?;
+        let frame_rect = Rectangle::new(Point::zero(), layout.size());
+        let clip = TargetClip::of_frame(&pipeline.viewport, &frame_rect, AllRows);
+        let rows = clip.rect();
+        let frame = Frame::new(pipeline, mesh, material, clip);
+        frame.project(mesh, scratch);
+        let scratch = &*scratch;
+        let mut sink = Recorder {
+            lists,
+            layout,
+            rows,
+        };
+        let stats = frame.scratch_faces(mesh, scratch, &mut sink);
+        sink.lists.finish()?;
+        Ok(MeshBin {
+            lists: sink.lists,
+            pipeline,
+            frame,
+            mesh: *mesh,
+            scratch,
+            layout: *layout,
+            stats,
+        })
+    }
+
+    /// The frame's counts, as [`Pipeline::draw_mesh_with`] gives them.
+    pub fn stats(&self) -> DrawStats {
+        self.stats
+    }
+
+    /// Faces recorded.
+    pub fn len(&self) -> usize {
+        self.lists.len()
+    }
+
+    /// Whether no face is drawn.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Fills `band`'s faces into it, in the mesh's order: the pixels and depths the whole frame
+    /// has there. Fastest when the bands are drawn top to bottom once; `Err(OtherLayout)`
+    /// (nothing drawn) for a band of another layout.
+    pub fn draw(&mut self, band: &mut DepthBand<'_, C>) -> Result<(), BandError> {
+        if band.layout() != &self.layout {
+            return Err(BandError::OtherLayout);
+        }
+        let frame = self.frame.with_clip(band.clip(self.pipeline));
+        let (target, placement) = band.parts();
+        let (mesh, scratch) = (&self.mesh, self.scratch);
+        self.lists.each(placement.index, |item| {
+            let k = (item & !CLIPPED) as usize;
+            frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
+        });
+        Ok(())
+    }
+}
+
+/// The face stage's sink of a [`MeshBin`]: each face kept recorded with its bands.
+struct Recorder<'b, 'l> {
+    lists: Lists<'b>,
+    layout: &'l BandLayout,
+    /// The frame's clip: no face is drawn outside its rows.
+    rows: Rectangle,
+}
+
+impl Recorder<'_, '_> {
+    /// Records face `k` (flags included) reaching the sub-pixel heights `top ..= bottom`.
+    fn record(&mut self, k: usize, flags: u32, (top, bottom): (i32, i32)) {
+        let (top, bottom) = (first_centre_from(top), last_centre_to(bottom));
+        let Some((first, last)) = bands_of(self.layout, &self.rows, top, bottom) else {
+            return;
+        };
+        match u32::try_from(k) {
+            Ok(k) if k < CLIPPED => self.lists.push(k | flags, first, last),
+            _ => self.lists.limit = true,
+        }
+    }
+}
+
+impl<C: GouraudColor> FaceSink<C> for Recorder<'_, '_> {
+    fn face<R: RowWindow>(
+        &mut self,
+        _: &Frame<'_, C, R>,
+        _: &Mesh<'_>,
+        k: usize,
+        _: &[usize; 3],
+        _: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+    ) {
+        let y = v.map(|v| v.position_bits().1);
+        let heights = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
+        self.record(k, 0, heights);
+    }
+
+    fn clipped<R: RowWindow>(
+        &mut self,
+        frame: &Frame<'_, C, R>,
+        _: &Mesh<'_>,
+        k: usize,
+        _: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [ProjectedVertex; 3],
+        stats: &mut DrawStats,
+    ) {
+        // Counted as the whole frame's draw counts it.
+        stats.clipped += 1;
+        match frame.clip_face(model, &v) {
+            Ok(face) => {
+                stats.drawn += 1;
+                self.record(k, CLIPPED, face.heights());
+            }
+            Err(dropped) => dropped.count(stats),
+        }
+    }
+}

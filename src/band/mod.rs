@@ -1,0 +1,258 @@
+//! Band rendering: a frame drawn in horizontal bands of a few rows, each into a small buffer and
+//! sent to the display when finished, so that a 320×240 frame with a z-buffer needs RAM for one
+//! band (320 × 16 rows × 4 bytes = 20 KB) instead of 300 KB.
+//!
+//! Every band has exactly the pixels (and depths) of the frame drawn at once: each triangle is
+//! set up over the whole frame's clip as a full-frame draw sets it up, and the walk then starts
+//! at the band's first row with the attribute planes advanced there in the same integers (see
+//! `raster::band`), so no colour step is rounded anywhere else. The tests check this for every
+//! band height from 1 to the frame's height, on random 2D scenes and on 3D meshes.
+//!
+//! * [`BandLayout`] — the frame's size and the rows of a band.
+//! * [`ColorBand`] (2D: [`GouraudTriangle`](crate::GouraudTriangle),
+//!   [`SolidTriangle`](crate::SolidTriangle), [`Triangle`]; any embedded-graphics drawable) and
+//!   [`DepthBand`] (3D: [`Pipeline`](crate::Pipeline) meshes with z-buffer, culling, clipping and
+//!   every shading) — one band of caller's buffers, in frame coordinates.
+//! * [`ColorBands`] and [`DepthBands`] — a whole frame: the bands top to bottom, each drawn by
+//!   the caller's closure and handed to a [`BandOutput`]: any `DrawTarget` ([`ToDisplay`]: one
+//!   `fill_contiguous` of the band's rectangle, which SPI display drivers take as one window
+//!   write) or a callback with the band's pixels as a slice ([`Callback`], e.g. for DMA). With
+//!   two colour buffers the next band is drawn while the last one is sent.
+//! * Without a bin, each band runs the whole draw again: a mesh's vertices are transformed for
+//!   every band (faces wholly above or below the band are rejected from two rows of the
+//!   transform, before projection) — no memory but the band's. With a bin ([`TriangleBin`],
+//!   [`MeshBin`]: caller's storage of [`BinEntry`], 12 bytes per triangle kept and per band),
+//!   the triangles are transformed, culled and sorted into the bands they touch once per frame,
+//!   and each band draws only its own.
+//!
+//! Costs (Cortex-M4, the 3D bench knot at 320×240) are in `docs/benchmarks.md`.
+//!
+//! Bad input is an error before anything is drawn: a zero band height ([`BandLayout::new`]), a
+//! buffer of the wrong length, a bin too small ([`BandError`]).
+//!
+//! # Examples
+//!
+//! A 3D mesh and a 2D overlay into any display, 16 rows at a time (here a
+//! [`SliceFramebuffer`](crate::SliceFramebuffer) stands in for an SPI display driver's
+//! `DrawTarget`):
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+//! use embedded_raster::band::{BandLayout, ColorBands, DepthBands, ToDisplay};
+//! use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+//! use embedded_raster::three_d::{Angle, Light, Mat4, Material, Pipeline, Scalar, Shading, Vec3};
+//! use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle};
+//!
+//! let mut screen = [Rgb565::BLACK; 64 * 48];
+//! let mut display = SliceFramebuffer::new(&mut screen, 64, 48).unwrap();
+//!
+//! let layout = BandLayout::new(Size::new(64, 48), 16)?;
+//! let projection = Mat4::perspective(Angle::from_degrees(60), Scalar::from_num(4) / 3,
+//!     Scalar::from_num(0.5), Scalar::from_num(20));
+//! let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
+//! let viewport = Rectangle::new(Point::zero(), layout.size());
+//! let light = Light::new(Vec3::from_bits(0, 0, 65536), Scalar::from_num(0.2));
+//! let pipeline = Pipeline::new(Mat4::IDENTITY, projection * view, viewport, light);
+//! let material = Material::new(Rgb565::WHITE, Shading::Gouraud);
+//! let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
+//! let overlay = SolidTriangle::new([c(0, 0), c(12, 0), c(0, 12)], Rgb565::RED);
+//!
+//! let (mut colors, mut depth) = ([Rgb565::BLACK; 64 * 16], [0u16; 64 * 16]);
+//! let mut bands = DepthBands::new(ColorBands::new(layout, &mut colors)?, &mut depth)?;
+//! bands
+//!     .render(&mut ToDisplay(&mut display), |band| {
+//!         band.clear(Rgb565::BLUE);
+//!         band.draw_mesh(&pipeline, &ICOSPHERE, &material);
+//!         band.colors().draw(&overlay);
+//!     })
+//!     .unwrap(); // the display's error: none for a SliceFramebuffer
+//! assert_eq!(display.get(1, 1), Some(Rgb565::RED));
+//! assert_ne!(display.get(32, 24), Some(Rgb565::BLUE)); // lit
+//! # Ok::<(), embedded_raster::band::BandError>(())
+//! ```
+
+mod bin;
+mod render;
+mod target;
+
+pub use bin::{BinEntry, MeshBin, TriangleBin};
+pub use render::{BandOutput, Callback, ColorBands, DepthBands, ToDisplay};
+pub use target::{BandDrawable, ColorBand, DepthBand, Triangle};
+
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+
+use crate::three_d::ScratchTooSmall;
+
+/// How a frame is cut into bands: the frame's size and the rows of a band (the last band has
+/// the rows that are left).
+///
+/// ```
+/// use embedded_graphics::{prelude::*, primitives::Rectangle};
+/// use embedded_raster::band::{BandError, BandLayout};
+///
+/// let layout = BandLayout::new(Size::new(320, 240), 16)?;
+/// assert_eq!((layout.count(), layout.buffer_len()), (15, 320 * 16));
+/// let last = BandLayout::new(Size::new(320, 100), 32)?.band(3);
+/// assert_eq!(last, Some(Rectangle::new(Point::new(0, 96), Size::new(320, 4))));
+/// assert_eq!(BandLayout::new(Size::new(320, 240), 0), Err(BandError::ZeroRows));
+/// # Ok::<(), BandError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BandLayout {
+    size: Size,
+    rows: u32,
+}
+
+impl BandLayout {
+    /// A frame of `size` in bands of `rows` rows. Errors: `rows` is 0, or a side of the frame
+    /// does not fit an `i32` coordinate, or a band buffer (`width · rows`) is beyond `usize`.
+    pub fn new(size: Size, rows: u32) -> Result<Self, BandError> {
+        if rows == 0 {
+            return Err(BandError::ZeroRows);
+        }
+        let fits = |side: u32| i32::try_from(side).is_ok();
+        let buffer = usize::try_from(size.width)
+            .ok()
+            .and_then(|w| w.checked_mul(usize::try_from(rows).ok()?));
+        if !fits(size.width) || !fits(size.height) || !fits(rows) || buffer.is_none() {
+            return Err(BandError::FrameTooLarge);
+        }
+        Ok(BandLayout { size, rows })
+    }
+
+    /// The frame's size.
+    pub fn size(&self) -> Size {
+        self.size
+    }
+
+    /// Rows of a band (the last one may have fewer).
+    pub fn rows(&self) -> u32 {
+        self.rows
+    }
+
+    /// Number of bands: the frame's height divided by the rows of a band, rounded up.
+    pub fn count(&self) -> u32 {
+        self.size.height.div_ceil(self.rows)
+    }
+
+    /// Entries of one band buffer: `width · rows` (colours, or depths).
+    pub fn buffer_len(&self) -> usize {
+        // Checked in `new`.
+        (self.size.width as usize).saturating_mul(self.rows as usize)
+    }
+
+    /// Band `index`'s rectangle in the frame (from the top), or `None` past the last.
+    pub fn band(&self, index: u32) -> Option<Rectangle> {
+        let first = index.checked_mul(self.rows)?;
+        let rows = self.size.height.checked_sub(first)?.min(self.rows);
+        (rows > 0).then(|| {
+            Rectangle::new(
+                Point::new(0, first as i32),
+                Size::new(self.size.width, rows),
+            )
+        })
+    }
+
+    /// The bands' rectangles, top to bottom.
+    pub fn bands(&self) -> impl Iterator<Item = Rectangle> + '_ {
+        (0..self.count()).filter_map(|k| self.band(k))
+    }
+
+    /// The band holding frame row `y` (clamped to the frame's rows).
+    pub(crate) fn band_of(&self, y: i32) -> u32 {
+        let last = self.size.height.saturating_sub(1);
+        u32::try_from(y).unwrap_or(0).min(last) / self.rows
+    }
+}
+
+/// `len` against one band buffer of `layout`, of depths if `depth` (else colours).
+fn check_buffer(layout: &BandLayout, len: usize, depth: bool) -> Result<(), BandError> {
+    let (needed, given) = (layout.buffer_len(), len);
+    match (needed == given, depth) {
+        (true, _) => Ok(()),
+        (false, false) => Err(BandError::ColorBuffer { needed, given }),
+        (false, true) => Err(BandError::DepthBuffer { needed, given }),
+    }
+}
+
+/// What is wrong with a band renderer's input; reported before anything is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum BandError {
+    /// A band of zero rows.
+    ZeroRows,
+    /// A side of the frame beyond `i32::MAX`, or a band buffer beyond `usize`.
+    FrameTooLarge,
+    /// A band index past the last band.
+    NoSuchBand {
+        /// The index given.
+        index: u32,
+        /// The layout's number of bands.
+        count: u32,
+    },
+    /// A colour buffer of the wrong length: it must hold one band (`width · rows` entries).
+    ColorBuffer {
+        /// Entries a band buffer has.
+        needed: usize,
+        /// Entries given.
+        given: usize,
+    },
+    /// A depth buffer of the wrong length: it must hold one band (`width · rows` entries).
+    DepthBuffer {
+        /// Entries a band buffer has.
+        needed: usize,
+        /// Entries given.
+        given: usize,
+    },
+    /// A bin's storage holds fewer entries than its triangles and bands need (see
+    /// [`BinEntry`]); nothing was drawn.
+    BinTooSmall {
+        /// Entries needed: one per band and one per triangle kept.
+        needed: usize,
+        /// Entries given.
+        given: usize,
+    },
+    /// More triangles than a bin numbers (2³¹), or more bands (65,536).
+    BinLimit,
+    /// The vertex scratch of a [`MeshBin`] is too short.
+    Scratch(ScratchTooSmall),
+    /// A band of another layout than the bin's, or of another frame size.
+    OtherLayout,
+}
+
+impl From<ScratchTooSmall> for BandError {
+    fn from(e: ScratchTooSmall) -> Self {
+        BandError::Scratch(e)
+    }
+}
+
+impl core::fmt::Display for BandError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            BandError::ZeroRows => write!(f, "a band of zero rows"),
+            BandError::FrameTooLarge => write!(f, "the frame or a band buffer is too large"),
+            BandError::NoSuchBand { index, count } => {
+                write!(f, "band {index} of a layout of {count} bands")
+            }
+            BandError::ColorBuffer { needed, given } => {
+                write!(f, "a colour band buffer of {given} pixels, not {needed}")
+            }
+            BandError::DepthBuffer { needed, given } => {
+                write!(f, "a depth band buffer of {given} entries, not {needed}")
+            }
+            BandError::BinTooSmall { needed, given } => {
+                write!(f, "a bin of {given} entries; the frame needs {needed}")
+            }
+            BandError::BinLimit => write!(f, "more triangles or bands than a bin numbers"),
+            BandError::Scratch(e) => write!(
+                f,
+                "a vertex scratch of {} entries; the mesh needs {}",
+                e.given, e.needed
+            ),
+            BandError::OtherLayout => write!(f, "a band of another layout than the bin's"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for BandError {}

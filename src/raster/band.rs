@@ -1,0 +1,357 @@
+//! Band walks: the rows of a band of a frame, as the walk over the whole frame's clip gives them.
+//!
+//! A frame drawn in bands must be the frame drawn at once, bit for bit. Coverage is exact
+//! however a walk is clipped, but the attribute planes are not: every set-up starts its planes
+//! at the first pixel of the triangle's region over the clip (rounded there) and steps them
+//! from it, so a walk clipped to a band's rows would round at another pixel and could differ by
+//! an LSB. [`shade_rows`] therefore sets the triangle up over the frame's clip — the same size
+//! class (small, compact, general), the same region and the same planes as [`shade`] — and
+//! only then restricts the walk to the band's rows: the walk starts at the band's first row (its
+//! boundaries computed there exactly, not stepped from the top) and the planes are advanced to
+//! that row in the wrapping integers every walk uses, `value + dy·rows` modulo 2³², so each
+//! pixel gets the integer the whole walk gives it.
+//!
+//! The band's buffer holds only its rows: the spans reach the shader with their rows counted
+//! from the band's first ([`Band::local`]).
+//!
+//! [`shade`]: super::shade
+
+use embedded_graphics::primitives::Rectangle;
+
+use super::compact::{first_centre_from, last_centre_to, CompactTriangle, TooLarge};
+use super::plane::{Attributes, Planes};
+use super::shade::{fold_planes, shade, shade_general, SpanShader};
+use super::walk::Span;
+use crate::arch::LANES;
+use crate::fixed_point::{Coord, SUBPIXEL_BITS};
+
+/// Which rows of a frame a draw hands out, and where they go: all of them in place
+/// ([`AllRows`]) or a band's, into the band's buffer ([`Band`]). The full-frame draws are
+/// generic over it so that they cost nothing for it.
+pub(crate) trait RowWindow: Copy {
+    /// Draws the rows of the window of the triangle `v` with `attributes` over `clip` (the
+    /// frame's clip) through `shader`: the spans and values [`shade`] gives those rows.
+    fn shade<const N: usize, S: SpanShader<N>>(
+        &self,
+        v: [(Coord, Coord); 3],
+        attributes: &Attributes<N>,
+        clip: &Rectangle,
+        shader: &mut S,
+    );
+
+    /// Whether a triangle whose vertices are at the sub-pixel heights `y` may cover a pixel of
+    /// the window (`false` only if it covers none).
+    fn touches(&self, y: [i32; 3]) -> bool;
+
+    /// The band, if the window is one.
+    fn band(&self) -> Option<Band>;
+}
+
+/// Every row, in place: [`shade`] itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct AllRows;
+
+impl RowWindow for AllRows {
+    #[inline(always)]
+    fn shade<const N: usize, S: SpanShader<N>>(
+        &self,
+        v: [(Coord, Coord); 3],
+        attributes: &Attributes<N>,
+        clip: &Rectangle,
+        shader: &mut S,
+    ) {
+        shade(v, attributes, clip, shader);
+    }
+
+    #[inline(always)]
+    fn touches(&self, _: [i32; 3]) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    fn band(&self) -> Option<Band> {
+        None
+    }
+}
+
+/// Rows `first ..= last` of a frame, drawn into a buffer whose row 0 is `first`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Band {
+    pub(crate) first: i32,
+    pub(crate) last: i32,
+}
+
+impl Band {
+    /// The rows of `y0 ..= y1` inside the band and how many rows of it come before them, or
+    /// `None` if none is inside.
+    #[inline(always)]
+    pub(crate) fn restrict(&self, y0: i32, y1: i32) -> Option<(i32, i32, u32)> {
+        let (start, end) = (y0.max(self.first), y1.min(self.last));
+        // start ≥ y0: the difference is below 2³².
+        (start <= end).then(|| (start, end, start.wrapping_sub(y0) as u32))
+    }
+
+    /// Row `y` of the frame as a row of the band's buffer.
+    #[inline(always)]
+    pub(crate) fn local(&self, y: i32) -> i32 {
+        y.wrapping_sub(self.first)
+    }
+
+    /// Whether pixel rows `top ..= bottom` meet the band.
+    #[inline(always)]
+    pub(crate) fn meets(&self, top: i32, bottom: i32) -> bool {
+        top <= self.last && bottom >= self.first
+    }
+}
+
+impl RowWindow for Band {
+    #[inline(always)]
+    fn shade<const N: usize, S: SpanShader<N>>(
+        &self,
+        v: [(Coord, Coord); 3],
+        attributes: &Attributes<N>,
+        clip: &Rectangle,
+        shader: &mut S,
+    ) {
+        shade_rows(
+            v,
+            attributes,
+            clip,
+            *self,
+            &mut Local {
+                shader,
+                band: *self,
+            },
+        );
+    }
+
+    #[inline(always)]
+    fn touches(&self, y: [i32; 3]) -> bool {
+        let (top, bottom) = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
+        // Rows whose centres lie between the vertices' heights: a superset of the covered ones.
+        self.meets(first_centre_from(top), last_centre_to(bottom))
+    }
+
+    #[inline(always)]
+    fn band(&self) -> Option<Band> {
+        Some(*self)
+    }
+}
+
+/// Walks the triangle `v` with `attributes` over `clip` like [`shade`], but only the rows of
+/// `band` (in frame rows; the spans reach `shader` as they are): the same spans and values as
+/// `shade` gives those rows. Nothing for a band outside `clip`.
+#[inline(always)]
+pub(crate) fn shade_rows<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    band: Band,
+    shader: &mut impl SpanShader<N>,
+) {
+    if shader.scans_small() && super::scan::shade_rows(v, attributes, clip, &band, shader) {
+        return;
+    }
+    match CompactTriangle::new(v, clip) {
+        Ok(None) => return,
+        Ok(Some(triangle)) => {
+            if compact_rows(&triangle, attributes, &band, shader).is_ok() {
+                return;
+            }
+        }
+        Err(TooLarge) => {}
+    }
+    shade_general(v, attributes, clip, Some(band), shader);
+}
+
+/// The band's rows of a compact triangle: the walk of a copy set up from the band's first row,
+/// the planes of the whole region advanced to it.
+#[inline(always)]
+fn compact_rows<const N: usize, S: SpanShader<N>>(
+    triangle: &CompactTriangle,
+    attributes: &Attributes<N>,
+    band: &Band,
+    shader: &mut S,
+) -> Result<(), TooLarge> {
+    let Some((y0, y1, skip)) = band.restrict(triangle.y0, triangle.y1) else {
+        return Ok(());
+    };
+    let mut rows = *triangle;
+    rows.y0 = y0;
+    rows.y1 = y1;
+    // The walk starts from the first pixel centre's offset from vertex 0: `skip` rows lower
+    // (inside the bounding box, below 2¹⁹ sub-pixels).
+    rows.setup.dy = triangle
+        .setup
+        .dy
+        .wrapping_add((skip << SUBPIXEL_BITS) as i32);
+    let walk = rows.walk()?;
+    let planes = Planes::compact(&triangle.setup, attributes).advanced(skip);
+    fold_planes(walk, &planes, shader);
+    Ok(())
+}
+
+/// A shader seen through a band: each span's row counted from the band's first row.
+struct Local<'s, S> {
+    shader: &'s mut S,
+    band: Band,
+}
+
+impl<S: SpanShader<N>, const N: usize> SpanShader<N> for Local<'_, S> {
+    type Steps = S::Steps;
+
+    #[inline(always)]
+    fn prepare(&mut self, step: [u32; N]) -> S::Steps {
+        self.shader.prepare(step)
+    }
+
+    #[inline(always)]
+    fn span(&mut self, steps: &S::Steps, span: Span, start: [u32; N]) {
+        let span = Span {
+            y: self.band.local(span.y),
+            ..span
+        };
+        self.shader.span(steps, span, start);
+    }
+
+    #[inline(always)]
+    fn scans_small(&self) -> bool {
+        self.shader.scans_small()
+    }
+
+    // No rows of lanes (x86-64's tiny triangles): they cover a triangle's whole box. The spans
+    // give the same pixels.
+    #[inline(always)]
+    fn row_width(&self) -> Option<u32> {
+        None
+    }
+
+    #[inline(always)]
+    fn masked_row(&mut self, _: &S::Steps, _: i32, _: i32, _: [i16; LANES], _: u32, _: [u32; N]) {}
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec::Vec;
+
+    use embedded_graphics::prelude::*;
+
+    use super::*;
+
+    /// Records the spans with their values at the first pixel, and the per-pixel steps.
+    struct Record {
+        spans: Vec<(Span, [u32; 2])>,
+        steps: Option<[u32; 2]>,
+        small: bool,
+    }
+
+    impl Record {
+        fn new(small: bool) -> Self {
+            Record {
+                spans: Vec::new(),
+                steps: None,
+                small,
+            }
+        }
+    }
+
+    impl SpanShader<2> for Record {
+        type Steps = ();
+        fn prepare(&mut self, step: [u32; 2]) {
+            self.steps = Some(step);
+        }
+        fn span(&mut self, _: &(), span: Span, start: [u32; 2]) {
+            self.spans.push((span, start));
+        }
+        fn scans_small(&self) -> bool {
+            self.small
+        }
+    }
+
+    /// Random triangles of every size class (small, compact, general: up to 2²² px across and
+    /// anywhere in the `Coord` range), slivers included, over random clips (some wider than the
+    /// stepped planes take: exact planes); every band of random height over the clip's rows
+    /// (and a little outside) gives exactly the spans, values and steps of the whole walk in
+    /// its rows, with their rows counted from the band's first.
+    #[test]
+    fn bands_give_the_rows_of_the_whole_walk() {
+        let mut next = crate::random(0xba4d_0000_0000_0001);
+        let (mut spans, mut banded) = (0usize, 0usize);
+        for i in 0..20_000 {
+            let scale = [4, 10, 12, 14, 17, 20, 25, 30][i % 8];
+            let origin = (next() % 4096) as i32 - 2048;
+            let mut coord = || {
+                let c = origin.wrapping_mul(256) + (next() % (1u64 << scale)) as i32
+                    - (1 << (scale - 1));
+                Coord::from_bits(c)
+            };
+            let mut v = [(coord(), coord()), (coord(), coord()), (coord(), coord())];
+            if i % 5 == 0 {
+                // A sliver: the third vertex near the line through the other two.
+                let (a, b) = (v[0], v[1]);
+                let t = (next() % 1025) as i64;
+                let mut lerp = |p: Coord, q: Coord| {
+                    let (p, q) = (i64::from(p.to_bits()), i64::from(q.to_bits()));
+                    Coord::from_bits((p + (q - p) * t / 1024) as i32 + (next() % 3) as i32 - 1)
+                };
+                v[2] = (lerp(a.0, b.0), lerp(a.1, b.1));
+            }
+            let wide = i % 40 == 7;
+            let size = if wide {
+                // Over 2¹⁶ px across (width plus height) or a little under.
+                Size::new(65_440 + (next() % 100) as u32, 1 + (next() % 100) as u32)
+            } else {
+                Size::new(1 + (next() % 80) as u32, 1 + (next() % 80) as u32)
+            };
+            let corner = |n: u64| origin - 40 + (n % 60) as i32;
+            let x = if wide {
+                origin - 32_000
+            } else {
+                corner(next())
+            };
+            let clip = Rectangle::new(Point::new(x, corner(next())), size);
+            let attributes = Attributes {
+                values: [(); 3].map(|_| [next() as u16, next() as u16]),
+                half: [1 << 23, 1 << 15],
+            };
+            let small = i % 2 == 0;
+            let mut whole = Record::new(small);
+            shade(v, &attributes, &clip, &mut whole);
+            spans += whole.spans.len();
+            let height = 1 + (next() % 24) as i32;
+            let mut first = clip.top_left.y - (next() % 3) as i32;
+            let end = clip.top_left.y + clip.size.height as i32 + 2;
+            while first < end {
+                let band = Band {
+                    first,
+                    last: first + height - 1,
+                };
+                let mut rows = Record::new(small);
+                band.shade(v, &attributes, &clip, &mut rows);
+                let want: Vec<_> = whole
+                    .spans
+                    .iter()
+                    .filter(|(s, _)| band.meets(s.y, s.y))
+                    .map(|&(s, values)| {
+                        (
+                            Span {
+                                y: s.y - first,
+                                ..s
+                            },
+                            values,
+                        )
+                    })
+                    .collect();
+                assert_eq!(rows.spans, want, "{v:?} over {clip:?}, band {band:?}");
+                if !want.is_empty() {
+                    assert_eq!(rows.steps, whole.steps, "{v:?} over {clip:?}, {band:?}");
+                    assert!(band.touches(v.map(|p| p.1.to_bits())));
+                }
+                banded += want.len();
+                first += height;
+            }
+        }
+        assert!(spans > 100_000 && banded == spans, "{spans} {banded}");
+    }
+}
