@@ -95,33 +95,28 @@ impl<'b> Lists<'b> {
     }
 
     /// Records `item`, in bands `first ..= last` (below the number of bands).
+    #[inline]
     fn push(&mut self, item: u32, first: u32, last: u32) {
-        let slot = u64::from(self.bands) + u64::from(self.records);
-        let Some(records) = self.records.checked_add(1) else {
-            self.limit = true;
-            return;
-        };
-        self.records = records;
-        let slot = u32::try_from(slot).unwrap_or(NONE);
-        if slot == NONE || slot as usize >= self.entries.len() {
+        // The slots follow the bands' heads; past `u32::MAX` nothing is stored, and `finish`
+        // reports it.
+        let slot = self.bands.wrapping_add(self.records);
+        self.records = self.records.wrapping_add(1);
+        self.limit |= self.records == 0 || slot < self.bands;
+        let Some(e) = self.entries.get_mut(slot as usize) else {
             // Counted, not stored: `finish` reports the storage too small.
             return;
-        }
-        let (first16, last16) = (first as u16, last as u16);
-        if let Some(e) = self.entries.get_mut(slot as usize) {
-            *e = BinEntry {
-                item,
-                next: NONE,
-                first: first16,
-                last: last16,
-            };
-        }
+        };
+        *e = BinEntry {
+            item,
+            next: NONE,
+            first: first as u16,
+            last: last as u16,
+        };
         // Appended to its first band's list (the head keeps the tail in `item`).
         let Some(head) = self.entries.get_mut(first as usize) else {
             return;
         };
-        let tail = head.item;
-        head.item = slot;
+        let tail = core::mem::replace(&mut head.item, slot);
         if tail == NONE {
             head.next = slot;
         } else if let Some(t) = self.entries.get_mut(tail as usize) {
@@ -200,13 +195,34 @@ impl<'b> Lists<'b> {
     }
 }
 
-/// The first and last band of frame rows `top ..= bottom`, if they meet `rows` (the frame's
-/// clip).
-fn bands_of(layout: &BandLayout, rows: &Rectangle, top: i32, bottom: i32) -> Option<(u32, u32)> {
-    let first_row = rows.top_left.y;
-    let last_row = first_row.checked_add(rows.size.height as i32)? - 1;
-    let (top, bottom) = (top.max(first_row), bottom.min(last_row));
-    (top <= bottom && !rows.is_zero_sized()).then(|| (layout.band_of(top), layout.band_of(bottom)))
+/// The frame rows a bin's triangles are drawn in (its clip's), and the rows of a band.
+#[derive(Debug, Clone, Copy)]
+struct Rows {
+    first: i32,
+    last: i32,
+    band: u32,
+}
+
+impl Rows {
+    /// The rows of `clip` (inside the frame of `layout`; `None` if empty).
+    fn new(layout: &BandLayout, clip: &Rectangle) -> Option<Rows> {
+        let first = clip.top_left.y;
+        // Inside the frame: below 2³¹.
+        let last = first.checked_add(clip.size.height as i32)?.checked_sub(1)?;
+        (!clip.is_zero_sized() && first >= 0).then_some(Rows {
+            first,
+            last,
+            band: layout.rows(),
+        })
+    }
+
+    /// The first and last band of rows `top ..= bottom`, if they meet these rows.
+    #[inline(always)]
+    fn bands(&self, top: i32, bottom: i32) -> Option<(u32, u32)> {
+        let (top, bottom) = (top.max(self.first), bottom.min(self.last));
+        // Both in `first ..= last`, non-negative.
+        (top <= bottom).then(|| (top as u32 / self.band, bottom as u32 / self.band))
+    }
 }
 
 /// A 2D list's triangles sorted into the bands of a frame once, drawn band by band.
@@ -260,11 +276,12 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
     {
         let mut lists = Lists::new(layout, storage)?;
         let frame = Rectangle::new(Point::zero(), layout.size());
+        let rows = Rows::new(layout, &frame);
         for (k, item) in items.iter().enumerate() {
             let Some((top, bottom)) = item.rows() else {
                 continue;
             };
-            let Some((first, last)) = bands_of(layout, &frame, top, bottom) else {
+            let Some((first, last)) = rows.and_then(|r| r.bands(top, bottom)) else {
                 continue;
             };
             match u32::try_from(k) {
@@ -397,8 +414,7 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         let scratch = &*scratch;
         let mut sink = Recorder {
             lists,
-            layout,
-            rows,
+            rows: Rows::new(layout, &rows),
         };
         let stats = frame.scratch_faces(mesh, scratch, &mut sink);
         sink.lists.finish()?;
@@ -447,18 +463,18 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
 }
 
 /// The face stage's sink of a [`MeshBin`]: each face kept recorded with its bands.
-struct Recorder<'b, 'l> {
+struct Recorder<'b> {
     lists: Lists<'b>,
-    layout: &'l BandLayout,
-    /// The frame's clip: no face is drawn outside its rows.
-    rows: Rectangle,
+    /// The rows of the frame's clip (no face is drawn outside them), if any.
+    rows: Option<Rows>,
 }
 
-impl Recorder<'_, '_> {
+impl Recorder<'_> {
     /// Records face `k` (flags included) reaching the sub-pixel heights `top ..= bottom`.
+    #[inline(always)]
     fn record(&mut self, k: usize, flags: u32, (top, bottom): (i32, i32)) {
         let (top, bottom) = (first_centre_from(top), last_centre_to(bottom));
-        let Some((first, last)) = bands_of(self.layout, &self.rows, top, bottom) else {
+        let Some((first, last)) = self.rows.and_then(|r| r.bands(top, bottom)) else {
             return;
         };
         match u32::try_from(k) {
@@ -468,7 +484,8 @@ impl Recorder<'_, '_> {
     }
 }
 
-impl<C: GouraudColor> FaceSink<C> for Recorder<'_, '_> {
+impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
+    #[inline(always)]
     fn face<R: RowWindow>(
         &mut self,
         _: &Frame<'_, C, R>,

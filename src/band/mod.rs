@@ -158,12 +158,6 @@ impl BandLayout {
     pub fn bands(&self) -> impl Iterator<Item = Rectangle> + '_ {
         (0..self.count()).filter_map(|k| self.band(k))
     }
-
-    /// The band holding frame row `y` (clamped to the frame's rows).
-    pub(crate) fn band_of(&self, y: i32) -> u32 {
-        let last = self.size.height.saturating_sub(1);
-        u32::try_from(y).unwrap_or(0).min(last) / self.rows
-    }
 }
 
 /// `len` against one band buffer of `layout`, of depths if `depth` (else colours).

@@ -111,8 +111,8 @@ impl<C: GouraudColor> GouraudTriangle<C> {
         clip: &Rectangle,
         window: &impl RowWindow,
     ) {
-        let mut shader = IntoSlice::new(framebuffer, false);
-        window.shade(self.positions(), &self.channels(), clip, &mut shader);
+        let shader = IntoSlice::new(framebuffer, false);
+        window.shade(self.positions(), &self.channels(), clip, shader);
     }
 
     /// The covered spans inside `clip` with their colours, each at most
@@ -272,12 +272,12 @@ impl<C: PixelColor> SolidTriangle<C> {
         clip: &Rectangle,
         window: &impl RowWindow,
     ) {
-        let mut shader = SolidIntoSlice {
+        let shader = SolidIntoSlice {
             framebuffer,
             color: self.color,
         };
         let attributes = Attributes::channels([[]; 3]);
-        window.shade(self.points, &attributes, clip, &mut shader);
+        window.shade(self.points, &attributes, clip, shader);
     }
 
     /// The covered spans inside `clip`.

@@ -30,14 +30,16 @@ use crate::fixed_point::{Coord, SUBPIXEL_BITS};
 /// generic over it so that they cost nothing for it.
 pub(crate) trait RowWindow: Copy {
     /// Draws the rows of the window of the triangle `v` with `attributes` over `clip` (the
-    /// frame's clip) through `shader`: the spans and values [`shade`] gives those rows.
+    /// frame's clip) through `shader`: the spans and values [`shade`] gives those rows. The
+    /// shader is taken and given back by value: a local of the draw, which the compiler keeps
+    /// in registers.
     fn shade<const N: usize, S: SpanShader<N>>(
         &self,
         v: [(Coord, Coord); 3],
         attributes: &Attributes<N>,
         clip: &Rectangle,
-        shader: &mut S,
-    );
+        shader: S,
+    ) -> S;
 
     /// Whether a triangle whose vertices are at the sub-pixel heights `y` may cover a pixel of
     /// the window (`false` only if it covers none).
@@ -58,9 +60,10 @@ impl RowWindow for AllRows {
         v: [(Coord, Coord); 3],
         attributes: &Attributes<N>,
         clip: &Rectangle,
-        shader: &mut S,
-    ) {
-        shade(v, attributes, clip, shader);
+        mut shader: S,
+    ) -> S {
+        shade(v, attributes, clip, &mut shader);
+        shader
     }
 
     #[inline(always)]
@@ -111,18 +114,14 @@ impl RowWindow for Band {
         v: [(Coord, Coord); 3],
         attributes: &Attributes<N>,
         clip: &Rectangle,
-        shader: &mut S,
-    ) {
-        shade_rows(
-            v,
-            attributes,
-            clip,
-            *self,
-            &mut Local {
-                shader,
-                band: *self,
-            },
-        );
+        shader: S,
+    ) -> S {
+        let mut local = Local {
+            shader,
+            band: *self,
+        };
+        shade_rows(v, attributes, clip, *self, &mut local);
+        local.shader
     }
 
     #[inline(always)]
@@ -141,7 +140,7 @@ impl RowWindow for Band {
 /// Walks the triangle `v` with `attributes` over `clip` like [`shade`], but only the rows of
 /// `band` (in frame rows; the spans reach `shader` as they are): the same spans and values as
 /// `shade` gives those rows. Nothing for a band outside `clip`.
-#[inline(always)]
+#[inline(never)]
 pub(crate) fn shade_rows<const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
@@ -173,6 +172,13 @@ fn compact_rows<const N: usize, S: SpanShader<N>>(
     band: &Band,
     shader: &mut S,
 ) -> Result<(), TooLarge> {
+    if triangle.y0 >= band.first && triangle.y1 <= band.last {
+        // Wholly inside the band: the whole walk.
+        let walk = triangle.walk()?;
+        let planes = Planes::compact(&triangle.setup, attributes);
+        fold_planes(walk, &planes, shader);
+        return Ok(());
+    }
     let Some((y0, y1, skip)) = band.restrict(triangle.y0, triangle.y1) else {
         return Ok(());
     };
@@ -192,12 +198,12 @@ fn compact_rows<const N: usize, S: SpanShader<N>>(
 }
 
 /// A shader seen through a band: each span's row counted from the band's first row.
-struct Local<'s, S> {
-    shader: &'s mut S,
+struct Local<S> {
+    shader: S,
     band: Band,
 }
 
-impl<S: SpanShader<N>, const N: usize> SpanShader<N> for Local<'_, S> {
+impl<S: SpanShader<N>, const N: usize> SpanShader<N> for Local<S> {
     type Steps = S::Steps;
 
     #[inline(always)]
@@ -327,8 +333,7 @@ mod tests {
                     first,
                     last: first + height - 1,
                 };
-                let mut rows = Record::new(small);
-                band.shade(v, &attributes, &clip, &mut rows);
+                let rows = band.shade(v, &attributes, &clip, Record::new(small));
                 let want: Vec<_> = whole
                     .spans
                     .iter()

@@ -216,15 +216,25 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
         Ok(mut triangle) => {
             // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
             let last = triangle.y0 + triangle.rows as i32;
-            if let Some((y0, y1, skip)) = band.restrict(triangle.y0, last) {
+            if triangle.y0 < band.first {
+                if last < band.first {
+                    return true;
+                }
+                let skip = (band.first - triangle.y0) as u32;
                 for e in &mut triangle.edges {
                     e.k += e.b * skip as i32;
                 }
                 triangle.planes = triangle.planes.advanced(skip);
-                triangle.y0 = y0;
-                triangle.rows = (y1 - y0) as u32;
-                triangle.draw(shader);
+                triangle.y0 = band.first;
+                triangle.rows -= skip;
             }
+            if last > band.last {
+                if triangle.y0 > band.last {
+                    return true;
+                }
+                triangle.rows = (band.last - triangle.y0) as u32;
+            }
+            triangle.draw(shader);
             true
         }
         Err(NotSmall::Empty) => true,

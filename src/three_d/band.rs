@@ -14,6 +14,7 @@
 use super::clip::W_MIN;
 use super::math::Vec3;
 use super::vertex::VertexStage;
+use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::Band;
 
 /// Sub-pixels between the band's rows and its planes.
@@ -31,8 +32,8 @@ const MAX_T: i64 = 128 << 16;
 pub(crate) struct BandPlanes {
     /// `y/w` (16 fractional bits) above which a point lands above the band's first row less
     /// the margin, and below which it lands below its last row plus the margin.
-    top: i64,
-    bottom: i64,
+    top: i32,
+    bottom: i32,
     /// The clip-space margins of the two tests: `CLIP_ERROR·(2¹⁶ + |t|)`.
     top_margin: i64,
     bottom_margin: i64,
@@ -52,33 +53,93 @@ impl BandPlanes {
             let n = (centre - y) << 16;
             let (q, r) = (n.checked_div_euclid(half), n.checked_rem_euclid(half));
             let q = q.unwrap_or(0) + i64::from(up && r.unwrap_or(0) != 0);
-            q.clamp(-MAX_T, MAX_T)
+            q.clamp(-MAX_T, MAX_T) as i32
         };
         let (top, bottom) = (ndc(top_y, true), ndc(bottom_y, false));
+        let margin = |t: i32| CLIP_ERROR * ((1 << 16) + i64::from(t.unsigned_abs()));
         BandPlanes {
             top,
             bottom,
-            top_margin: CLIP_ERROR * ((1 << 16) + top.abs()),
-            bottom_margin: CLIP_ERROR * ((1 << 16) + bottom.abs()),
+            top_margin: margin(top),
+            bottom_margin: margin(bottom),
         }
     }
 
-    /// Whether the face at `model` covers no pixel of the band for certain: every vertex in
-    /// front of the camera (`w ≥ 2⁻⁸`) and above the top plane, or every one below the bottom
-    /// plane.
+    /// Which side of the band the point `p` lands on for certain: [`ABOVE`] the top plane,
+    /// [`BELOW`] the bottom one (both in front of the camera, `w ≥ 2⁻⁸`), or neither. Out of
+    /// line: called on a [`SideCache`] miss only, it keeps the transform's set-up out of the
+    /// face loop.
+    #[inline(never)]
+    fn side(&self, stage: &VertexStage, p: Vec3) -> u8 {
+        let (y, w) = stage.clip_height(p);
+        if i64::from(w) < W_MIN {
+            return NEITHER;
+        }
+        // |y| < 2³¹, so y·2¹⁶ < 2⁴⁷; |t| ≤ 2²³ and w < 2³¹: one 32 × 32-bit product each.
+        let y = i64::from(y) << 16;
+        if y - mul_i32_wide(self.top, w) > self.top_margin {
+            ABOVE
+        } else if mul_i32_wide(self.bottom, w) - y > self.bottom_margin {
+            BELOW
+        } else {
+            NEITHER
+        }
+    }
+}
+
+/// Sides of the band (see [`BandPlanes::side`]).
+const NEITHER: u8 = 0;
+const ABOVE: u8 = 1;
+const BELOW: u8 = 2;
+
+/// Entries of a [`SideCache`].
+const CACHE: usize = 256;
+
+/// The sides of the vertices a band's draw met last: each vertex is shared by several faces,
+/// mostly close in the mesh's order, so a small direct-mapped cache (512 bytes of stack, whatever
+/// the mesh) spares most of their transforms.
+pub(crate) struct SideCache {
+    /// `index / CACHE + 1` (0: empty) in the high bits, the side in the low two, by
+    /// `index % CACHE`.
+    entries: [u16; CACHE],
+}
+
+impl SideCache {
+    /// An empty cache.
+    pub(crate) fn new() -> Self {
+        SideCache {
+            entries: [0; CACHE],
+        }
+    }
+
+    /// Whether the face of the vertices `idx` at `model` covers no pixel of the band of
+    /// `planes` for certain: all three vertices above it or all below.
     #[inline(always)]
-    pub(crate) fn misses(&self, stage: &VertexStage, model: &[Vec3; 3]) -> bool {
-        let (mut above, mut below) = (true, true);
-        for p in model {
-            let (y, w) = stage.clip_height(*p);
-            if i64::from(w) < W_MIN {
+    pub(crate) fn misses(
+        &mut self,
+        planes: &BandPlanes,
+        stage: &VertexStage,
+        idx: &[usize; 3],
+        model: &[Vec3; 3],
+    ) -> bool {
+        let mut all = ABOVE | BELOW;
+        for (&i, &p) in idx.iter().zip(model) {
+            // Vertex indices come from `u16`s: the tag fits.
+            let tag = ((i / CACHE + 1) as u16) << 2;
+            let side = match self.entries.get_mut(i % CACHE) {
+                Some(e) if *e & !3 == tag => *e as u8 & 3,
+                Some(e) => {
+                    let side = planes.side(stage, p);
+                    *e = tag | u16::from(side);
+                    side
+                }
+                None => planes.side(stage, p),
+            };
+            all &= side;
+            if all == NEITHER {
                 return false;
             }
-            // |y| < 2³¹ and |t| ≤ 2²³, w < 2³¹: below 2⁵⁵.
-            let (y, w) = (i64::from(y) << 16, i64::from(w));
-            above &= y - self.top * w > self.top_margin;
-            below &= self.bottom * w - y > self.bottom_margin;
         }
-        above || below
+        true
     }
 }

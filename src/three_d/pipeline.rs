@@ -61,7 +61,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use super::band::BandPlanes;
+use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{normalize_wide, Mat4, Vec3, Vec4};
@@ -413,10 +413,12 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
 
     /// Hands every face of `mesh` to `sink`, transforming each vertex once per face using it:
     /// [`Pipeline::draw_mesh`]. A band's draw rejects the faces wholly above or below its rows
-    /// from their clip-space heights, before projecting them.
+    /// from their vertices' clip-space heights (kept for the vertices met last), before
+    /// projecting them.
     #[inline(always)]
     pub(crate) fn each_face<S: FaceSink<C>>(&self, mesh: &Mesh<'_>, sink: &mut S) -> DrawStats {
         let mut stats = DrawStats::default();
+        let mut sides = SideCache::new();
         for (k, face) in mesh.indices.iter().enumerate() {
             let idx = face.map(usize::from);
             let (Some(a), Some(b), Some(c)) = (
@@ -428,25 +430,24 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 continue;
             };
             let model = [*a, *b, *c];
-            if self.misses(&model) {
-                stats.rejected += 1;
-                continue;
+            if let Some(planes) = self.band_planes() {
+                if sides.misses(planes, &self.stage, &idx, &model) {
+                    stats.rejected += 1;
+                    continue;
+                }
             }
-            let [a, b, c] = [0, 1, 2].map(|k| self.vertex(mesh, idx[k], model[k]));
+            // Each vertex by name: no index to check.
+            let ([pa, pb, pc], [ia, ib, ic]) = (model, idx);
+            let [a, b, c] = [(ia, pa), (ib, pb), (ic, pc)].map(|(i, p)| self.vertex(mesh, i, p));
             self.face(mesh, k, &idx, || model, [&a, &b, &c], sink, &mut stats);
         }
         stats
     }
 
-    /// Whether a band's draw can tell from their clip-space heights that the vertices `model`
-    /// make a face outside its rows (never for a frame's draw: no code at all).
+    /// The band's planes, for a band's draw (never for a frame's: no code at all).
     #[inline(always)]
-    fn misses(&self, model: &[Vec3; 3]) -> bool {
-        self.clip.rows().band().is_some()
-            && self
-                .band
-                .as_ref()
-                .is_some_and(|b| b.misses(&self.stage, model))
+    fn band_planes(&self) -> Option<&BandPlanes> {
+        self.clip.rows().band().and(self.band.as_ref())
     }
 
     /// Every vertex of `mesh` transformed, projected and lit into `scratch` (one entry each).

@@ -484,17 +484,13 @@ fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, R: RowWindow, const N: usize>(
     attributes: &Attributes<N>,
     pixel: P,
 ) {
-    let mut fill = DepthFill {
+    let fill = DepthFill {
         target,
         step: [0; N],
         pixel,
     };
-    clip.rows.shade(
-        vertices.map(|v| v.position()),
-        attributes,
-        &clip.rect,
-        &mut fill,
-    );
+    clip.rows
+        .shade(vertices.map(|v| v.position()), attributes, &clip.rect, fill);
 }
 
 /// One colour.

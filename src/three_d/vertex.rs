@@ -22,7 +22,7 @@ use super::depth::{ScreenVertex, DEPTH_FAR};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
 use super::shading::Light;
 use crate::fixed_point::Coord;
-use crate::raster::arith::{leading_zeros_32, reciprocal_63};
+use crate::raster::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
 
 /// Largest viewport side used for the mapping; larger viewports are treated as this size.
 const MAX_VIEWPORT: i64 = 65_535;
@@ -183,11 +183,12 @@ fn is_rotation(r: &[[i32; 3]; 3]) -> bool {
 
 /// One row of the model-view-projection matrix (raw) times `(p, 1)` for a draw whose sums stay
 /// below 2⁴⁶ (the bound of [`VertexStage::new`]): the result fits, nothing saturates.
+/// (32 × 32-bit products: on Cortex-M0, from limbs rather than 64 × 64-bit library calls.)
 #[inline(always)]
-fn direct_row(row: &[i32; 4], p: &[i64; 3]) -> i32 {
-    let acc = i64::from(row[0]) * p[0]
-        + i64::from(row[1]) * p[1]
-        + i64::from(row[2]) * p[2]
+fn direct_row(row: &[i32; 4], p: &[i32; 3]) -> i32 {
+    let acc = mul_i32_wide(row[0], p[0])
+        + mul_i32_wide(row[1], p[1])
+        + mul_i32_wide(row[2], p[2])
         + (i64::from(row[3]) << SCALAR_BITS);
     ((acc + (1 << 15)) >> SCALAR_BITS) as i32
 }
@@ -257,7 +258,7 @@ impl VertexStage {
         if !self.direct {
             return Mat4::from_bits(self.mvp).transform_point(p).to_bits();
         }
-        let p = p.to_bits().map(i64::from);
+        let p = p.to_bits();
         self.mvp.map(|row| direct_row(&row, &p))
     }
 
@@ -269,7 +270,7 @@ impl VertexStage {
             let [_, y, _, w] = Mat4::from_bits(self.mvp).transform_point(p).to_bits();
             return (y, w);
         }
-        let p = p.to_bits().map(i64::from);
+        let p = p.to_bits();
         (direct_row(&self.mvp[1], &p), direct_row(&self.mvp[3], &p))
     }
 
