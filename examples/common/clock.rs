@@ -99,5 +99,8 @@ pub fn measure(reps: u32, mut f: impl FnMut()) -> u64 {
 
 /// `ticks` in instructions, with the calibration `(instructions, ticks)` of [`calibrate`].
 pub fn instructions(ticks: u64, (cal_instructions, cal_ticks): (u64, u64)) -> u64 {
-    (ticks * cal_instructions + cal_ticks / 2) / cal_ticks
+    // Checked: the panic-free firmware (fw_band_microbit) links this too.
+    (ticks * cal_instructions + cal_ticks / 2)
+        .checked_div(cal_ticks)
+        .unwrap_or(0)
 }
