@@ -10,6 +10,9 @@
 //!   off-screen and huge triangles are clipped exactly, degenerate ones draw nothing.
 //! * **Spans, not pixels**: each covered row is one `fill_contiguous`/`fill_solid` call, and
 //!   [`SliceFramebuffer`] turns those into slice writes.
+//! * **Band rendering** ([`band`]): a 2D scene or a z-buffered 3D mesh drawn a few rows at a
+//!   time into RAM for one band, each band sent to any display as it is finished — the same
+//!   pixels as the frame drawn whole.
 //!
 //! # Coordinate range
 //!

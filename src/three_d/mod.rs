@@ -8,6 +8,8 @@
 //! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
 //!   per-pixel lighting of quadratically interpolated normals).
 //! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
+//! * `band` — a band's rows as two clip-space planes: how a band's draw without a bin rejects
+//!   the faces outside it before projecting them (band rendering is [`crate::band`]).
 //! * [`meshes`] — meshes in flash (an icosphere and a torus) and, on the host, mesh data to
 //!   generate them; [`obj`] reads Wavefront OBJ files (host).
 
