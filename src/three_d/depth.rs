@@ -7,6 +7,7 @@ use embedded_graphics::Pixel;
 
 use crate::draw::{fill_row, SliceFramebuffer};
 use crate::fixed_point::Coord;
+use crate::raster::Span;
 
 /// The z-buffer value of an empty pixel; nothing is ever drawn at this depth.
 pub const DEPTH_CLEAR: u16 = u16::MAX;
@@ -76,12 +77,21 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
         self.clear_depth();
     }
 
-    /// Colour and depth of `len` pixels of row `y` from column `x`, if all inside.
-    #[inline]
-    pub(crate) fn rows_mut(&mut self, x: i32, y: i32, len: u32) -> Option<(&mut [C], &mut [u16])> {
-        let colors = self.color.row_mut(x, y, len)?;
-        let start = y as usize * self.width as usize + x as usize;
-        let depths = self.depth.get_mut(start..start + len as usize)?;
+    /// Colour and depth of the pixels of `span`, a span of a walk clipped to this target: the
+    /// row and column checks are debug assertions, the slices' own bounds checks remain, so a
+    /// wrong span could only ever write other pixels of this target.
+    #[inline(always)]
+    pub(crate) fn clipped_spans_mut(&mut self, span: Span) -> Option<(&mut [C], &mut [u16])> {
+        let (y, a, b) = (span.y as u32, span.x_start as u32, span.x_end as u32);
+        debug_assert!(
+            a <= b
+                && b <= self.width
+                && self.depth.len() / (self.width as usize).max(1) > y as usize
+        );
+        let base = (y as usize).wrapping_mul(self.width as usize);
+        let range = base.wrapping_add(a as usize)..base.wrapping_add(b as usize);
+        let colors = self.color.pixels_mut().get_mut(range.clone())?;
+        let depths = self.depth.get_mut(range)?;
         Some((colors, depths))
     }
 }

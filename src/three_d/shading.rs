@@ -416,7 +416,7 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
 
     #[inline(always)]
     fn span(&mut self, _: &(), span: Span, start: [u32; N]) {
-        let Some((colors, depths)) = self.target.rows_mut(span.x_start, span.y, span.len()) else {
+        let Some((colors, depths)) = self.target.clipped_spans_mut(span) else {
             return;
         };
         let mut v = start;
