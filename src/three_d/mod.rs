@@ -23,7 +23,9 @@ mod shading;
 mod vertex;
 
 pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
-pub use math::{inv_sqrt, normalize_wide, Angle, Mat4, Scalar, Vec3, Vec4, SCALAR_BITS};
+pub use math::{
+    inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
+};
 pub use mesh::Mesh;
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub use shading::{
