@@ -166,7 +166,7 @@ fn mul_raw(a: i32, b: i32) -> i32 {
 }
 
 /// `round(n / d)`, saturated to `i32`; `0` if `d = 0`.
-fn div_round(n: i64, d: i64) -> i32 {
+pub(super) fn div_round(n: i64, d: i64) -> i32 {
     if d == 0 {
         return 0;
     }
@@ -178,7 +178,7 @@ fn div_round(n: i64, d: i64) -> i32 {
 
 /// `round(a / b)` of raw `I16F16` values (the quotient in `I16F16`), saturating; `0` if `b = 0`.
 #[inline]
-fn div_raw(a: i32, b: i32) -> i32 {
+pub(super) fn div_raw(a: i32, b: i32) -> i32 {
     div_round(i64::from(a) << SCALAR_BITS, i64::from(b))
 }
 
@@ -594,8 +594,9 @@ impl Mat4 {
         m
     }
 
-    /// A uniform scaling by `s`.
-    pub fn scaling(s: Scalar) -> Self {
+    /// A uniform scaling by `s` (a float, an integer or a [`Scalar`]).
+    pub fn scaling(s: impl ToScalar) -> Self {
+        let s = s.to_scalar();
         let mut m = Mat4::IDENTITY;
         m.rows[0][0] = s;
         m.rows[1][1] = s;
@@ -633,25 +634,6 @@ impl Mat4 {
         m.rows[0][1] = -s;
         m.rows[1][0] = s;
         m.rows[1][1] = c;
-        m
-    }
-
-    /// An OpenGL-style perspective projection: the camera looks down −z, `fov_y` is the full
-    /// vertical field of view, `aspect` is width / height, and `near < far` are positive
-    /// distances. Visible points end up with `−w ≤ x, y, z ≤ w`; `z = −w` on the near plane.
-    pub fn perspective(fov_y: Angle, aspect: Scalar, near: Scalar, far: Scalar) -> Self {
-        // cot(θ/2) = (1 + cos θ) / sin θ: no rounding of the half angle.
-        let f = div_raw((Scalar::ONE + fov_y.cos()).to_bits(), fov_y.sin().to_bits());
-        let (n, fa) = (near.to_bits(), far.to_bits());
-        let d = n.saturating_sub(fa);
-        let mut m = Mat4::from_bits([[0; 4]; 4]);
-        m.rows[0][0] = Scalar::from_bits(div_raw(f, aspect.to_bits()));
-        m.rows[1][1] = Scalar::from_bits(f);
-        m.rows[2][2] = Scalar::from_bits(div_raw(n.saturating_add(fa), d));
-        // 2·n·f / (n − f): the product has 32 fractional bits, the quotient 16.
-        let num = (i64::from(n) * i64::from(fa)).saturating_mul(2);
-        m.rows[2][3] = Scalar::from_bits(div_round(num, i64::from(d)));
-        m.rows[3][2] = -Scalar::ONE;
         m
     }
 

@@ -2,7 +2,10 @@
 //! a 16-bit z-buffer.
 //!
 //! * `math` — [`Scalar`] (`I16F16`), [`Vec3`], [`Vec4`], [`Mat4`] and [`Angle`]: integer
-//!   arithmetic with wide accumulation, no floats.
+//!   arithmetic with wide accumulation, no floats (conversions from floats: [`ToScalar`],
+//!   [`Degrees`]).
+//! * `camera` — projections ([`Mat4::perspective`], [`Mat4::orthographic`]), views
+//!   ([`Mat4::look_at`], [`Mat4::orbit`]), [`Mat4::inverse`] and [`Mat4::normal_matrix`].
 //! * `mesh` — [`Mesh`]: positions, normals and triangles, borrowed (typically from flash).
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
 //! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
@@ -11,6 +14,7 @@
 //! * [`meshes`] — meshes in flash (an icosphere and a torus) and, on the host, mesh data to
 //!   generate them; [`obj`] reads Wavefront OBJ files (host).
 
+mod camera;
 mod clip;
 mod depth;
 mod math;

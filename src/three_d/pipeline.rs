@@ -113,7 +113,8 @@ pub struct Pipeline {
     pub mvp: Mat4,
     /// Transforms model-space normals into the light's space (only the 3×3 block is used);
     /// the inverse transpose of the model matrix, which for rotations and uniform scaling is the
-    /// model matrix itself.
+    /// model matrix itself (any positive multiple will do: normals are renormalised).
+    /// [`Pipeline::with_inverse_transpose`] sets it for any invertible model matrix.
     pub normal_matrix: Mat4,
     /// Where normalised device coordinates `[−1, 1]²` land on the target (at most 65535 pixels
     /// a side); also the scissor rectangle. Any `Rectangle` is accepted: only its part inside the
@@ -147,6 +148,33 @@ impl Pipeline {
             cull: Cull::Back,
             light,
         }
+    }
+
+    /// A pipeline like [`new`](Self::new) whose normals are transformed by the inverse transpose
+    /// of `model` ([`Mat4::normal_matrix`]), so they stay perpendicular to surfaces under
+    /// non-uniform scale and shear; `None` if `model` is singular.
+    ///
+    /// ```
+    /// # use embedded_graphics::{prelude::*, primitives::Rectangle};
+    /// use embedded_raster::three_d::{Light, Mat4, Pipeline, Vec3};
+    ///
+    /// let mut model = Mat4::scaling(2);
+    /// model.rows[1][1] = embedded_raster::three_d::Scalar::from_num(0.5); // squash y
+    /// # let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
+    /// let pipeline =
+    ///     Pipeline::with_inverse_transpose(model, Mat4::IDENTITY, viewport, Light::default());
+    /// assert_eq!(pipeline.unwrap().normal_matrix, model.normal_matrix().unwrap());
+    /// ```
+    pub fn with_inverse_transpose(
+        model: Mat4,
+        view_projection: Mat4,
+        viewport: Rectangle,
+        light: Light,
+    ) -> Option<Self> {
+        Some(Pipeline {
+            normal_matrix: model.normal_matrix()?,
+            ..Pipeline::new(model, view_projection, viewport, light)
+        })
     }
 
     /// The clip-space position of a model-space point.
