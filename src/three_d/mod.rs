@@ -6,7 +6,8 @@
 //!   [`Degrees`]).
 //! * `camera` — projections ([`Mat4::perspective`], [`Mat4::orthographic`]), views
 //!   ([`Mat4::look_at`], [`Mat4::orbit`]), [`Mat4::inverse`] and [`Mat4::normal_matrix`].
-//! * `mesh` — [`Mesh`]: positions, normals and triangles, borrowed (typically from flash).
+//! * `mesh` — [`Mesh`]: positions, triangles and optional normals, colours and texture
+//!   coordinates ([`TexCoord`]), borrowed (typically from flash); [`Bounds`] to place it.
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
 //! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
 //!   per-pixel lighting of quadratically interpolated normals).
@@ -30,7 +31,7 @@ pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use math::{
     inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
 };
-pub use mesh::Mesh;
+pub use mesh::{Bounds, Mesh, MeshError, TexCoord};
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Light, Material, QuadraticNormals, Shading,
