@@ -27,7 +27,7 @@ mod pipeline;
 mod shading;
 mod vertex;
 
-pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
+pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use math::{
     inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
 };
