@@ -137,7 +137,7 @@ pub(crate) fn random(seed: u64) -> impl FnMut() -> u64 {
     move || rng.next()
 }
 
-/// The README's code example, compiled and run as a doc test.
+/// The README's code examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
