@@ -108,6 +108,31 @@ impl<C> Vertex<C> {
 }
 
 /// A triangle whose vertex colours are interpolated across it (Gouraud shading).
+///
+/// Each pixel whose centre is inside (top-left rule on edges) gets the vertex colours
+/// interpolated at its centre, within 1 LSB, in the colour format's own channel depth.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
+/// use embedded_raster::{GouraudTriangle, SliceFramebuffer, Vertex};
+///
+/// let mut pixels = [Rgb888::BLACK; 16 * 16];
+/// let mut fb = SliceFramebuffer::new(&mut pixels, 16, 16).unwrap();
+/// let triangle = GouraudTriangle::new([
+///     Vertex::new(0.0, 0.0, Rgb888::new(0, 0, 0)),
+///     Vertex::new(32.0, 0.0, Rgb888::new(255, 0, 0)),
+///     Vertex::new(0.0, 32.0, Rgb888::new(0, 0, 0)),
+/// ]);
+/// // Through any DrawTarget, or straight into a SliceFramebuffer: the same pixels.
+/// triangle.draw(&mut fb)?;
+/// triangle.draw_into(&mut fb);
+/// // Red grows with x: 255 · 8.5 / 32 = 67.7 at the centre of pixel (8, 0), within 1 LSB.
+/// let red = fb.get(8, 0).unwrap().r();
+/// assert!((67..=68).contains(&red));
+/// # Ok::<(), core::convert::Infallible>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct GouraudTriangle<C> {
     /// The three vertices, in either winding.

@@ -107,6 +107,24 @@ pub fn signed_area2(v: [(Coord, Coord); 3]) -> i128 {
 }
 
 /// Model-view-projection, viewport, light and culling: everything needed to draw meshes.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
+/// use embedded_raster::three_d::meshes::torus::TORUS;
+/// use embedded_raster::{Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+///
+/// let (mut pixels, mut depth) = ([Rgb888::BLACK; 64 * 64], [0u16; 64 * 64]);
+/// let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 64).unwrap();
+/// let camera = Mat4::perspective(Angle::from_degrees(45), 1, 0.5, 20)
+///     * Mat4::orbit(Vec3::ZERO, 4, Angle::from_degrees(20), Angle::from_degrees(35.5));
+/// let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
+/// let mut pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+/// pipeline.cull = Cull::None; // both sides
+/// let stats = pipeline.draw_mesh(&TORUS, &Material::new(Rgb888::WHITE, Shading::Gouraud), &mut target);
+/// assert_eq!(stats.drawn, 192);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Pipeline {
     /// Model space to clip space.
