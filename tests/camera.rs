@@ -8,6 +8,10 @@ use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
 mod rng;
 use rng::Rng;
 
+#[path = "support/vec_f64.rs"]
+mod vec_f64;
+use vec_f64::{cross, dot, normalize};
+
 type M = [[f64; 4]; 4];
 
 fn to_f64(m: &Mat4) -> M {
@@ -175,23 +179,6 @@ fn normal_matrix_is_the_scaled_inverse_transpose() {
         assert_eq!(got.to_bits()[3], [0, 0, 0, 65536]);
     }
     assert_eq!(Mat4::scaling(Scalar::ZERO).normal_matrix(), None);
-}
-
-fn normalize(v: [f64; 3]) -> [f64; 3] {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    v.map(|c| c / l)
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// gluLookAt.

@@ -8,6 +8,10 @@ use embedded_raster::three_d::meshes::{icosphere, to_f64, torus, torus_knot, Mes
 use embedded_raster::three_d::obj;
 use embedded_raster::three_d::{Mesh, Vec3};
 
+#[path = "support/vec_f64.rs"]
+mod vec_f64;
+use vec_f64::{cross, dot, normalize, sub};
+
 /// The text without whitespace and trailing commas (which rustfmt adds or drops with the
 /// layout).
 fn squeeze(s: &str) -> String {
@@ -20,19 +24,20 @@ fn check_generated(mesh: &MeshData, name: &str, file: &str) {
     check_source(mesh, name, "crate", &format!("src/three_d/meshes/{file}"));
 }
 
-/// `file` (relative to the package) holds `mesh` as emitted for `crate_path`.
+/// `file` (relative to the package) holds `mesh` as emitted for `crate_path`; with
+/// `REGENERATE_MESHES` set it is rewritten first.
 fn check_source(mesh: &MeshData, name: &str, crate_path: &str, file: &str) {
-    let source = mesh.to_rust_source(name, crate_path);
+    let source = &mesh.to_rust_source(name, crate_path);
     let path = format!("{}/{file}", env!("CARGO_MANIFEST_DIR"));
     if std::env::var_os("REGENERATE_MESHES").is_some() {
-        std::fs::write(&path, &source).unwrap();
+        std::fs::write(&path, source).unwrap();
         let _ = std::process::Command::new("rustfmt")
             .args(["--edition", "2021", &path])
             .status();
     }
     let stored = std::fs::read_to_string(&path).unwrap();
     assert!(
-        squeeze(&stored) == squeeze(&source),
+        squeeze(&stored) == squeeze(source),
         "{path} is stale: rerun with REGENERATE_MESHES=1"
     );
 }
@@ -73,22 +78,6 @@ fn bench_knot_matches_its_generator() {
         "embedded_raster",
         "examples/common/meshes/knot.rs",
     );
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Every face is counter-clockwise seen from outside: its geometric normal agrees with its
@@ -278,17 +267,12 @@ fn obj_welds_repeated_positions() {
         .collect();
     assert_eq!(border.len(), 2);
     // The faces' doubled-area normals (0, 0, 1) and (1, 0, 1), summed and normalised.
-    let want = normalize3([1.0, 0.0, 2.0]);
+    let want = normalize([1.0, 0.0, 2.0]);
     for n in border {
         for k in 0..3 {
             assert!((n[k] - want[k]).abs() < 1e-4, "{n:?} vs {want:?}");
         }
     }
-}
-
-fn normalize3(v: [f64; 3]) -> [f64; 3] {
-    let l = dot(v, v).sqrt();
-    v.map(|c| c / l)
 }
 
 /// A coloured, textured triangle pair: OBJ with `v x y z r g b`, `vt`, `f v/vt/vn`.
@@ -342,21 +326,11 @@ mod colored_quad;
 #[test]
 fn rust_source_carries_colours_and_texture_coordinates() {
     let m = obj::parse(COLORED_OBJ).unwrap();
-    let source = m.to_rust_source("COLORED_QUAD", "embedded_raster");
-    let path = format!(
-        "{}/tests/support/colored_quad.rs",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    if std::env::var_os("REGENERATE_MESHES").is_some() {
-        std::fs::write(&path, &source).unwrap();
-        let _ = std::process::Command::new("rustfmt")
-            .args(["--edition", "2021", &path])
-            .status();
-    }
-    let stored = std::fs::read_to_string(&path).unwrap();
-    assert!(
-        squeeze(&stored) == squeeze(&source),
-        "{path} is stale: rerun with REGENERATE_MESHES=1"
+    check_source(
+        &m,
+        "COLORED_QUAD",
+        "embedded_raster",
+        "tests/support/colored_quad.rs",
     );
     // The generated statics compile and hold the same data.
     let flash = colored_quad::COLORED_QUAD;

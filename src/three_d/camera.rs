@@ -175,23 +175,10 @@ impl Mat4 {
         let m2 = |r0: usize, r1: usize, c0: usize, c1: usize| {
             a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]
         };
-        // 2×2 minors of the top and bottom row pairs (< 2⁶³ each).
-        let s = [
-            m2(0, 1, 0, 1),
-            m2(0, 1, 0, 2),
-            m2(0, 1, 0, 3),
-            m2(0, 1, 1, 2),
-            m2(0, 1, 1, 3),
-            m2(0, 1, 2, 3),
-        ];
-        let c = [
-            m2(2, 3, 0, 1),
-            m2(2, 3, 0, 2),
-            m2(2, 3, 0, 3),
-            m2(2, 3, 1, 2),
-            m2(2, 3, 1, 3),
-            m2(2, 3, 2, 3),
-        ];
+        // 2×2 minors of the top and bottom row pairs (< 2⁶³ each), columns in this order.
+        const COLUMNS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+        let s = COLUMNS.map(|(c0, c1)| m2(0, 1, c0, c1));
+        let c = COLUMNS.map(|(c0, c1)| m2(2, 3, c0, c1));
         // Laplace expansion by complementary minors: six products < 2¹²⁶ each.
         let det = [
             s[0].checked_mul(c[5])?,

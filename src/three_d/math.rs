@@ -183,6 +183,11 @@ pub(super) fn div_raw(a: i32, b: i32) -> i32 {
 }
 
 /// A binary angle: `turns / 65536` of a full turn. Arithmetic on it wraps around the circle.
+///
+/// The field is public because it carries no invariant: every `u16` is a valid angle
+/// (`Angle(16384)` is a quarter turn). Build one from degrees ([`Angle::from_degrees`], integer
+/// or fractional), radians ([`Angle::from_radians`]) or a fraction of a turn
+/// ([`Angle::from_turns`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub struct Angle(pub u16);
 
