@@ -107,8 +107,9 @@ pub trait Degrees: Copy {
     fn to_angle(self) -> Angle;
 }
 
-/// `round(n / d)` turns of 65536 steps, wrapped to `u16`; `d > 0`.
-fn steps(n: i128, d: i128) -> Angle {
+/// `round(n / d)` turns of 65536 steps, wrapped to `u16`; `d > 0`, `|n| < 2⁶²` (64-bit: no
+/// 128-bit division on Cortex-M).
+fn steps(n: i64, d: i64) -> Angle {
     Angle((2 * n + d).div_euclid(2 * d).rem_euclid(65536) as u16)
 }
 
@@ -117,7 +118,7 @@ macro_rules! integer_degrees {
         impl Degrees for $t {
             #[inline]
             fn to_angle(self) -> Angle {
-                steps(i128::from(self) * 65536, 360)
+                steps(i64::from(self) * 65536, 360)
             }
         }
     )*};
@@ -126,7 +127,7 @@ integer_degrees!(i8, i16, i32, u8, u16, u32);
 
 impl Degrees for Scalar {
     fn to_angle(self) -> Angle {
-        steps(i128::from(self.to_bits()), 360)
+        steps(i64::from(self.to_bits()), 360)
     }
 }
 
