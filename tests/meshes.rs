@@ -312,6 +312,18 @@ fn obj_carries_colours_and_texture_coordinates() {
     // same normal.
     let seam = COLORED_OBJ.replace("f 1/1/1 3/3/1 4/4/1", "vt 0.5 0.5\nf 1/5/1 3/3/1 4/4/1");
     assert_eq!(obj::parse(&seam).unwrap().vertices.len(), 5);
+    // Corners that end up storing the same values weld, however the file gave them: a computed
+    // normal equal to an explicit one, a missing texture coordinate and an explicit (0, 0), a
+    // missing colour and an explicit white. Written out and read back: unchanged.
+    for text in [
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1 2 3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n",
+        "v 0 0 0 1 1 1\nv 1 0 0\nv 0 1 0\nv 0 0 0\nf 1 2 3\nf 4 2 3\n",
+    ] {
+        let m = obj::parse(text).unwrap();
+        assert_eq!(m.vertices.len(), 3, "{text}");
+        assert_eq!(obj::parse(&obj::to_obj(&m)).unwrap(), m, "{text}");
+    }
     // Files without colours on some lines: white.
     let partial = obj::parse("v 0 0 0 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     assert_eq!(

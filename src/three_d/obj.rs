@@ -7,8 +7,9 @@
 //! `g`, `s`, materials, comments).
 //!
 //! **Welding.** Face corners become one vertex when their position, normal, texture coordinate
-//! and colour are equal as stored (`I16F16`, 8-bit colour), whether or not the file repeats
-//! them on separate lines; vertices whose faces give no normal get the normalised area-weighted
+//! and colour are equal as the mesh stores them (`I16F16`, 8-bit colour; computed normals and
+//! the defaults for missing colours and texture coordinates included), whether or not the file
+//! repeats them on separate lines; vertices whose faces give no normal get the normalised area-weighted
 //! mean of the normals of all faces around their *position*, so models that repeat positions
 //! along patch borders (the Utah teapot) shade without seams. [`parse_with`] with
 //! `weld: false` keeps a vertex per distinct `v/vt/vn` reference instead. Explicit normals are
@@ -44,7 +45,7 @@ use std::vec::Vec;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use crate::three_d::meshes::{to_f64, vec3, MeshData};
-use crate::three_d::TexCoord;
+use crate::three_d::{TexCoord, Vec3};
 
 /// Why an OBJ file could not be read.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -182,31 +183,12 @@ pub fn parse_with(src: &str, options: ParseOptions) -> Result<MeshData, ObjError
         }
     }
 
-    // What a vertex stores, quantised as the mesh will hold it.
-    let stored_position = |p: usize| vec3(positions[p]).to_bits();
-    let stored_color = |p: usize| colors[p].map(rgb888);
     let has_colors = refs.iter().any(|r| colors[r.0].is_some());
     let has_uvs = refs.iter().any(|r| r.1.is_some());
-    // Welding groups: the stored values, or the references themselves.
-    type Group = ([i64; 3], Option<Rgb888>, Option<[i32; 2]>, Option<[i32; 3]>);
-    let group = |r: &Reference| -> Group {
-        if options.weld {
-            (
-                stored_position(r.0).map(i64::from),
-                stored_color(r.0),
-                r.1.map(|t| uv(texcoords[t]).to_bits()),
-                r.2.map(|n| vec3(normals[n]).to_bits()),
-            )
-        } else {
-            // Distinct references stay distinct (indices cannot collide with the tags).
-            let tag = |i: Option<usize>| i.map_or(-1, |i| i as i64);
-            ([r.0 as i64, tag(r.1), tag(r.2)], None, None, None)
-        }
-    };
     // Smooth normals around each position (welded: by stored value; else by `v` line).
     let around = |p: usize| -> [i64; 3] {
         if options.weld {
-            stored_position(p).map(i64::from)
+            vec3(positions[p]).to_bits().map(i64::from)
         } else {
             [p as i64, 0, 0]
         }
@@ -234,9 +216,36 @@ pub fn parse_with(src: &str, options: ParseOptions) -> Result<MeshData, ObjError
             }
         }
     }
+    // What the vertex of a reference stores, exactly as the mesh will hold it.
+    let vertex_of = |r: &Reference| -> StoredVertex {
+        let (p, t, nrm) = *r;
+        let normal = match nrm {
+            // Explicit normals are kept as written (the pipeline normalises what it uses).
+            Some(i) => normals[i],
+            None => {
+                let n = smooth.get(&around(p)).copied().unwrap_or([0.0; 3]);
+                let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                if l > 0.0 {
+                    n.map(|c| c / l)
+                } else {
+                    n
+                }
+            }
+        };
+        StoredVertex {
+            position: vec3(positions[p]),
+            normal: vec3(normal),
+            color: has_colors.then(|| colors[p].map_or(Rgb888::WHITE, rgb888)),
+            uv: has_uvs.then(|| t.map_or(TexCoord::default(), |t| uv(texcoords[t]))),
+        }
+    };
+    // Welding groups: vertices that store the same values, or distinct references.
+    let group = |r: &Reference| -> (StoredVertex, Option<Reference>) {
+        (vertex_of(r), (!options.weld).then_some(*r))
+    };
 
     // One output vertex per group, ordered by its first reference.
-    let mut groups: HashMap<Group, usize> = HashMap::new();
+    let mut groups: HashMap<(StoredVertex, Option<Reference>), usize> = HashMap::new();
     let mut first: Vec<Reference> = Vec::new();
     let ref_group: Vec<usize> = refs
         .iter()
@@ -260,35 +269,26 @@ pub fn parse_with(src: &str, options: ParseOptions) -> Result<MeshData, ObjError
     let mut mesh = MeshData::default();
     for (new, &g) in order.iter().enumerate() {
         remap[g] = new as u16;
-        let (p, t, nrm) = first[g];
-        let normal = match nrm {
-            // Explicit normals are kept as written (the pipeline normalises what it uses).
-            Some(i) => normals[i],
-            None => {
-                let n = smooth.get(&around(p)).copied().unwrap_or([0.0; 3]);
-                let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                if l > 0.0 {
-                    n.map(|c| c / l)
-                } else {
-                    n
-                }
-            }
-        };
-        mesh.vertices.push(vec3(positions[p]));
-        mesh.normals.push(vec3(normal));
-        if has_colors {
-            mesh.colors.push(stored_color(p).unwrap_or(Rgb888::WHITE));
-        }
-        if has_uvs {
-            mesh.uvs
-                .push(t.map_or(TexCoord::default(), |t| uv(texcoords[t])));
-        }
+        let v = vertex_of(&first[g]);
+        mesh.vertices.push(v.position);
+        mesh.normals.push(v.normal);
+        mesh.colors.extend(v.color);
+        mesh.uvs.extend(v.uv);
     }
     mesh.indices = faces
         .iter()
         .map(|f| f.map(|i| remap[ref_group[i]]))
         .collect();
     Ok(mesh)
+}
+
+/// An output vertex, as stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+struct StoredVertex {
+    position: Vec3,
+    normal: Vec3,
+    color: Option<Rgb888>,
+    uv: Option<TexCoord>,
 }
 
 /// A colour with channels in `[0, 1]` as 8-bit channels (rounded, clamped).
