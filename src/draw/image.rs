@@ -26,6 +26,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::SliceFramebuffer;
+use crate::rect::intersection;
 
 /// Draws the part `area` (image coordinates) of a `size` image at the target's origin, a row at a
 /// time: `row(y, x_start, x_end)` gives the colours of columns `x_start..x_end` of row `y`.
@@ -40,19 +41,21 @@ where
     D: DrawTarget,
     I: IntoIterator<Item = D::Color>,
 {
-    // The part of `area` inside the image, in i64 (a rectangle's far corner may lie beyond i32).
-    let clip = |start: i32, len: u32, size: u32| {
-        let start = i64::from(start);
-        let (a, b) = (start.max(0), (start + i64::from(len)).min(i64::from(size)));
-        // Where column/row `a` lands: its offset in `area`, if that is an i32.
-        (a < b).then(|| (a as usize, b as usize, i32::try_from(a - start).ok()))
-    };
-    let (Some((x0, x1, Some(dx))), Some((y0, y1, Some(dy)))) = (
-        clip(area.top_left.x, area.size.width, size.width),
-        clip(area.top_left.y, area.size.height, size.height),
+    // The part of `area` inside the image (for any rectangle: `crate::rect`), and where it
+    // lands: its offset in `area`, off every target when beyond `i32`.
+    let inside = intersection(area, &Rectangle::new(Point::zero(), size));
+    let (Some(dx), Some(dy)) = (
+        inside.top_left.x.checked_sub(area.top_left.x),
+        inside.top_left.y.checked_sub(area.top_left.y),
     ) else {
         return Ok(());
     };
+    // Inside the image: non-negative, below its size.
+    let (x0, y0) = (inside.top_left.x as usize, inside.top_left.y as usize);
+    let (x1, y1) = (
+        x0 + inside.size.width as usize,
+        y0 + inside.size.height as usize,
+    );
     for (k, y) in (y0..y1).enumerate() {
         // Rows beyond i32 are off every target.
         let Some(ty) = i32::try_from(k).ok().and_then(|k| dy.checked_add(k)) else {

@@ -307,7 +307,8 @@ mod tests {
     #[test]
     fn depth_outside_the_buffer_is_none() {
         let (mut px, mut z) = ([Gray8::BLACK; 16], [7u16; 16]);
-        let target = DepthTarget::new(&mut px, &mut z, 4, 4).unwrap();
+        // Uncleared: the depths as given.
+        let target = DepthTarget::new_uncleared(&mut px, &mut z, 4, 4).unwrap();
         assert_eq!(target.depth_at(3, 3), Some(7));
         for (x, y) in [
             (0, 4),
