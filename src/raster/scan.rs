@@ -167,12 +167,16 @@ impl<const N: usize> SmallTriangle<N> {
                     x_start: self.x0 + start as i32,
                     x_end: self.x0 + column as i32,
                 };
-                let values =
-                    core::array::from_fn(|k| row_values[k].wrapping_add(dx[k].wrapping_mul(start)));
+                let mut values = row_values;
+                for k in 0..N {
+                    values[k] = values[k].wrapping_add(dx[k].wrapping_mul(start));
+                }
                 shader.span(&steps, span, values);
             }
             (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
-            row_values = core::array::from_fn(|k| row_values[k].wrapping_add(dy[k]));
+            for k in 0..N {
+                row_values[k] = row_values[k].wrapping_add(dy[k]);
+            }
             // Past the last row only after it (which may be i32::MAX).
             y = y.wrapping_add(1);
         }

@@ -270,9 +270,7 @@ impl Pipeline {
             .get_mut(..needed)
             .ok_or(ScratchTooSmall { needed, given })?;
         let frame = Frame::new(self, mesh, material, target);
-        for (k, (out, p)) in scratch.iter_mut().zip(mesh.vertices).enumerate() {
-            *out = frame.vertex(mesh, k, *p);
-        }
+        frame.stage.vertices(mesh.vertices, mesh.normals, scratch);
         let scratch = &*scratch;
         let mut stats = DrawStats::default();
         for face in mesh.indices {
