@@ -18,12 +18,15 @@
 
 use embedded_graphics::primitives::Rectangle;
 
+use core::num::NonZeroU32;
+
 use super::arith::{leading_zeros_32, reciprocal_63};
 use super::compact::{first_centre_from, last_centre_to, last_of};
 use super::edge::owns_centres_on;
 use super::plane::{Attributes, Planes};
 use super::shade::SpanShader;
 use super::walk::Span;
+use crate::arch::HAS_DIVIDER;
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
 /// Width and height of a small triangle's vertex bounding box stay below this many pixels.
@@ -149,18 +152,11 @@ impl<const N: usize> SmallTriangle<N> {
         let mut row_values = planes.first();
         let mut y = self.y0;
         for _ in 0..self.rows + 1 {
-            let (mut c0, mut c1, mut c2) = (k0, k1, k2);
-            let mut column = 0;
-            // Before the run, then the run.
-            while (c0 | c1 | c2) < 0 && column <= last {
-                (c0, c1, c2) = (c0 + e0.a, c1 + e1.a, c2 + e2.a);
-                column += 1;
-            }
-            let start = column;
-            while (c0 | c1 | c2) >= 0 && column <= last {
-                (c0, c1, c2) = (c0 + e0.a, c1 + e1.a, c2 + e2.a);
-                column += 1;
-            }
+            let (start, column) = if HAS_DIVIDER {
+                run_by_division([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last)
+            } else {
+                run_by_scan([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last)
+            };
             if column > start {
                 let span = Span {
                     y,
@@ -181,6 +177,48 @@ impl<const N: usize> SmallTriangle<N> {
             y = y.wrapping_add(1);
         }
     }
+}
+
+/// The covered run `start..end` (columns from the region's first; empty if `end ≤ start`) of a
+/// row whose edges have the values `k` at its first column and steps `a` per column, over
+/// columns `0 ..= last` (at most 15), by testing the columns from the first to the run's end (a
+/// triangle is convex: one run a row).
+#[inline(always)]
+fn run_by_scan(edges: [(i32, i32); 3], last: u32) -> (u32, u32) {
+    let [(mut c0, a0), (mut c1, a1), (mut c2, a2)] = edges;
+    let mut column = 0;
+    while (c0 | c1 | c2) < 0 && column <= last {
+        (c0, c1, c2) = (c0 + a0, c1 + a1, c2 + a2);
+        column += 1;
+    }
+    let start = column;
+    while (c0 | c1 | c2) >= 0 && column <= last {
+        (c0, c1, c2) = (c0 + a0, c1 + a1, c2 + a2);
+        column += 1;
+    }
+    (start, column)
+}
+
+/// [`run_by_scan`]'s run by one division an edge, where a division is an instruction: an edge
+/// with `a > 0` is inside from column `⌈−k/a⌉`, one with `a < 0` up to column `⌊k/|a|⌋`, a
+/// horizontal one everywhere or nowhere. The same integers.
+#[inline(always)]
+fn run_by_division(edges: [(i32, i32); 3], last: u32) -> (u32, u32) {
+    let (mut start, mut end) = (0u32, last + 1);
+    for (k, a) in edges {
+        let m = a.unsigned_abs();
+        if k < 0 {
+            // Below 2²⁶ and 2¹³: the sum fits. An edge with a ≤ 0 excludes the whole row.
+            let first = match NonZeroU32::new(m) {
+                Some(m) if a > 0 => (k.unsigned_abs() + m.get() - 1) / m,
+                _ => u32::MAX,
+            };
+            start = start.max(first);
+        } else if let Some(m) = NonZeroU32::new(m).filter(|_| a < 0) {
+            end = end.min(k as u32 / m + 1);
+        }
+    }
+    (start.min(end), end)
 }
 
 /// Draws the triangle `v` with `attributes` inside `clip` through `shader` if it is small and
@@ -331,6 +369,23 @@ mod tests {
         }
         fn scans_small(&self) -> bool {
             true
+        }
+    }
+
+    /// The run by division is the run by scanning (the firmware of cores without a divider scans),
+    /// for rows of random edges, empty and full ones included.
+    #[test]
+    fn runs_by_division_and_by_scan_agree() {
+        let mut next = crate::random(0x5ca1_ab1e_0000_0003);
+        let mut value = || (next() % (1 << 14)) as i32 - (1 << 13);
+        for _ in 0..200_000 {
+            let edges = [(); 3].map(|_| (value() * 16, value() / 4));
+            let last = (value().unsigned_abs() % 16) as u32;
+            let (s, e) = run_by_scan(edges, last);
+            let (ds, de) = run_by_division(edges, last);
+            let scanned = if e > s { (s, e) } else { (0, 0) };
+            let divided = if de > ds { (ds, de) } else { (0, 0) };
+            assert_eq!(scanned, divided, "{edges:?} {last}");
         }
     }
 
