@@ -380,7 +380,7 @@ mod tests {
         let mut value = || (next() % (1 << 14)) as i32 - (1 << 13);
         for _ in 0..200_000 {
             let edges = [(); 3].map(|_| (value() * 16, value() / 4));
-            let last = (value().unsigned_abs() % 16) as u32;
+            let last = value().unsigned_abs() % 16;
             let (s, e) = run_by_scan(edges, last);
             let (ds, de) = run_by_division(edges, last);
             let scanned = if e > s { (s, e) } else { (0, 0) };
