@@ -54,12 +54,17 @@ pub struct Span {
 }
 
 impl Span {
-    /// Number of pixels in the span (at least 1).
+    /// Number of pixels in the span (0 for an empty one, `x_end ≤ x_start`; the walks hand out
+    /// none of those).
     pub fn len(&self) -> u32 {
-        self.x_end.abs_diff(self.x_start)
+        if self.is_empty() {
+            0
+        } else {
+            self.x_end.abs_diff(self.x_start)
+        }
     }
 
-    /// Spans produced by the traversal are never empty.
+    /// Whether the span has no pixel (`x_end ≤ x_start`).
     pub fn is_empty(&self) -> bool {
         self.x_end <= self.x_start
     }
@@ -811,6 +816,20 @@ pub fn for_each_span(v: [(Coord, Coord); 3], clip: Rectangle, mut f: impl FnMut(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A span with its end before its start has no pixels (it used to report the distance).
+    #[test]
+    fn empty_spans_have_no_length() {
+        let span = |x_start, x_end| Span {
+            y: 0,
+            x_start,
+            x_end,
+        };
+        assert_eq!(span(5, 3).len(), 0);
+        assert!(span(5, 3).is_empty() && span(4, 4).is_empty());
+        assert_eq!(span(-3, 4).len(), 7);
+        assert_eq!(span(i32::MIN, i32::MAX).len(), u32::MAX);
+    }
     use embedded_graphics::prelude::*;
 
     fn brute(v: [(Coord, Coord); 3], clip: &Rectangle) -> [[bool; 40]; 40] {
