@@ -247,7 +247,11 @@ impl Pipeline {
                 continue;
             };
             let model = [*a, *b, *c];
-            let [a, b, c] = [0, 1, 2].map(|k| frame.vertex(mesh, idx[k], model[k]));
+            let (a, b, c) = (
+                frame.vertex(mesh, idx[0], *a),
+                frame.vertex(mesh, idx[1], *b),
+                frame.vertex(mesh, idx[2], *c),
+            );
             frame.face(mesh, &idx, || model, [&a, &b, &c], target, &mut stats);
         }
         stats
