@@ -215,6 +215,10 @@ impl<const N: usize> Planes<N> {
     /// values.
     #[inline(always)]
     pub(crate) fn compact(setup: &CompactSetup, attributes: &Attributes<N>) -> Self {
+        if N == 0 {
+            // No attributes (solid fills): skip the reciprocal.
+            return Self::zero();
+        }
         let scale = GradientScale::new(setup.area2, setup.reach);
         let gx = setup.a.map(|a| scale.of(a));
         let gy = setup.b.map(|b| scale.of(b));
@@ -508,24 +512,17 @@ impl<const N: usize> GeneralPlanes<N> {
         }
         let inverse = InverseArea::new(setup.area2);
         let ctx = StepContext::new(setup, region);
-        // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
-        let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
         let mut stepped = ctx.steppable();
         for k in 0..N {
-            let gradient = gradient(setup, attributes.vertex_values(k));
-            // 8.8 values with 24 fractional bits more: 32 of the 8-bit scale.
             let p = if stepped {
-                Stepped::new(&inverse, &ctx, gradient, ROW_BITS - 8, 0)
+                let half = attributes.half.get(k).copied().unwrap_or(0);
+                stepped_plane(setup, &inverse, &ctx, attributes.vertex_values(k), half)
             } else {
                 None
             };
             match p {
-                Some(p) => {
-                    let half = attributes.half.get(k).copied().unwrap_or(0);
-                    (planes.value[k], planes.dx[k], planes.dy[k]) =
-                        (round(p.value).wrapping_add(half), round(p.dx), round(p.dy));
-                }
-                _ => stepped = false,
+                Some(p) => (planes.value[k], planes.dx[k], planes.dy[k]) = p,
+                None => stepped = false,
             }
         }
         if stepped {
@@ -534,6 +531,24 @@ impl<const N: usize> GeneralPlanes<N> {
             GeneralPlanes::Exact(ExactPlanes::new(setup, &inverse, &ctx, region, attributes))
         }
     }
+}
+
+/// The stepped plane through `values` (value at the region's first pixel with `half` added,
+/// per-pixel and per-row gradients, 24 fractional bits), or `None` if it needs the exact one.
+// One copy for all attributes (flash on Cortex-M).
+#[inline(never)]
+fn stepped_plane(
+    setup: &TriangleSetup,
+    inverse: &InverseArea,
+    ctx: &StepContext,
+    values: [u16; 3],
+    half: u32,
+) -> Option<(u32, u32, u32)> {
+    // 8.8 values with 24 fractional bits more: 32 of the 8-bit scale.
+    let p = Stepped::new(inverse, ctx, gradient(setup, values), ROW_BITS - 8, 0)?;
+    // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
+    let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
+    Some((round(p.value).wrapping_add(half), round(p.dx), round(p.dy)))
 }
 
 /// One attribute of [`ExactPlanes`].
@@ -566,8 +581,7 @@ pub(crate) struct ExactPlanes<const N: usize> {
 impl<const N: usize> ExactPlanes<N> {
     /// The planes of `attributes` on the triangle `setup` over `region` (`inverse` and `ctx`
     /// of the same).
-    #[cold]
-    #[inline(never)]
+    #[inline(always)]
     fn new(
         setup: &TriangleSetup,
         inverse: &InverseArea,
@@ -575,8 +589,16 @@ impl<const N: usize> ExactPlanes<N> {
         region: &Region,
         attributes: &Attributes<N>,
     ) -> Self {
-        let mut step = [0; N];
-        let planes = core::array::from_fn(|k| {
+        // Written in place: a built array moved into the planes costs a copy.
+        let mut planes = ExactPlanes {
+            planes: [ExactPlane::Exact { n: 0, nx: 0, ny: 0 }; N],
+            step: [0; N],
+            half: attributes.half,
+            area2: setup.area2,
+            x0: region.x0,
+            y0: region.y0,
+        };
+        for (k, (plane, step)) in planes.planes.iter_mut().zip(&mut planes.step).enumerate() {
             let (c0, nx, ny) = gradient(setup, attributes.vertex_values(k));
             let stepped = if ctx.steppable() {
                 Stepped::new(inverse, ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
@@ -584,23 +606,16 @@ impl<const N: usize> ExactPlanes<N> {
                 None
             };
             if let Some(p) = stepped {
-                step[k] = p.step();
-                ExactPlane::Stepped(p)
+                *step = p.step();
+                *plane = ExactPlane::Stepped(p);
             } else {
-                step[k] = step_of(inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS));
+                *step = step_of(inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS));
                 // Σ cₖ·Eₖ(p) = c₀·area2 + nx·px + ny·py (the edges through vertex 0 vanish there).
                 let n = i128::from(c0) * setup.area2 + dot2(nx, ctx.px, ny, ctx.py, false);
-                ExactPlane::Exact { n, nx, ny }
+                *plane = ExactPlane::Exact { n, nx, ny };
             }
-        });
-        ExactPlanes {
-            planes,
-            step,
-            half: attributes.half,
-            area2: setup.area2,
-            x0: region.x0,
-            y0: region.y0,
         }
+        planes
     }
 
     /// Attribute planes of no triangle.
@@ -625,24 +640,35 @@ impl<const N: usize> ExactPlanes<N> {
         // Offsets within the region: below 2²⁵.
         let column = i64::from(x) - i64::from(self.x0);
         let row = i64::from(y) - i64::from(self.y0);
-        let own = 1 << (EXACT_BITS - 1);
         core::array::from_fn(|k| {
-            let value = match self.planes[k] {
-                ExactPlane::Stepped(p) => {
-                    let v = p
-                        .value
-                        .wrapping_add(p.dy.wrapping_mul(row))
-                        .wrapping_add(p.dx.wrapping_mul(column));
-                    ((v >> (ROW_BITS - EXACT_BITS)) as u32).wrapping_sub(own)
-                }
-                ExactPlane::Exact { n, nx, ny } => {
-                    let n = (dot2(nx, column, ny, row, false) << SUBPIXEL_BITS) + n;
-                    div_floor_wide(n << EXACT_BITS, self.area2) as u32
-                }
-            };
-            // The attributes' rounding offsets (the accumulator's own +½ taken off).
-            value.wrapping_add(self.half[k])
+            // The attributes' rounding offsets added.
+            self.planes[k]
+                .at(self.area2, column, row)
+                .wrapping_add(self.half[k])
         })
+    }
+}
+
+impl ExactPlane {
+    /// The value (without rounding offset) `column` pixels right of and `row` rows below the
+    /// region's first pixel, of the triangle with doubled area `area2`.
+    // One copy for all attributes: the exact path is rare.
+    #[inline(never)]
+    fn at(&self, area2: i128, column: i64, row: i64) -> u32 {
+        match *self {
+            ExactPlane::Stepped(p) => {
+                let v = p
+                    .value
+                    .wrapping_add(p.dy.wrapping_mul(row))
+                    .wrapping_add(p.dx.wrapping_mul(column));
+                // The accumulator's own +½ taken off.
+                ((v >> (ROW_BITS - EXACT_BITS)) as u32).wrapping_sub(1 << (EXACT_BITS - 1))
+            }
+            ExactPlane::Exact { n, nx, ny } => {
+                let n = (dot2(nx, column, ny, row, false) << SUBPIXEL_BITS) + n;
+                div_floor_wide(n << EXACT_BITS, area2) as u32
+            }
+        }
     }
 }
 
@@ -673,7 +699,8 @@ impl Stepped {
     /// The accumulator (`bits` fractional bits, `half` added) of the plane with value `c0` at
     /// oriented vertex 0 and numerator gradients `nx`, `ny` (see [`gradient`]), or `None` when
     /// the gradients are too large for stepping.
-    #[inline]
+    // One copy for the stepped and the exact planes (flash on Cortex-M).
+    #[inline(never)]
     pub(crate) fn new(
         inverse: &InverseArea,
         ctx: &StepContext,

@@ -183,8 +183,9 @@ fn shade_general<T, const N: usize>(
     let Some(region) = Region::new(setup, clip) else {
         return;
     };
+    let walk = general_walk(setup, &region);
     let planes = GeneralPlanes::new(setup, &region, attributes);
-    fold_general(general_walk(setup, &region), &planes, shader);
+    fold_general(walk, &planes, shader);
 }
 
 /// [`fold_planes`] for the general planes: spans of stepped planes as there, those of exact
@@ -200,14 +201,25 @@ fn fold_general<T, const N: usize>(
         GeneralPlanes::Exact(p) => p.step(),
     });
     let steps = &steps;
-    walk.fold(
-        (),
-        #[inline(always)]
-        move |(), span, column, row| match planes {
-            GeneralPlanes::Stepped(p) => shader.span(steps, span, p.at(column, row)),
-            GeneralPlanes::Exact(p) => shade_exact(p, steps, span, shader),
-        },
-    );
+    walk.fold((), |(), span, column, row| {
+        general_span(planes, steps, span, (column, row), shader);
+    });
+}
+
+/// One span of the general set-up with its planes' values (out of line: the walk then has one
+/// copy, not one per kind of planes, and the general set-up's spans are long).
+#[inline(never)]
+fn general_span<T, const N: usize>(
+    planes: &GeneralPlanes<N>,
+    steps: &T,
+    span: Span,
+    (column, row): (u32, u32),
+    shader: &mut dyn SpanShader<N, Steps = T>,
+) {
+    match planes {
+        GeneralPlanes::Stepped(p) => shader.span(steps, span, p.at(column, row)),
+        GeneralPlanes::Exact(p) => shade_exact(p, steps, span, shader),
+    }
 }
 
 /// A span of exact planes (regions over 2¹⁶ pixels across, extreme slivers): in chunks of at

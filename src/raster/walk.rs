@@ -478,9 +478,12 @@ const fn open_boundary(end: bool) -> Boundary<i64> {
 // One copy for all callers; everything it calls is inlined into it.
 #[inline(never)]
 pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region) -> Walk<i64> {
+    // Open boundaries, not `Walk::empty`'s zeroed ones (a call to clear memory on Cortex-M).
+    let open = (open_boundary(false), open_boundary(true));
+    let no_rows = Walk::new(open, (open.0, true, 0), (0, 0), -1, (0, 0));
     let crossings = &mut [Crossing::Inside; 3];
     if !classify(setup, region, crossings) {
-        return Walk::empty();
+        return no_rows;
     }
     let row0 = i64::from(region.y0);
     let (mut y0, mut y1) = (row0, i64::from(region.y1));
@@ -498,87 +501,75 @@ pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region) -> Walk<i64> 
         }
     }
     if y0 > y1 {
-        return Walk::empty();
+        return no_rows;
     }
-    // The boundaries of the first row and, on the side with two edges, the lower edge's from
-    // the row it takes over.
-    let at = |(a, b, k): (i64, i64, i64), row: i64| general_boundary(a, b, k + b * (row - row0));
+    // Each side's crossing edges (a > 0 bound the start, a < 0 the end): none, one, or two
+    // that meet at that side's middle vertex; above its row the upper edge binds, from its row
+    // on the lower one.
     let rows = y1 - row0 + 1;
-    let mut first = [open_boundary(false), open_boundary(true)];
-    let (mut next, mut next_left, mut switch) = (first[0], true, rows);
-    for (side, boundary) in first.iter_mut().enumerate() {
+    let mut first = [None; 2];
+    let (mut next, mut next_left, mut switch) = (None, true, rows);
+    for (side, first) in first.iter_mut().enumerate() {
         let start = side == 0;
-        match chain(setup, crossings, start) {
-            [Some((only, _)), None] => *boundary = at(only, y0),
-            [Some((upper, vertex_y)), Some((lower, _))] => {
-                // First row whose centre (256·j + 128) is not above the vertex.
-                let row = (vertex_y - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
-                if row <= y0 {
-                    *boundary = at(lower, y0);
-                } else {
-                    *boundary = at(upper, y0);
-                    if row <= y1 {
-                        (next, next_left, switch) = (at(lower, row), start, row - row0);
+        let mut found = [3usize; 2];
+        let mut n = 0;
+        for (k, c) in crossings.iter().enumerate() {
+            if let Crossing::Cross { a, .. } = *c {
+                if a != 0 && (a > 0) == start {
+                    if let Some(slot) = found.get_mut(n) {
+                        *slot = k;
                     }
+                    n += 1;
                 }
             }
-            _ => {}
+        }
+        let [p, q] = found;
+        if q == 3 {
+            *first = Some((p, y0));
+            continue;
+        }
+        // The shared vertex is the one neither edge is opposite; `edges[p]` runs to the vertex
+        // opposite `edges[q]`, and is the upper edge if that one is above.
+        let vertex_y = |k: usize| {
+            setup
+                .order
+                .get(k)
+                .and_then(|&v| setup.vertices.get(v))
+                .map_or(0, |v| v.1)
+        };
+        let (upper, lower) = if vertex_y(q) < vertex_y(p) {
+            (p, q)
+        } else {
+            (q, p)
+        };
+        // First row whose centre (256·j + 128) is not above the shared vertex.
+        let row = (vertex_y(3 - p - q) - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
+        if row <= y0 {
+            *first = Some((lower, y0));
+        } else {
+            *first = Some((upper, y0));
+            if row <= y1 {
+                (next, next_left, switch) = (Some((lower, row)), start, row - row0);
+            }
         }
     }
+    // The boundary of edge k from row `row` on; open (never limiting) for none.
+    let boundary = |edge: Option<(usize, i64)>, end: bool| match edge {
+        Some((k, row)) => match crossings.get(k) {
+            Some(&Crossing::Cross { a, b, k }) => general_boundary(a, b, k + b * (row - row0)),
+            _ => open_boundary(end),
+        },
+        None => open_boundary(end),
+    };
     let [left, right] = first;
     // Within the region: rows and columns below 2²⁵.
     Walk::new(
-        (left, right),
-        (next, next_left, switch as u32),
+        (boundary(left, false), boundary(right, true)),
+        (boundary(next, !next_left), next_left, switch as u32),
         (region.x0, region.y0),
         region.x1 - region.x0,
         ((y0 - row0) as u32, rows as u32),
     )
-}
-
-/// The start chain (`start`, edges with `a > 0`) or end chain of `crossings`: its only edge, or
-/// its upper edge and its lower edge with the y (sub-pixels) of the vertex they share.
-#[allow(clippy::type_complexity)]
-#[inline(always)]
-fn chain(
-    setup: &TriangleSetup,
-    crossings: &[Crossing; 3],
-    start: bool,
-) -> [Option<((i64, i64, i64), i64)>; 2] {
-    let mut found = [None; 2];
-    let mut n = 0;
-    for (i, c) in crossings.iter().enumerate() {
-        if let Crossing::Cross { a, b, k } = *c {
-            if a != 0 && (a > 0) == start {
-                if let Some(slot) = found.get_mut(n) {
-                    *slot = Some((i, (a, b, k)));
-                }
-                n += 1;
-            }
-        }
-    }
-    match found {
-        [Some((_, only)), None] => [Some((only, 0)), None],
-        [Some((p, edge_p)), Some((q, edge_q))] => {
-            // The shared vertex is the one neither edge is opposite; `edges[p]` runs to the
-            // vertex opposite `edges[q]`, and is the upper edge if that one is above.
-            let vertex = |k: usize| {
-                setup
-                    .order
-                    .get(k)
-                    .and_then(|&v| setup.vertices.get(v))
-                    .map_or(0, |v| v.1)
-            };
-            let vy = vertex(3 - p - q);
-            let (upper, lower) = if vertex(q) < vertex(p) {
-                (edge_p, edge_q)
-            } else {
-                (edge_q, edge_p)
-            };
-            [Some((upper, vy)), Some((lower, vy))]
-        }
-        _ => [None, None],
-    }
 }
 
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom: the
