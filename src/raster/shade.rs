@@ -13,7 +13,7 @@ use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
 use super::walk::{general_walk, Region, Span, Walk, Width};
-use crate::arch::LANES;
+use crate::arch::{CORTEX_M, LANES};
 use crate::fixed_point::Coord;
 
 /// What the walk hands each covered span to (like tiny-skia's `Blitter`).
@@ -189,25 +189,37 @@ fn shade_general<T, const N: usize>(
 }
 
 /// [`fold_planes`] for the general planes: spans of stepped planes as there, those of exact
-/// ones in chunks ([`shade_exact`]).
+/// ones in chunks ([`shade_exact`]). Hosts get a walk for each kind of planes; on Cortex-M one
+/// walk serves both, the span's planes chosen out of line ([`general_span`]: flash; the general
+/// set-up's spans are long).
 #[inline(always)]
 fn fold_general<T, const N: usize>(
     walk: Walk<i64>,
     planes: &GeneralPlanes<N>,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
-    let steps = shader.prepare(match planes {
-        GeneralPlanes::Stepped(p) => p.step(),
-        GeneralPlanes::Exact(p) => p.step(),
-    });
-    let steps = &steps;
-    walk.fold((), |(), span, column, row| {
-        general_span(planes, steps, span, (column, row), shader);
-    });
+    if CORTEX_M {
+        let steps = shader.prepare(match planes {
+            GeneralPlanes::Stepped(p) => p.step(),
+            GeneralPlanes::Exact(p) => p.step(),
+        });
+        let steps = &steps;
+        walk.fold((), |(), span, column, row| {
+            general_span(planes, steps, span, (column, row), shader);
+        });
+    } else {
+        match planes {
+            GeneralPlanes::Stepped(p) => fold_planes(walk, p, shader),
+            GeneralPlanes::Exact(p) => {
+                let steps = shader.prepare(p.step());
+                let steps = &steps;
+                walk.fold((), |(), span, _, _| shade_exact(p, steps, span, shader));
+            }
+        }
+    }
 }
 
-/// One span of the general set-up with its planes' values (out of line: the walk then has one
-/// copy, not one per kind of planes, and the general set-up's spans are long).
+/// One span of the general set-up with its planes' values at `(column, row)` of the region.
 #[inline(never)]
 fn general_span<T, const N: usize>(
     planes: &GeneralPlanes<N>,

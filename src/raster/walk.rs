@@ -65,26 +65,18 @@ impl Span {
     }
 }
 
-/// `(⌊n / d⌋, n mod d)` for `d > 0`. Quotients of magnitude below 4 are found by subtraction.
-#[inline]
+/// `(⌊n / d⌋, n mod d)` for `d > 0`, from one unsigned division of the magnitudes.
+// One copy for the general set-up's few divisions.
+#[inline(never)]
 fn div_mod_floor(n: i64, d: i64) -> (i64, i64) {
-    if n >= 0 && n < 4 * d {
-        let (mut q, mut r) = (0, n);
-        while r >= d {
-            r -= d;
-            q += 1;
-        }
-        (q, r)
-    } else if n < 0 && n >= -4 * d {
-        let (mut q, mut r) = (0, n);
-        while r < 0 {
-            r += d;
-            q -= 1;
-        }
-        (q, r)
-    } else {
-        let q = n.checked_div_euclid(d).unwrap_or(0);
-        (q, n.wrapping_sub(q.wrapping_mul(d)))
+    let d = d.unsigned_abs().max(1);
+    let (q, r) = (n.unsigned_abs() / d, n.unsigned_abs() % d);
+    // |n| ≤ 2⁶³, so the negated quotient fits.
+    let q = q as i64;
+    match (n < 0, r) {
+        (false, _) => (q, r as i64),
+        (true, 0) => (q.wrapping_neg(), 0),
+        (true, r) => (q.wrapping_neg().wrapping_sub(1), (d - r) as i64),
     }
 }
 
