@@ -1,7 +1,9 @@
-//! Integer arithmetic for the set-up, fast on every core: full products of 32-bit factors from
-//! 16-bit limbs where there is no long multiply (Cortex-M0), exact reciprocals by a seed table and
-//! Newton steps where there is no divider, leading zeros by halving where there is no `clz`.
-//! Each form is checked against the native operation on the host.
+//! Integer arithmetic for the set-up, fast on every core and small on Cortex-M: full products of
+//! 32-bit factors from 16-bit limbs where there is no long multiply (Cortex-M0), exact reciprocals
+//! by a seed table and Newton steps (32-bit) or one quotient bit an iteration (64-bit) where there
+//! is no divider, the rare 128-bit divisions of the general set-up by shifting and subtracting
+//! (one small routine instead of the library's kilobytes), leading zeros by halving where there
+//! is no `clz`. Each form is checked against the native operation on the host.
 
 use core::num::NonZeroU32;
 

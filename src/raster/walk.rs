@@ -442,15 +442,17 @@ fn general_boundary(a: i64, b: i64, k: i64) -> Boundary<i64> {
     let m = a.abs();
     let (q, rem) = div_mod_floor(k, m);
     let (step, rem_step) = div_mod_floor(b, m);
-    // Remainders in [0, m): non-negative.
-    let (rem, rem_step, m_rem) = (rem as u64, rem_step as u64, m as u64);
-    if a > 0 {
-        // First x with k + a·x ≥ 0; moving one column left subtracts m.
-        Boundary::from_parts(q.wrapping_neg(), rem, step.wrapping_neg(), rem_step, m_rem)
-    } else {
-        // Last x with k − m·x ≥ 0; moving one column right subtracts m.
-        Boundary::from_parts(q, rem, step, rem_step, m_rem)
-    }
+    // Remainders in [0, m): non-negative. A start boundary (a > 0) is the first x with
+    // k + a·x ≥ 0, and moving one column left subtracts m; an end boundary the last x with
+    // k − m·x ≥ 0, and moving one column right subtracts m.
+    let toward_inside = |v: i64| if a > 0 { v.wrapping_neg() } else { v };
+    Boundary::from_parts(
+        toward_inside(q),
+        rem as u64,
+        toward_inside(step),
+        rem_step as u64,
+        m as u64,
+    )
 }
 
 /// A boundary that never limits the span: far left (start) or far right (end) of any region.
