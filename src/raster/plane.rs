@@ -215,10 +215,6 @@ impl<const N: usize> Planes<N> {
     /// values.
     #[inline(always)]
     pub(crate) fn compact(setup: &CompactSetup, attributes: &Attributes<N>) -> Self {
-        if N == 0 {
-            // No attributes (solid fills): skip the reciprocal.
-            return Self::zero();
-        }
         let scale = GradientScale::new(setup.area2, setup.reach);
         let gx = setup.a.map(|a| scale.of(a));
         let gy = setup.b.map(|b| scale.of(b));
