@@ -609,6 +609,13 @@ impl Spans {
             Ok(None) => return Spans::empty(),
             Err(_) => {}
         }
+        Spans::general(v, clip)
+    }
+
+    /// [`of_triangle`](Self::of_triangle) through the general set-up, out of line: the
+    /// compact set-up's spans then start in fewer instructions.
+    #[inline(never)]
+    fn general(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
         // By reference: moving the setup out of the `Option` would copy it.
         let setup = TriangleSetup::new(v);
         setup
