@@ -33,7 +33,7 @@ use crate::color::{restart_value, GouraudColor, SpanSteps};
 use crate::fixed_point::{pixel_centre, pixel_corner, Coord, ToCoord};
 use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
-use crate::raster::plane::{Attributes, ExactPlanes, Planes, MAX_CHUNK};
+use crate::raster::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
 use crate::raster::walk::{Region, Span, Spans};
 use crate::raster::{shade, shade_compact, SpanShader};
 
@@ -501,10 +501,12 @@ impl<C: GouraudColor> ShadedSpans<C> {
             return Self::empty();
         };
         let spans = Spans::new(setup, region);
-        if let Some(planes) = Planes::general(setup, &region, &channels) {
-            return Self::stepped(spans, planes, (region.x0, region.y0));
-        }
-        let planes = ExactPlanes::new(setup, &region, &channels);
+        let planes = match GeneralPlanes::new(setup, &region, &channels) {
+            GeneralPlanes::Stepped(planes) => {
+                return Self::stepped(spans, planes, (region.x0, region.y0))
+            }
+            GeneralPlanes::Exact(planes) => planes,
+        };
         ShadedSpans {
             spans,
             steps: C::prepare_steps(planes.step()),
@@ -535,27 +537,28 @@ impl<C: GouraudColor> ShadedSpans<C> {
         }
     }
 
-    /// Channel values at the start of `span`, which becomes the reference for [`Self::further`].
+    /// Channel values at the start of `span`.
     #[inline]
-    fn row_start(&mut self, span: &Span) -> [u32; 3] {
-        match &mut self.shading {
+    fn row_start(&self, span: &Span) -> [u32; 3] {
+        match &self.shading {
             Shading::Stepped { planes, origin } => {
                 // Inside the walk's region, which starts at `origin`.
                 let column = span.x_start.wrapping_sub(origin.0) as u32;
                 planes.at(column, span.y.wrapping_sub(origin.1) as u32)
             }
-            Shading::Exact(planes) => planes.row_start(span.x_start, span.y),
+            Shading::Exact(planes) => planes.at(span.x_start, span.y),
         }
     }
 
-    /// Channel values `offset` pixels right of the last [`Self::row_start`], which was `start`.
-    fn further(&self, start: [u32; 3], offset: u32) -> [u32; 3] {
+    /// Channel values `offset` pixels into `span`, whose first pixel's are `start`.
+    fn further(&self, span: &Span, start: [u32; 3], offset: u32) -> [u32; 3] {
         match &self.shading {
             Shading::Stepped { .. } => {
                 let step = self.steps.step();
                 core::array::from_fn(|k| start[k].wrapping_add(step[k].wrapping_mul(offset)))
             }
-            Shading::Exact(planes) => planes.further(offset),
+            // Inside the span: no overflow.
+            Shading::Exact(planes) => planes.at(span.x_start.wrapping_add(offset as i32), span.y),
         }
     }
 }
@@ -579,7 +582,7 @@ impl<C: GouraudColor> Iterator for ShadedSpans<C> {
         let start = if offset == 0 {
             first
         } else {
-            self.further(first, offset)
+            self.further(&span, first, offset)
         };
         let len = (span.len() - offset).min(MAX_CHUNK);
         let done = offset + len;

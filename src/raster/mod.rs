@@ -18,7 +18,7 @@
 //!   hands each covered span with its attributes to a `SpanShader` (solid fill, a colour
 //!   format's span loop, `fill_contiguous`, …).
 //! * `arith` — the integer helpers the set-up needs on cores without a long multiply, a divider
-//!   or `clz`.
+//!   or `clz` (and its rare 128-bit divisions, in a few hundred bytes of flash).
 
 pub(crate) mod arith;
 pub(crate) mod compact;
