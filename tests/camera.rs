@@ -343,3 +343,26 @@ fn projections_match_gl() {
         }
     }
 }
+
+/// Any inputs give a matrix without overflowing (a fuzzed near and far of 2¹⁵ each used to
+/// overflow the product `2·n·f` in debug builds).
+#[test]
+fn perspective_takes_extreme_distances() {
+    use embedded_raster::three_d::{Angle, Mat4, Scalar};
+    let extremes = [
+        Scalar::MAX,
+        Scalar::MIN,
+        Scalar::ZERO,
+        Scalar::DELTA,
+        -Scalar::DELTA,
+    ];
+    for near in extremes {
+        for far in extremes {
+            for fov in [Angle::ZERO, Angle::HALF, Angle::from_degrees(60)] {
+                let m = Mat4::perspective(fov, Scalar::MAX, near, far).to_bits();
+                // w = −z whatever the distances.
+                assert_eq!(m[3], [0, 0, -(1 << 16), 0]);
+            }
+        }
+    }
+}

@@ -46,7 +46,7 @@ impl Mat4 {
         m.rows[1][1] = Scalar::from_bits(f);
         m.rows[2][2] = Scalar::from_bits(div_round((n + fa) << 16, d));
         // 2·n·f / (n − f): the product has 32 fractional bits, the quotient 16.
-        m.rows[2][3] = Scalar::from_bits(div_round(2 * n * fa, d));
+        m.rows[2][3] = Scalar::from_bits(div_round((n * fa).saturating_mul(2), d));
         m.rows[3][2] = -Scalar::ONE;
         m
     }
