@@ -738,6 +738,62 @@ impl Stepped {
     }
 }
 
+/// Test support: attribute values against the exact barycentric interpolation.
+#[cfg(test)]
+pub(crate) mod exact {
+    /// Checks the values `at(column, row)` of the channel planes of the triangle `v` (raw
+    /// sub-pixel vertices) with channel values `channels` over the pixels `x0 ..= x0 + last`,
+    /// `y0 ..= y0 + rows` against the exact rationals (`i128`), modulo 2³² (the covered pixels'
+    /// values are in range, so wrapping is exact there): within 2⁻¹⁰ LSB of the exact value
+    /// before the final truncation. Returns the values checked.
+    pub(crate) fn check_channel_planes<const K: usize>(
+        v: [(i32, i32); 3],
+        channels: &[[u8; K]; 3],
+        (x0, y0, last, rows): (i32, i32, u32, u32),
+        at: impl Fn(u32, u32) -> [u32; K],
+    ) -> u64 {
+        let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
+        let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
+            (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+        };
+        let area2 = cross(p[0], p[1], p[2]);
+        let modulus = area2.abs() << 32;
+        let mut checked = 0;
+        for row in 0..=rows {
+            for column in 0..=last {
+                let q = (
+                    i128::from(x0 + column as i32) * 256 + 128,
+                    i128::from(y0 + row as i32) * 256 + 128,
+                );
+                // λₖ·area2 = the edge function of the opposite edge at q.
+                let lambda = [
+                    cross(q, p[1], p[2]),
+                    cross(q, p[2], p[0]),
+                    cross(q, p[0], p[1]),
+                ];
+                let got = at(column, row);
+                for k in 0..K {
+                    let exact: i128 = (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
+                    // (got − ½ − exact) · area2, in 2⁻²⁴ units, reduced modulo 2³²·area2.
+                    let mut err = ((i128::from(got[k]) - (1 << 23)) * area2 - (exact << 24))
+                        .rem_euclid(modulus);
+                    if err > modulus / 2 {
+                        err -= modulus;
+                    }
+                    // Within 2⁻¹⁰ LSB: |err| ≤ 2¹⁴ · |area2|.
+                    assert!(
+                        err.abs() <= area2.abs() << 14,
+                        "{v:?} {channels:?} ({column}, {row}) channel {k}: error {} units",
+                        err as f64 / area2.abs() as f64
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        checked
+    }
+}
+
 #[cfg(test)]
 mod tests {
     /// The narrow planes are the wide ones, bit for bit, wherever they apply.

@@ -316,6 +316,7 @@ mod tests {
 
     use super::*;
     use crate::raster::edge::TriangleSetup;
+    use crate::raster::plane::exact::check_channel_planes;
 
     /// Random small triangles: boxes from a sub-pixel to 16 px (slivers and collinear ones
     /// included) anywhere in the `Coord` range, clips over and across them.
@@ -432,44 +433,15 @@ mod tests {
             // Values against the exact barycentric interpolation, at each span's first pixel
             // and stepped along it.
             let Some(setup) = setup else { return };
-            let p = v.map(|(x, y)| (i128::from(x.to_bits()), i128::from(y.to_bits())));
-            let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
-                (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
-            };
-            let area2 = cross(p[0], p[1], p[2]);
             let _ = setup;
-            let triangle = SmallTriangle::new(v, &attributes, &clip).ok();
-            let Some(triangle) = triangle else { return };
-            let modulus = area2.abs() << 32;
-            for row in 0..=triangle.rows {
-                for column in 0..=triangle.last {
-                    let q = (
-                        i128::from(triangle.x0 + column as i32) * 256 + 128,
-                        i128::from(triangle.y0 + row as i32) * 256 + 128,
-                    );
-                    let lambda = [
-                        cross(q, p[1], p[2]),
-                        cross(q, p[2], p[0]),
-                        cross(q, p[0], p[1]),
-                    ];
-                    for k in 0..2 {
-                        let got = triangle.planes.at(column, row)[k];
-                        let exact: i128 =
-                            (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
-                        let mut err = ((i128::from(got) - (1 << 23)) * area2 - (exact << 24))
-                            .rem_euclid(modulus);
-                        if err > modulus / 2 {
-                            err -= modulus;
-                        }
-                        assert!(
-                            err.abs() <= area2.abs() << 14,
-                            "{v:?} {channels:?} ({column}, {row}) {k}: {} units",
-                            err as f64 / area2.abs() as f64
-                        );
-                        values += 1;
-                    }
-                }
-            }
+            let Ok(triangle) = SmallTriangle::new(v, &attributes, &clip) else {
+                return;
+            };
+            let region = (triangle.x0, triangle.y0, triangle.last, triangle.rows);
+            let raw = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
+            values += check_channel_planes(raw, &channels, region, |column, row| {
+                triangle.planes.at(column, row)
+            });
         });
         assert!(
             drawn > 80_000 && values > 500_000,
