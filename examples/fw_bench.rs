@@ -233,19 +233,6 @@ fn count_pixels(renderer: Renderer, set: &Set, (w, h): (u32, u32)) -> u32 {
     counter.pixels
 }
 
-/// `n / d` with two decimals, integers only.
-struct Ratio(u64, u64);
-
-impl core::fmt::Display for Ratio {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        if self.1 == 0 {
-            return write!(f, "–");
-        }
-        let hundredths = (self.0 * 100 + self.1 / 2) / self.1;
-        write!(f, "{}.{:02}", hundredths / 100, hundredths % 100)
-    }
-}
-
 #[cfg(target_os = "none")]
 mod firmware {
     use core::hint::black_box;
@@ -258,7 +245,7 @@ mod firmware {
     use embedded_raster::SliceFramebuffer;
 
     use super::*;
-    use crate::clock::{calibrate, measure};
+    use crate::clock::{calibrate, measure, Ratio};
     use crate::{board, clock, scene};
 
     fn run(renderer: Renderer, set: &Set, fb: &mut SliceFramebuffer<'_, Rgb565>) {
@@ -536,12 +523,12 @@ fn main() {
             for renderer in RENDERERS {
                 let pixels = count_pixels(renderer, &set, (width, height));
                 println!(
-                    "  {:<28} {:<6} {:>3} triangles {:>6} pixels ({} px/triangle), {} passes in firmware",
+                    "  {:<28} {:<6} {:>3} triangles {:>6} pixels ({:.2} px/triangle), {} passes in firmware",
                     renderer.name(),
                     set.name,
                     set.triangles().len(),
                     pixels,
-                    Ratio(u64::from(pixels), set.triangles().len() as u64),
+                    f64::from(pixels) / set.triangles().len() as f64,
                     set.reps
                 );
             }

@@ -41,6 +41,7 @@ mod firmware {
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_raster::three_d::{DepthTarget, Mesh, ProjectedVertex, Vec3};
 
+    use crate::clock::Ratio;
     use crate::scene3d::{self, FrameLine, Model, MAX_VERTICES, PIXELS, SIZE};
     use crate::scene3d::{TORUS_FACES, TORUS_VERTICES};
     use crate::{board, clock};
@@ -52,19 +53,6 @@ mod firmware {
     const CODE: &str = "thumbv7em-none-eabihf (Cortex-M4F code)";
     #[cfg(all(target_has_atomic = "32", not(target_abi = "eabihf")))]
     const CODE: &str = "thumbv7m-none-eabi (Cortex-M3 code)";
-
-    /// `n / d` with two decimals.
-    struct Ratio(u64, u64);
-
-    impl core::fmt::Display for Ratio {
-        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-            if self.1 == 0 {
-                return write!(f, "–");
-            }
-            let hundredths = (self.0 * 100 + self.1 / 2) / self.1;
-            write!(f, "{}.{:02}", hundredths / 100, hundredths % 100)
-        }
-    }
 
     #[entry]
     fn main() -> ! {

@@ -10,8 +10,9 @@
 //!
 //! It draws the shared scene (checksum printed like `fw_scene`, so the run is checked too), the
 //! same triangles in other colour formats through both `draw` and `draw_into`, their spans
-//! under arbitrary clip rectangles, and the framebuffer's `DrawTarget` fills on arbitrary
-//! rectangles.
+//! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
+//! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
+//! shading and culling, opaque matrices, viewport and light).
 //!
 //! ```text
 //! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
@@ -41,6 +42,11 @@ mod firmware {
     use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
+    use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+    use embedded_raster::three_d::{
+        Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, ProjectedVertex, Scalar,
+        Shading, Vec3,
+    };
     use embedded_raster::{
         raster::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
         Vertex,
@@ -111,6 +117,9 @@ mod firmware {
         static mut RGB888: [Rgb888; SMALL_PIXELS] = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
         static mut GRAY8: [Gray8; SMALL_PIXELS] = [Gray8::new(0); SMALL_PIXELS];
         static mut BINARY: [BinaryColor; SMALL_PIXELS] = [BinaryColor::Off; SMALL_PIXELS];
+        static mut COLORS_3D: [Rgb565; SMALL_PIXELS] = [Rgb565::new(0, 0, 0); SMALL_PIXELS];
+        static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
+        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
 
         // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
         let (width, height) = black_box(board::SIZE);
@@ -178,6 +187,41 @@ mod firmware {
         }
         let _ = fb.draw_iter(black_box([Pixel(Point::new(-1, 7), Rgb565::RED); 2]));
         black_box(fb.pixels());
+
+        // The 3D pipeline: a flash mesh, opaque matrices, viewport and light, every shading and
+        // culling, with and without the vertex scratch.
+        if let Some(mut target) = DepthTarget::new(COLORS_3D, DEPTH_3D, sw, sh) {
+            let projection = black_box(Mat4::perspective(
+                Angle::from_degrees(60),
+                Scalar::from_bits(98_304),
+                Scalar::from_bits(1 << 15),
+                Scalar::from_bits(20 << 16),
+            ));
+            let model = black_box(Mat4::rotation_y(Angle::from_degrees(30)));
+            let view = black_box(Mat4::translation(Vec3::from_bits(0, 0, -3 << 16)));
+            let viewport = black_box(Rectangle::new(Point::new(-2, 1), Size::new(30, 12)));
+            let light = Light::new(
+                black_box(Vec3::from_bits(1 << 15, 1 << 16, 1 << 16)),
+                black_box(Scalar::from_bits(1 << 13)),
+            );
+            let mut pipeline = Pipeline::new(model, projection * view, viewport, light);
+            for (k, shading) in [
+                Shading::Unlit,
+                Shading::Flat,
+                Shading::Gouraud,
+                Shading::Quadratic,
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                pipeline.cull = black_box([Cull::Back, Cull::None, Cull::Front, Cull::Back][k]);
+                let material = Material::new(black_box(Rgb565::WHITE), black_box(shading));
+                let mesh = black_box(&ICOSPHERE);
+                black_box(pipeline.draw_mesh(mesh, &material, &mut target));
+                let _ = black_box(pipeline.draw_mesh_with(mesh, &material, &mut target, SCRATCH));
+            }
+            black_box(target.depth());
+        }
         black_box((
             rgb888.as_ref().map(|f| f.pixels()),
             gray8.as_ref().map(|f| f.pixels()),

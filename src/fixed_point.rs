@@ -7,16 +7,87 @@
 //! Every bit pattern of `Coord` is a valid vertex coordinate (about ±8.4 million pixels); the
 //! rasterizer does its setup in wide integers, so no vertex position can overflow it.
 //!
+//! # From what you have
+//!
+//! * **Floats**: the constructors take any [`ToCoord`] (`f32`, `f64` or `Coord`), so
+//!   `Vertex::new(10.25, 3.0, color)` works; `x.to_coord()` converts one number. Conversion
+//!   rounds to the nearest 1/256 pixel, saturates beyond the range and maps NaN to 0. It is a
+//!   conversion you call, never part of drawing: on a Cortex-M0 it runs in software floating point
+//!   (and is linked only if used).
+//! * **Integer pixel positions** need a placement, so integers are not [`ToCoord`]:
+//!   [`pixel_centre`]`(i)` is the centre `i + 0.5` of pixel `i`, [`pixel_corner`]`(i)` its top-left
+//!   corner `i`. [`Vertex::at_pixel_centre`](crate::Vertex::at_pixel_centre) and
+//!   [`at_pixel_corner`](crate::Vertex::at_pixel_corner) do the same for an embedded-graphics
+//!   `Point`.
+//! * **embedded-graphics `Point`s**: place them at pixel centres
+//!   ([`SolidTriangle::at_pixel_centres`](crate::SolidTriangle::at_pixel_centres)): then a
+//!   triangle covers the pixels of an embedded-graphics filled `Triangle` of the same points except
+//!   along its edges, where embedded-graphics also draws the pixels its outline passes through
+//!   and the top-left rule gives a pixel whose centre is on an edge to one side only (measured in
+//!   `tests/eg_placement.rs`; see [`SolidTriangle::at_pixel_centres`](crate::SolidTriangle::at_pixel_centres)).
+//! * **Raw bits**: `Coord::from_bits(raw)` (`256` is one pixel), also in `const` items.
+//!
+//! `Coord` is the `fixed` crate's `I24F8`, so all of its methods apply: `from_num` (panics on
+//! overflow), `saturating_from_num`, `checked_from_num`, `to_num::<f32>()`, `from_bits`,
+//! `to_bits`, arithmetic with other `Coord`s and with `i32`.
+//!
 //! ```
-//! use embedded_raster::{Coord, fixed_point};
+//! use embedded_raster::fixed_point::{pixel_centre, pixel_corner, ToCoord};
+//! use embedded_raster::Coord;
 //!
 //! let x = Coord::from_num(10.25);
 //! assert_eq!(x.to_bits(), 10 * 256 + 64);
-//! assert_eq!(fixed_point::pixel_centre(3), Coord::from_num(3.5));
+//! assert_eq!(10.25f32.to_coord(), x);
+//! assert_eq!(1e30f64.to_coord(), Coord::MAX);
+//! assert_eq!(f32::NAN.to_coord(), Coord::ZERO);
+//! assert_eq!(pixel_centre(3), Coord::from_num(3.5));
+//! assert_eq!(pixel_corner(3), Coord::from_num(3));
 //! ```
 
-/// A sub-pixel coordinate: signed fixed point with [`SUBPIXEL_BITS`] fractional bits.
+/// A sub-pixel coordinate: signed fixed point with [`SUBPIXEL_BITS`] fractional bits (the `fixed`
+/// crate's `I24F8`: ±2²³ pixels, 1/256 pixel). See the [module docs](self) for how to make one
+/// from floats, pixel indices and embedded-graphics `Point`s.
 pub type Coord = fixed::types::I24F8;
+
+/// A number that converts to a [`Coord`]: `f32` and `f64` (rounded to the nearest 1/256 pixel,
+/// saturated to the `Coord` range, NaN as 0) and `Coord` itself.
+///
+/// Integers are deliberately not `ToCoord`: an integer is a pixel index, and whether it means
+/// the pixel's centre or its corner is a choice ([`pixel_centre`], [`pixel_corner`]).
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a sub-pixel coordinate",
+    label = "expected `f32`, `f64` or `Coord`",
+    note = "an integer is a pixel index: place it with `fixed_point::pixel_centre(i)` (the embedded-graphics placement) or `pixel_corner(i)`, `Vertex::at_pixel_centre(point, color)`, or write a float (`10.0`)"
+)]
+pub trait ToCoord: Copy {
+    /// The coordinate.
+    fn to_coord(self) -> Coord;
+}
+
+impl ToCoord for Coord {
+    #[inline(always)]
+    fn to_coord(self) -> Coord {
+        self
+    }
+}
+
+impl ToCoord for f32 {
+    fn to_coord(self) -> Coord {
+        f64::from(self).to_coord()
+    }
+}
+
+impl ToCoord for f64 {
+    fn to_coord(self) -> Coord {
+        if self.is_nan() {
+            Coord::ZERO
+        } else {
+            // `fixed` converts from the float's bits (round to nearest, ties to even): no float
+            // arithmetic.
+            Coord::saturating_from_num(self)
+        }
+    }
+}
 
 /// Number of fractional (sub-pixel) bits of [`Coord`].
 pub const SUBPIXEL_BITS: u32 = 8;
@@ -49,6 +120,38 @@ pub(crate) fn raw(c: Coord) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn floats_round_and_saturate() {
+        extern crate std;
+        for (v, bits) in [
+            (0.0, 0),
+            (1.0 / 512.0, 0),        // a tie: to even
+            (3.0 / 512.0, 2),        // a tie: to even
+            (1.0 / 512.0 + 1e-9, 1), // just above the tie
+            (-10.25, -(10 * 256 + 64)),
+            (8_388_607.996, i32::MAX), // rounds to the largest value
+            (8_388_608.0, i32::MAX),   // beyond the range: saturates
+            (-1e300, i32::MIN),
+            (f64::INFINITY, i32::MAX),
+            (f64::NEG_INFINITY, i32::MIN),
+        ] {
+            assert_eq!(v.to_coord().to_bits(), bits, "{v}");
+        }
+        assert_eq!(f64::NAN.to_coord(), Coord::ZERO);
+        assert_eq!(0.75f32.to_coord().to_bits(), 192);
+        // Against an independent reference: round(v · 256) for exactly representable
+        // non-tie values.
+        let mut next = crate::random(7);
+        for _ in 0..10_000 {
+            let raw = (next() >> 40) as i64 - (1 << 23);
+            let v = raw as f64 / 1000.0;
+            let want = (v * 256.0).round() as i32;
+            let got = v.to_coord().to_bits();
+            let tie = (v * 256.0).fract().abs() == 0.5;
+            assert!(got == want || tie, "{v}: {got} vs {want}");
+        }
+    }
 
     #[test]
     fn centre_and_corner() {

@@ -35,24 +35,34 @@
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-//! use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+//! use embedded_raster::{GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
 //!
 //! let mut pixels = [Rgb565::BLACK; 320 * 240];
 //! let mut display = SliceFramebuffer::new(&mut pixels, 320, 240).unwrap();
-//! let v = |x: f32, y: f32, c| Vertex::new(Coord::from_num(x), Coord::from_num(y), c);
 //!
 //! GouraudTriangle::new([
-//!     v(10.0, 10.0, Rgb565::RED),
-//!     v(300.5, 40.25, Rgb565::GREEN),
-//!     v(120.75, 230.0, Rgb565::BLUE),
+//!     Vertex::new(10.0, 10.0, Rgb565::RED),
+//!     Vertex::new(300.5, 40.25, Rgb565::GREEN),
+//!     Vertex::new(120.75, 230.0, Rgb565::BLUE),
 //! ])
 //! .draw(&mut display)?;
 //!
-//! let p = |x: f32, y: f32| (Coord::from_num(x), Coord::from_num(y));
-//! SolidTriangle::new([p(-5000.0, 0.0), p(5.0, 0.0), p(5.0, 240.0)], Rgb565::WHITE)
+//! SolidTriangle::new([(-5000.0, 0.0), (5.0, 0.0), (5.0, 240.0)], Rgb565::WHITE)
 //!     .draw(&mut display)?;
 //! # Ok::<(), core::convert::Infallible>(())
 //! ```
+//!
+//! The README has a 3D example; [`three_d`] describes the pipeline, [`fixed_point`] how to
+//! build coordinates from floats, pixel indices and embedded-graphics `Point`s.
+//!
+//! # Features
+//!
+//! | feature | what it adds |
+//! |---|---|
+//! | `std` | host-only helpers: `three_d::meshes::MeshData` (generators, welding, the flash emitter), `three_d::obj` (OBJ files) |
+//! | `png` | `save_png` / `write_png` of a [`SliceFramebuffer`] and a [`DepthTarget`] (implies `std`) |
+//! | `reference` | the module `reference`: the f64 reference rasterizer the tests compare against (implies `std`) |
+//! | `sdl` | only the interactive `spin` example (needs SDL2) |
 //!
 //! [embedded-graphics]: https://docs.rs/embedded-graphics
 #![no_std]
@@ -80,19 +90,42 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, Vertex};
-pub use fixed_point::Coord;
+pub use fixed_point::{Coord, ToCoord};
 pub use three_d::{
-    Angle, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading, Vec3,
+    Angle, Bounds, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading,
+    TexCoord, ToScalar, Vec3,
 };
 
-/// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`.
+/// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
+/// (next to `embedded_graphics::prelude::*`, which brings `Drawable`, `Point`, `Size` and the
+/// colour traits).
+///
+/// 2D: the triangles, their [`Vertex`], [`SliceFramebuffer`],
+/// [`Coord`] with [`ToCoord`] and the pixel placements, and the
+/// [`GouraudColor`] bound. 3D: the pipeline, its mesh, target, light and
+/// material types, the maths types with [`ToScalar`] and
+/// [`Degrees`](three_d::Degrees). [`Angle`] is not in it, because embedded-graphics' prelude has
+/// an `Angle` of its own: import `embedded_raster::Angle`.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// use embedded_raster::prelude::*;
+/// use embedded_raster::Angle;
+///
+/// let mut pixels = [Rgb565::BLACK; 8 * 8];
+/// let mut fb = SliceFramebuffer::new(&mut pixels, 8, 8).unwrap();
+/// SolidTriangle::new([(0.0, 0.0), (8.0, 0.0), (0.0, 8.0)], Rgb565::RED).draw_into(&mut fb);
+/// let view = Mat4::look_at(Vec3::new(0, 0, 5), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+/// let camera = Mat4::perspective(Angle::from_degrees(52.5), 1, 0.5, 20) * view;
+/// # let _ = camera;
+/// ```
 pub mod prelude {
     pub use crate::color::GouraudColor;
     pub use crate::draw::{GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
-    pub use crate::fixed_point::Coord;
+    pub use crate::fixed_point::{pixel_centre, pixel_corner, Coord, ToCoord};
     pub use crate::three_d::{
-        Angle, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, ScreenVertex,
-        Shading, Vec3, Vec4,
+        Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline,
+        Scalar, ScreenVertex, Shading, TexCoord, ToScalar, Vec3, Vec4,
     };
 }
 
@@ -109,7 +142,7 @@ pub(crate) fn random(seed: u64) -> impl FnMut() -> u64 {
     move || rng.next()
 }
 
-/// The README's code example, compiled and run as a doc test.
+/// The README's code examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;

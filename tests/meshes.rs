@@ -1,15 +1,22 @@
 //! Procedural meshes, the OBJ loader/writer and the Rust-source emitter.
 //!
 //! The flash meshes in `src/meshes/*.rs` must be what the generators and the emitter produce
-//! (compared ignoring whitespace, since the files are rustfmt-formatted). Set
+//! (compared ignoring whitespace and trailing commas, since the files are rustfmt-formatted). Set
 //! `REGENERATE_MESHES=1` to rewrite them after changing either.
 
 use embedded_raster::three_d::meshes::{icosphere, to_f64, torus, torus_knot, MeshData};
 use embedded_raster::three_d::obj;
 use embedded_raster::three_d::{Mesh, Vec3};
 
+#[path = "support/vec_f64.rs"]
+mod vec_f64;
+use vec_f64::{cross, dot, normalize, sub};
+
+/// The text without whitespace and trailing commas (which rustfmt adds or drops with the
+/// layout).
 fn squeeze(s: &str) -> String {
-    s.chars().filter(|c| !c.is_whitespace()).collect()
+    let s: String = s.chars().filter(|c| !c.is_whitespace()).collect();
+    s.replace(",]", "]").replace(",)", ")")
 }
 
 /// The flash meshes of the crate (`src/three_d/meshes/`).
@@ -17,19 +24,20 @@ fn check_generated(mesh: &MeshData, name: &str, file: &str) {
     check_source(mesh, name, "crate", &format!("src/three_d/meshes/{file}"));
 }
 
-/// `file` (relative to the package) holds `mesh` as emitted for `crate_path`.
+/// `file` (relative to the package) holds `mesh` as emitted for `crate_path`; with
+/// `REGENERATE_MESHES` set it is rewritten first.
 fn check_source(mesh: &MeshData, name: &str, crate_path: &str, file: &str) {
-    let source = mesh.to_rust_source(name, crate_path);
+    let source = &mesh.to_rust_source(name, crate_path);
     let path = format!("{}/{file}", env!("CARGO_MANIFEST_DIR"));
     if std::env::var_os("REGENERATE_MESHES").is_some() {
-        std::fs::write(&path, &source).unwrap();
+        std::fs::write(&path, source).unwrap();
         let _ = std::process::Command::new("rustfmt")
             .args(["--edition", "2021", &path])
             .status();
     }
     let stored = std::fs::read_to_string(&path).unwrap();
     assert!(
-        squeeze(&stored) == squeeze(&source),
+        squeeze(&stored) == squeeze(source),
         "{path} is stale: rerun with REGENERATE_MESHES=1"
     );
 }
@@ -70,22 +78,6 @@ fn bench_knot_matches_its_generator() {
         "embedded_raster",
         "examples/common/meshes/knot.rs",
     );
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Every face is counter-clockwise seen from outside: its geometric normal agrees with its
@@ -219,4 +211,207 @@ fn rust_source_declares_the_arrays() {
         assert!((got - want).abs() < 1e-4);
     }
     assert_eq!(tri.normals[0].x, Vec3::ZERO.x);
+}
+
+/// A mesh written as a triangle soup: every face with its own `v` lines, no normals.
+fn soup_obj(m: &MeshData) -> String {
+    let mut s = String::new();
+    for f in &m.indices {
+        for &i in f {
+            let [x, y, z] = to_f64(m.vertices[usize::from(i)]);
+            s += &format!("v {x} {y} {z}\n");
+        }
+    }
+    for k in 0..m.indices.len() {
+        s += &format!("f {} {} {}\n", 3 * k + 1, 3 * k + 2, 3 * k + 3);
+    }
+    s
+}
+
+#[test]
+fn obj_welds_repeated_positions() {
+    let ico = icosphere(1.0, 2);
+    let soup = soup_obj(&ico);
+    let welded = obj::parse(&soup).unwrap();
+    // As many vertices as distinct positions (counted independently), the same triangles.
+    let distinct: std::collections::HashSet<[i32; 3]> =
+        ico.vertices.iter().map(|v| v.to_bits()).collect();
+    assert_eq!(welded.vertices.len(), distinct.len());
+    assert_eq!(welded.indices.len(), ico.indices.len());
+    check_closed_and_oriented(&welded);
+    // Smooth normals: close to the sphere's own normals (the generator's exact ones).
+    for (v, n) in welded.vertices.iter().zip(&welded.normals) {
+        let (v, n) = (to_f64(*v), to_f64(*n));
+        let l = dot(v, v).sqrt();
+        assert!(dot(v, n) / l > 0.99, "{v:?} {n:?}");
+    }
+    // Unwelded: a vertex per `v` line and flat normals, so the soup shades faceted.
+    let apart = obj::parse_with(&soup, obj::ParseOptions { weld: false }).unwrap();
+    assert_eq!(apart.vertices.len(), 3 * ico.indices.len());
+    for f in &apart.indices {
+        let n = f.map(|i| apart.normals[usize::from(i)]);
+        assert!(n[0] == n[1] && n[1] == n[2]);
+    }
+
+    // Two patches that repeat their border (as the Utah teapot's do): the border vertices get
+    // one normal, the mean of both sides.
+    let patches = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nv 0 1 0\nv -1 0 1\nf 1 2 3\nf 4 5 6\n";
+    let m = obj::parse(patches).unwrap();
+    assert_eq!(m.vertices.len(), 4);
+    let border: Vec<_> = m
+        .vertices
+        .iter()
+        .zip(&m.normals)
+        .filter(|(v, _)| v.x == Vec3::ZERO.x)
+        .map(|(_, n)| to_f64(*n))
+        .collect();
+    assert_eq!(border.len(), 2);
+    // The faces' doubled-area normals (0, 0, 1) and (1, 0, 1), summed and normalised.
+    let want = normalize([1.0, 0.0, 2.0]);
+    for n in border {
+        for k in 0..3 {
+            assert!((n[k] - want[k]).abs() < 1e-4, "{n:?} vs {want:?}");
+        }
+    }
+}
+
+/// A coloured, textured triangle pair: OBJ with `v x y z r g b`, `vt`, `f v/vt/vn`.
+const COLORED_OBJ: &str = "\
+v 0 0 0 1 0 0
+v 1 0 0 0 1 0
+v 1 1 0 0 0 1
+v 0 1 0 0.5 0.5 0.5
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+vn 0 0 1
+f 1/1/1 2/2/1 3/3/1
+f 1/1/1 3/3/1 4/4/1
+";
+
+#[test]
+fn obj_carries_colours_and_texture_coordinates() {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    use embedded_raster::three_d::TexCoord;
+    let m = obj::parse(COLORED_OBJ).unwrap();
+    assert_eq!(m.vertices.len(), 4);
+    assert_eq!(
+        m.colors,
+        [
+            Rgb888::new(255, 0, 0),
+            Rgb888::new(0, 255, 0),
+            Rgb888::new(0, 0, 255),
+            Rgb888::new(128, 128, 128)
+        ]
+    );
+    assert_eq!(m.uvs[2], TexCoord::new(1, 1));
+    assert_eq!(m.validate(), Ok(()));
+    assert_eq!(obj::parse(&obj::to_obj(&m)).unwrap(), m);
+    // A corner with a different texture coordinate is a vertex of its own (a UV seam), with the
+    // same normal.
+    let seam = COLORED_OBJ.replace("f 1/1/1 3/3/1 4/4/1", "vt 0.5 0.5\nf 1/5/1 3/3/1 4/4/1");
+    assert_eq!(obj::parse(&seam).unwrap().vertices.len(), 5);
+    // Corners that end up storing the same values weld, however the file gave them: a computed
+    // normal equal to an explicit one, a missing texture coordinate and an explicit (0, 0), a
+    // missing colour and an explicit white. Written out and read back: unchanged.
+    for text in [
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1 2 3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n",
+        "v 0 0 0 1 1 1\nv 1 0 0\nv 0 1 0\nv 0 0 0\nf 1 2 3\nf 4 2 3\n",
+    ] {
+        let m = obj::parse(text).unwrap();
+        assert_eq!(m.vertices.len(), 3, "{text}");
+        assert_eq!(obj::parse(&obj::to_obj(&m)).unwrap(), m, "{text}");
+    }
+    // Files without colours on some lines: white.
+    let partial = obj::parse("v 0 0 0 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    assert_eq!(
+        partial.colors,
+        [Rgb888::new(0, 0, 0), Rgb888::WHITE, Rgb888::WHITE]
+    );
+}
+
+#[path = "support/colored_quad.rs"]
+mod colored_quad;
+
+#[test]
+fn rust_source_carries_colours_and_texture_coordinates() {
+    let m = obj::parse(COLORED_OBJ).unwrap();
+    check_source(
+        &m,
+        "COLORED_QUAD",
+        "embedded_raster",
+        "tests/support/colored_quad.rs",
+    );
+    // The generated statics compile and hold the same data.
+    let flash = colored_quad::COLORED_QUAD;
+    same_mesh(&flash, &m);
+    assert_eq!(flash.colors, &m.colors[..]);
+    assert_eq!(flash.uvs, &m.uvs[..]);
+}
+
+#[test]
+fn mesh_checks_bounds_and_placement() {
+    use embedded_raster::three_d::{Mat4, MeshError};
+    let tor = torus(1.0, 0.4, 12, 8);
+    assert_eq!(tor.validate(), Ok(()));
+    let b = tor.bounds().unwrap();
+    // The torus' box is ±1.4 in x and y (vertices every 30° around the axis, so at 90°) and
+    // ±0.4 in z (every 45° around the tube).
+    for (got, want) in to_f64(b.max).iter().zip([1.4, 1.4, 0.4]) {
+        assert!((got - want).abs() < 1e-4, "{got} vs {want}");
+    }
+    let mut moved = tor.clone();
+    for v in &mut moved.vertices {
+        *v = *v + Vec3::new(10, -3, 0.5);
+    }
+    moved.recenter();
+    let c = moved.bounds().unwrap().center();
+    assert!(c.to_bits().iter().all(|v| v.abs() <= 1), "{c:?}");
+    moved.scale_to_fit(2.0);
+    let b = moved.bounds().unwrap();
+    assert!((to_f64(b.max)[0] - 2.0).abs() < 1e-4 && (to_f64(b.min)[0] + 2.0).abs() < 1e-4);
+    // The same placement as a model matrix.
+    let fit: Mat4 = tor.bounds().unwrap().fit(2);
+    let p = fit.transform_point(tor.bounds().unwrap().max);
+    assert!((p.x.to_num::<f64>() - 2.0).abs() < 1e-3, "{p:?}");
+
+    // Inconsistent arrays and indices are reported.
+    let mut bad = tor.clone();
+    bad.normals.pop();
+    assert_eq!(
+        bad.validate(),
+        Err(MeshError::Length {
+            array: "normals",
+            len: 95,
+            vertices: 96
+        })
+    );
+    let mut bad = tor.clone();
+    bad.indices[7][1] = 96;
+    assert_eq!(
+        bad.validate(),
+        Err(MeshError::Index {
+            triangle: 7,
+            index: 96
+        })
+    );
+    assert!(bad
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("vertex 96"));
+
+    // Welding a mesh whose vertices were duplicated gives the original back.
+    let mut doubled = tor.clone();
+    let n = doubled.vertices.len() as u16;
+    doubled.vertices.extend_from_within(..);
+    doubled.normals.extend_from_within(..);
+    for f in doubled.indices.iter_mut().step_by(2) {
+        *f = f.map(|i| i + n);
+    }
+    assert_eq!(doubled.weld(), 96);
+    assert_eq!(doubled.vertices.len(), 96);
+    check_closed_and_oriented(&doubled);
 }

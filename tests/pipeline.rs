@@ -658,12 +658,10 @@ fn extreme_inputs_do_not_panic() {
             )
         };
         let tri = [sv(&mut rng), sv(&mut rng), sv(&mut rng)];
-        let field = QuadraticNormals {
-            vertices: [0; 3]
-                .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng))),
-            midpoints: [0; 3]
-                .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng))),
-        };
+        let field = QuadraticNormals::from_nodes(
+            [0; 3].map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng))),
+            [0; 3].map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng))),
+        );
         let clip = Rectangle::new(Point::zero(), Size::new(W, H));
         draw_quadratic(&mut target, &clip, &tri, &field, &light, Rgb888::WHITE);
         let _ = field.at([0; 3].map(|_| Scalar::from_bits(pick(&mut rng))));

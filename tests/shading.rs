@@ -244,7 +244,7 @@ fn per_pixel_lighting_matches_f64() {
         let p = positions(&tri);
         let exact_n = input.map(fl).map(normalize);
         let l = normalize(light_dir);
-        let amb = light.ambient.to_num::<f64>();
+        let amb = light.ambient().to_num::<f64>();
         for j in 0..h as i32 {
             for i in 0..w as i32 {
                 let k = (j as u32 * w + i as u32) as usize;
@@ -306,8 +306,8 @@ fn gouraud_and_flat_fills_match_f64() {
         let covered = coverage(&tri, w, h);
         let p = positions(&tri);
         // Independent f64 levels from the same inputs.
-        let l = normalize(fl(light.direction));
-        let amb = light.ambient.to_num::<f64>();
+        let l = normalize(fl(light.direction()));
+        let amb = light.ambient().to_num::<f64>();
         let lvl = n.map(|n| amb + (1.0 - amb) * dot(normalize(fl(n)), l).max(0.0));
         let chan = |c: Rgb888| [c.r(), c.g(), c.b()].map(f64::from);
         let base_c = chan(base);
@@ -396,10 +396,9 @@ fn quadratic_fill_takes_any_light_direction() {
     let (mut px, mut z) = ([Gray8::BLACK; 16 * 16], [0u16; 16 * 16]);
     let mut target = DepthTarget::new(&mut px, &mut z, 16, 16).unwrap();
     target.clear(Gray8::BLACK);
-    let light = Light {
-        direction: Vec3::from_bits(i32::MAX, 0, 0),
-        ambient: Scalar::ZERO,
-    };
+    // Its fields are private now: the constructor normalises any direction.
+    let light = Light::new(Vec3::from_bits(i32::MAX, 0, 0), Scalar::ZERO);
+    assert_eq!(light.direction(), Vec3::from_bits(1 << 16, 0, 0));
     let normals = QuadraticNormals::new([Vec3::from_bits(1 << 16, 0, 0); 3]);
     let v = |x: i32, y: i32| ScreenVertex::new(Coord::from_num(x), Coord::from_num(y), 1000);
     let clip = Rectangle::new(Point::zero(), Size::new(16, 16));

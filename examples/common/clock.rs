@@ -104,3 +104,16 @@ pub fn instructions(ticks: u64, (cal_instructions, cal_ticks): (u64, u64)) -> u6
         .checked_div(cal_ticks)
         .unwrap_or(0)
 }
+
+/// `n / d` printed with two decimals, in integers only (`–` for `d = 0`).
+pub struct Ratio(pub u64, pub u64);
+
+impl core::fmt::Display for Ratio {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if self.1 == 0 {
+            return write!(f, "–");
+        }
+        let hundredths = (self.0 * 100 + self.1 / 2) / self.1;
+        write!(f, "{}.{:02}", hundredths / 100, hundredths % 100)
+    }
+}

@@ -62,8 +62,8 @@ impl Scene {
             stream: mesh.indices.iter().flatten().copied().collect(),
             mvp: mat4(&pipeline.mvp),
             normal_matrix: mat4(&pipeline.normal_matrix),
-            light: vec3(pipeline.light.direction),
-            ambient: real(pipeline.light.ambient.to_bits()),
+            light: vec3(pipeline.light.direction()),
+            ambient: real(pipeline.light.ambient().to_bits()),
             color: [c.r(), c.g(), c.b()].map(f32::from),
         }
     }

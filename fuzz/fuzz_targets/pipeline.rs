@@ -82,7 +82,6 @@ struct Input {
     viewport: Viewport,
     light_direction: [Int; 3],
     light_ambient: Int,
-    light_from_new: bool,
     cull: u8,
     shading: u8,
     rgb565: bool,
@@ -178,11 +177,8 @@ fuzz_target!(|input: Input| {
     };
     let direction = vec3(&input.light_direction);
     let ambient = Scalar::from_bits(input.light_ambient.get());
-    let light = if input.light_from_new {
-        Light::new(direction, ambient)
-    } else {
-        Light { direction, ambient }
-    };
+    // Light's fields are private: every light comes from the constructor.
+    let light = Light::new(direction, ambient);
     let mut pipeline = Pipeline::new(
         input.model.get(),
         input.view_projection.get(),

@@ -55,6 +55,28 @@ pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
 
 /// A `width × height` framebuffer stored row-major in a borrowed slice of colours.
 ///
+/// A `DrawTarget` whose span fills are slice writes, the target of the triangles' `draw_into`
+/// fast paths, and an `ImageDrawable` to blit elsewhere (see [`Image`](embedded_graphics::image::Image)).
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::{PrimitiveStyle, Rectangle}};
+/// use embedded_raster::SliceFramebuffer;
+///
+/// let mut pixels = [Rgb565::BLACK; 32 * 24];
+/// let mut fb = SliceFramebuffer::new(&mut pixels, 32, 24).unwrap();
+/// // Any embedded-graphics drawing works on it.
+/// Rectangle::new(Point::new(2, 2), Size::new(4, 3))
+///     .into_styled(PrimitiveStyle::with_fill(Rgb565::GREEN))
+///     .draw(&mut fb)?;
+/// assert_eq!(fb.get(5, 4), Some(Rgb565::GREEN));
+/// assert_eq!(fb.pixels().len(), 32 * 24);
+/// // Too short a slice is an error, not a silent crop.
+/// assert!(SliceFramebuffer::new(&mut [Rgb565::BLACK; 10], 4, 4).is_none());
+/// # Ok::<(), core::convert::Infallible>(())
+/// ```
+///
 /// # Areas outside the buffer
 ///
 /// Every `DrawTarget` method takes any input: `fill_solid` and `fill_contiguous` accept any

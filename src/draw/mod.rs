@@ -2,11 +2,19 @@
 //!
 //! [`GouraudTriangle`] and [`SolidTriangle`] implement `Drawable` for any `DrawTarget` (one
 //! `fill_contiguous` or `fill_solid` a span) and draw into a [`SliceFramebuffer`] directly with
-//! `draw_into` (slice writes and the colour format's packed span loop).
+//! `draw_into` (slice writes and the colour format's packed span loop). A `SliceFramebuffer` is
+//! an `ImageDrawable` (blit it to any `DrawTarget` with `Image`) and, with the `png` feature,
+//! saves itself as a PNG file.
 
 mod framebuffer;
+mod image;
+#[cfg(feature = "png")]
+mod png_file;
 mod triangle;
 
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{fill_row, SliceFramebuffer};
+pub(crate) use image::draw_rows;
+#[cfg(feature = "png")]
+pub(crate) use png_file::write_png;
 pub use triangle::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};

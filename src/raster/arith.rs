@@ -1,7 +1,9 @@
-//! Integer arithmetic for the set-up, fast on every core: full products of 32-bit factors from
-//! 16-bit limbs where there is no long multiply (Cortex-M0), exact reciprocals by a seed table and
-//! Newton steps where there is no divider, leading zeros by halving where there is no `clz`.
-//! Each form is checked against the native operation on the host.
+//! Integer arithmetic for the set-up, fast on every core and small on Cortex-M: full products of
+//! 32-bit factors from 16-bit limbs where there is no long multiply (Cortex-M0), exact reciprocals
+//! by a seed table and Newton steps (32-bit) or one quotient bit an iteration (64-bit) where there
+//! is no divider, the rare 128-bit divisions of the general set-up by shifting and subtracting
+//! (one small routine instead of the library's kilobytes), leading zeros by halving where there
+//! is no `clz`. Each form is checked against the native operation on the host.
 
 use core::num::NonZeroU32;
 
@@ -196,46 +198,80 @@ fn reciprocal_63_newton(d: u32) -> u64 {
     x
 }
 
-/// First guesses of `2^17 / t` for the top nine bits `t ∈ [256, 512)` of a normalised divisor.
-const RECIPROCAL_SEED: [u16; 256] = {
-    let mut table = [0u16; 256];
-    let mut i = 0;
-    while i < 256 {
-        table[i] = ((1u32 << 17) / (256 + i as u32)) as u16;
-        i += 1;
-    }
-    table
-};
-
-/// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`, without a division (Cortex-M0 has no divider, and a
-/// 128-bit library division costs thousands of instructions there).
-///
-/// A table seed good to 8 bits, three Newton steps `x += x·(2^126 − d·x) / 2^126` towards
-/// `2^126 / d` (8 → 16 → 32 → 60+ bits), then an exact correction of the remainder, so the result
-/// is the exact floor whatever the steps' rounding.
+/// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`: the library division on 64-bit hosts; elsewhere one
+/// quotient bit an iteration in 64-bit arithmetic (a 128-bit library division costs thousands
+/// of instructions and several kilobytes of flash on Cortex-M0).
 pub(crate) fn reciprocal_125(d: u64) -> u64 {
-    let seed = RECIPROCAL_SEED
-        .get(((d >> 55) - 256) as usize)
-        .copied()
-        .unwrap_or(256);
-    let mut x = i128::from(seed) << 54;
-    for _ in 0..3 {
-        // e = 2^126 − d·x, |e| < 2^119; x·(e / 2^64) / 2^62 ≈ x·e / 2^126.
-        let e = (1i128 << 126) - i128::from(d) * x;
-        x += (x * (e >> 64)) >> 62;
+    if FAST_WIDE_DIVISION {
+        return ((1u128 << 125) / u128::from(d.max(1))) as u64;
     }
-    let d = i128::from(d);
-    let mut q = x >> 1;
-    let mut r = (1i128 << 125) - q * d;
-    while r < 0 {
-        q -= 1;
-        r += d;
+    // 2^125 = 2^63 · 2^62: the first partial remainder is 2^63, then 62 zero bits follow.
+    let (mut q, mut r) = (0u64, 1u64 << 63);
+    if r >= d {
+        (q, r) = (1, r.wrapping_sub(d));
     }
-    while r >= d {
-        q += 1;
-        r -= d;
+    for _ in 0..62 {
+        // r < d < 2^64, so 2r < 2^65: with the carry out, 2r ≥ d and 2r − d < d wraps exactly.
+        let carry = r >> 63 != 0;
+        r <<= 1;
+        q <<= 1;
+        if carry || r >= d {
+            r = r.wrapping_sub(d);
+            q |= 1;
+        }
     }
-    q as u64
+    q
+}
+
+/// `⌊n / d⌋` for `d > 0`, exactly (any `i128`; the quotient wraps only for `i128::MIN / 1`'s
+/// magnitude, whose wrapped value is the true one).
+pub(crate) fn div_floor_wide(n: i128, d: i128) -> i128 {
+    let (q, r) = div_rem_wide(n.unsigned_abs(), d.unsigned_abs());
+    let q = q as i128;
+    if n >= 0 {
+        q
+    } else if r == 0 {
+        q.wrapping_neg()
+    } else {
+        q.wrapping_neg().wrapping_sub(1)
+    }
+}
+
+/// `(⌊n / d⌋, n mod d)` for `d > 0`: the library division on 64-bit hosts, [`div_rem_shifting`]
+/// elsewhere (on Cortex-M the library's 128-bit division is several kilobytes of flash, and
+/// the set-up divides in 128 bits only for rare triangles).
+#[inline]
+pub(crate) fn div_rem_wide(n: u128, d: u128) -> (u128, u128) {
+    if FAST_WIDE_DIVISION {
+        let d = d.max(1);
+        (n / d, n % d)
+    } else {
+        div_rem_shifting(n, d)
+    }
+}
+
+/// [`div_rem_wide`] by shifting and subtracting: one bit of `n` an iteration (leading zero words
+/// skipped).
+#[inline(never)]
+fn div_rem_shifting(n: u128, d: u128) -> (u128, u128) {
+    // `q` holds the bits of `n` still to come at the top and the quotient's bits below them.
+    let (mut q, mut r) = (n, 0u128);
+    let mut bits = 128;
+    while bits > 0 && q >> 96 == 0 {
+        q <<= 32;
+        bits -= 32;
+    }
+    for _ in 0..bits {
+        // r < d: with the carry out, 2r + 1 ≥ d and the wrapping difference is exact.
+        let carry = r >> 127 != 0;
+        r = (r << 1) | (q >> 127);
+        q <<= 1;
+        if carry || r >= d {
+            r = r.wrapping_sub(d);
+            q |= 1;
+        }
+    }
+    (q, r)
 }
 
 /// Leading zero bits of `v > 0`: by halving steps on ARMv6-M (Cortex-M0 has no `clz`
@@ -275,7 +311,7 @@ mod tests {
     }
 
     #[test]
-    fn reciprocal_without_division_is_exact() {
+    fn reciprocal_is_exact() {
         let mut rng = crate::rng::Rng(0x9e37_79b9_7f4a_7c15_u64);
         let check = |d: u64| {
             let d = d | 1 << 63;
@@ -294,6 +330,33 @@ mod tests {
             check(seed >> 40);
             check(seed | (u64::MAX >> 30));
         }
+    }
+
+    #[test]
+    fn wide_division_by_shifting_is_exact() {
+        let mut rng = crate::rng::Rng(0x9e37_79b9_7f4a_7c15_u64);
+        let wide = |rng: &mut crate::rng::Rng| {
+            let v = (u128::from(rng.next()) << 64) | u128::from(rng.next());
+            v >> rng.below(128)
+        };
+        for _ in 0..100_000 {
+            let (n, d) = (wide(&mut rng), wide(&mut rng).max(1));
+            assert_eq!(div_rem_shifting(n, d), (n / d, n % d), "{n} / {d}");
+            let n = n as i128;
+            let d = (d >> 1).max(1) as i128;
+            assert_eq!(div_floor_wide(n, d), n.div_euclid(d), "{n} / {d}");
+        }
+        for (n, d) in [
+            (0, 1),
+            (u128::MAX, 1),
+            (u128::MAX, u128::MAX),
+            (1 << 125, 3),
+            (5, 7),
+        ] {
+            assert_eq!(div_rem_shifting(n, d), (n / d, n % d), "{n} / {d}");
+        }
+        assert_eq!(div_floor_wide(i128::MIN, 1), i128::MIN);
+        assert_eq!(div_floor_wide(-7, 2), -4);
     }
 
     #[test]

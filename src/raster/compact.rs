@@ -324,6 +324,7 @@ mod tests {
 
     use super::*;
     use crate::raster::edge::TriangleSetup;
+    use crate::raster::plane::exact::check_channel_planes;
     use crate::raster::plane::{Attributes, Planes};
 
     /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
@@ -433,44 +434,14 @@ mod tests {
             let Some(colors) = planes(&setup, &Attributes::channels(channels)) else {
                 return;
             };
-            let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
-            let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
-                (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
-            };
-            let area2 = cross(p[0], p[1], p[2]);
-            let modulus = area2.abs() << 32;
-            for row in 0..=(triangle.y1 - triangle.y0) as u32 {
-                for column in 0..=(triangle.x1 - triangle.x0) as u32 {
-                    let q = (
-                        i128::from(triangle.x0 + column as i32) * 256 + 128,
-                        i128::from(triangle.y0 + row as i32) * 256 + 128,
-                    );
-                    // λₖ·area2 = the edge function of the opposite edge at q.
-                    let lambda = [
-                        cross(q, p[1], p[2]),
-                        cross(q, p[2], p[0]),
-                        cross(q, p[0], p[1]),
-                    ];
-                    for k in 0..3 {
-                        let got = colors.at(column, row)[k];
-                        let exact: i128 =
-                            (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
-                        // (got − ½ − exact) · area2, in 2⁻²⁴ units, reduced modulo 2³²·area2.
-                        let mut err = ((i128::from(got) - (1 << 23)) * area2 - (exact << 24))
-                            .rem_euclid(modulus);
-                        if err > modulus / 2 {
-                            err -= modulus;
-                        }
-                        // Within 2⁻¹⁰ LSB: |err| ≤ 2¹⁴ · |area2|.
-                        assert!(
-                            err.abs() <= area2.abs() << 14,
-                            "{v:?} {channels:?} ({column}, {row}) channel {k}: error {} units",
-                            err as f64 / area2.abs() as f64
-                        );
-                        checked += 1;
-                    }
-                }
-            }
+            let region = (
+                triangle.x0,
+                triangle.y0,
+                (triangle.x1 - triangle.x0) as u32,
+                (triangle.y1 - triangle.y0) as u32,
+            );
+            checked +=
+                check_channel_planes(v, &channels, region, |column, row| colors.at(column, row));
         });
         checked
     }

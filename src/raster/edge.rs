@@ -19,8 +19,8 @@ use crate::fixed_point::{raw, Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
 /// Vertices with every raw coordinate below this magnitude (2²⁹ sub-pixels, about two million
 /// pixels) are set up in `i64`: differences stay below 2³⁰, so every `a·x + b·y` formed during
-/// setup and at any `i32` pixel stays below 2⁶². Larger ones use `i128`, which on a 32-bit core
-/// costs several times more.
+/// set-up and at the pixel centres of the bounding box stays below 2⁶¹. Larger ones use
+/// `i128`, which on a 32-bit core costs several times more.
 const NARROW_LIMIT: i64 = 1 << 29;
 
 /// `a·x + b·y`, in `i64` when `narrow` (all operands below 2³¹ in magnitude), else in `i128`.
@@ -50,50 +50,50 @@ pub(crate) const fn owns_centres_on(a: i64, b: i64) -> bool {
     a > 0 || (a == 0 && b > 0)
 }
 
-/// One edge function, reduced to pixel-centre lattice form.
+/// One edge function: its coefficients and the vertex it starts from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct EdgeFunction {
     /// Change of the edge function per pixel step in x (`y_a − y_b`, sub-pixel units).
     pub(crate) a: i64,
     /// Change of the edge function per pixel step in y (`x_b − x_a`, sub-pixel units).
     pub(crate) b: i64,
-    /// Exact edge function at the centre of pixel (0, 0), in squared sub-pixel units.
-    pub(crate) c: i128,
-    /// Coverage offset: pixel (i, j) is inside this edge iff `a·i + b·j + k ≥ 0`.
-    pub(crate) k: i128,
-    /// Whether products of `a`, `b` and pixel coordinates fit `i64` (see [`TriangleSetup`]).
-    pub(crate) narrow: bool,
+    /// The start vertex `a` (raw sub-pixels), where the edge function is 0.
+    start: (i64, i64),
 }
 
 impl EdgeFunction {
-    fn new(va: (i64, i64), vb: (i64, i64), narrow: bool) -> Self {
-        let a = va.1 - vb.1;
-        let b = vb.0 - va.0;
-        let c = dot2(a, HALF_PIXEL - va.0, b, HALF_PIXEL - va.1, narrow);
-        let on_lattice = c & ((1 << SUBPIXEL_BITS) - 1) == 0;
-        let t = i128::from(on_lattice && !owns_centres_on(a, b));
+    fn new(va: (i64, i64), vb: (i64, i64)) -> Self {
         EdgeFunction {
-            a,
-            b,
-            c,
-            k: (c >> SUBPIXEL_BITS) - t,
-            narrow,
+            a: va.1 - vb.1,
+            b: vb.0 - va.0,
+            start: va,
         }
     }
 
-    /// The reduced coverage value `K` at pixel `(i, j)`: the pixel is inside this edge iff it is `≥ 0`.
+    /// The exact edge function `E` at the centre of pixel `(i, j)` (squared sub-pixel units):
+    /// in `i64` when `narrow` (the centre and the vertices within 2³⁰ sub-pixels of each other,
+    /// so both products stay below 2⁶⁰), else in `i128`.
     #[inline]
-    pub(crate) fn value_at(&self, i: i64, j: i64) -> i128 {
-        let narrow = self.narrow && i.unsigned_abs() < 1 << 31 && j.unsigned_abs() < 1 << 31;
-        dot2(self.a, i, self.b, j, narrow) + self.k
+    pub(crate) fn exact_at(&self, i: i64, j: i64, narrow: bool) -> i128 {
+        let centre = |p: i64, start: i64| (p << SUBPIXEL_BITS) + HALF_PIXEL - start;
+        let (x, y) = (centre(i, self.start.0), centre(j, self.start.1));
+        dot2(self.a, x, self.b, y, narrow)
+    }
+
+    /// The reduced coverage value `K = ⌊E/256⌋ − t` of the exact value `e` at a pixel centre:
+    /// the pixel is inside this edge iff it is `≥ 0` (`t = 1` for centres on an edge that does
+    /// not own them; `E` changes by multiples of 256 from centre to centre, so whether one lies
+    /// on the edge's lattice is the same at every centre).
+    #[inline]
+    pub(crate) fn reduced(&self, e: i128) -> i128 {
+        let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
+        (e >> SUBPIXEL_BITS) - i128::from(on_lattice && !owns_centres_on(self.a, self.b))
     }
 
     #[cfg(test)]
-    /// The exact edge function at the centre of pixel `(i, j)` (squared sub-pixel units).
-    #[inline]
-    pub(crate) fn exact_at(&self, i: i64, j: i64) -> i128 {
-        let narrow = self.narrow && i.unsigned_abs() < 1 << 31 && j.unsigned_abs() < 1 << 31;
-        (dot2(self.a, i, self.b, j, narrow) << SUBPIXEL_BITS) + self.c
+    /// The reduced coverage value `K` at pixel `(i, j)` (any `i64` pixel within ±2⁵⁵).
+    pub(crate) fn value_at(&self, i: i64, j: i64) -> i128 {
+        self.reduced(self.exact_at(i, j, false))
     }
 }
 
@@ -108,14 +108,15 @@ pub(crate) struct TriangleSetup {
     pub(crate) order: [usize; 3],
     /// Raw sub-pixel vertex positions, in input order.
     pub(crate) vertices: [(i64, i64); 3],
-    /// All raw coordinates are below 2²⁹ in magnitude, so setup products fit `i64`.
+    /// All raw coordinates are below 2²⁹ in magnitude, so the edge functions at pixel centres
+    /// within the bounding box fit `i64`.
     pub(crate) narrow: bool,
 }
 
 impl TriangleSetup {
     /// Sets up the edge functions of a triangle, or `None` if its vertices are collinear.
     ///
-    /// Every `Coord` value is accepted; products are formed in `i64` for vertices within about
+    /// Every `Coord` value is accepted; the area is formed in `i64` for vertices within about
     /// two million pixels of the origin and in `i128` beyond.
     pub(crate) fn new(v: [(Coord, Coord); 3]) -> Option<Self> {
         let vertices = v.map(|(x, y)| (raw(x), raw(y)));
@@ -132,9 +133,9 @@ impl TriangleSetup {
         let [o0, o1, o2] = order.map(|k| vertices[k]);
         Some(TriangleSetup {
             edges: [
-                EdgeFunction::new(o1, o2, narrow),
-                EdgeFunction::new(o2, o0, narrow),
-                EdgeFunction::new(o0, o1, narrow),
+                EdgeFunction::new(o1, o2),
+                EdgeFunction::new(o2, o0),
+                EdgeFunction::new(o0, o1),
             ],
             area2,
             order,
@@ -218,8 +219,8 @@ mod tests {
 
     #[test]
     fn narrow_and_wide_setups_agree_at_the_limit() {
-        // Just inside the i64 limit, queried at the ends of the i32 pixel range; debug builds
-        // (overflow checks on) would panic if the i64 bound were wrong.
+        // Just inside the i64 limit, queried at the corners of the bounding box (where the walk
+        // evaluates); debug builds (overflow checks on) would panic if the i64 bound were wrong.
         let l = (NARROW_LIMIT - 1) as i32;
         for v in [[(-l, -l), (l, -l), (-l, l)], [(l, l), (-l, 3), (5, -l)]] {
             let narrow = setup(v).unwrap();
@@ -232,24 +233,10 @@ mod tests {
                 (x1 * y2 - x2 * y1).abs()
             };
             assert_eq!(narrow.area2, area2(v));
-            let mut wide = narrow;
-            wide.narrow = false;
-            wide.edges.iter_mut().for_each(|e| e.narrow = false);
-            for (i, j) in [
-                (0, 0),
-                (i32::MIN, i32::MAX),
-                (i32::MAX, i32::MIN),
-                (-1 << 21, 1 << 21),
-            ] {
-                for (n, w) in narrow.edges.iter().zip(&wide.edges) {
-                    assert_eq!(
-                        n.value_at(i.into(), j.into()),
-                        w.value_at(i.into(), j.into())
-                    );
-                    assert_eq!(
-                        n.exact_at(i.into(), j.into()),
-                        w.exact_at(i.into(), j.into())
-                    );
+            let (i0, j0, i1, j1) = narrow.pixel_bounds();
+            for (i, j) in [(i0, j0), (i1, j0), (i0, j1), (i1, j1), (0, 0)] {
+                for e in &narrow.edges {
+                    assert_eq!(e.exact_at(i, j, true), e.exact_at(i, j, false));
                 }
             }
         }

@@ -20,7 +20,7 @@
 //! * `band` — a band's rows of a triangle (`shade_rows`): set up over the frame's clip, the walk
 //!   started at the band's first row, the same spans and values as the whole walk's there.
 //! * `arith` — the integer helpers the set-up needs on cores without a long multiply, a divider
-//!   or `clz`.
+//!   or `clz` (and its rare 128-bit divisions, in a few hundred bytes of flash).
 
 pub(crate) mod arith;
 pub(crate) mod band;

@@ -9,20 +9,21 @@
 //!   first pixel and its per-pixel and per-row gradients, 24 fractional bits (of the 8-bit scale),
 //!   wrapping, so the value at a pixel is the same integer modulo 2³² however it is reached. Built
 //!   by the compact set-up (`Planes::compact`: gradients from one 32-bit reciprocal of the area,
-//!   within 2⁻¹⁰ of a unit over a compact region) or the general one (`Planes::general`: rounded
-//!   once from the exact quotients through [`InverseArea`], under 2⁻²⁴ a pixel of distance, below
-//!   2⁻⁹ over the largest region it takes, 2¹⁶ px across). With the +½ offset every channel is
-//!   within ½ LSB plus that error of the exact value.
-//! * [`ExactPlanes`] — the rare fallback (regions over 2¹⁶ px across, extreme slivers whose
-//!   gradients do not fit): each span chunk of at most [`MAX_CHUNK`] pixels starts from a value
-//!   divided out exactly in `i128` ([`AttributePlane`]), so stepping adds at most 2⁻⁵ LSB.
+//!   within 2⁻¹⁰ of a unit over a compact region) or the general one ([`GeneralPlanes::new`]:
+//!   rounded once from the exact quotients through [`InverseArea`], under 2⁻²⁴ a pixel of
+//!   distance, below 2⁻⁹ over the largest region it takes, 2¹⁶ px across). With the +½ offset
+//!   every channel is within ½ LSB plus that error of the exact value.
+//! * [`ExactPlanes`] — the general set-up's rare fallback (regions over 2¹⁶ px across, extreme
+//!   slivers whose gradients do not fit): the value at any pixel, divided out exactly in `i128`
+//!   (or stepped at 2⁻⁴⁰ where that fits); each span chunk of at most [`MAX_CHUNK`] pixels
+//!   starts from it, so stepping adds at most 2⁻⁵ LSB.
 
 use crate::fixed_point::SUBPIXEL_BITS;
 use core::num::NonZeroU64;
 
 use crate::raster::arith::{
-    leading_zeros_32, mul_i32_wide, mul_u32_u33, mul_wide, reciprocal_125, reciprocal_63,
-    wrapping_mul_i32,
+    div_floor_wide, div_rem_wide, leading_zeros_32, mul_i32_wide, mul_u32_u33, mul_wide,
+    reciprocal_125, reciprocal_63, wrapping_mul_i32,
 };
 use crate::raster::compact::CompactSetup;
 use crate::raster::edge::{dot2, TriangleSetup};
@@ -41,21 +42,11 @@ pub const MAX_CHUNK: u32 = 4096;
 /// Largest region (`width + height + 2`) the stepped path is used for.
 const MAX_STEPPED_EXTENT: i64 = 1 << 16;
 
-/// `round(n / d)` for `d > 0`, never panicking.
-// Out of line and cold: 128-bit division is large on Thumb and only the rare paths need it.
+/// `round(n / d)` (halves up) for `d > 0`, never panicking.
 #[inline(never)]
 #[cold]
 fn div_round(n: i128, d: i128) -> i128 {
-    (n.saturating_mul(2).saturating_add(d))
-        .checked_div_euclid(d.saturating_mul(2))
-        .unwrap_or(0)
-}
-
-/// `floor(n / d)` for `d > 0`, never panicking.
-#[inline(never)]
-#[cold]
-fn div_floor(n: i128, d: i128) -> i128 {
-    n.checked_div_euclid(d).unwrap_or(0)
+    div_floor_wide(n.saturating_mul(2).saturating_add(d), d.saturating_mul(2))
 }
 
 /// `1 / area2`, normalised so that one division per triangle serves every attribute.
@@ -82,11 +73,11 @@ impl InverseArea {
             // floor(2^(61+n) / area2) = floor(2^125 / d) for the normalised d = area2·2^(64−n).
             reciprocal_125((magnitude as u64) << (64 - bits))
         } else {
-            1u128
-                .checked_shl(shift)
-                .and_then(|n| n.checked_div(magnitude))
-                .and_then(|r| u64::try_from(r).ok())
-                .unwrap_or(0)
+            // 2^126 / area2 < 2^62 for the 65-bit areas of vertices 2³¹ sub-pixels apart.
+            match 1u128.checked_shl(shift) {
+                Some(n) if magnitude > 0 => div_rem_wide(n, magnitude).0 as u64,
+                _ => 0,
+            }
         };
         InverseArea {
             area2,
@@ -96,7 +87,8 @@ impl InverseArea {
     }
 
     /// `round(num · 2^k / area2)`, for `k ≤ 40`.
-    #[inline]
+    // One copy for every caller (flash on Cortex-M; a call per attribute and triangle).
+    #[inline(never)]
     pub(crate) fn scale(&self, num: i128, k: u32) -> i128 {
         let s = self.shift.saturating_sub(k);
         let magnitude = num.unsigned_abs();
@@ -116,15 +108,17 @@ impl InverseArea {
     }
 }
 
-/// The per-pixel step ([`AttributePlane::FRACTION_BITS`] fractional bits) of a per-pixel
-/// gradient with [`ROW_BITS`] fractional bits.
+/// Fractional bits (of the 8.8 values) of what [`ExactPlanes`] hands out: 24 of the 8-bit scale.
+const EXACT_BITS: u32 = 16;
+
+/// The per-pixel step ([`EXACT_BITS`] fractional bits) of a per-pixel gradient with
+/// [`ROW_BITS`] fractional bits.
 ///
 /// Two's complement, wrapping: adding it steps the value modulo 2^32, which is exact whenever the
 /// stepped values stay in range, as they do inside the triangle.
 #[inline]
 fn step_of(dx: i128) -> u32 {
-    let f = AttributePlane::FRACTION_BITS;
-    ((dx + (1 << (ROW_BITS - f - 1))) >> (ROW_BITS - f)) as u32
+    ((dx + (1 << (ROW_BITS - EXACT_BITS - 1))) >> (ROW_BITS - EXACT_BITS)) as u32
 }
 
 /// Per-triangle quantities shared by all stepped planes of a triangle over one region.
@@ -138,13 +132,9 @@ pub(crate) struct StepContext {
 }
 
 impl StepContext {
-    /// The context of `setup` over `region`, or `None` if the region is too large for stepping.
+    /// The context of `setup` over `region`.
     #[inline]
-    pub(crate) fn new(setup: &TriangleSetup, region: &Region) -> Option<StepContext> {
-        let extent = region.width() + region.height() + 2;
-        if extent > MAX_STEPPED_EXTENT {
-            return None;
-        }
+    pub(crate) fn new(setup: &TriangleSetup, region: &Region) -> StepContext {
         let (vx, vy) = setup
             .vertices
             .get(setup.order[0])
@@ -153,11 +143,17 @@ impl StepContext {
         let (x, y) = (i64::from(region.x0), i64::from(region.y0));
         let half = 1 << (SUBPIXEL_BITS - 1);
         // |x|, |y| < 2^31 and |vx|, |vy| ≤ 2^31: no overflow.
-        Some(StepContext {
+        StepContext {
             px: (x << SUBPIXEL_BITS) + half - vx,
             py: (y << SUBPIXEL_BITS) + half - vy,
-            extent,
-        })
+            extent: region.width() + region.height() + 2,
+        }
+    }
+
+    /// Whether the region is small enough for stepped planes.
+    #[inline]
+    fn steppable(&self) -> bool {
+        self.extent <= MAX_STEPPED_EXTENT
     }
 }
 
@@ -197,7 +193,7 @@ impl<const N: usize> Attributes<N> {
 /// Wrapping makes the value at `(column, row)` the same integer modulo 2³² however it is
 /// reached, and covered pixels have values in `[0, 256)·2²⁴`, so the wrapped value is the true
 /// one. The error against the exact plane, before the final truncation, is below 2⁻⁹ LSB
-/// everywhere a walk asks (see [`Planes::compact`] and [`Planes::general`]), so every attribute
+/// everywhere a walk asks (see [`Planes::compact`] and [`GeneralPlanes::new`]), so every attribute
 /// is within ½ LSB + 2⁻⁹ of the exact value.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Planes<const N: usize> {
@@ -333,44 +329,6 @@ impl<const N: usize> Planes<N> {
             planes.value[k] = ((v.wrapping_add(1 << 23) >> 24) as u32).wrapping_add(half[k]);
             planes.dx[k] = step(gx0, gx1);
             planes.dy[k] = step(gy0, gy1);
-        }
-        Some(planes)
-    }
-
-    /// The planes through `values` of the triangle `setup` over `region` (any size), or `None`
-    /// if an attribute needs the exact plane ([`AttributePlane`]: regions of more than 2¹⁶
-    /// pixels across, extreme slivers).
-    ///
-    /// Each plane's gradients and corner value are rounded once from the exact quotients
-    /// ([`InverseArea`]) to 32 fractional bits ([`Stepped`]), then to 24: the value at `(x, y)`
-    /// is off by under 2⁻²⁴ per pixel of distance from the corner, below 2⁻⁹ LSB over 2¹⁶
-    /// pixels.
-    #[inline]
-    pub(crate) fn general(
-        setup: &TriangleSetup,
-        region: &Region,
-        attributes: &Attributes<N>,
-    ) -> Option<Self> {
-        let mut planes = Planes {
-            value: [0; N],
-            dx: [0; N],
-            dy: [0; N],
-        };
-        if N == 0 {
-            // No attributes (solid fills): nothing to set up, whatever the region.
-            return Some(planes);
-        }
-        let inverse = InverseArea::new(setup.area2);
-        let ctx = StepContext::new(setup, region)?;
-        // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
-        let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
-        for k in 0..N {
-            let gradient = AttributePlane::gradient(setup, attributes.vertex_values(k));
-            // 8.8 values with 24 fractional bits more: 32 of the 8-bit scale.
-            let p = Stepped::new(&inverse, &ctx, gradient, ROW_BITS - 8, 0)?;
-            let half = attributes.half.get(k).copied().unwrap_or(0);
-            (planes.value[k], planes.dx[k], planes.dy[k]) =
-                (round(p.value).wrapping_add(half), round(p.dx), round(p.dy));
         }
         Some(planes)
     }
@@ -532,60 +490,212 @@ impl GradientScale {
     }
 }
 
-/// The exact planes of [`Attributes`] (regions over 2¹⁶ pixels across, extreme slivers): each
-/// span's first value divided out exactly, then stepped; in the units of [`Planes`].
+/// The planes of the general set-up: stepped where their error bound holds, else exact.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum GeneralPlanes<const N: usize> {
+    /// The stepped planes (every walk's form), from the region's first pixel.
+    Stepped(Planes<N>),
+    /// The exact fallback (regions of more than 2¹⁶ pixels across, extreme slivers).
+    Exact(ExactPlanes<N>),
+}
+
+impl<const N: usize> GeneralPlanes<N> {
+    /// The planes of `attributes` on the triangle `setup` (any size) over `region`.
+    ///
+    /// Stepped planes: each plane's gradients and corner value are rounded once from the exact
+    /// quotients ([`InverseArea`]) to 32 fractional bits ([`Stepped`]), then to 24: the value at
+    /// `(x, y)` is off by under 2⁻²⁴ per pixel of distance from the corner, below 2⁻⁹ LSB over
+    /// 2¹⁶ pixels. If one attribute's accumulator does not fit (regions of more than 2¹⁶ pixels
+    /// across, extreme slivers), all take [`ExactPlanes`].
+    #[inline]
+    pub(crate) fn new(setup: &TriangleSetup, region: &Region, attributes: &Attributes<N>) -> Self {
+        let mut planes = Planes {
+            value: [0; N],
+            dx: [0; N],
+            dy: [0; N],
+        };
+        if N == 0 {
+            // No attributes (solid fills): nothing to set up, whatever the region.
+            return GeneralPlanes::Stepped(planes);
+        }
+        let inverse = InverseArea::new(setup.area2);
+        let ctx = StepContext::new(setup, region);
+        let mut stepped = ctx.steppable();
+        for k in 0..N {
+            let p = if stepped {
+                let half = attributes.half.get(k).copied().unwrap_or(0);
+                stepped_plane(setup, &inverse, &ctx, attributes.vertex_values(k), half)
+            } else {
+                None
+            };
+            match p {
+                Some(p) => (planes.value[k], planes.dx[k], planes.dy[k]) = p,
+                None => stepped = false,
+            }
+        }
+        if stepped {
+            GeneralPlanes::Stepped(planes)
+        } else {
+            GeneralPlanes::Exact(ExactPlanes::new(setup, &inverse, &ctx, region, attributes))
+        }
+    }
+}
+
+/// The stepped plane through `values` (value at the region's first pixel with `half` added,
+/// per-pixel and per-row gradients, 24 fractional bits), or `None` if it needs the exact one.
+// One copy for all attributes (flash on Cortex-M).
+#[inline(never)]
+fn stepped_plane(
+    setup: &TriangleSetup,
+    inverse: &InverseArea,
+    ctx: &StepContext,
+    values: [u16; 3],
+    half: u32,
+) -> Option<(u32, u32, u32)> {
+    // 8.8 values with 24 fractional bits more: 32 of the 8-bit scale.
+    let p = Stepped::new(inverse, ctx, gradient(setup, values), ROW_BITS - 8, 0)?;
+    // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
+    let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
+    Some((round(p.value).wrapping_add(half), round(p.dx), round(p.dy)))
+}
+
+/// One attribute of [`ExactPlanes`].
+#[derive(Debug, Clone, Copy)]
+enum ExactPlane {
+    /// Stepped from the region's first pixel: the accumulator ([`ROW_BITS`] fractional bits of
+    /// the 8.8 value, +½).
+    Stepped(Stepped),
+    /// Divided out at each chunk start: `n = Σ cₖ·Eₖ` at the region's first pixel centre and the
+    /// numerator gradients (see [`gradient`]).
+    Exact { n: i128, nx: i64, ny: i64 },
+}
+
+/// The exact planes of [`Attributes`] (regions over 2¹⁶ pixels across, extreme slivers), in the
+/// units of [`Planes`]: the value at any pixel either divided out exactly in `i128` (one
+/// division per attribute) or, for attributes whose [`ROW_BITS`] accumulator fits, stepped from
+/// the region's first pixel with 2⁻⁴⁰ gradients. A walk starts every span chunk of at most
+/// [`MAX_CHUNK`] pixels from [`at`](Self::at), so stepping adds at most 2⁻⁵ LSB.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ExactPlanes<const N: usize> {
-    planes: [AttributePlane; N],
+    planes: [ExactPlane; N],
+    step: [u32; N],
     half: [u32; N],
+    area2: i128,
+    /// The region's first pixel.
+    x0: i32,
+    y0: i32,
 }
 
 impl<const N: usize> ExactPlanes<N> {
-    /// The planes of `attributes` on the triangle `setup` over `region`.
-    pub(crate) fn new(setup: &TriangleSetup, region: &Region, attributes: &Attributes<N>) -> Self {
-        let inverse = InverseArea::new(setup.area2);
-        ExactPlanes {
-            planes: core::array::from_fn(|k| {
-                AttributePlane::with_inverse(setup, &inverse, attributes.vertex_values(k), region)
-            }),
+    /// The planes of `attributes` on the triangle `setup` over `region` (`inverse` and `ctx`
+    /// of the same).
+    #[inline(always)]
+    fn new(
+        setup: &TriangleSetup,
+        inverse: &InverseArea,
+        ctx: &StepContext,
+        region: &Region,
+        attributes: &Attributes<N>,
+    ) -> Self {
+        // Written in place: a built array moved into the planes costs a copy.
+        let mut planes = ExactPlanes {
+            planes: [ExactPlane::Exact { n: 0, nx: 0, ny: 0 }; N],
+            step: [0; N],
             half: attributes.half,
+            area2: setup.area2,
+            x0: region.x0,
+            y0: region.y0,
+        };
+        for (k, (plane, step)) in planes.planes.iter_mut().zip(&mut planes.step).enumerate() {
+            let (c0, nx, ny) = gradient(setup, attributes.vertex_values(k));
+            let stepped = if ctx.steppable() {
+                Stepped::new(inverse, ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
+            } else {
+                None
+            };
+            if let Some(p) = stepped {
+                *step = p.step();
+                *plane = ExactPlane::Stepped(p);
+            } else {
+                *step = step_of(inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS));
+                // Σ cₖ·Eₖ(p) = c₀·area2 + nx·px + ny·py (the edges through vertex 0 vanish there).
+                let n = i128::from(c0) * setup.area2 + dot2(nx, ctx.px, ny, ctx.py, false);
+                *plane = ExactPlane::Exact { n, nx, ny };
+            }
         }
+        planes
     }
 
     /// Attribute planes of no triangle.
     pub(crate) fn empty() -> Self {
         ExactPlanes {
-            planes: [AttributePlane::constant(0); N],
+            planes: [ExactPlane::Exact { n: 0, nx: 0, ny: 0 }; N],
+            step: [0; N],
             half: [0; N],
+            area2: 1,
+            x0: 0,
+            y0: 0,
         }
     }
 
     /// The per-pixel steps.
     pub(crate) fn step(&self) -> [u32; N] {
-        // 8.8 values with 16 fractional bits: 24 of the 8-bit scale.
-        self.planes.map(|p| p.step())
+        self.step
     }
 
-    /// The values at pixel `(x, y)`, which becomes the reference for [`further`](Self::further).
-    pub(crate) fn row_start(&mut self, x: i32, y: i32) -> [u32; N] {
-        let starts = self.planes.each_mut().map(|p| p.row_start(x, y));
-        self.with_half(starts)
-    }
-
-    /// The values `offset` pixels right of the last [`row_start`](Self::row_start).
-    pub(crate) fn further(&self, offset: u32) -> [u32; N] {
-        self.with_half(self.planes.map(|p| p.further(offset)))
-    }
-
-    /// The planes' own +½ (of an 8.8 unit) replaced by the attributes' rounding offsets.
-    fn with_half(&self, values: [u32; N]) -> [u32; N] {
-        let own = 1 << (AttributePlane::FRACTION_BITS - 1);
-        core::array::from_fn(|k| values[k].wrapping_sub(own).wrapping_add(self.half[k]))
+    /// The values at pixel `(x, y)` of the region.
+    pub(crate) fn at(&self, x: i32, y: i32) -> [u32; N] {
+        // Offsets within the region: below 2²⁵.
+        let column = i64::from(x) - i64::from(self.x0);
+        let row = i64::from(y) - i64::from(self.y0);
+        core::array::from_fn(|k| {
+            // The attributes' rounding offsets added.
+            self.planes[k]
+                .at(self.area2, column, row)
+                .wrapping_add(self.half[k])
+        })
     }
 }
 
-/// The row accumulator of a stepped plane ([`ROW_BITS`] fractional bits, +½ included): value at
-/// the region's top-left pixel and gradients per pixel and per row.
+impl ExactPlane {
+    /// The value (without rounding offset) `column` pixels right of and `row` rows below the
+    /// region's first pixel, of the triangle with doubled area `area2`.
+    // One copy for all attributes: the exact path is rare.
+    #[inline(never)]
+    fn at(&self, area2: i128, column: i64, row: i64) -> u32 {
+        match *self {
+            ExactPlane::Stepped(p) => {
+                let v = p
+                    .value
+                    .wrapping_add(p.dy.wrapping_mul(row))
+                    .wrapping_add(p.dx.wrapping_mul(column));
+                // The accumulator's own +½ taken off.
+                ((v >> (ROW_BITS - EXACT_BITS)) as u32).wrapping_sub(1 << (EXACT_BITS - 1))
+            }
+            ExactPlane::Exact { n, nx, ny } => {
+                let n = (dot2(nx, column, ny, row, false) << SUBPIXEL_BITS) + n;
+                div_floor_wide(n << EXACT_BITS, area2) as u32
+            }
+        }
+    }
+}
+
+/// `(c₀, nx, ny)`: the value at oriented vertex 0 and the numerator gradients `Σ c_k·a_k`,
+/// `Σ c_k·b_k` of the plane through `values` (in input vertex order).
+#[inline]
+pub(crate) fn gradient(setup: &TriangleSetup, values: [u16; 3]) -> (i64, i64, i64) {
+    // Oriented vertex values; Σ a_k = Σ b_k = 0, so Σ c_k·a_k = (c₁−c₀)·a₁ + (c₂−c₀)·a₂,
+    // below 2⁵⁰ in magnitude for 16-bit values: exact in i64.
+    let c = setup
+        .order
+        .map(|v| i64::from(values.get(v).copied().unwrap_or(0)));
+    let [_, e1, e2] = &setup.edges;
+    let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
+    (c[0], d1 * e1.a + d2 * e2.a, d1 * e1.b + d2 * e2.b)
+}
+
+/// The row accumulator of a stepped plane (`bits` fractional bits, +½ included for
+/// [`ExactPlanes`]): value at the region's top-left pixel and gradients per pixel and per row.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Stepped {
     pub(crate) value: i64,
@@ -595,9 +705,10 @@ pub(crate) struct Stepped {
 
 impl Stepped {
     /// The accumulator (`bits` fractional bits, `half` added) of the plane with value `c0` at
-    /// oriented vertex 0 and numerator gradients `nx`, `ny` (see [`AttributePlane::gradient`]),
-    /// or `None` when the gradients are too large for stepping.
-    #[inline]
+    /// oriented vertex 0 and numerator gradients `nx`, `ny` (see [`gradient`]), or `None` when
+    /// the gradients are too large for stepping.
+    // One copy for the stepped and the exact planes (flash on Cortex-M).
+    #[inline(never)]
     pub(crate) fn new(
         inverse: &InverseArea,
         ctx: &StepContext,
@@ -632,189 +743,66 @@ impl Stepped {
         (bound < 1 << 62).then_some(Stepped { value, dx, dy })
     }
 
-    /// The per-pixel step of [`AttributePlane::step`].
+    /// The per-pixel step of [`ExactPlanes`] ([`EXACT_BITS`] fractional bits).
     #[inline]
     pub(crate) fn step(&self) -> u32 {
         step_of(i128::from(self.dx))
     }
 }
 
-#[derive(Debug, Clone, Copy)]
-enum Mode {
-    /// Accumulated value at `(x, y)` with [`ROW_BITS`] fractional bits (includes the +½).
-    Stepped {
-        dx: i64,
-        dy: i64,
-        value: i64,
-        x: i64,
-        y: i64,
-    },
-    /// Exact evaluation of `(256·(nx·x + ny·y) + n0) / area2` at each row start.
-    Exact { x: i64, y: i64 },
-}
-
-/// One attribute (a colour channel, later depth) interpolated over a triangle.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct AttributePlane {
-    mode: Mode,
-    nx: i64,
-    ny: i64,
-    /// `Σ c_k·C_k`, needed by the exact path only.
-    n0: i128,
-    area2: i128,
-    step: u32,
-}
-
-impl AttributePlane {
-    /// Fractional bits of the values returned by [`row_start`](Self::row_start) and
-    /// [`step`](Self::step).
-    pub(crate) const FRACTION_BITS: u32 = 16;
-
-    #[cfg(test)]
-    /// Sets up the plane through the vertex values `values` (in the triangle's input vertex order;
-    /// at most 16 bits each) for traversal over `region`.
-    pub(crate) fn new(setup: &TriangleSetup, values: [u16; 3], region: &Region) -> Self {
-        Self::with_inverse(setup, &InverseArea::new(setup.area2), values, region)
-    }
-
-    /// [`new`](Self::new) with the triangle's reciprocal area computed once for all attributes.
-    pub(crate) fn with_inverse(
-        setup: &TriangleSetup,
-        inverse: &InverseArea,
-        values: [u16; 3],
-        region: &Region,
-    ) -> Self {
-        let (c0, nx, ny) = Self::gradient(setup, values);
-        let (x, y) = (i64::from(region.x0), i64::from(region.y0));
-        let stepped = StepContext::new(setup, region).and_then(|ctx| {
-            Stepped::new(inverse, &ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
-        });
-        if let Some(p) = stepped {
-            return AttributePlane {
-                mode: Mode::Stepped {
-                    dx: p.dx,
-                    dy: p.dy,
-                    value: p.value,
-                    x,
-                    y,
-                },
-                nx,
-                ny,
-                n0: 0,
-                area2: setup.area2,
-                step: p.step(),
-            };
-        }
-        let dx = inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS);
-        let c = setup
-            .order
-            .map(|v| i128::from(values.get(v).copied().unwrap_or(0)));
-        let n0 = setup.edges.iter().zip(c).map(|(e, c)| c * e.c).sum();
-        AttributePlane {
-            mode: Mode::Exact { x, y },
-            nx,
-            ny,
-            n0,
-            area2: setup.area2,
-            step: step_of(dx),
-        }
-    }
-
-    /// `(c₀, nx, ny)`: the value at oriented vertex 0 and the numerator gradients `Σ c_k·a_k`,
-    /// `Σ c_k·b_k`.
-    #[inline]
-    pub(crate) fn gradient(setup: &TriangleSetup, values: [u16; 3]) -> (i64, i64, i64) {
-        // Oriented vertex values; Σ a_k = Σ b_k = 0, so Σ c_k·a_k = (c₁−c₀)·a₁ + (c₂−c₀)·a₂,
-        // below 2⁵⁰ in magnitude for 16-bit values: exact in i64.
-        let c = setup
-            .order
-            .map(|v| i64::from(values.get(v).copied().unwrap_or(0)));
-        let [_, e1, e2] = &setup.edges;
-        let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
-        (c[0], d1 * e1.a + d2 * e2.a, d1 * e1.b + d2 * e2.b)
-    }
-
-    /// A plane with the same `value` everywhere.
-    pub(crate) const fn constant(value: u16) -> Self {
-        AttributePlane {
-            mode: Mode::Exact { x: 0, y: 0 },
-            nx: 0,
-            ny: 0,
-            n0: value as i128,
-            area2: 1,
-            step: 0,
-        }
-    }
-
-    /// `Σ c_k E_k` at the centre of pixel `(x, y)`.
-    #[inline]
-    fn numerator(&self, x: i64, y: i64) -> i128 {
-        (dot2(self.nx, x, self.ny, y, false) << SUBPIXEL_BITS) + self.n0
-    }
-
-    /// The value (+½, [`FRACTION_BITS`](Self::FRACTION_BITS) fractional bits) at pixel `(x, y)`,
-    /// which becomes the reference for [`further`](Self::further). Called once per span.
-    #[inline]
-    pub(crate) fn row_start(&mut self, x: i32, y: i32) -> u32 {
-        let (x, y) = (i64::from(x), i64::from(y));
-        match &mut self.mode {
-            Mode::Stepped {
-                dx,
-                dy,
-                value,
-                x: px,
-                y: py,
-            } => {
-                if y == *py + 1 {
-                    *value = value.wrapping_add(*dy);
-                } else if y != *py {
-                    *value = value.wrapping_add(dy.wrapping_mul(y - *py));
+/// Test support: attribute values against the exact barycentric interpolation.
+#[cfg(test)]
+pub(crate) mod exact {
+    /// Checks the values `at(column, row)` of the channel planes of the triangle `v` (raw
+    /// sub-pixel vertices) with channel values `channels` over the pixels `x0 ..= x0 + last`,
+    /// `y0 ..= y0 + rows` against the exact rationals (`i128`), modulo 2³² (the covered pixels'
+    /// values are in range, so wrapping is exact there): within 2⁻¹⁰ LSB of the exact value
+    /// before the final truncation. Returns the values checked.
+    pub(crate) fn check_channel_planes<const K: usize>(
+        v: [(i32, i32); 3],
+        channels: &[[u8; K]; 3],
+        (x0, y0, last, rows): (i32, i32, u32, u32),
+        at: impl Fn(u32, u32) -> [u32; K],
+    ) -> u64 {
+        let p = v.map(|(x, y)| (i128::from(x), i128::from(y)));
+        let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
+            (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+        };
+        let area2 = cross(p[0], p[1], p[2]);
+        let modulus = area2.abs() << 32;
+        let mut checked = 0;
+        for row in 0..=rows {
+            for column in 0..=last {
+                let q = (
+                    i128::from(x0 + column as i32) * 256 + 128,
+                    i128::from(y0 + row as i32) * 256 + 128,
+                );
+                // λₖ·area2 = the edge function of the opposite edge at q.
+                let lambda = [
+                    cross(q, p[1], p[2]),
+                    cross(q, p[2], p[0]),
+                    cross(q, p[0], p[1]),
+                ];
+                let got = at(column, row);
+                for k in 0..K {
+                    let exact: i128 = (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
+                    // (got − ½ − exact) · area2, in 2⁻²⁴ units, reduced modulo 2³²·area2.
+                    let mut err = ((i128::from(got[k]) - (1 << 23)) * area2 - (exact << 24))
+                        .rem_euclid(modulus);
+                    if err > modulus / 2 {
+                        err -= modulus;
+                    }
+                    // Within 2⁻¹⁰ LSB: |err| ≤ 2¹⁴ · |area2|.
+                    assert!(
+                        err.abs() <= area2.abs() << 14,
+                        "{v:?} {channels:?} ({column}, {row}) channel {k}: error {} units",
+                        err as f64 / area2.abs() as f64
+                    );
+                    checked += 1;
                 }
-                if x != *px {
-                    *value = value.wrapping_add(dx.wrapping_mul(x - *px));
-                }
-                (*px, *py) = (x, y);
-                (*value >> (ROW_BITS - Self::FRACTION_BITS)) as u32
-            }
-            Mode::Exact { x: px, y: py } => {
-                (*px, *py) = (x, y);
-                self.exact(x, y)
             }
         }
-    }
-
-    /// The value `offset` pixels to the right of the last [`row_start`](Self::row_start).
-    #[inline]
-    pub(crate) fn further(&self, offset: u32) -> u32 {
-        let offset = i64::from(offset);
-        match self.mode {
-            Mode::Stepped { dx, value, .. } => {
-                (value.wrapping_add(dx.wrapping_mul(offset)) >> (ROW_BITS - Self::FRACTION_BITS))
-                    as u32
-            }
-            Mode::Exact { x, y } => self.exact(x + offset, y),
-        }
-    }
-
-    /// Exact `floor(c·2^16) + 2^15` at pixel `(x, y)`.
-    #[inline(never)]
-    #[cold]
-    fn exact(&self, x: i64, y: i64) -> u32 {
-        let f = Self::FRACTION_BITS;
-        (div_floor(self.numerator(x, y) << f, self.area2) + (1 << (f - 1))) as u32
-    }
-
-    /// Per-pixel step in x ([`FRACTION_BITS`](Self::FRACTION_BITS) fractional bits), as a
-    /// two's-complement `u32` to be added with `wrapping_add`. Exact modulo 2³² even when the
-    /// gradient exceeds the attribute range (then no span is longer than one pixel).
-    #[inline]
-    pub(crate) fn step(&self) -> u32 {
-        self.step
-    }
-    #[cfg(test)]
-    /// Whether the fast stepped path is in use (false: exact per-row division).
-    pub(crate) fn is_stepped(&self) -> bool {
-        matches!(self.mode, Mode::Stepped { .. })
+        checked
     }
 }
 
@@ -858,33 +846,92 @@ mod tests {
     use crate::Coord;
     use embedded_graphics::{prelude::*, primitives::Rectangle};
 
+    /// The exact planes of one attribute with vertex values `values` (+½ of the 2⁻⁸ unit at 16
+    /// fractional bits), divided out at every pixel if `exact`.
     fn plane(
         v: [(i32, i32); 3],
         values: [u16; 3],
         clip: Rectangle,
-    ) -> Option<(AttributePlane, TriangleSetup)> {
+        exact: bool,
+    ) -> Option<(ExactPlanes<1>, TriangleSetup)> {
         let setup = TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))?;
         let region = Region::new(&setup, &clip)?;
-        Some((AttributePlane::new(&setup, values, &region), setup))
+        let mut ctx = StepContext::new(&setup, &region);
+        if exact {
+            ctx.extent = MAX_STEPPED_EXTENT + 1;
+        }
+        let attributes = Attributes {
+            values: values.map(|v| [v]),
+            half: [1 << (EXACT_BITS - 1)],
+        };
+        let inverse = InverseArea::new(setup.area2);
+        let planes = ExactPlanes::new(&setup, &inverse, &ctx, &region, &attributes);
+        Some((planes, setup))
+    }
+
+    fn is_stepped(p: &ExactPlanes<1>) -> bool {
+        matches!(p.planes[0], ExactPlane::Stepped(_))
     }
 
     #[test]
     fn exact_and_stepped_agree_at_vertices_scale() {
         // A right triangle where the plane is c = x (pixel units), evaluated at centres.
-        let clip = Rectangle::new(Point::zero(), Size::new(64, 64));
-        let (mut p, _) = plane([(0, 0), (64 * 256, 0), (0, 64 * 256)], [0, 64, 0], clip).unwrap();
-        assert!(p.is_stepped());
-        for y in 0..4 {
-            for x in [0, 5, 17] {
-                let v = p.row_start(x, y);
-                let exact = (x as f64 + 0.5 + 0.5) * 65536.0;
-                assert!(
-                    (f64::from(v) - exact).abs() < 2.0,
-                    "{x},{y}: {v} vs {exact}"
-                );
-                assert_eq!(p.further(3) >> 16, (x + 3 + 1) as u32);
+        let clip = Rectangle::new(Point::new(-3, -2), Size::new(64, 64));
+        let v = [(0, 0), (64 * 256, 0), (0, 64 * 256)];
+        let (stepped, _) = plane(v, [0, 64, 0], clip, false).unwrap();
+        let (exact, _) = plane(v, [0, 64, 0], clip, true).unwrap();
+        assert!(is_stepped(&stepped) && !is_stepped(&exact));
+        for p in [stepped, exact] {
+            for y in 0..4 {
+                for x in [0, 5, 17] {
+                    let [v] = p.at(x, y);
+                    let exact = (x as f64 + 0.5 + 0.5) * 65536.0;
+                    assert!(
+                        (f64::from(v) - exact).abs() < 2.0,
+                        "{x},{y}: {v} vs {exact}"
+                    );
+                    assert_eq!(p.at(x + 3, y)[0] >> 16, (x + 3 + 1) as u32);
+                }
             }
         }
+    }
+
+    /// The exact planes' divided-out values are the floor of the exact rational value (`i128`
+    /// cross products of the vertices at each pixel centre), for triangles of any size.
+    #[test]
+    fn exact_values_are_the_floor_of_the_plane() {
+        let mut next = crate::random(0x2545_f491_4f6c_dd1d);
+        let clip = Rectangle::new(Point::new(-20, -10), Size::new(40, 30));
+        let mut checked = 0;
+        for i in 0..6_000 {
+            let range = 1i64 << (8 + i % 24);
+            let mut r = || ((next() % (2 * range as u64 + 1)) as i64 - range) as i32;
+            let v = [(); 3].map(|_| (r(), r()));
+            let values = [(); 3].map(|_| next() as u16);
+            let Some((p, _)) = plane(v, values, clip, true) else {
+                continue;
+            };
+            let q = v.map(|(x, y)| (i128::from(x), i128::from(y)));
+            let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
+                (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+            };
+            let area2 = cross(q[0], q[1], q[2]);
+            for (x, y) in [(-20, -10), (19, 19), (0, 0), (7, -3)] {
+                let c = (i128::from(x) * 256 + 128, i128::from(y) * 256 + 128);
+                let lambda = [
+                    cross(c, q[1], q[2]),
+                    cross(c, q[2], q[0]),
+                    cross(c, q[0], q[1]),
+                ];
+                let n: i128 = (0..3).map(|k| i128::from(values[k]) * lambda[k]).sum();
+                // n / area2 with 16 fractional bits, floored, +½.
+                let (n, d) = if area2 < 0 { (-n, -area2) } else { (n, area2) };
+                let want = (n << 16).div_euclid(d) as u32 + (1 << 15);
+                assert_eq!(p.at(x, y)[0], want, "{v:?} {values:?} ({x}, {y})");
+                checked += 1;
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
     }
 
     #[test]
@@ -916,7 +963,7 @@ mod tests {
         gradient: i128,
         value: impl Fn(i64, i64) -> i128,
     ) {
-        let (c0, nx, ny) = AttributePlane::gradient(setup, values);
+        let (c0, nx, ny) = super::gradient(setup, values);
         let a = setup.area2;
         // |got − exact| ≤ bound/100 units, as 100·|got·area2 − exact·area2| ≤ bound·area2.
         let within = |got: i64, exact_times_area: i128, bound: i128| {
@@ -967,10 +1014,11 @@ mod tests {
                 continue;
             };
             let inverse = InverseArea::new(setup.area2);
-            let Some(ctx) = StepContext::new(&setup, &region) else {
+            let ctx = StepContext::new(&setup, &region);
+            if !ctx.steppable() {
                 continue;
-            };
-            let (c0, nx, ny) = AttributePlane::gradient(&setup, values);
+            }
+            let (c0, nx, ny) = gradient(&setup, values);
             let Some(p) = Stepped::new(&inverse, &ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
             else {
                 continue;
@@ -1021,21 +1069,13 @@ mod tests {
         let clip = Rectangle::new(Point::zero(), Size::new(64, 64));
         // A needle 2/256 px wide and 60 px tall with full-range colour across it: gradients of
         // 2^15 LSB per pixel still fit the stepped path.
-        let (p, _) = plane(
-            [(128, 0), (129, 60 * 256), (127, 60 * 256)],
-            [0, 255, 0],
-            clip,
-        )
-        .unwrap();
-        assert!(p.is_stepped());
+        let needle = [(128, 0), (129, 60 * 256), (127, 60 * 256)];
+        let (p, _) = plane(needle, [0, 255, 0], clip, false).unwrap();
+        assert!(is_stepped(&p));
         // A sliver of area 1/2^17 px² along a row: 2^30 LSB per pixel vertically does not.
         let l = 60 * 256;
-        let (p, _) = plane(
-            [(128, 128), (128 + l, 129), (129 + l, 129)],
-            [0, 0, 255],
-            clip,
-        )
-        .unwrap();
-        assert!(!p.is_stepped());
+        let sliver = [(128, 128), (128 + l, 129), (129 + l, 129)];
+        let (p, _) = plane(sliver, [0, 0, 255], clip, false).unwrap();
+        assert!(!is_stepped(&p));
     }
 }

@@ -18,6 +18,8 @@
 
 use embedded_graphics::primitives::Rectangle;
 
+use core::num::NonZeroU32;
+
 use super::arith::{leading_zeros_32, reciprocal_63};
 use super::band::Band;
 use super::compact::{first_centre_from, last_centre_to, last_of};
@@ -25,6 +27,7 @@ use super::edge::owns_centres_on;
 use super::plane::{Attributes, Planes};
 use super::shade::SpanShader;
 use super::walk::Span;
+use crate::arch::HAS_DIVIDER;
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
 /// Width and height of a small triangle's vertex bounding box stay below this many pixels.
@@ -150,34 +153,73 @@ impl<const N: usize> SmallTriangle<N> {
         let mut row_values = planes.first();
         let mut y = self.y0;
         for _ in 0..self.rows + 1 {
-            let (mut c0, mut c1, mut c2) = (k0, k1, k2);
-            let mut column = 0;
-            // Before the run, then the run.
-            while (c0 | c1 | c2) < 0 && column <= last {
-                (c0, c1, c2) = (c0 + e0.a, c1 + e1.a, c2 + e2.a);
-                column += 1;
-            }
-            let start = column;
-            while (c0 | c1 | c2) >= 0 && column <= last {
-                (c0, c1, c2) = (c0 + e0.a, c1 + e1.a, c2 + e2.a);
-                column += 1;
-            }
+            let (start, column) = if HAS_DIVIDER {
+                run_by_division([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last)
+            } else {
+                run_by_scan([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last)
+            };
             if column > start {
                 let span = Span {
                     y,
                     x_start: self.x0 + start as i32,
                     x_end: self.x0 + column as i32,
                 };
-                let values =
-                    core::array::from_fn(|k| row_values[k].wrapping_add(dx[k].wrapping_mul(start)));
+                let mut values = row_values;
+                for k in 0..N {
+                    values[k] = values[k].wrapping_add(dx[k].wrapping_mul(start));
+                }
                 shader.span(&steps, span, values);
             }
             (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
-            row_values = core::array::from_fn(|k| row_values[k].wrapping_add(dy[k]));
+            for k in 0..N {
+                row_values[k] = row_values[k].wrapping_add(dy[k]);
+            }
             // Past the last row only after it (which may be i32::MAX).
             y = y.wrapping_add(1);
         }
     }
+}
+
+/// The covered run `start..end` (columns from the region's first; empty if `end ≤ start`) of a
+/// row whose edges have the values `k` at its first column and steps `a` per column, over
+/// columns `0 ..= last` (at most 15), by testing the columns from the first to the run's end (a
+/// triangle is convex: one run a row).
+#[inline(always)]
+fn run_by_scan(edges: [(i32, i32); 3], last: u32) -> (u32, u32) {
+    let [(mut c0, a0), (mut c1, a1), (mut c2, a2)] = edges;
+    let mut column = 0;
+    while (c0 | c1 | c2) < 0 && column <= last {
+        (c0, c1, c2) = (c0 + a0, c1 + a1, c2 + a2);
+        column += 1;
+    }
+    let start = column;
+    while (c0 | c1 | c2) >= 0 && column <= last {
+        (c0, c1, c2) = (c0 + a0, c1 + a1, c2 + a2);
+        column += 1;
+    }
+    (start, column)
+}
+
+/// [`run_by_scan`]'s run by one division an edge, where a division is an instruction: an edge
+/// with `a > 0` is inside from column `⌈−k/a⌉`, one with `a < 0` up to column `⌊k/|a|⌋`, a
+/// horizontal one everywhere or nowhere. The same integers.
+#[inline(always)]
+fn run_by_division(edges: [(i32, i32); 3], last: u32) -> (u32, u32) {
+    let (mut start, mut end) = (0u32, last + 1);
+    for (k, a) in edges {
+        let m = a.unsigned_abs();
+        if k < 0 {
+            // Below 2²⁶ and 2¹³: the sum fits. An edge with a ≤ 0 excludes the whole row.
+            let first = match NonZeroU32::new(m) {
+                Some(m) if a > 0 => (k.unsigned_abs() + m.get() - 1) / m,
+                _ => u32::MAX,
+            };
+            start = start.max(first);
+        } else if let Some(m) = NonZeroU32::new(m).filter(|_| a < 0) {
+            end = end.min(k as u32 / m + 1);
+        }
+    }
+    (start.min(end), end)
 }
 
 /// Draws the triangle `v` with `attributes` inside `clip` through `shader` if it is small and
@@ -317,6 +359,7 @@ mod tests {
 
     use super::*;
     use crate::raster::edge::TriangleSetup;
+    use crate::raster::plane::exact::check_channel_planes;
 
     /// Random small triangles: boxes from a sub-pixel to 16 px (slivers and collinear ones
     /// included) anywhere in the `Coord` range, clips over and across them.
@@ -373,6 +416,23 @@ mod tests {
         }
     }
 
+    /// The run by division is the run by scanning (the firmware of cores without a divider scans),
+    /// for rows of random edges, empty and full ones included.
+    #[test]
+    fn runs_by_division_and_by_scan_agree() {
+        let mut next = crate::random(0x5ca1_ab1e_0000_0003);
+        let mut value = || (next() % (1 << 14)) as i32 - (1 << 13);
+        for _ in 0..200_000 {
+            let edges = [(); 3].map(|_| (value() * 16, value() / 4));
+            let last = value().unsigned_abs() % 16;
+            let (s, e) = run_by_scan(edges, last);
+            let (ds, de) = run_by_division(edges, last);
+            let scanned = if e > s { (s, e) } else { (0, 0) };
+            let divided = if de > ds { (ds, de) } else { (0, 0) };
+            assert_eq!(scanned, divided, "{edges:?} {last}");
+        }
+    }
+
     /// Exactly the pixels of the per-pixel edge tests of the general set-up, once each, and
     /// attribute values within 2⁻¹⁰ LSB of the exact plane at every pixel of the region.
     #[test]
@@ -416,44 +476,15 @@ mod tests {
             // Values against the exact barycentric interpolation, at each span's first pixel
             // and stepped along it.
             let Some(setup) = setup else { return };
-            let p = v.map(|(x, y)| (i128::from(x.to_bits()), i128::from(y.to_bits())));
-            let cross = |o: (i128, i128), a: (i128, i128), b: (i128, i128)| {
-                (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
-            };
-            let area2 = cross(p[0], p[1], p[2]);
             let _ = setup;
-            let triangle = SmallTriangle::new(v, &attributes, &clip).ok();
-            let Some(triangle) = triangle else { return };
-            let modulus = area2.abs() << 32;
-            for row in 0..=triangle.rows {
-                for column in 0..=triangle.last {
-                    let q = (
-                        i128::from(triangle.x0 + column as i32) * 256 + 128,
-                        i128::from(triangle.y0 + row as i32) * 256 + 128,
-                    );
-                    let lambda = [
-                        cross(q, p[1], p[2]),
-                        cross(q, p[2], p[0]),
-                        cross(q, p[0], p[1]),
-                    ];
-                    for k in 0..2 {
-                        let got = triangle.planes.at(column, row)[k];
-                        let exact: i128 =
-                            (0..3).map(|m| i128::from(channels[m][k]) * lambda[m]).sum();
-                        let mut err = ((i128::from(got) - (1 << 23)) * area2 - (exact << 24))
-                            .rem_euclid(modulus);
-                        if err > modulus / 2 {
-                            err -= modulus;
-                        }
-                        assert!(
-                            err.abs() <= area2.abs() << 14,
-                            "{v:?} {channels:?} ({column}, {row}) {k}: {} units",
-                            err as f64 / area2.abs() as f64
-                        );
-                        values += 1;
-                    }
-                }
-            }
+            let Ok(triangle) = SmallTriangle::new(v, &attributes, &clip) else {
+                return;
+            };
+            let region = (triangle.x0, triangle.y0, triangle.last, triangle.rows);
+            let raw = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
+            values += check_channel_planes(raw, &channels, region, |column, row| {
+                triangle.planes.at(column, row)
+            });
         });
         assert!(
             drawn > 80_000 && values > 500_000,

@@ -12,9 +12,9 @@ use embedded_graphics::primitives::Rectangle;
 use super::band::Band;
 use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
-use super::plane::{Attributes, ExactPlanes, Planes, MAX_CHUNK};
-use super::walk::{general_walk, GeneralWalk, Region, Span, Spans, Walk, Width};
-use crate::arch::LANES;
+use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
+use super::walk::{general_walk, Region, Span, Walk, Width};
+use crate::arch::{CORTEX_M, LANES};
 use crate::fixed_point::Coord;
 
 /// What the walk hands each covered span to (like tiny-skia's `Blitter`).
@@ -195,52 +195,84 @@ pub(super) fn shade_general<T, const N: usize>(
             None => return,
         },
     };
-    match Planes::general(setup, &region, attributes) {
-        Some(planes) => {
-            let planes = planes.advanced(skip);
-            match general_walk(setup, &rows) {
-                GeneralWalk::Narrow(walk) => fold_planes(walk, &planes, shader),
-                GeneralWalk::Wide(walk) => fold_planes(walk, &planes, shader),
+    // The planes are those of the whole region, the walk only the band's rows: stepped planes
+    // advanced to its first row, exact ones evaluated at each pixel wherever the walk starts.
+    let planes = match GeneralPlanes::new(setup, &region, attributes) {
+        GeneralPlanes::Stepped(p) => GeneralPlanes::Stepped(p.advanced(skip)),
+        exact => exact,
+    };
+    let walk = general_walk(setup, &rows);
+    fold_general(walk, &planes, shader);
+}
+
+/// [`fold_planes`] for the general planes: spans of stepped planes as there, those of exact
+/// ones in chunks ([`shade_exact`]). Hosts get a walk for each kind of planes; on Cortex-M one
+/// walk serves both, the span's planes chosen out of line ([`general_span`]: flash; the general
+/// set-up's spans are long).
+#[inline(always)]
+fn fold_general<T, const N: usize>(
+    walk: Walk<i64>,
+    planes: &GeneralPlanes<N>,
+    shader: &mut dyn SpanShader<N, Steps = T>,
+) {
+    if CORTEX_M {
+        let steps = shader.prepare(match planes {
+            GeneralPlanes::Stepped(p) => p.step(),
+            GeneralPlanes::Exact(p) => p.step(),
+        });
+        let steps = &steps;
+        walk.fold((), |(), span, column, row| {
+            general_span(planes, steps, span, (column, row), shader);
+        });
+    } else {
+        match planes {
+            GeneralPlanes::Stepped(p) => fold_planes(walk, p, shader),
+            GeneralPlanes::Exact(p) => {
+                let steps = shader.prepare(p.step());
+                let steps = &steps;
+                walk.fold((), |(), span, _, _| shade_exact(p, steps, span, shader));
             }
         }
-        None => shade_exact(setup, &region, &rows, attributes, shader),
     }
 }
 
-/// Exact planes (regions over 2¹⁶ pixels across, extreme slivers): each span in chunks of at
-/// most [`MAX_CHUNK`] pixels, every chunk started from the exact value (one division per
-/// attribute), so the per-pixel steps add at most 2⁻⁵ LSB.
-/// The planes are set up over `region`, the spans walked over `rows` (the region, or a band's
-/// part of it): the values at a pixel do not depend on where the walk starts.
+/// One span of the general set-up with its planes' values at `(column, row)` of the region.
+#[inline(never)]
+fn general_span<T, const N: usize>(
+    planes: &GeneralPlanes<N>,
+    steps: &T,
+    span: Span,
+    (column, row): (u32, u32),
+    shader: &mut dyn SpanShader<N, Steps = T>,
+) {
+    match planes {
+        GeneralPlanes::Stepped(p) => shader.span(steps, span, p.at(column, row)),
+        GeneralPlanes::Exact(p) => shade_exact(p, steps, span, shader),
+    }
+}
+
+/// A span of exact planes (regions over 2¹⁶ pixels across, extreme slivers): in chunks of at
+/// most [`MAX_CHUNK`] pixels, every chunk started from the exact value, so the per-pixel steps
+/// add at most 2⁻⁵ LSB.
 #[cold]
 #[inline(never)]
 fn shade_exact<T, const N: usize>(
-    setup: &TriangleSetup,
-    region: &Region,
-    rows: &Region,
-    attributes: &Attributes<N>,
+    planes: &ExactPlanes<N>,
+    steps: &T,
+    span: Span,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
-    let mut planes = ExactPlanes::new(setup, region, attributes);
-    let steps = shader.prepare(planes.step());
-    for span in Spans::new(setup, *rows) {
-        let mut offset = 0;
-        while offset < span.len() {
-            let len = (span.len() - offset).min(MAX_CHUNK);
-            let start = if offset == 0 {
-                planes.row_start(span.x_start, span.y)
-            } else {
-                planes.further(offset)
-            };
-            // Inside the span, which lies inside the region: no overflow.
-            let x_start = span.x_start.wrapping_add(offset as i32);
-            let chunk = Span {
-                y: span.y,
-                x_start,
-                x_end: x_start.wrapping_add(len as i32),
-            };
-            shader.span(&steps, chunk, start);
-            offset += len;
-        }
+    let mut offset = 0;
+    while offset < span.len() {
+        let len = (span.len() - offset).min(MAX_CHUNK);
+        // Inside the span, which lies inside the region: no overflow.
+        let x_start = span.x_start.wrapping_add(offset as i32);
+        let chunk = Span {
+            y: span.y,
+            x_start,
+            x_end: x_start.wrapping_add(len as i32),
+        };
+        shader.span(steps, chunk, planes.at(x_start, span.y));
+        offset += len;
     }
 }

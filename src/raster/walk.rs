@@ -9,15 +9,15 @@
 //! decision is exact — no rounding anywhere.
 //!
 //! One [`Walk`] serves every triangle: one start and one end boundary a row, switching edges at
-//! the middle vertex. It steps columns in `i32` when they stay within ±2³⁰ of the region over
-//! its rows (every on-screen triangle), in `i64` otherwise (far off-screen slivers); the set-up
-//! is the compact one ([`compact`](crate::raster::compact), 32-bit, bounding boxes under
-//! 2048 px) or the general one here (`i64`/`i128` edge functions, any [`Coord`]).
+//! the middle vertex. The set-up is the compact one ([`compact`](crate::raster::compact),
+//! 32-bit, bounding boxes under 2048 px, columns in `i32`) or the general one here (any
+//! [`Coord`], columns in `i64`).
 //!
-//! The general set-up first tests the edge functions at the corners of the clipped region: an
-//! edge that excludes the whole region rejects the triangle, an edge that includes all of it is
-//! dropped. The edges that remain cross the region, so their values there are below
-//! `|a|·(W+2) + |b|·H < 2^58` and every stepped quantity fits `i64`.
+//! The general set-up evaluates each edge function once, exactly, at the clipped region's first
+//! pixel (`i64`, or `i128` for vertices beyond about two million pixels) and bounds it over the
+//! region: an edge that excludes the whole region rejects the triangle, an edge that includes
+//! all of it is dropped. The edges that remain cross the region, so their values there are
+//! below `|a|·W + |b|·H < 2⁵⁷` and every stepped quantity fits `i64`.
 //!
 //! ```
 //! use embedded_graphics::{prelude::*, primitives::Rectangle};
@@ -40,7 +40,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
 use crate::raster::compact::CompactTriangle;
-use crate::raster::edge::{dot2, owns_centres_on, TriangleSetup};
+use crate::raster::edge::{owns_centres_on, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,45 +54,41 @@ pub struct Span {
 }
 
 impl Span {
-    /// Number of pixels in the span (at least 1).
+    /// Number of pixels in the span (0 for an empty one, `x_end ≤ x_start`; the walks hand out
+    /// none of those).
     pub fn len(&self) -> u32 {
-        self.x_end.abs_diff(self.x_start)
+        if self.is_empty() {
+            0
+        } else {
+            self.x_end.abs_diff(self.x_start)
+        }
     }
 
-    /// Spans produced by the traversal are never empty.
+    /// Whether the span has no pixel (`x_end ≤ x_start`).
     pub fn is_empty(&self) -> bool {
         self.x_end <= self.x_start
     }
 }
 
-/// `(⌊n / d⌋, n mod d)` for `d > 0`. Quotients of magnitude below 4 are found by subtraction.
-#[inline]
+/// `(⌊n / d⌋, n mod d)` for `d > 0`, from one unsigned division of the magnitudes.
+// One copy for the general set-up's few divisions.
+#[inline(never)]
 fn div_mod_floor(n: i64, d: i64) -> (i64, i64) {
-    if n >= 0 && n < 4 * d {
-        let (mut q, mut r) = (0, n);
-        while r >= d {
-            r -= d;
-            q += 1;
-        }
-        (q, r)
-    } else if n < 0 && n >= -4 * d {
-        let (mut q, mut r) = (0, n);
-        while r < 0 {
-            r += d;
-            q -= 1;
-        }
-        (q, r)
-    } else {
-        let q = n.checked_div_euclid(d).unwrap_or(0);
-        (q, n.wrapping_sub(q.wrapping_mul(d)))
+    let d = d.unsigned_abs().max(1);
+    let (q, r) = (n.unsigned_abs() / d, n.unsigned_abs() % d);
+    // |n| ≤ 2⁶³, so the negated quotient fits.
+    let q = q as i64;
+    match (n < 0, r) {
+        (false, _) => (q, r as i64),
+        (true, 0) => (q.wrapping_neg(), 0),
+        (true, r) => (q.wrapping_neg().wrapping_sub(1), (d - r) as i64),
     }
 }
 
-/// The integer width boundary columns are stepped in: `i32` for every triangle whose columns
-/// stay within ±2³⁰ of the region over its rows (all but far off-screen slivers), `i64` for the
-/// rest.
+/// The integer width boundary columns are stepped in: `i32` for the compact set-up (edge
+/// coefficients below 2¹⁹), `i64` for the general one.
 pub(crate) trait Width: Copy + Ord + core::fmt::Debug {
-    /// The remainders' type (`[0, m)`, `m` below 2³⁰ for `i32` and 2³⁴ for `i64`).
+    /// The remainders' type (`[0, m)`, `m` below 2¹⁹ for `i32` and 2³⁴ for `i64`).
     type Rem: Copy
         + Ord
         + Default
@@ -422,27 +418,20 @@ fn classify(setup: &TriangleSetup, region: &Region, out: &mut [Crossing; 3]) -> 
     let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
     let (w, h) = (region.width() - 1, region.height() - 1);
     for (e, out) in setup.edges.iter().zip(out.iter_mut()) {
-        // The edge's value at the region's top-left pixel and its range over the region.
-        let (k, min, max) = if e.narrow {
-            // |a|, |b| < 2^30 and |x0|, |y0|, w, h < 2^24: well inside i64.
-            let k = e.a * x0 + e.b * y0 + e.k as i64;
-            let (da, db) = (e.a * w, e.b * h);
-            let min = k + da.min(0) + db.min(0);
-            (k, i128::from(min), i128::from(k + da.max(0) + db.max(0)))
-        } else {
-            let k = e.value_at(x0, y0);
-            let (da, db) = (dot2(e.a, w, 0, 0, false), dot2(e.b, h, 0, 0, false));
-            (
-                k as i64,
-                k + da.min(0) + db.min(0),
-                k + da.max(0) + db.max(0),
-            )
-        };
+        // The edge's value at the region's top-left pixel (inside the bounding box, so the
+        // products of a narrow triangle fit i64) and its range over the region: |a|·w and
+        // |b|·h are below 2³²·2²⁴. An edge that crosses the region has |k| below their sum;
+        // clamping the others keeps their sign and every sum here in i64.
+        let k = e.reduced(e.exact_at(x0, y0, setup.narrow));
+        let k = k.clamp(-(1 << 60), 1 << 60) as i64;
+        let (da, db) = (e.a * w, e.b * h);
+        let min = k + da.min(0) + db.min(0);
+        let max = k + da.max(0) + db.max(0);
         if max < 0 {
             return false;
         }
         *out = if min < 0 {
-            // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2^58: the i64 above is exact.
+            // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2⁵⁷: not clamped.
             Crossing::Cross { a: e.a, b: e.b, k }
         } else {
             Crossing::Inside
@@ -451,274 +440,149 @@ fn classify(setup: &TriangleSetup, region: &Region, out: &mut [Crossing; 3]) -> 
     true
 }
 
-/// A boundary of the general set-up: column relative to the region's first column, remainder and
-/// steps, before the choice of width.
-#[derive(Debug, Clone, Copy)]
-struct WideBoundary {
-    x: i64,
-    rem: i64,
-    step: i64,
-    rem_step: i64,
-    m: i64,
+/// The boundary of the general set-up for edge coefficients `a ≠ 0`, `b` and reduced value `k`
+/// at the region's first column: columns stay below 2⁵⁹ over the region (the crossing edges'
+/// values there are below 2⁵⁸), remainders below 2³⁴.
+fn general_boundary(a: i64, b: i64, k: i64) -> Boundary<i64> {
+    let m = a.abs();
+    let (q, rem) = div_mod_floor(k, m);
+    let (step, rem_step) = div_mod_floor(b, m);
+    // Remainders in [0, m): non-negative. A start boundary (a > 0) is the first x with
+    // k + a·x ≥ 0, and moving one column left subtracts m; an end boundary the last x with
+    // k − m·x ≥ 0, and moving one column right subtracts m.
+    let toward_inside = |v: i64| if a > 0 { v.wrapping_neg() } else { v };
+    Boundary::from_parts(
+        toward_inside(q),
+        rem as u64,
+        toward_inside(step),
+        rem_step as u64,
+        m as u64,
+    )
 }
 
-impl WideBoundary {
-    /// For edge coefficients `a ≠ 0`, `b` and reduced value `k` at the region's first column.
-    fn new(a: i64, b: i64, k: i64) -> Self {
-        let m = a.abs();
-        let (q, rem) = div_mod_floor(k, m);
-        let (step, rem_step) = div_mod_floor(b, m);
-        if a > 0 {
-            // First x with k + a·x ≥ 0; moving one column left subtracts m.
-            WideBoundary {
-                x: q.wrapping_neg(),
-                rem,
-                step: step.wrapping_neg(),
-                rem_step,
-                m,
-            }
-        } else {
-            // Last x with k − m·x ≥ 0; moving one column right subtracts m.
-            WideBoundary {
-                x: q,
-                rem,
-                step,
-                rem_step,
-                m,
-            }
-        }
-    }
-
-    /// A boundary that never limits the span: far left (start) or far right (end) of any
-    /// region.
-    const fn open(end: bool) -> Self {
-        WideBoundary {
-            x: if end { 1 << 40 } else { -(1 << 40) },
-            rem: 0,
-            step: 0,
-            rem_step: 0,
-            m: 1,
-        }
-    }
-
-    /// The boundary stepped in `i32`, if it and every column it reaches in the next `rows` rows
-    /// stay within ±2³⁰.
-    fn narrow(&self, rows: i64) -> Option<Boundary<i32>> {
-        const LIMIT: i64 = 1 << 30;
-        // Each row moves the column by `step` and at most one carry.
-        let reach = self
-            .step
-            .checked_abs()?
-            .checked_add(1)?
-            .checked_mul(rows.checked_add(1)?)?
-            .checked_add(self.x.checked_abs()?)?;
-        (self.m < LIMIT && reach < LIMIT).then_some(Boundary::from_parts(
-            self.x as i32,
-            self.rem as u32,
-            self.step as i32,
-            self.rem_step as u32,
-            self.m as u32,
-        ))
-    }
-
-    /// The boundary stepped in `i64`: columns stay below 2⁵⁹ over the region (the crossing
-    /// edges' values there are below 2⁵⁸), remainders below 2³⁴.
-    fn wide(&self) -> Boundary<i64> {
-        Boundary::from_parts(
-            self.x,
-            self.rem as u64,
-            self.step,
-            self.rem_step as u64,
-            self.m as u64,
-        )
+/// A boundary that never limits the span: far left (start) or far right (end) of any region.
+const fn open_boundary(end: bool) -> Boundary<i64> {
+    Boundary {
+        x: if end { 1 << 40 } else { -(1 << 40) },
+        rem: 0,
+        step: 0,
+        rem_step: 0,
+        m: 1,
     }
 }
 
-/// The general set-up's walk, in `i32` where it fits.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum GeneralWalk {
-    /// Columns in `i32`.
-    Narrow(Walk<i32>),
-    /// Columns in `i64`.
-    Wide(Walk<i64>),
-}
-
-/// The walk of `setup` (any [`Coord`] vertices) over `region`.
+/// The walk of `setup` (any [`Coord`] vertices) over `region`, columns in `i64` (edges of the
+/// general set-up can be near horizontal far off-screen; its triangles' spans are long, so the
+/// width costs little).
 // One copy for all callers; everything it calls is inlined into it.
 #[inline(never)]
-pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region) -> GeneralWalk {
-    match GeneralParts::new(setup, region) {
-        None => GeneralWalk::Narrow(Walk::empty()),
-        Some(parts) => match parts.narrow() {
-            Some(walk) => GeneralWalk::Narrow(walk),
-            None => GeneralWalk::Wide(parts.wide()),
-        },
+pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region) -> Walk<i64> {
+    // Open boundaries, not `Walk::empty`'s zeroed ones (a call to clear memory on Cortex-M).
+    let open = (open_boundary(false), open_boundary(true));
+    let no_rows = Walk::new(open, (open.0, true, 0), (0, 0), -1, (0, 0));
+    let crossings = &mut [Crossing::Inside; 3];
+    if !classify(setup, region, crossings) {
+        return no_rows;
     }
-}
-
-/// What a [`Walk`] of the general set-up is made of, before the choice of width.
-#[derive(Debug, Clone, Copy)]
-struct GeneralParts {
-    /// The first row's start and end boundaries, the one that replaces the start (`next_left`)
-    /// or end boundary at row offset `switch`.
-    first: [WideBoundary; 2],
-    next: WideBoundary,
-    next_left: bool,
-    /// Offsets from the region's first row: the switch, the first row (below the region's
-    /// first when a horizontal edge trims it) and the end.
-    switch: u32,
-    first_row: u32,
-    rows: u32,
-    x0: i32,
-    y0: i32,
-    last: i32,
-}
-
-impl GeneralParts {
-    /// The parts of the walk of `setup` over `region`; `None` if no pixel is covered.
-    #[inline(always)]
-    fn new(setup: &TriangleSetup, region: &Region) -> Option<Self> {
-        let crossings = &mut [Crossing::Inside; 3];
-        if !classify(setup, region, crossings) {
-            return None;
-        }
-        let row0 = i64::from(region.y0);
-        let (mut y0, mut y1) = (row0, i64::from(region.y1));
-        // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
-        for c in crossings.iter() {
-            if let Crossing::Cross { a: 0, b, k } = *c {
-                if owns_centres_on(0, b) {
-                    // First row with b·d + k ≥ 0: d = ⌈−k/b⌉.
-                    let (q, r) = div_mod_floor(-k, b);
-                    y0 = y0.max(row0 + q + i64::from(r > 0));
-                } else if b < 0 {
-                    // Last row with k − |b|·d ≥ 0: d = ⌊k/|b|⌋.
-                    y1 = y1.min(row0 + div_mod_floor(k, -b).0);
-                }
+    let row0 = i64::from(region.y0);
+    let (mut y0, mut y1) = (row0, i64::from(region.y1));
+    // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
+    for c in crossings.iter() {
+        if let Crossing::Cross { a: 0, b, k } = *c {
+            if owns_centres_on(0, b) {
+                // First row with b·d + k ≥ 0: d = ⌈−k/b⌉.
+                let (q, r) = div_mod_floor(-k, b);
+                y0 = y0.max(row0 + q + i64::from(r > 0));
+            } else if b < 0 {
+                // Last row with k − |b|·d ≥ 0: d = ⌊k/|b|⌋.
+                y1 = y1.min(row0 + div_mod_floor(k, -b).0);
             }
         }
-        if y0 > y1 {
-            return None;
-        }
-        // The boundaries of the first row and, on the side with two edges, the lower edge's from
-        // the row it takes over.
-        let at =
-            |(a, b, k): (i64, i64, i64), row: i64| WideBoundary::new(a, b, k + b * (row - row0));
-        let rows = y1 - row0 + 1;
-        let mut first = [WideBoundary::open(false), WideBoundary::open(true)];
-        let (mut next, mut next_left, mut switch) = (first[0], true, rows);
-        for (side, boundary) in first.iter_mut().enumerate() {
-            let start = side == 0;
-            match chain(setup, crossings, start) {
-                [Some((only, _)), None] => *boundary = at(only, y0),
-                [Some((upper, vertex_y)), Some((lower, _))] => {
-                    // First row whose centre (256·j + 128) is not above the vertex.
-                    let row = (vertex_y - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
-                    if row <= y0 {
-                        *boundary = at(lower, y0);
-                    } else {
-                        *boundary = at(upper, y0);
-                        if row <= y1 {
-                            (next, next_left, switch) = (at(lower, row), start, row - row0);
-                        }
+    }
+    if y0 > y1 {
+        return no_rows;
+    }
+    // Each side's crossing edges (a > 0 bound the start, a < 0 the end): none, one, or two
+    // that meet at that side's middle vertex; above its row the upper edge binds, from its row
+    // on the lower one.
+    let rows = y1 - row0 + 1;
+    let mut first = [None; 2];
+    let (mut next, mut next_left, mut switch) = (None, true, rows);
+    for (side, first) in first.iter_mut().enumerate() {
+        let start = side == 0;
+        let mut found = [3usize; 2];
+        let mut n = 0;
+        for (k, c) in crossings.iter().enumerate() {
+            if let Crossing::Cross { a, .. } = *c {
+                if a != 0 && (a > 0) == start {
+                    if let Some(slot) = found.get_mut(n) {
+                        *slot = k;
                     }
+                    n += 1;
                 }
-                _ => {}
             }
         }
-        // Within the region: rows and columns below 2²⁵.
-        Some(GeneralParts {
-            first,
-            next,
-            next_left,
-            switch: switch as u32,
-            first_row: (y0 - row0) as u32,
-            rows: rows as u32,
-            x0: region.x0,
-            y0: region.y0,
-            last: region.x1 - region.x0,
-        })
-    }
-
-    /// The walk in `i32`, if every boundary's columns stay within ±2³⁰ over the rows.
-    #[inline(always)]
-    fn narrow(&self) -> Option<Walk<i32>> {
-        let rows = i64::from(self.rows - self.first_row);
-        let [left, right] = self.first;
-        let (left, right) = (left.narrow(rows)?, right.narrow(rows)?);
-        Some(Walk::new(
-            (left, right),
-            (self.next.narrow(rows)?, self.next_left, self.switch),
-            (self.x0, self.y0),
-            self.last,
-            (self.first_row, self.rows),
-        ))
-    }
-
-    /// The walk in `i64`.
-    #[cold]
-    fn wide(&self) -> Walk<i64> {
-        let [left, right] = self.first;
-        Walk::new(
-            (left.wide(), right.wide()),
-            (self.next.wide(), self.next_left, self.switch),
-            (self.x0, self.y0),
-            self.last,
-            (self.first_row, self.rows),
-        )
-    }
-}
-
-/// The start chain (`start`, edges with `a > 0`) or end chain of `crossings`: its only edge, or
-/// its upper edge and its lower edge with the y (sub-pixels) of the vertex they share.
-#[allow(clippy::type_complexity)]
-#[inline(always)]
-fn chain(
-    setup: &TriangleSetup,
-    crossings: &[Crossing; 3],
-    start: bool,
-) -> [Option<((i64, i64, i64), i64)>; 2] {
-    let mut found = [None; 2];
-    let mut n = 0;
-    for (i, c) in crossings.iter().enumerate() {
-        if let Crossing::Cross { a, b, k } = *c {
-            if a != 0 && (a > 0) == start {
-                if let Some(slot) = found.get_mut(n) {
-                    *slot = Some((i, (a, b, k)));
-                }
-                n += 1;
+        let [p, q] = found;
+        if q == 3 {
+            *first = Some((p, y0));
+            continue;
+        }
+        // The shared vertex is the one neither edge is opposite; `edges[p]` runs to the vertex
+        // opposite `edges[q]`, and is the upper edge if that one is above.
+        let vertex_y = |k: usize| {
+            setup
+                .order
+                .get(k)
+                .and_then(|&v| setup.vertices.get(v))
+                .map_or(0, |v| v.1)
+        };
+        let (upper, lower) = if vertex_y(q) < vertex_y(p) {
+            (p, q)
+        } else {
+            (q, p)
+        };
+        // First row whose centre (256·j + 128) is not above the shared vertex.
+        let row = (vertex_y(3 - p - q) - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
+        if row <= y0 {
+            *first = Some((lower, y0));
+        } else {
+            *first = Some((upper, y0));
+            if row <= y1 {
+                (next, next_left, switch) = (Some((lower, row)), start, row - row0);
             }
         }
     }
-    match found {
-        [Some((_, only)), None] => [Some((only, 0)), None],
-        [Some((p, edge_p)), Some((q, edge_q))] => {
-            // The shared vertex is the one neither edge is opposite; `edges[p]` runs to the
-            // vertex opposite `edges[q]`, and is the upper edge if that one is above.
-            let vertex = |k: usize| {
-                setup
-                    .order
-                    .get(k)
-                    .and_then(|&v| setup.vertices.get(v))
-                    .map_or(0, |v| v.1)
-            };
-            let vy = vertex(3 - p - q);
-            let (upper, lower) = if vertex(q) < vertex(p) {
-                (edge_p, edge_q)
-            } else {
-                (edge_q, edge_p)
-            };
-            [Some((upper, vy)), Some((lower, vy))]
-        }
-        _ => [None, None],
-    }
+    // The boundary of edge k from row `row` on; open (never limiting) for none.
+    let boundary = |edge: Option<(usize, i64)>, end: bool| match edge {
+        Some((k, row)) => match crossings.get(k) {
+            Some(&Crossing::Cross { a, b, k }) => general_boundary(a, b, k + b * (row - row0)),
+            _ => open_boundary(end),
+        },
+        None => open_boundary(end),
+    };
+    let [left, right] = first;
+    // Within the region: rows and columns below 2²⁵.
+    Walk::new(
+        (boundary(left, false), boundary(right, true)),
+        (boundary(next, !next_left), next_left, switch as u32),
+        (region.x0, region.y0),
+        region.x1 - region.x0,
+        ((y0 - row0) as u32, rows as u32),
+    )
 }
 
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom: the
 /// walk of the compact set-up (bounding boxes under 2048 px) or of the general one.
 #[derive(Debug, Clone)]
 pub struct Spans {
-    walk: GeneralWalk,
+    walk: EitherWalk,
+}
+
+/// The walk of the compact set-up (columns in `i32`) or of the general one (`i64`).
+#[derive(Debug, Clone, Copy)]
+enum EitherWalk {
+    Compact(Walk<i32>),
+    General(Walk<i64>),
 }
 
 impl Spans {
@@ -726,7 +590,7 @@ impl Spans {
     #[inline(always)]
     pub(crate) fn new(setup: &TriangleSetup, region: Region) -> Spans {
         Spans {
-            walk: general_walk(setup, &region),
+            walk: EitherWalk::General(general_walk(setup, &region)),
         }
     }
 
@@ -734,7 +598,7 @@ impl Spans {
     #[inline(always)]
     pub(crate) fn compact(walk: Walk<i32>) -> Spans {
         Spans {
-            walk: GeneralWalk::Narrow(walk),
+            walk: EitherWalk::Compact(walk),
         }
     }
 
@@ -750,6 +614,13 @@ impl Spans {
             Ok(None) => return Spans::empty(),
             Err(_) => {}
         }
+        Spans::general(v, clip)
+    }
+
+    /// [`of_triangle`](Self::of_triangle) through the general set-up, out of line: the
+    /// compact set-up's spans then start in fewer instructions.
+    #[inline(never)]
+    fn general(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
         // By reference: moving the setup out of the `Option` would copy it.
         let setup = TriangleSetup::new(v);
         setup
@@ -761,13 +632,14 @@ impl Spans {
     /// An iterator with no spans.
     pub fn empty() -> Spans {
         Spans {
-            walk: GeneralWalk::Narrow(Walk::empty()),
+            walk: EitherWalk::Compact(Walk::empty()),
         }
     }
 
-    /// Whether the columns are stepped in `i32` (every triangle but far off-screen slivers).
+    /// Whether the columns are stepped in `i32`: the walk of the compact set-up (bounding boxes
+    /// under 2048 px); the general one steps them in `i64`.
     pub fn is_narrow(&self) -> bool {
-        matches!(self.walk, GeneralWalk::Narrow(_))
+        matches!(self.walk, EitherWalk::Compact(_))
     }
 }
 
@@ -777,8 +649,8 @@ impl Iterator for Spans {
     #[inline]
     fn next(&mut self) -> Option<Span> {
         match &mut self.walk {
-            GeneralWalk::Narrow(w) => w.next_span(),
-            GeneralWalk::Wide(w) => w.next_span(),
+            EitherWalk::Compact(w) => w.next_span(),
+            EitherWalk::General(w) => w.next_span(),
         }
         .map(|(span, _, _)| span)
     }
@@ -787,16 +659,16 @@ impl Iterator for Spans {
     #[inline]
     fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, mut f: F) -> B {
         match self.walk {
-            GeneralWalk::Narrow(w) => w.fold(init, |acc, span, _, _| f(acc, span)),
-            GeneralWalk::Wide(w) => fold_wide(w, init, f),
+            EitherWalk::Compact(w) => w.fold(init, |acc, span, _, _| f(acc, span)),
+            EitherWalk::General(w) => fold_general(w, init, f),
         }
     }
 }
 
-/// The rare wide walk, out of line: its frame stays off the common path's stack.
+/// The general walk, out of line: its frame stays off the common path's stack.
 #[inline(never)]
 #[cold]
-fn fold_wide<B, F: FnMut(B, Span) -> B>(w: Walk<i64>, init: B, mut f: F) -> B {
+fn fold_general<B, F: FnMut(B, Span) -> B>(w: Walk<i64>, init: B, mut f: F) -> B {
     w.fold(init, |acc, span, _, _| f(acc, span))
 }
 
@@ -811,6 +683,20 @@ pub fn for_each_span(v: [(Coord, Coord); 3], clip: Rectangle, mut f: impl FnMut(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A span with its end before its start has no pixels (it used to report the distance).
+    #[test]
+    fn empty_spans_have_no_length() {
+        let span = |x_start, x_end| Span {
+            y: 0,
+            x_start,
+            x_end,
+        };
+        assert_eq!(span(5, 3).len(), 0);
+        assert!(span(5, 3).is_empty() && span(4, 4).is_empty());
+        assert_eq!(span(-3, 4).len(), 7);
+        assert_eq!(span(i32::MIN, i32::MAX).len(), u32::MAX);
+    }
     use embedded_graphics::prelude::*;
 
     fn brute(v: [(Coord, Coord); 3], clip: &Rectangle) -> [[bool; 40]; 40] {
@@ -853,16 +739,16 @@ mod tests {
         }
     }
 
-    /// Every form of the walk — the compact set-up, the general one in `i32` and the general one
-    /// forced to `i64` — and both ways of consuming it (`fold` and `next`) against per-pixel edge
-    /// tests, over triangles from sub-pixel size to far beyond the clip, including
-    /// near-horizontal slivers through it whose columns leave the `i32` range.
+    /// Both walks — the compact set-up's (`i32`) and the general one's (`i64`) — and both ways
+    /// of consuming them (`fold` and `next`) against per-pixel edge tests, over triangles from
+    /// sub-pixel size to far beyond the clip, including near-horizontal slivers through it whose
+    /// columns leave the `i32` range.
     #[test]
     fn every_walk_matches_per_pixel_edge_tests() {
         let clip = Rectangle::new(Point::new(-3, -2), Size::new(31, 29));
         let mut next = crate::random(0x0f1e_2d3c_4b5a_6978_u64);
         let mut rnd = |range: i64| (next() % (2 * range as u64 + 1)) as i64 - range;
-        let (mut narrow, mut wide, mut compact) = (0, 0, 0);
+        let (mut general, mut beyond_i32, mut compact) = (0, 0, 0);
         for i in 0..20_000 {
             let range = [1 << 8, 1 << 12, 1 << 16, 1 << 24, 1 << 31][i % 5];
             let c = |r: i64| {
@@ -900,20 +786,20 @@ mod tests {
                     all
                 })
             };
-            let general = Spans::new(&setup, region);
-            assert_eq!(collect(general.clone()), brute, "general next {v:?}");
-            assert_eq!(fold(general.clone()), brute, "general fold {v:?}");
-            if general.is_narrow() {
-                narrow += 1;
-            } else {
-                wide += 1;
-            }
-            if let Some(parts) = GeneralParts::new(&setup, &region) {
-                let forced = Spans {
-                    walk: GeneralWalk::Wide(parts.wide()),
-                };
-                assert_eq!(collect(forced.clone()), brute, "i64 next {v:?}");
-                assert_eq!(fold(forced), brute, "i64 fold {v:?}");
+            let walk = Spans::new(&setup, region);
+            assert_eq!(collect(walk.clone()), brute, "general next {v:?}");
+            assert_eq!(fold(walk.clone()), brute, "general fold {v:?}");
+            assert!(!walk.is_narrow());
+            general += 1;
+            // An edge whose boundary column reaches 2³⁰ or more from the region, with spans in
+            // the clip.
+            let steep = setup.edges.iter().any(|e| {
+                let k = e.value_at(region.x0.into(), region.y0.into());
+                let reach = k.abs() + i128::from(e.b.abs()) * i128::from(region.height());
+                e.a != 0 && reach / i128::from(e.a.abs()) >= 1 << 30
+            });
+            if steep && !brute.is_empty() {
+                beyond_i32 += 1;
             }
             if let Ok(Some(triangle)) = CompactTriangle::new(v, &clip) {
                 let walk = Spans::compact(triangle.walk().expect("a compact walk"));
@@ -929,8 +815,8 @@ mod tests {
             }
         }
         assert!(
-            narrow > 5_000 && wide > 20 && compact > 1_000,
-            "narrow {narrow}, wide {wide}, compact {compact}"
+            general > 10_000 && beyond_i32 > 500 && compact > 1_000,
+            "general {general}, beyond i32 {beyond_i32}, compact {compact}"
         );
     }
 

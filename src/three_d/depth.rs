@@ -1,12 +1,15 @@
 //! The depth target: a colour framebuffer with a 16-bit z-buffer, and the projected vertices the
-//! depth-tested fills take.
+//! depth-tested fills take; the z-buffer as a grey image ([`DepthImage`]) to blit or save.
 
+use embedded_graphics::image::ImageDrawable;
+use embedded_graphics::pixelcolor::Gray8;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::draw::{fill_row, SliceFramebuffer};
+use crate::draw::{draw_rows, fill_row, SliceFramebuffer};
 use crate::fixed_point::Coord;
+use crate::raster::Span;
 
 /// The z-buffer value of an empty pixel; nothing is ever drawn at this depth.
 pub const DEPTH_CLEAR: u16 = u16::MAX;
@@ -18,6 +21,31 @@ pub const DEPTH_FAR: u16 = u16::MAX - 1;
 ///
 /// It is also a plain [`DrawTarget`] for 2D overlays: drawing ignores and keeps the depth, except
 /// `clear`, which resets it as well.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// use embedded_raster::fixed_point::ToCoord;
+/// use embedded_raster::three_d::{draw_flat, DepthTarget, ScreenVertex, DEPTH_CLEAR};
+///
+/// let (mut pixels, mut depth) = ([Rgb565::BLACK; 32 * 32], [0u16; 32 * 32]);
+/// // `new` resets the depth buffer: a zeroed one would be all near plane and hide everything.
+/// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
+/// assert!(target.depth().iter().all(|&d| d == DEPTH_CLEAR));
+///
+/// let v = |x: f32, y: f32, z| ScreenVertex::new(x.to_coord(), y.to_coord(), z);
+/// let clip = target.bounding_box();
+/// draw_flat(&mut target, &clip, &[v(0.0, 0.0, 100), v(32.0, 0.0, 100), v(0.0, 32.0, 100)], Rgb565::RED);
+/// // Farther away: hidden where the red triangle is.
+/// draw_flat(&mut target, &clip, &[v(0.0, 0.0, 900), v(32.0, 0.0, 900), v(32.0, 32.0, 900)], Rgb565::BLUE);
+/// assert_eq!(target.framebuffer().get(4, 1), Some(Rgb565::RED));
+/// assert_eq!(target.framebuffer().get(30, 20), Some(Rgb565::BLUE));
+/// assert_eq!(target.depth_at(4, 1), Some(100));
+///
+/// // Next frame: colour and depth together.
+/// target.clear(Rgb565::BLACK);
+/// ```
 #[derive(Debug)]
 pub struct DepthTarget<'a, C> {
     color: SliceFramebuffer<'a, C>,
@@ -27,9 +55,25 @@ pub struct DepthTarget<'a, C> {
 
 impl<'a, C: PixelColor> DepthTarget<'a, C> {
     /// Wraps row-major `width × height` colour and depth buffers, or `None` if either is too
-    /// short. The depth buffer is not cleared: call [`clear`](Self::clear) or
-    /// [`clear_depth`](Self::clear_depth) before the first frame.
+    /// short, and resets the depth buffer to [`DEPTH_CLEAR`] (the colours are kept). Each frame
+    /// after the first starts with [`clear`](Self::clear) (colour and depth) or
+    /// [`clear_depth`](Self::clear_depth).
     pub fn new(color: &'a mut [C], depth: &'a mut [u16], width: u32, height: u32) -> Option<Self> {
+        let mut target = Self::new_uncleared(color, depth, width, height)?;
+        target.clear_depth();
+        Some(target)
+    }
+
+    /// Like [`new`](Self::new), but keeps whatever the depth buffer holds: for continuing a frame
+    /// over buffers that another `DepthTarget` drew into (a second pass, a band of a larger
+    /// frame), without the cost of a reset. A zeroed buffer holds the near plane everywhere, so
+    /// nothing would be drawn into it.
+    pub fn new_uncleared(
+        color: &'a mut [C],
+        depth: &'a mut [u16],
+        width: u32,
+        height: u32,
+    ) -> Option<Self> {
         let len = (width as usize).checked_mul(height as usize)?;
         let color = SliceFramebuffer::new(color, width, height)?;
         let depth = depth.get_mut(..len)?;
@@ -65,6 +109,28 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
             .copied()
     }
 
+    /// The z-buffer as a grey image: blit it to any `DrawTarget` with embedded-graphics'
+    /// `Image` (convert with `color_converted()` for a colour display).
+    ///
+    /// ```
+    /// use embedded_graphics::{image::Image, pixelcolor::{Gray8, Rgb565}, prelude::*};
+    /// use embedded_raster::{three_d::DepthTarget, SliceFramebuffer};
+    ///
+    /// let (mut pixels, mut depth) = ([Rgb565::BLACK; 8 * 8], [0u16; 8 * 8]);
+    /// let target = DepthTarget::new(&mut pixels, &mut depth, 8, 8).unwrap();
+    /// let mut view = [Rgb565::WHITE; 8 * 8];
+    /// let mut screen = SliceFramebuffer::new(&mut view, 8, 8).unwrap();
+    /// Image::new(&target.depth_image(), Point::zero()).draw(&mut screen.color_converted())?;
+    /// assert_eq!(screen.get(3, 3), Some(Rgb565::BLACK)); // empty
+    /// # Ok::<(), core::convert::Infallible>(())
+    /// ```
+    pub fn depth_image(&self) -> DepthImage<'_> {
+        DepthImage {
+            depth: self.depth,
+            size: self.color.size(),
+        }
+    }
+
     /// Resets every depth to [`DEPTH_CLEAR`].
     pub fn clear_depth(&mut self) {
         fill_row(self.depth, DEPTH_CLEAR);
@@ -76,13 +142,54 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
         self.clear_depth();
     }
 
-    /// Colour and depth of `len` pixels of row `y` from column `x`, if all inside.
-    #[inline]
-    pub(crate) fn rows_mut(&mut self, x: i32, y: i32, len: u32) -> Option<(&mut [C], &mut [u16])> {
-        let colors = self.color.row_mut(x, y, len)?;
-        let start = y as usize * self.width as usize + x as usize;
-        let depths = self.depth.get_mut(start..start + len as usize)?;
+    /// Colour and depth of the pixels of `span`, a span of a walk clipped to this target: the
+    /// row and column checks are debug assertions, the slices' own bounds checks remain, so a
+    /// wrong span could only ever write other pixels of this target.
+    #[inline(always)]
+    pub(crate) fn clipped_spans_mut(&mut self, span: Span) -> Option<(&mut [C], &mut [u16])> {
+        let (y, a, b) = (span.y as u32, span.x_start as u32, span.x_end as u32);
+        debug_assert!(
+            a <= b
+                && b <= self.width
+                && self.depth.len() / (self.width as usize).max(1) > y as usize
+        );
+        let base = (y as usize).wrapping_mul(self.width as usize);
+        let range = base.wrapping_add(a as usize)..base.wrapping_add(b as usize);
+        let colors = self.color.pixels_mut().get_mut(range.clone())?;
+        let depths = self.depth.get_mut(range)?;
         Some((colors, depths))
+    }
+}
+
+#[cfg(feature = "png")]
+impl<C: PixelColor + Into<embedded_graphics::pixelcolor::Rgb888>> DepthTarget<'_, C> {
+    /// Saves the colour buffer as an 8-bit RGB PNG file (feature `png`), like
+    /// [`SliceFramebuffer::save_png`].
+    pub fn save_png(&self, path: impl AsRef<std::path::Path>) -> std::io::Result<()> {
+        self.color.save_png(path)
+    }
+
+    /// Saves the z-buffer as a 16-bit greyscale PNG file (feature `png`), losslessly: each
+    /// sample is `65535 − depth`, so near is bright, the far plane is 1 and empty pixels are 0.
+    /// (The 8 high bits of the same values are [`depth_image`](Self::depth_image)'s grey.)
+    pub fn save_depth_png(&self, path: impl AsRef<std::path::Path>) -> std::io::Result<()> {
+        use std::io::Write;
+        let data: std::vec::Vec<u8> = self
+            .depth
+            .iter()
+            .flat_map(|&d| (u16::MAX - d).to_be_bytes())
+            .collect();
+        let Size { width, height } = self.color.size();
+        let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        crate::draw::write_png(
+            &mut file,
+            width,
+            height,
+            ::png::ColorType::Grayscale,
+            ::png::BitDepth::Sixteen,
+            &data,
+        )?;
+        file.flush()
     }
 }
 
@@ -122,6 +229,51 @@ impl<C: PixelColor> DrawTarget for DepthTarget<'_, C> {
     }
 }
 
+/// The z-buffer of a [`DepthTarget`] as a [`Gray8`] image ([`DepthTarget::depth_image`]): grey
+/// `(65535 − depth) >> 8`, so near is white and the far plane and empty pixels are black.
+#[derive(Debug, Clone, Copy)]
+pub struct DepthImage<'a> {
+    depth: &'a [u16],
+    size: Size,
+}
+
+/// The grey of a depth.
+fn depth_gray(d: u16) -> Gray8 {
+    Gray8::new(((u16::MAX - d) >> 8) as u8)
+}
+
+impl OriginDimensions for DepthImage<'_> {
+    fn size(&self) -> Size {
+        self.size
+    }
+}
+
+impl ImageDrawable for DepthImage<'_> {
+    type Color = Gray8;
+
+    fn draw<D>(&self, target: &mut D) -> Result<(), D::Error>
+    where
+        D: DrawTarget<Color = Gray8>,
+    {
+        target.fill_contiguous(
+            &self.bounding_box(),
+            self.depth.iter().map(|&d| depth_gray(d)),
+        )
+    }
+
+    fn draw_sub_image<D>(&self, target: &mut D, area: &Rectangle) -> Result<(), D::Error>
+    where
+        D: DrawTarget<Color = Gray8>,
+    {
+        let width = self.size.width as usize;
+        draw_rows(target, self.size, area, |y, a, b| {
+            self.depth[y * width + a..y * width + b]
+                .iter()
+                .map(|&d| depth_gray(d))
+        })
+    }
+}
+
 /// A projected vertex: sub-pixel screen position and depth (0 near … [`DEPTH_FAR`] far).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ScreenVertex {
@@ -155,7 +307,8 @@ mod tests {
     #[test]
     fn depth_outside_the_buffer_is_none() {
         let (mut px, mut z) = ([Gray8::BLACK; 16], [7u16; 16]);
-        let target = DepthTarget::new(&mut px, &mut z, 4, 4).unwrap();
+        // Uncleared: the depths as given.
+        let target = DepthTarget::new_uncleared(&mut px, &mut z, 4, 4).unwrap();
         assert_eq!(target.depth_at(3, 3), Some(7));
         for (x, y) in [
             (0, 4),

@@ -12,6 +12,17 @@
 //!
 //! Matrices act on column vectors (`p' = M·p`) and are stored row by row, as written on paper.
 //!
+//! # From what you have
+//!
+//! Constructors take any [`ToScalar`]: `f32`, `f64` (rounded to the nearest 2⁻¹⁶, saturated to
+//! ±32768, NaN as 0), integers up to 32 bits (saturated) and `Scalar` itself, so
+//! `Vec3::new(1.0, -0.5, 2)` works. [`Angle::from_degrees`] takes integer or fractional degrees
+//! ([`Degrees`]); [`Angle::from_radians`] takes `f32`/`f64`. Float conversions are calls you
+//! make (in software floating point on a Cortex-M0, linked only if used), never part of drawing;
+//! the integer forms use no floats. `Scalar` is the `fixed` crate's `I16F16`: `from_num`,
+//! `saturating_from_num`, `to_num::<f32>()`, `from_bits`, and arithmetic with `Scalar`s and
+//! `i32`s (`Scalar::from_num(0.5) * 2`) all apply; convert floats first (`x.to_scalar()`).
+//!
 //! ```
 //! use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
 //!
@@ -33,6 +44,116 @@ pub type Scalar = I16F16;
 /// Fractional bits of [`Scalar`].
 pub const SCALAR_BITS: u32 = 16;
 
+/// A number that converts to a [`Scalar`]: `f32` and `f64` (rounded to the nearest 2⁻¹⁶,
+/// saturated to the `Scalar` range, NaN as 0), `i8`–`i32` and `u8`–`u32` (saturated), and
+/// `Scalar` itself.
+///
+/// ```
+/// use embedded_raster::three_d::{Scalar, ToScalar};
+///
+/// assert_eq!(0.5f32.to_scalar() * 2, Scalar::ONE);
+/// assert_eq!(3.to_scalar(), Scalar::from_num(3));
+/// assert_eq!(1e9.to_scalar(), Scalar::MAX);
+/// ```
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` does not convert to a fixed-point `Scalar`",
+    label = "expected a float, an integer or a `Scalar`"
+)]
+pub trait ToScalar: Copy {
+    /// The scalar.
+    fn to_scalar(self) -> Scalar;
+}
+
+impl ToScalar for Scalar {
+    #[inline(always)]
+    fn to_scalar(self) -> Scalar {
+        self
+    }
+}
+
+impl ToScalar for f64 {
+    fn to_scalar(self) -> Scalar {
+        if self.is_nan() {
+            Scalar::ZERO
+        } else {
+            // `fixed` converts from the float's bits (round to nearest, ties to even).
+            Scalar::saturating_from_num(self)
+        }
+    }
+}
+
+impl ToScalar for f32 {
+    fn to_scalar(self) -> Scalar {
+        f64::from(self).to_scalar()
+    }
+}
+
+macro_rules! integer_to_scalar {
+    ($($t:ty),*) => {$(
+        impl ToScalar for $t {
+            #[inline]
+            fn to_scalar(self) -> Scalar {
+                Scalar::saturating_from_num(self)
+            }
+        }
+    )*};
+}
+integer_to_scalar!(i8, i16, i32, u8, u16, u32);
+
+/// A number of degrees [`Angle::from_degrees`] takes: integers up to 32 bits (exact, no floats),
+/// [`Scalar`] (exact rational rounding, no floats), `f32` and `f64` (NaN and infinities as 0°).
+pub trait Degrees: Copy {
+    /// The angle, rounded to the nearest 1/65536 turn.
+    fn to_angle(self) -> Angle;
+}
+
+/// `round(n / d)` turns of 65536 steps, wrapped to `u16`; `d > 0`, `|n| < 2⁶²` (64-bit: no
+/// 128-bit division on Cortex-M).
+fn steps(n: i64, d: i64) -> Angle {
+    Angle((2 * n + d).div_euclid(2 * d).rem_euclid(65536) as u16)
+}
+
+macro_rules! integer_degrees {
+    ($($t:ty),*) => {$(
+        impl Degrees for $t {
+            #[inline]
+            fn to_angle(self) -> Angle {
+                steps(i64::from(self) * 65536, 360)
+            }
+        }
+    )*};
+}
+integer_degrees!(i8, i16, i32, u8, u16, u32);
+
+impl Degrees for Scalar {
+    fn to_angle(self) -> Angle {
+        steps(i64::from(self.to_bits()), 360)
+    }
+}
+
+impl Degrees for f64 {
+    fn to_angle(self) -> Angle {
+        float_turns(self / 360.0)
+    }
+}
+
+impl Degrees for f32 {
+    fn to_angle(self) -> Angle {
+        f64::from(self).to_angle()
+    }
+}
+
+/// The angle of `turns` full turns (a float), rounded to the nearest step; not finite → 0.
+fn float_turns(turns: f64) -> Angle {
+    if !turns.is_finite() {
+        return Angle::ZERO;
+    }
+    // Only the fraction of a turn matters: keep 16 integer bits of turns (exact, as the steps
+    // are a power of two) and round to the nearest step with `fixed`'s bit-level conversion.
+    let steps = fixed::types::I48F16::saturating_from_num(turns).to_bits();
+    Angle((steps & 0xffff) as u16)
+}
+
 /// Saturates a wide value to `i32`.
 #[inline]
 pub(crate) fn sat32(v: i64) -> i32 {
@@ -46,7 +167,7 @@ fn mul_raw(a: i32, b: i32) -> i32 {
 }
 
 /// `round(n / d)`, saturated to `i32`; `0` if `d = 0`.
-fn div_round(n: i64, d: i64) -> i32 {
+pub(super) fn div_round(n: i64, d: i64) -> i32 {
     if d == 0 {
         return 0;
     }
@@ -58,11 +179,16 @@ fn div_round(n: i64, d: i64) -> i32 {
 
 /// `round(a / b)` of raw `I16F16` values (the quotient in `I16F16`), saturating; `0` if `b = 0`.
 #[inline]
-fn div_raw(a: i32, b: i32) -> i32 {
+pub(super) fn div_raw(a: i32, b: i32) -> i32 {
     div_round(i64::from(a) << SCALAR_BITS, i64::from(b))
 }
 
 /// A binary angle: `turns / 65536` of a full turn. Arithmetic on it wraps around the circle.
+///
+/// The field is public because it carries no invariant: every `u16` is a valid angle
+/// (`Angle(16384)` is a quarter turn). Build one from degrees ([`Angle::from_degrees`], integer
+/// or fractional), radians ([`Angle::from_radians`]) or a fraction of a turn
+/// ([`Angle::from_turns`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub struct Angle(pub u16);
 
@@ -84,10 +210,32 @@ impl Angle {
     /// A half turn (180°).
     pub const HALF: Angle = Angle(1 << 15);
 
-    /// The angle of `degrees` (any integer; rounded to the nearest 1/65536 turn).
-    pub fn from_degrees(degrees: i32) -> Angle {
-        let t = (i64::from(degrees) * 65536 * 2 + 360).div_euclid(720);
-        Angle(t.rem_euclid(65536) as u16)
+    /// The angle of `degrees`: an integer (`Angle::from_degrees(90)`, exact arithmetic),
+    /// fractional degrees as a float (`Angle::from_degrees(22.5)`) or a [`Scalar`]; rounded to
+    /// the nearest 1/65536 turn and wrapped around the circle. Floats that are not finite give
+    /// `Angle::ZERO`; `f64` degrees keep their precision to about ±10¹¹ degrees.
+    ///
+    /// ```
+    /// use embedded_raster::three_d::{Angle, Scalar};
+    ///
+    /// assert_eq!(Angle::from_degrees(90), Angle::QUARTER);
+    /// assert_eq!(Angle::from_degrees(-270), Angle::QUARTER);
+    /// assert_eq!(Angle::from_degrees(22.5), Angle(4096));
+    /// assert_eq!(Angle::from_degrees(Scalar::from_num(22.5)), Angle(4096));
+    /// ```
+    pub fn from_degrees(degrees: impl Degrees) -> Angle {
+        degrees.to_angle()
+    }
+
+    /// The angle of `radians` (`f32` or `f64`), rounded to the nearest 1/65536 turn; not finite
+    /// gives `Angle::ZERO`.
+    pub fn from_radians(radians: impl Into<f64>) -> Angle {
+        float_turns(radians.into() / core::f64::consts::TAU)
+    }
+
+    /// This angle in degrees, in `[0, 360)`.
+    pub fn to_degrees_f32(self) -> f32 {
+        f32::from(self.0) * (360.0 / 65536.0)
     }
 
     /// The angle of `numerator / denominator` turns (`Angle::ZERO` if the denominator is 0).
@@ -195,9 +343,26 @@ impl Vec3 {
     /// The zero vector.
     pub const ZERO: Vec3 = Vec3::from_bits(0, 0, 0);
 
-    /// A vector from its components.
-    pub const fn new(x: Scalar, y: Scalar, z: Scalar) -> Self {
-        Vec3 { x, y, z }
+    /// A vector from its components: floats, integers or [`Scalar`]s ([`ToScalar`]), e.g.
+    /// `Vec3::new(1.0, -0.5, 2)`. For `const` data use [`from_bits`](Self::from_bits).
+    #[inline(always)]
+    pub fn new(x: impl ToScalar, y: impl ToScalar, z: impl ToScalar) -> Self {
+        Vec3 {
+            x: x.to_scalar(),
+            y: y.to_scalar(),
+            z: z.to_scalar(),
+        }
+    }
+
+    /// The components as `f32`s (rounded to nearest where a value needs more than the 24
+    /// significant bits of an `f32`, i.e. at magnitudes of 256 and above).
+    pub fn to_f32(self) -> [f32; 3] {
+        [self.x, self.y, self.z].map(|c| c.to_num::<f32>())
+    }
+
+    /// The components as `f64`s (exact).
+    pub fn to_f64(self) -> [f64; 3] {
+        [self.x, self.y, self.z].map(|c| c.to_num::<f64>())
     }
 
     /// A vector from raw `I16F16` bits (`65536` is `1.0`); usable in `const` mesh data.
@@ -294,6 +459,20 @@ pub fn normalize_wide(v: [i64; 3]) -> Vec3 {
         sat32((p + (1 << (s - 17))) >> (s - SCALAR_BITS))
     });
     Vec3::from_bits(x, y, z)
+}
+
+impl From<[f32; 3]> for Vec3 {
+    /// Rounds each component to the nearest `I16F16` (saturating; NaN as 0).
+    fn from(v: [f32; 3]) -> Vec3 {
+        Vec3::new(v[0], v[1], v[2])
+    }
+}
+
+impl From<[f64; 3]> for Vec3 {
+    /// Rounds each component to the nearest `I16F16` (saturating; NaN as 0).
+    fn from(v: [f64; 3]) -> Vec3 {
+        Vec3::new(v[0], v[1], v[2])
+    }
 }
 
 impl Add for Vec3 {
@@ -421,8 +600,9 @@ impl Mat4 {
         m
     }
 
-    /// A uniform scaling by `s`.
-    pub fn scaling(s: Scalar) -> Self {
+    /// A uniform scaling by `s` (a float, an integer or a [`Scalar`]).
+    pub fn scaling(s: impl ToScalar) -> Self {
+        let s = s.to_scalar();
         let mut m = Mat4::IDENTITY;
         m.rows[0][0] = s;
         m.rows[1][1] = s;
@@ -460,25 +640,6 @@ impl Mat4 {
         m.rows[0][1] = -s;
         m.rows[1][0] = s;
         m.rows[1][1] = c;
-        m
-    }
-
-    /// An OpenGL-style perspective projection: the camera looks down −z, `fov_y` is the full
-    /// vertical field of view, `aspect` is width / height, and `near < far` are positive
-    /// distances. Visible points end up with `−w ≤ x, y, z ≤ w`; `z = −w` on the near plane.
-    pub fn perspective(fov_y: Angle, aspect: Scalar, near: Scalar, far: Scalar) -> Self {
-        // cot(θ/2) = (1 + cos θ) / sin θ: no rounding of the half angle.
-        let f = div_raw((Scalar::ONE + fov_y.cos()).to_bits(), fov_y.sin().to_bits());
-        let (n, fa) = (near.to_bits(), far.to_bits());
-        let d = n.saturating_sub(fa);
-        let mut m = Mat4::from_bits([[0; 4]; 4]);
-        m.rows[0][0] = Scalar::from_bits(div_raw(f, aspect.to_bits()));
-        m.rows[1][1] = Scalar::from_bits(f);
-        m.rows[2][2] = Scalar::from_bits(div_raw(n.saturating_add(fa), d));
-        // 2·n·f / (n − f): the product has 32 fractional bits, the quotient 16.
-        let num = (i64::from(n) * i64::from(fa)).saturating_mul(2);
-        m.rows[2][3] = Scalar::from_bits(div_round(num, i64::from(d)));
-        m.rows[3][2] = -Scalar::ONE;
         m
     }
 
@@ -562,6 +723,61 @@ mod tests {
         assert_eq!(Angle::from_degrees(90), Angle::QUARTER);
         assert_eq!(Angle::from_degrees(-90), Angle(49152));
         assert_eq!(Angle::from_turns(1, 3), Angle(21845));
+    }
+
+    /// Degrees and radians in every form against `round(turns · 65536) mod 65536` in f64.
+    #[test]
+    fn angles_from_degrees_and_radians() {
+        let want = |turns: f64| ((turns * 65536.0).round().rem_euclid(65536.0)) as u16;
+        let mut rng = crate::rng::Rng(0x616e_676c);
+        for _ in 0..100_000 {
+            let d = (rng.next() % 2_000_001) as i32 - 1_000_000;
+            assert_eq!(Angle::from_degrees(d).0, want(f64::from(d) / 360.0), "{d}");
+            let f = d as f64 / 1024.0;
+            assert_eq!(Angle::from_degrees(f).0, want(f / 360.0), "{f}");
+            // Scalar degrees can be ties (half a step): rounded up.
+            let s = Scalar::from_bits(d);
+            let up = (f64::from(d) / 360.0 + 0.5).floor().rem_euclid(65536.0) as u16;
+            assert_eq!(Angle::from_degrees(s).0, up, "{s}");
+            let r = f / 100.0;
+            let got = Angle::from_radians(r).0;
+            let exact = want(r / core::f64::consts::TAU);
+            assert!(
+                got == exact || got.abs_diff(exact) == 1,
+                "{r} rad: {got} vs {exact}"
+            );
+        }
+        assert_eq!(
+            Angle::from_degrees(i32::MIN).0,
+            want(f64::from(i32::MIN) / 360.0)
+        );
+        assert_eq!(Angle::from_degrees(f32::NAN), Angle::ZERO);
+        assert_eq!(Angle::from_degrees(f64::INFINITY), Angle::ZERO);
+        assert_eq!(Angle::from_degrees(22.5f32), Angle(4096));
+        assert_eq!(Angle::from_radians(core::f32::consts::PI), Angle::HALF);
+        assert_eq!(Angle::QUARTER.to_degrees_f32(), 90.0);
+    }
+
+    #[test]
+    fn scalars_from_numbers() {
+        assert_eq!(
+            Vec3::new(1.0, -0.5, 2),
+            Vec3::from_bits(65536, -32768, 2 << 16)
+        );
+        assert_eq!(
+            Vec3::from([0.25f32, 1e9, f32::NAN]).to_bits(),
+            [16384, i32::MAX, 0]
+        );
+        assert_eq!(40_000u32.to_scalar(), Scalar::MAX);
+        assert_eq!((-40_000i32).to_scalar(), Scalar::MIN);
+        assert_eq!(Vec3::new(1.5, 2.25, -3).to_f64(), [1.5, 2.25, -3.0]);
+        let mut rng = crate::rng::Rng(5);
+        for _ in 0..10_000 {
+            let v = (rng.next() as i64 >> 20) as f64 / 1e6;
+            let want = (v * 65536.0).round().clamp(-2147483648.0, 2147483647.0) as i32;
+            let tie = (v * 65536.0).fract().abs() == 0.5;
+            assert!(v.to_scalar().to_bits() == want || tie, "{v}");
+        }
     }
 
     #[test]

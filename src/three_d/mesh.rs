@@ -1,31 +1,282 @@
 //! [`Mesh`]: the indexed triangle mesh the [`Pipeline`](super::Pipeline) draws, a borrowed view of
-//! arrays that typically live in flash.
+//! arrays that typically live in flash, with optional per-vertex normals, colours and texture
+//! coordinates; [`Bounds`] for placing it.
 
-use super::math::Vec3;
+use embedded_graphics::pixelcolor::Rgb888;
+
+use super::math::{Mat4, Scalar, ToScalar, Vec3};
+
+/// A texture coordinate: `u` to the right, `v` up, `(0, 0)` at the bottom-left corner of the
+/// texture image and `(1, 1)` at its top-right (the OBJ and OpenGL convention; values outside
+/// `[0, 1]` are for wrapping textures).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub struct TexCoord {
+    /// Horizontal coordinate.
+    pub u: Scalar,
+    /// Vertical coordinate, up.
+    pub v: Scalar,
+}
+
+impl TexCoord {
+    /// A texture coordinate from floats, integers or [`Scalar`]s (see [`ToScalar`]).
+    pub fn new(u: impl ToScalar, v: impl ToScalar) -> Self {
+        TexCoord {
+            u: u.to_scalar(),
+            v: v.to_scalar(),
+        }
+    }
+
+    /// A texture coordinate from raw `I16F16` bits (`65536` is `1.0`); usable in `const` data.
+    pub const fn from_bits(u: i32, v: i32) -> Self {
+        TexCoord {
+            u: Scalar::from_bits(u),
+            v: Scalar::from_bits(v),
+        }
+    }
+
+    /// The raw components `[u, v]`.
+    pub const fn to_bits(self) -> [i32; 2] {
+        [self.u.to_bits(), self.v.to_bits()]
+    }
+}
 
 /// An indexed triangle mesh, typically in flash (`&'static` slices).
 ///
-/// `normals[i]` is the unit normal of `vertices[i]`; when `normals` is shorter, the missing ones
-/// are taken from the face. Triangles with an index out of range are skipped. Front faces are
-/// counter-clockwise seen from outside (right-handed: the face normal `(v1 − v0) × (v2 − v0)`
-/// points out).
+/// Per vertex `i`: the position `vertices[i]` and, optionally, the unit normal `normals[i]`, the
+/// colour `colors[i]` and the texture coordinate `uvs[i]`. Each optional array is either empty
+/// or exactly as long as `vertices`, and every index refers to a vertex: [`Mesh::validate`]
+/// reports the first violation as a [`MeshError`] (it is a `const fn`, so a `const` mesh can be
+/// checked at compile time). Drawing never panics on an inconsistent mesh: a missing normal is
+/// taken from the face, a triangle with an index out of range is skipped. Front faces are counter-clockwise seen from
+/// outside (right-handed: the face normal `(v1 − v0) × (v2 − v0)` points out).
+///
+/// Colours are [`Rgb888`] whatever the target's format, so one mesh in flash serves every
+/// display; they convert to any embedded-graphics colour with `From`. The pipeline draws with
+/// the [`Material`](super::Material)'s colour today; vertex colours and texture coordinates are
+/// carried for the shading that will use them.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use embedded_raster::three_d::{Mesh, TexCoord, Vec3};
+///
+/// static VERTICES: [Vec3; 3] = [
+///     Vec3::from_bits(0, 0, 0),
+///     Vec3::from_bits(2 << 16, 0, 0),
+///     Vec3::from_bits(0, 2 << 16, 0),
+/// ];
+/// static INDICES: [[u16; 3]; 1] = [[0, 1, 2]];
+/// static COLORS: [Rgb888; 3] = [Rgb888::new(255, 0, 0), Rgb888::new(0, 255, 0), Rgb888::new(0, 0, 255)];
+/// static UVS: [TexCoord; 3] =
+///     [TexCoord::from_bits(0, 0), TexCoord::from_bits(1 << 16, 0), TexCoord::from_bits(0, 1 << 16)];
+/// // No normals: faces give them.
+/// static TRIANGLE: Mesh<'static> = Mesh::new(&VERTICES, &[], &INDICES).with_colors(&COLORS).with_uvs(&UVS);
+///
+/// assert_eq!(TRIANGLE.validate(), Ok(()));
+/// // Checked when compiling, for a `const` mesh:
+/// const CHECKED: Mesh<'static> = Mesh::new(&[Vec3::ZERO; 3], &[], &[[0, 1, 2]]);
+/// const _: () = assert!(CHECKED.validate().is_ok());
+/// let bounds = TRIANGLE.bounds().unwrap();
+/// assert_eq!(bounds.center(), Vec3::new(1, 1, 0));
+/// // A model matrix that centres it on the origin, its largest half-side 1.
+/// let fit = bounds.fit(1);
+/// assert_eq!(fit.transform_point(Vec3::new(2, 2, 0)).to_bits(), [65536, 65536, 0, 65536]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub struct Mesh<'a> {
     /// Model-space positions.
     pub vertices: &'a [Vec3],
-    /// Model-space unit normals, one per vertex.
+    /// Model-space unit normals, one per vertex, or none (face normals).
     pub normals: &'a [Vec3],
     /// Triangles as vertex indices.
     pub indices: &'a [[u16; 3]],
+    /// Vertex colours, one per vertex, or none.
+    pub colors: &'a [Rgb888],
+    /// Texture coordinates, one per vertex, or none.
+    pub uvs: &'a [TexCoord],
+}
+
+/// What [`Mesh::validate`] found wrong.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MeshError {
+    /// An optional per-vertex array is neither empty nor as long as `vertices`.
+    Length {
+        /// `"normals"`, `"colors"` or `"uvs"`.
+        array: &'static str,
+        /// Its length.
+        len: usize,
+        /// The number of vertices.
+        vertices: usize,
+    },
+    /// A triangle refers to a vertex that does not exist (the pipeline skips it).
+    Index {
+        /// The triangle's position in `indices`.
+        triangle: usize,
+        /// The index out of range.
+        index: u16,
+    },
+}
+
+impl core::fmt::Display for MeshError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            MeshError::Length {
+                array,
+                len,
+                vertices,
+            } => write!(
+                f,
+                "mesh has {len} {array} for {vertices} vertices (need 0 or {vertices})"
+            ),
+            MeshError::Index { triangle, index } => {
+                write!(
+                    f,
+                    "triangle {triangle} refers to vertex {index}, which does not exist"
+                )
+            }
+        }
+    }
+}
+
+/// Whether an optional per-vertex array of `len` suits `vertices` vertices.
+const fn fits(len: usize, vertices: usize) -> bool {
+    len == 0 || len == vertices
 }
 
 impl<'a> Mesh<'a> {
-    /// A mesh from its arrays.
+    /// A mesh from its positions, normals (or `&[]` for face normals) and triangles, without
+    /// colours or texture coordinates.
     pub const fn new(vertices: &'a [Vec3], normals: &'a [Vec3], indices: &'a [[u16; 3]]) -> Self {
         Mesh {
             vertices,
             normals,
             indices,
+            colors: &[],
+            uvs: &[],
         }
+    }
+
+    /// This mesh with `normals`, one per vertex (or none).
+    pub const fn with_normals(mut self, normals: &'a [Vec3]) -> Self {
+        self.normals = normals;
+        self
+    }
+
+    /// This mesh with vertex colours, one per vertex (or none).
+    pub const fn with_colors(mut self, colors: &'a [Rgb888]) -> Self {
+        self.colors = colors;
+        self
+    }
+
+    /// This mesh with texture coordinates, one per vertex (or none).
+    pub const fn with_uvs(mut self, uvs: &'a [TexCoord]) -> Self {
+        self.uvs = uvs;
+        self
+    }
+
+    /// Checks that every optional array is empty or one per vertex and that every index refers
+    /// to a vertex; the first problem found, else `Ok`. (Drawing never fails on these: triangles
+    /// with a bad index are skipped, missing normals come from the face.)
+    pub const fn validate(&self) -> Result<(), MeshError> {
+        let vertices = self.vertices.len();
+        let arrays = [
+            ("normals", self.normals.len()),
+            ("colors", self.colors.len()),
+            ("uvs", self.uvs.len()),
+        ];
+        let mut k = 0;
+        while k < arrays.len() {
+            let (array, len) = arrays[k];
+            if !fits(len, vertices) {
+                return Err(MeshError::Length {
+                    array,
+                    len,
+                    vertices,
+                });
+            }
+            k += 1;
+        }
+        let mut triangle = 0;
+        while triangle < self.indices.len() {
+            let face = self.indices[triangle];
+            let mut c = 0;
+            while c < 3 {
+                if face[c] as usize >= vertices {
+                    return Err(MeshError::Index {
+                        triangle,
+                        index: face[c],
+                    });
+                }
+                c += 1;
+            }
+            triangle += 1;
+        }
+        Ok(())
+    }
+
+    /// The axis-aligned box around all vertices, or `None` for a mesh without vertices.
+    pub fn bounds(&self) -> Option<Bounds> {
+        let (first, rest) = self.vertices.split_first()?;
+        let mut b = Bounds {
+            min: *first,
+            max: *first,
+        };
+        for v in rest {
+            b.min = Vec3::new(b.min.x.min(v.x), b.min.y.min(v.y), b.min.z.min(v.z));
+            b.max = Vec3::new(b.max.x.max(v.x), b.max.y.max(v.y), b.max.z.max(v.z));
+        }
+        Some(b)
+    }
+}
+
+/// An axis-aligned box, `min ≤ max` componentwise: a mesh's [`bounds`](Mesh::bounds).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Bounds {
+    /// The smallest coordinates.
+    pub min: Vec3,
+    /// The largest coordinates.
+    pub max: Vec3,
+}
+
+impl Bounds {
+    /// The centre, rounded to the nearest 2⁻¹⁶ (ties up).
+    pub fn center(&self) -> Vec3 {
+        let mid = |a: Scalar, b: Scalar| {
+            Scalar::from_bits(((i64::from(a.to_bits()) + i64::from(b.to_bits()) + 1) >> 1) as i32)
+        };
+        Vec3::new(
+            mid(self.min.x, self.max.x),
+            mid(self.min.y, self.max.y),
+            mid(self.min.z, self.max.z),
+        )
+    }
+
+    /// The side lengths `max − min` (saturating beyond 32768).
+    pub fn size(&self) -> Vec3 {
+        self.max - self.min
+    }
+
+    /// The translation that moves the centre to the origin: a model matrix that re-centres the
+    /// mesh.
+    pub fn centering(&self) -> Mat4 {
+        Mat4::translation(-self.center())
+    }
+
+    /// A model matrix that centres the box on the origin and scales it uniformly so that its
+    /// largest half-side is `half_extent` (a float, an integer or a [`Scalar`]); a box of zero
+    /// size is only centred.
+    pub fn fit(&self, half_extent: impl ToScalar) -> Mat4 {
+        let size = self.size().to_bits().map(i64::from);
+        let largest = size.into_iter().max().unwrap_or(0);
+        if largest <= 0 {
+            return self.centering();
+        }
+        // Scale = half_extent / (largest / 2), rounded once.
+        let target = i64::from(half_extent.to_scalar().to_bits());
+        let q = ((target << 18) + largest).div_euclid(2 * largest);
+        let scale = Scalar::from_bits(q.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
+        Mat4::scaling(scale) * self.centering()
     }
 }

@@ -4,7 +4,8 @@
 //!   faces) are `static` arrays, generated on the host by `icosphere()` / `torus()` and
 //!   `MeshData::to_rust_source` (feature `std`); firmware draws them straight from flash.
 //! * `MeshData` is an owned mesh for the host: generate one, load one from an OBJ file (module
-//!   `obj`, feature `std`), and write it out as Rust source for firmware.
+//!   `obj`, feature `std`), weld, re-centre or scale it, and write it out as Rust source for
+//!   firmware (with its vertex colours and texture coordinates, if it has them).
 //!
 //! ```
 //! use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
@@ -27,18 +28,26 @@ mod host {
     use std::vec;
     use std::vec::Vec;
 
-    use crate::three_d::math::{Scalar, Vec3};
-    use crate::three_d::Mesh;
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-    /// An owned mesh on the host.
+    use crate::three_d::math::{Scalar, Vec3};
+    use crate::three_d::{Bounds, Mesh, MeshError, TexCoord};
+
+    /// An owned mesh on the host: the arrays of a [`Mesh`], in `Vec`s.
+    ///
+    /// `normals`, `colors` and `uvs` are each empty or one per vertex, as in [`Mesh`].
     #[derive(Debug, Clone, PartialEq, Eq, Default)]
     pub struct MeshData {
         /// Positions.
         pub vertices: Vec<Vec3>,
-        /// Unit normals, one per vertex.
+        /// Unit normals, one per vertex (or none).
         pub normals: Vec<Vec3>,
         /// Triangles, counter-clockwise seen from outside.
         pub indices: Vec<[u16; 3]>,
+        /// Vertex colours, one per vertex (or none).
+        pub colors: Vec<Rgb888>,
+        /// Texture coordinates, one per vertex (or none).
+        pub uvs: Vec<TexCoord>,
     }
 
     /// The nearest `I16F16` to `v` (saturating).
@@ -83,9 +92,107 @@ mod host {
     }
 
     impl MeshData {
-        /// A borrowed [`Mesh`] view, for drawing.
+        /// A borrowed [`Mesh`] view, for drawing (check it with [`validate`](Self::validate)).
         pub fn as_mesh(&self) -> Mesh<'_> {
             Mesh::new(&self.vertices, &self.normals, &self.indices)
+                .with_colors(&self.colors)
+                .with_uvs(&self.uvs)
+        }
+
+        /// [`Mesh::validate`] of this mesh: array lengths and indices.
+        pub fn validate(&self) -> Result<(), MeshError> {
+            self.as_mesh().validate()
+        }
+
+        /// The box around all vertices ([`Mesh::bounds`]).
+        pub fn bounds(&self) -> Option<Bounds> {
+            self.as_mesh().bounds()
+        }
+
+        /// Moves the vertices so that the centre of their box is the origin.
+        pub fn recenter(&mut self) {
+            if let Some(b) = self.bounds() {
+                let c = b.center();
+                for v in &mut self.vertices {
+                    *v = *v - c;
+                }
+            }
+        }
+
+        /// Centres the vertices on the origin and scales them uniformly so that the largest
+        /// half-side of their box is `half_extent` (computed in `f64`, each coordinate rounded
+        /// once); a mesh of zero size is only centred. Normals keep their directions.
+        pub fn scale_to_fit(&mut self, half_extent: f64) {
+            let Some(b) = self.bounds() else {
+                return;
+            };
+            let (lo, hi) = (to_f64(b.min), to_f64(b.max));
+            let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+            let largest = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max) / 2.0;
+            let scale = if largest > 0.0 {
+                half_extent / largest
+            } else {
+                1.0
+            };
+            for v in &mut self.vertices {
+                let p = to_f64(*v);
+                *v = vec3([0, 1, 2].map(|k| (p[k] - centre[k]) * scale));
+            }
+        }
+
+        /// Merges vertices that agree in everything they carry (position, normal, colour,
+        /// texture coordinate): the triangles refer to the first of each group, unused vertices
+        /// are dropped, the order of first use is kept. Returns how many vertices were removed.
+        pub fn weld(&mut self) -> usize {
+            type Key = ([i32; 3], Option<[i32; 3]>, Option<Rgb888>, Option<[i32; 2]>);
+            let key = |i: usize| -> Key {
+                (
+                    self.vertices[i].to_bits(),
+                    self.normals.get(i).map(|n| n.to_bits()),
+                    self.colors.get(i).copied(),
+                    self.uvs.get(i).map(|t| t.to_bits()),
+                )
+            };
+            let before = self.vertices.len();
+            let mut first: HashMap<Key, u16> = HashMap::new();
+            let mut kept: Vec<usize> = Vec::new();
+            let mut indices = self.indices.clone();
+            for face in &mut indices {
+                for i in face.iter_mut() {
+                    let k = key(usize::from(*i));
+                    *i = *first.entry(k).or_insert_with(|| {
+                        kept.push(usize::from(*i));
+                        (kept.len() - 1) as u16
+                    });
+                }
+            }
+            let pick = |v: &[Vec3]| -> Vec<Vec3> {
+                if v.is_empty() {
+                    Vec::new()
+                } else {
+                    kept.iter().map(|&i| v[i]).collect()
+                }
+            };
+            let vertices = pick(&self.vertices);
+            let normals = pick(&self.normals);
+            let colors = if self.colors.is_empty() {
+                Vec::new()
+            } else {
+                kept.iter().map(|&i| self.colors[i]).collect()
+            };
+            let uvs = if self.uvs.is_empty() {
+                Vec::new()
+            } else {
+                kept.iter().map(|&i| self.uvs[i]).collect()
+            };
+            *self = MeshData {
+                vertices,
+                normals,
+                indices,
+                colors,
+                uvs,
+            };
+            before - self.vertices.len()
         }
 
         /// Builds a mesh from `f64` positions and normals, orienting every face so that its
@@ -123,25 +230,44 @@ mod host {
                 vertices: positions.iter().map(|p| vec3(*p)).collect(),
                 normals: normals.iter().map(|n| vec3(normalize(*n))).collect(),
                 indices,
+                ..MeshData::default()
             }
         }
 
         /// Rust source declaring this mesh as `static` arrays for firmware: `{NAME}_VERTICES`,
-        /// `{NAME}_NORMALS`, `{NAME}_INDICES` and a `Mesh<'static>` called `{NAME}`. Statics are
-        /// stored once, in flash (`.rodata`). `crate_path` is how the generated file names this
-        /// crate: `embedded_raster` from another crate, `crate` inside it.
+        /// `{NAME}_NORMALS`, `{NAME}_INDICES`, `{NAME}_COLORS` and `{NAME}_UVS` (the last two
+        /// only if the mesh has colours or texture coordinates) and a `Mesh<'static>` called
+        /// `{NAME}`. Statics are stored once, in flash (`.rodata`). `crate_path` is how the
+        /// generated file names this crate: `embedded_raster` from another crate, `crate` inside
+        /// it; colours name `embedded_graphics::pixelcolor::Rgb888`.
         pub fn to_rust_source(&self, name: &str, crate_path: &str) -> String {
             let mut s = String::new();
             let n = self.vertices.len();
+            let (colors, uvs) = (!self.colors.is_empty(), !self.uvs.is_empty());
             s += "//! Generated by `embedded_raster::three_d::meshes::MeshData::to_rust_source`; do not edit.\n\n";
-            s += &format!("use {crate_path}::three_d::{{Mesh, Vec3}};\n\n");
-            s += &format!("/// `{name}` with its normals and indices.\n");
-            s += &format!(
-                "pub static {name}: Mesh<'static> = Mesh::new(&{name}_VERTICES, &{name}_NORMALS, &{name}_INDICES);\n\n"
-            );
+            if colors {
+                s += "use embedded_graphics::pixelcolor::Rgb888;\n";
+            }
+            let tex = if uvs { ", TexCoord" } else { "" };
+            s += &format!("use {crate_path}::three_d::{{Mesh{tex}, Vec3}};\n\n");
+            let what = match (colors, uvs) {
+                (false, false) => "its normals and indices",
+                (true, false) => "its normals, indices and vertex colours",
+                (false, true) => "its normals, indices and texture coordinates",
+                (true, true) => "its normals, indices, vertex colours and texture coordinates",
+            };
+            s += &format!("/// `{name}` with {what}.\n");
+            let mut mesh = format!("Mesh::new(&{name}_VERTICES, &{name}_NORMALS, &{name}_INDICES)");
+            if colors {
+                mesh += &format!(".with_colors(&{name}_COLORS)");
+            }
+            if uvs {
+                mesh += &format!(".with_uvs(&{name}_UVS)");
+            }
+            s += &format!("pub static {name}: Mesh<'static> = {mesh};\n\n");
             let vecs = |s: &mut String, what: &str, suffix: &str, v: &[Vec3]| {
                 *s += &format!("/// {what} of `{name}` (`I16F16` bits).\n");
-                *s += &format!("pub static {name}_{suffix}: [Vec3; {n}] = [\n");
+                *s += &format!("pub static {name}_{suffix}: [Vec3; {}] = [\n", v.len());
                 for p in v {
                     let [x, y, z] = p.to_bits();
                     *s += &format!("    Vec3::from_bits({x}, {y}, {z}),\n");
@@ -159,6 +285,23 @@ mod host {
                 s += &format!("    [{a}, {b}, {c}],\n");
             }
             s += "];\n";
+            if colors {
+                s += &format!("\n/// Vertex colours of `{name}`.\n");
+                s += &format!("pub static {name}_COLORS: [Rgb888; {n}] = [\n");
+                for c in &self.colors {
+                    s += &format!("    Rgb888::new({}, {}, {}),\n", c.r(), c.g(), c.b());
+                }
+                s += "];\n";
+            }
+            if uvs {
+                s += &format!("\n/// Texture coordinates of `{name}` (`I16F16` bits).\n");
+                s += &format!("pub static {name}_UVS: [TexCoord; {n}] = [\n");
+                for t in &self.uvs {
+                    let [u, v] = t.to_bits();
+                    s += &format!("    TexCoord::from_bits({u}, {v}),\n");
+                }
+                s += "];\n";
+            }
             s
         }
     }

@@ -2,8 +2,12 @@
 //! a 16-bit z-buffer.
 //!
 //! * `math` — [`Scalar`] (`I16F16`), [`Vec3`], [`Vec4`], [`Mat4`] and [`Angle`]: integer
-//!   arithmetic with wide accumulation, no floats.
-//! * `mesh` — [`Mesh`]: positions, normals and triangles, borrowed (typically from flash).
+//!   arithmetic with wide accumulation, no floats (conversions from floats: [`ToScalar`],
+//!   [`Degrees`]).
+//! * `camera` — projections ([`Mat4::perspective`], [`Mat4::orthographic`]), views
+//!   ([`Mat4::look_at`], [`Mat4::orbit`]), [`Mat4::inverse`] and [`Mat4::normal_matrix`].
+//! * `mesh` — [`Mesh`]: positions, triangles and optional normals, colours and texture
+//!   coordinates ([`TexCoord`]), borrowed (typically from flash); [`Bounds`] to place it.
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
 //! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
 //!   per-pixel lighting of quadratically interpolated normals).
@@ -14,6 +18,7 @@
 //!   generate them; [`obj`] reads Wavefront OBJ files (host).
 
 mod band;
+mod camera;
 mod clip;
 mod depth;
 mod math;
@@ -25,9 +30,11 @@ mod pipeline;
 mod shading;
 mod vertex;
 
-pub use depth::{DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
-pub use math::{inv_sqrt, normalize_wide, Angle, Mat4, Scalar, Vec3, Vec4, SCALAR_BITS};
-pub use mesh::Mesh;
+pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
+pub use math::{
+    inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
+};
+pub use mesh::{Bounds, Mesh, MeshError, TexCoord};
 pub(crate) use pipeline::{fit_scratch, FaceSink, Frame};
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub(crate) use shading::TargetClip;

@@ -1,15 +1,27 @@
 //! A small Wavefront OBJ loader and writer for the host (`std` feature).
 //!
-//! [`parse`] reads `v`, `vn` and `f` statements (faces with `v`, `v/vt`, `v//vn` or `v/vt/vn`
-//! references, 1-based or negative, polygons fanned into triangles) into a
-//! `MeshData` ([`meshes::MeshData`](crate::three_d::meshes::MeshData)) and ignores everything else (`vt`, `o`, `g`, `s`,
-//! materials, comments). A vertex is emitted per distinct position/normal pair; vertices whose
-//! faces give no normal get the normalised area-weighted mean of their faces' normals; explicit
-//! normals are kept as written. Vertices come out sorted by (position, normal) index, unused
-//! positions are dropped. [`to_obj`] writes a
-//! mesh back out exactly (every `I16F16` value prints as a decimal that parses back to it), and
-//! [`MeshData::to_rust_source`](crate::three_d::meshes::MeshData::to_rust_source) turns it into `static`
-//! arrays for firmware.
+//! [`parse`] reads `v` (with the common `v x y z r g b` vertex-colour extension), `vt`, `vn`
+//! and `f` statements (faces with `v`, `v/vt`, `v//vn` or `v/vt/vn` references, 1-based or
+//! negative, polygons fanned into triangles) into a `MeshData`
+//! ([`meshes::MeshData`](crate::three_d::meshes::MeshData)) and ignores everything else (`o`,
+//! `g`, `s`, materials, comments).
+//!
+//! **Welding.** Face corners become one vertex when their position, normal, texture coordinate
+//! and colour are equal as the mesh stores them (`I16F16`, 8-bit colour; computed normals and
+//! the defaults for missing colours and texture coordinates included), whether or not the file
+//! repeats them on separate lines; vertices whose faces give no normal get the normalised area-weighted
+//! mean of the normals of all faces around their *position*, so models that repeat positions
+//! along patch borders (the Utah teapot) shade without seams. [`parse_with`] with
+//! `weld: false` keeps a vertex per distinct `v/vt/vn` reference instead. Explicit normals are
+//! kept as written (the pipeline normalises what it uses). Vertices come out sorted by their
+//! first (`v`, `vt`, `vn`) reference; unused lines are dropped. The mesh has colours if any used
+//! `v` line has them (white for those that do not) and texture coordinates if any face corner
+//! has one (`(0, 0)` for those that do not).
+//!
+//! [`to_obj`] writes a mesh back out exactly (every `I16F16` value prints as a decimal that
+//! parses back to it), and
+//! [`MeshData::to_rust_source`](crate::three_d::meshes::MeshData::to_rust_source) turns it into
+//! `static` arrays for firmware.
 //!
 //! ```
 //! use embedded_raster::three_d::obj;
@@ -18,6 +30,10 @@
 //! assert_eq!(mesh.indices, vec![[0, 1, 2]]);
 //! assert_eq!(mesh.normals[0].z.to_num::<f64>(), 1.0);
 //! assert_eq!(obj::parse(&obj::to_obj(&mesh)).unwrap(), mesh);
+//!
+//! // Two triangles that repeat their shared positions weld into four vertices.
+//! let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 1 0\nv 0 1 0\nv 0 0 0\nf 1 2 3\nf 4 5 6\n";
+//! assert_eq!(obj::parse(quad).unwrap().vertices.len(), 4);
 //! ```
 
 use std::collections::HashMap;
@@ -26,7 +42,10 @@ use std::format;
 use std::string::String;
 use std::vec::Vec;
 
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
 use crate::three_d::meshes::{to_f64, vec3, MeshData};
+use crate::three_d::{TexCoord, Vec3};
 
 /// Why an OBJ file could not be read.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -80,13 +99,39 @@ fn index(line: usize, word: &str, count: usize) -> Result<usize, ObjError> {
     Ok(resolved as usize)
 }
 
-/// Parses OBJ text into a triangle mesh.
+/// How [`parse_with`] builds vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ParseOptions {
+    /// Merge face corners whose stored position, normal, texture coordinate and colour are
+    /// equal, and compute missing normals around each position (see the module docs). When
+    /// `false`: a vertex per distinct `v/vt/vn` reference, missing normals per `v` line.
+    pub weld: bool,
+}
+
+impl Default for ParseOptions {
+    /// Welding on.
+    fn default() -> Self {
+        ParseOptions { weld: true }
+    }
+}
+
+/// Parses OBJ text into a triangle mesh, welding vertices ([`ParseOptions::default`]).
 pub fn parse(src: &str) -> Result<MeshData, ObjError> {
+    parse_with(src, ParseOptions::default())
+}
+
+/// A face corner's references: position, texture coordinate, normal (0-based).
+type Reference = (usize, Option<usize>, Option<usize>);
+
+/// Parses OBJ text into a triangle mesh with `options`.
+pub fn parse_with(src: &str, options: ParseOptions) -> Result<MeshData, ObjError> {
     let mut positions: Vec<[f64; 3]> = Vec::new();
+    let mut colors: Vec<Option<[f64; 3]>> = Vec::new();
+    let mut texcoords: Vec<[f64; 2]> = Vec::new();
     let mut normals: Vec<[f64; 3]> = Vec::new();
-    // Output vertices: (position index, normal index or None).
-    let mut keys: Vec<(usize, Option<usize>)> = Vec::new();
-    let mut lookup: HashMap<(usize, Option<usize>), usize> = HashMap::new();
+    // Distinct corner references, and the triangles as indices into them.
+    let mut refs: Vec<Reference> = Vec::new();
+    let mut ref_ids: HashMap<Reference, usize> = HashMap::new();
     let mut faces: Vec<[usize; 3]> = Vec::new();
     for (n, raw) in src.lines().enumerate() {
         let line = n + 1;
@@ -96,7 +141,18 @@ pub fn parse(src: &str) -> Result<MeshData, ObjError> {
             continue;
         };
         match head {
-            "v" => positions.push(floats(line, rest, 3)?),
+            "v" => {
+                positions.push(floats(line, rest, 3)?);
+                colors.push(if rest.len() >= 6 {
+                    Some(floats(line, &rest[3..], 3)?)
+                } else {
+                    None
+                });
+            }
+            "vt" => {
+                let [u, v, _] = floats(line, rest, 1)?;
+                texcoords.push([u, v]);
+            }
             "vn" => normals.push(floats(line, rest, 3)?),
             "f" => {
                 if rest.len() < 3 {
@@ -106,15 +162,16 @@ pub fn parse(src: &str) -> Result<MeshData, ObjError> {
                 for w in rest {
                     let mut parts = w.split('/');
                     let p = index(line, parts.next().unwrap_or(""), positions.len())?;
-                    let _texture = parts.next();
-                    let nrm = match parts.next() {
-                        Some(s) if !s.is_empty() => Some(index(line, s, normals.len())?),
-                        _ => None,
+                    let mut optional = |count: usize| match parts.next() {
+                        Some(s) if !s.is_empty() => index(line, s, count).map(Some),
+                        _ => Ok(None),
                     };
-                    let key = (p, nrm);
-                    let id = *lookup.entry(key).or_insert_with(|| {
-                        keys.push(key);
-                        keys.len() - 1
+                    let t = optional(texcoords.len())?;
+                    let nrm = optional(normals.len())?;
+                    let key = (p, t, nrm);
+                    let id = *ref_ids.entry(key).or_insert_with(|| {
+                        refs.push(key);
+                        refs.len() - 1
                     });
                     corner.push(id);
                 }
@@ -125,13 +182,20 @@ pub fn parse(src: &str) -> Result<MeshData, ObjError> {
             _ => {}
         }
     }
-    if keys.len() > 65536 {
-        return Err(err(0, "more than 65536 distinct vertices"));
-    }
-    // Area-weighted face normals per position, for vertices without an explicit normal.
-    let mut smooth = vec_zero(positions.len());
+
+    let has_colors = refs.iter().any(|r| colors[r.0].is_some());
+    let has_uvs = refs.iter().any(|r| r.1.is_some());
+    // Smooth normals around each position (welded: by stored value; else by `v` line).
+    let around = |p: usize| -> [i64; 3] {
+        if options.weld {
+            vec3(positions[p]).to_bits().map(i64::from)
+        } else {
+            [p as i64, 0, 0]
+        }
+    };
+    let mut smooth: HashMap<[i64; 3], [f64; 3]> = HashMap::new();
     for f in &faces {
-        let p = f.map(|i| positions[keys[i].0]);
+        let p = f.map(|i| positions[refs[i].0]);
         let e1 = [0, 1, 2].map(|k| p[1][k] - p[0][k]);
         let e2 = [0, 1, 2].map(|k| p[2][k] - p[0][k]);
         let c = [
@@ -139,25 +203,27 @@ pub fn parse(src: &str) -> Result<MeshData, ObjError> {
             e1[2] * e2[0] - e1[0] * e2[2],
             e1[0] * e2[1] - e1[1] * e2[0],
         ];
+        // Each position of the face once (a welded face may repeat one).
+        let mut seen: Vec<[i64; 3]> = Vec::with_capacity(3);
         for &i in f {
-            for k in 0..3 {
-                smooth[keys[i].0][k] += c[k];
+            let key = around(refs[i].0);
+            if !seen.contains(&key) {
+                seen.push(key);
+                let sum = smooth.entry(key).or_insert([0.0; 3]);
+                for k in 0..3 {
+                    sum[k] += c[k];
+                }
             }
         }
     }
-    // Output vertices in (position, normal) order: files written by `to_obj` come back unchanged.
-    let mut order: Vec<usize> = (0..keys.len()).collect();
-    order.sort_by_key(|&i| keys[i]);
-    let mut remap = std::vec![0u16; keys.len()];
-    let mut mesh = MeshData::default();
-    for (new, &old) in order.iter().enumerate() {
-        remap[old] = new as u16;
-        let (p, nrm) = keys[old];
+    // What the vertex of a reference stores, exactly as the mesh will hold it.
+    let vertex_of = |r: &Reference| -> StoredVertex {
+        let (p, t, nrm) = *r;
         let normal = match nrm {
             // Explicit normals are kept as written (the pipeline normalises what it uses).
             Some(i) => normals[i],
             None => {
-                let n = smooth[p];
+                let n = smooth.get(&around(p)).copied().unwrap_or([0.0; 3]);
                 let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
                 if l > 0.0 {
                     n.map(|c| c / l)
@@ -166,36 +232,119 @@ pub fn parse(src: &str) -> Result<MeshData, ObjError> {
                 }
             }
         };
-        mesh.vertices.push(vec3(positions[p]));
-        mesh.normals.push(vec3(normal));
+        StoredVertex {
+            position: vec3(positions[p]),
+            normal: vec3(normal),
+            color: has_colors.then(|| colors[p].map_or(Rgb888::WHITE, rgb888)),
+            uv: has_uvs.then(|| t.map_or(TexCoord::default(), |t| uv(texcoords[t]))),
+        }
+    };
+    // Welding groups: vertices that store the same values, or distinct references.
+    let group = |r: &Reference| -> (StoredVertex, Option<Reference>) {
+        (vertex_of(r), (!options.weld).then_some(*r))
+    };
+
+    // One output vertex per group, ordered by its first reference.
+    let mut groups: HashMap<(StoredVertex, Option<Reference>), usize> = HashMap::new();
+    let mut first: Vec<Reference> = Vec::new();
+    let ref_group: Vec<usize> = refs
+        .iter()
+        .map(|r| {
+            let id = *groups.entry(group(r)).or_insert_with(|| {
+                first.push(*r);
+                first.len() - 1
+            });
+            if *r < first[id] {
+                first[id] = *r;
+            }
+            id
+        })
+        .collect();
+    if first.len() > 65536 {
+        return Err(err(0, "more than 65536 distinct vertices"));
     }
-    mesh.indices = faces.iter().map(|f| f.map(|i| remap[i])).collect();
+    let mut order: Vec<usize> = (0..first.len()).collect();
+    order.sort_by_key(|&g| first[g]);
+    let mut remap = std::vec![0u16; first.len()];
+    let mut mesh = MeshData::default();
+    for (new, &g) in order.iter().enumerate() {
+        remap[g] = new as u16;
+        let v = vertex_of(&first[g]);
+        mesh.vertices.push(v.position);
+        mesh.normals.push(v.normal);
+        mesh.colors.extend(v.color);
+        mesh.uvs.extend(v.uv);
+    }
+    mesh.indices = faces
+        .iter()
+        .map(|f| f.map(|i| remap[ref_group[i]]))
+        .collect();
     Ok(mesh)
 }
 
-fn vec_zero(n: usize) -> Vec<[f64; 3]> {
-    std::vec![[0.0; 3]; n]
+/// An output vertex, as stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+struct StoredVertex {
+    position: Vec3,
+    normal: Vec3,
+    color: Option<Rgb888>,
+    uv: Option<TexCoord>,
 }
 
-/// Writes a mesh as OBJ text (`v`, `vn`, and `f v//vn` lines), whatever its fields hold.
+/// A colour with channels in `[0, 1]` as 8-bit channels (rounded, clamped).
+fn rgb888(c: [f64; 3]) -> Rgb888 {
+    let q = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    Rgb888::new(q(c[0]), q(c[1]), q(c[2]))
+}
+
+fn uv(t: [f64; 2]) -> TexCoord {
+    TexCoord::new(t[0], t[1])
+}
+
+/// Writes a mesh as OBJ text, whatever its fields hold: `v` lines (with `r g b` in `[0, 1]` for
+/// vertices that have a colour), `vt` and `vn` lines for the texture coordinates and normals it
+/// has, and `f` lines referring to the same index in each.
 ///
-/// For a mesh [`parse`] could have produced — one normal per vertex, every index in range, every
-/// vertex used by a face — parsing the result gives back the same mesh, bit for bit. Otherwise
-/// `parse` rejects the text (a face naming a missing vertex or normal) or drops the unused
-/// vertices.
+/// For a mesh [`parse`] could have produced — normals, and colours and texture coordinates if
+/// any, one per vertex; every index in range; every vertex used by a face; no two vertices
+/// that would weld — parsing the result gives back the same mesh, bit for bit. Otherwise
+/// `parse` rejects the text (a face naming a missing vertex) or drops the unused vertices and
+/// welds the equal ones.
 pub fn to_obj(mesh: &MeshData) -> String {
     let mut s = String::from("# written by embedded_raster::three_d::obj\n");
-    for v in &mesh.vertices {
+    for (i, v) in mesh.vertices.iter().enumerate() {
         let [x, y, z] = to_f64(*v);
-        s += &format!("v {x} {y} {z}\n");
+        s += &format!("v {x} {y} {z}");
+        if let Some(c) = mesh.colors.get(i) {
+            let [r, g, b] = [c.r(), c.g(), c.b()].map(|c| f64::from(c) / 255.0);
+            s += &format!(" {r} {g} {b}");
+        }
+        s += "\n";
+    }
+    for t in &mesh.uvs {
+        let [u, v] = [t.u, t.v].map(|c| c.to_num::<f64>());
+        s += &format!("vt {u} {v}\n");
     }
     for n in &mesh.normals {
         let [x, y, z] = to_f64(*n);
         s += &format!("vn {x} {y} {z}\n");
     }
+    let has = |len: usize, i: u32| len > i as usize - 1;
     for f in &mesh.indices {
-        let [a, b, c] = f.map(|i| u32::from(i) + 1);
-        s += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
+        s += "f";
+        for i in f.map(|i| u32::from(i) + 1) {
+            let t = if has(mesh.uvs.len(), i) {
+                format!("{i}")
+            } else {
+                String::new()
+            };
+            s += &match (t.is_empty(), has(mesh.normals.len(), i)) {
+                (true, false) => format!(" {i}"),
+                (false, false) => format!(" {i}/{t}"),
+                (_, true) => format!(" {i}/{t}/{i}"),
+            };
+        }
+        s += "\n";
     }
     s
 }

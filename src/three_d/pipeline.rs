@@ -109,13 +109,32 @@ pub fn signed_area2(v: [(Coord, Coord); 3]) -> i128 {
 }
 
 /// Model-view-projection, viewport, light and culling: everything needed to draw meshes.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
+/// use embedded_raster::three_d::meshes::torus::TORUS;
+/// use embedded_raster::{Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+///
+/// let (mut pixels, mut depth) = ([Rgb888::BLACK; 64 * 64], [0u16; 64 * 64]);
+/// let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 64).unwrap();
+/// let camera = Mat4::perspective(Angle::from_degrees(45), 1, 0.5, 20)
+///     * Mat4::orbit(Vec3::ZERO, 4, Angle::from_degrees(20), Angle::from_degrees(35.5));
+/// let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
+/// let mut pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+/// pipeline.cull = Cull::None; // both sides
+/// let stats = pipeline.draw_mesh(&TORUS, &Material::new(Rgb888::WHITE, Shading::Gouraud), &mut target);
+/// assert_eq!(stats.drawn, 192);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Pipeline {
     /// Model space to clip space.
     pub mvp: Mat4,
     /// Transforms model-space normals into the light's space (only the 3×3 block is used);
     /// the inverse transpose of the model matrix, which for rotations and uniform scaling is the
-    /// model matrix itself.
+    /// model matrix itself (any positive multiple will do: normals are renormalised).
+    /// [`Pipeline::with_inverse_transpose`] sets it for any invertible model matrix.
     pub normal_matrix: Mat4,
     /// Where normalised device coordinates `[−1, 1]²` land on the target (at most 65535 pixels
     /// a side); also the scissor rectangle. Any `Rectangle` is accepted: only its part inside the
@@ -149,6 +168,33 @@ impl Pipeline {
             cull: Cull::Back,
             light,
         }
+    }
+
+    /// A pipeline like [`new`](Self::new) whose normals are transformed by the inverse transpose
+    /// of `model` ([`Mat4::normal_matrix`]), so they stay perpendicular to surfaces under
+    /// non-uniform scale and shear; `None` if `model` is singular.
+    ///
+    /// ```
+    /// # use embedded_graphics::{prelude::*, primitives::Rectangle};
+    /// use embedded_raster::three_d::{Light, Mat4, Pipeline, Vec3};
+    ///
+    /// let mut model = Mat4::scaling(2);
+    /// model.rows[1][1] = embedded_raster::three_d::Scalar::from_num(0.5); // squash y
+    /// # let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
+    /// let pipeline =
+    ///     Pipeline::with_inverse_transpose(model, Mat4::IDENTITY, viewport, Light::default());
+    /// assert_eq!(pipeline.unwrap().normal_matrix, model.normal_matrix().unwrap());
+    /// ```
+    pub fn with_inverse_transpose(
+        model: Mat4,
+        view_projection: Mat4,
+        viewport: Rectangle,
+        light: Light,
+    ) -> Option<Self> {
+        Some(Pipeline {
+            normal_matrix: model.normal_matrix()?,
+            ..Pipeline::new(model, view_projection, viewport, light)
+        })
     }
 
     /// The clip-space position of a model-space point.
@@ -437,8 +483,11 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 }
             }
             // Each vertex by name: no index to check.
-            let ([pa, pb, pc], [ia, ib, ic]) = (model, idx);
-            let [a, b, c] = [(ia, pa), (ib, pb), (ic, pc)].map(|(i, p)| self.vertex(mesh, i, p));
+            let (a, b, c) = (
+                self.vertex(mesh, idx[0], model[0]),
+                self.vertex(mesh, idx[1], model[1]),
+                self.vertex(mesh, idx[2], model[2]),
+            );
             self.face(mesh, k, &idx, || model, [&a, &b, &c], sink, &mut stats);
         }
         stats
@@ -453,9 +502,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     /// Every vertex of `mesh` transformed, projected and lit into `scratch` (one entry each).
     #[inline(never)]
     pub(crate) fn project(&self, mesh: &Mesh<'_>, scratch: &mut [ProjectedVertex]) {
-        for (k, (out, p)) in scratch.iter_mut().zip(mesh.vertices).enumerate() {
-            *out = self.vertex(mesh, k, *p);
-        }
+        self.stage.vertices(mesh.vertices, mesh.normals, scratch);
     }
 
     /// Hands every face of `mesh` to `sink`, its vertices read from `scratch` (one entry per

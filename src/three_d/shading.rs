@@ -95,9 +95,9 @@ impl<C> Material<C> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Light {
     /// Unit vector from the surface towards the light (same space as the normals).
-    pub direction: Vec3,
+    pub(crate) direction: Vec3,
     /// Light level of surfaces facing away, in `[0, 1]`.
-    pub ambient: Scalar,
+    pub(crate) ambient: Scalar,
 }
 
 impl Default for Light {
@@ -114,6 +114,16 @@ impl Light {
             direction: direction.normalize(),
             ambient: ambient.clamp(Scalar::ZERO, Scalar::ONE),
         }
+    }
+
+    /// The unit vector towards the light (the zero vector for a light built from one).
+    pub const fn direction(&self) -> Vec3 {
+        self.direction
+    }
+
+    /// The ambient level, in `[0, 1]`.
+    pub const fn ambient(&self) -> Scalar {
+        self.ambient
     }
 
     /// Lambert's `max(0, n·l)` for a unit normal `n`, in `[0, 1]`.
@@ -152,9 +162,9 @@ fn scale_channels<C: GouraudColor>(base: [u8; 3], level: u32) -> C {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct QuadraticNormals {
     /// `Nᵢ`, the normals at the vertices.
-    pub vertices: [Vec3; 3],
+    pub(crate) vertices: [Vec3; 3],
     /// The normals at the midpoints of edges 0–1, 1–2 and 2–0.
-    pub midpoints: [Vec3; 3],
+    pub(crate) midpoints: [Vec3; 3],
 }
 
 /// Barycentric coordinates with 30 fractional bits.
@@ -176,6 +186,25 @@ impl QuadraticNormals {
             vertices: n,
             midpoints: [mid(n[0], n[1]), mid(n[1], n[2]), mid(n[2], n[0])],
         }
+    }
+
+    /// The field through the given nodes, each normalised (a zero node stays zero): vertex
+    /// normals and the normals at the midpoints of edges 0–1, 1–2 and 2–0.
+    pub fn from_nodes(vertices: [Vec3; 3], midpoints: [Vec3; 3]) -> Self {
+        QuadraticNormals {
+            vertices: vertices.map(Vec3::normalize),
+            midpoints: midpoints.map(Vec3::normalize),
+        }
+    }
+
+    /// The unit normals at the vertices.
+    pub const fn vertices(&self) -> [Vec3; 3] {
+        self.vertices
+    }
+
+    /// The unit normals at the midpoints of edges 0–1, 1–2 and 2–0.
+    pub const fn midpoints(&self) -> [Vec3; 3] {
+        self.midpoints
     }
 
     /// The (unnormalised) normal at barycentric coordinates `c` (`c₀ + c₁ + c₂ = 1`).
@@ -417,7 +446,7 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
 
     #[inline(always)]
     fn span(&mut self, _: &(), span: Span, start: [u32; N]) {
-        let Some((colors, depths)) = self.target.rows_mut(span.x_start, span.y, span.len()) else {
+        let Some((colors, depths)) = self.target.clipped_spans_mut(span) else {
             return;
         };
         let mut v = start;

@@ -331,6 +331,42 @@ impl VertexStage {
     /// Transforms, classifies, projects (if inside) and lights the vertex at `p` with normal `n`.
     #[inline(always)]
     pub(crate) fn vertex(&self, p: Vec3, n: Option<&Vec3>) -> ProjectedVertex {
+        let mut vertex = self.placed(p);
+        match n {
+            Some(n) => vertex.level = self.level(*n),
+            None => vertex.code |= NO_NORMAL,
+        }
+        vertex
+    }
+
+    /// [`vertex`](Self::vertex) for every position of `positions` (with `normals[k]` for
+    /// position `k`) into `out`, which is as long: the same vertices, with the light's cases
+    /// decided once for the mesh.
+    #[inline(always)]
+    pub(crate) fn vertices(
+        &self,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        out: &mut [ProjectedVertex],
+    ) {
+        match self.light {
+            Some(light) if light.normal_matrix.is_none() && normals.len() >= positions.len() => {
+                for ((out, p), n) in out.iter_mut().zip(positions).zip(normals) {
+                    *out = self.placed(*p);
+                    out.level = light.level_of_unit(*n);
+                }
+            }
+            _ => {
+                for (k, (out, p)) in out.iter_mut().zip(positions).enumerate() {
+                    *out = self.vertex(*p, normals.get(k));
+                }
+            }
+        }
+    }
+
+    /// The vertex at `p` transformed, classified and projected (if inside), unlit.
+    #[inline(always)]
+    fn placed(&self, p: Vec3) -> ProjectedVertex {
         let clip = self.clip_position(p);
         let code = self.volume.outcode(&clip);
         let screen = if code == 0 {
@@ -338,16 +374,12 @@ impl VertexStage {
         } else {
             ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0)
         };
-        let (level, flag) = match n {
-            Some(n) => (self.level(*n), 0),
-            None => (0, NO_NORMAL),
-        };
         ProjectedVertex {
             x: screen.x.to_bits(),
             y: screen.y.to_bits(),
             depth: screen.depth,
-            level,
-            code: code | flag,
+            level: 0,
+            code,
         }
     }
 }
