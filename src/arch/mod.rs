@@ -8,8 +8,15 @@
 
 #[cfg(armv6m)]
 pub(crate) mod thumbv6m;
+#[cfg(armv7m)]
+pub(crate) mod thumbv7m;
 #[cfg(sse2_rows)]
 pub(crate) mod x86_64;
+
+use core::num::NonZeroU32;
+
+#[cfg(armv7m)]
+pub(crate) use thumbv7m::level_rows;
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one
 /// SSE2 register.
@@ -33,3 +40,45 @@ pub(crate) const HAS_DIVIDER: bool = !cfg!(armv6m);
 
 /// A 64-bit host: a 64-bit division is one instruction (on Cortex-M it is a long library call).
 pub(crate) const FAST_WIDE_DIVISION: bool = cfg!(target_pointer_width = "64");
+
+/// ARMv7-M: the rows of a small depth-tested triangle with light levels (the 3D pipeline's
+/// Gouraud fill) are drawn by one assembly loop ([`level_rows`]); elsewhere span by span.
+pub(crate) const LEVEL_ROWS: bool = cfg!(armv7m);
+
+/// A small triangle's rows in the division form of the raster core's `RowRuns`, over buffers
+/// of `width` pixels a row.
+#[derive(Clone, Copy, Debug)]
+// Read only where the assembly is (elsewhere the row loop declines them).
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) struct LevelRows {
+    /// Index in the buffers of the region's top-left pixel.
+    pub(crate) first: usize,
+    /// Pixels of a buffer row.
+    pub(crate) width: usize,
+    /// Columns of the region: its rows' runs lie in `0..columns`.
+    pub(crate) columns: u32,
+    /// Rows of the region (at least one).
+    pub(crate) rows: u32,
+    /// The start bound, the middle bound and the end bound of the first row's run: numerator,
+    /// divisor, the numerator's change a row.
+    pub(crate) bounds: [(i32, NonZeroU32, i32); 3],
+    /// Whether the middle bound is a start bound (else an end bound).
+    pub(crate) middle_starts: bool,
+    /// The depth plane (24 fractional bits of the 8.8 depth: the depth is `value >> 16`): at
+    /// the first pixel, its step a column, its step a row.
+    pub(crate) depth: [u32; 3],
+    /// The light level plane (the level is `value >> 24`), likewise.
+    pub(crate) level: [u32; 3],
+}
+
+/// [`level_rows`] where there is none: draws nothing and says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn level_rows<C: Copy>(
+    _colors: &mut [C],
+    _depths: &mut [u16],
+    _rows: &LevelRows,
+    _table: &[C; 256],
+) -> bool {
+    false
+}

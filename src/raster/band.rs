@@ -20,6 +20,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::compact::{first_centre_from, last_centre_to, CompactTriangle, TooLarge};
 use super::plane::{Attributes, Planes};
+use super::scan::SmallScan;
 use super::shade::{fold_planes, shade, shade_general, SpanShader};
 use super::walk::Span;
 use crate::arch::LANES;
@@ -223,6 +224,11 @@ impl<S: SpanShader<N>, const N: usize> SpanShader<N> for Local<S> {
     #[inline(always)]
     fn scans_small(&self) -> bool {
         self.shader.scans_small()
+    }
+
+    #[inline(always)]
+    fn small_rows(&mut self, scan: &SmallScan<'_, N>) -> bool {
+        self.shader.small_rows(&scan.in_band(&self.band))
     }
 
     // No rows of lanes (x86-64's tiny triangles): they cover a triangle's whole box. The spans

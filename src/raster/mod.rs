@@ -27,7 +27,7 @@ pub(crate) mod band;
 pub(crate) mod compact;
 pub(crate) mod edge;
 pub(crate) mod plane;
-mod scan;
+pub(crate) mod scan;
 mod shade;
 #[cfg(sse2_rows)]
 mod tiny;

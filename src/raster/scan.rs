@@ -101,11 +101,8 @@ impl<const N: usize> SmallTriangle<N> {
             return Err(NotSmall::Empty);
         }
         // Positive orientation: oriented vertices 1 and 2 swapped for a negative area.
-        let (o1, o2, order) = if area2 > 0 {
-            (q1, q2, [0, 1, 2])
-        } else {
-            (q2, q1, [0, 2, 1])
-        };
+        let swap = area2 < 0;
+        let (o1, o2) = if swap { (q2, q1) } else { (q1, q2) };
 
         let (cx, cy) = (clip.top_left.x, clip.top_left.y);
         let x0 = first_centre_from(min_x).max(cx);
@@ -127,7 +124,7 @@ impl<const N: usize> SmallTriangle<N> {
         let (e0, _) = Edge::new(o1, o2, first);
         let (e1, l1) = Edge::new(o2, (0, 0), first);
         let (e2, l2) = Edge::new((0, 0), o1, first);
-        let planes = small_planes(attributes, order, area2.unsigned_abs(), (e1, l1), (e2, l2))
+        let planes = small_planes(attributes, swap, area2.unsigned_abs(), (e1, l1), (e2, l2))
             .ok_or(NotSmall::Other)?;
         Ok(SmallTriangle {
             x0,
@@ -139,14 +136,28 @@ impl<const N: usize> SmallTriangle<N> {
         })
     }
 
-    /// Hands `shader` the covered span of each row with the planes' values at its first pixel.
+    /// Hands `shader` the covered span of each row with the planes' values at its first pixel
+    /// (or all rows at once, if it takes them: [`SpanShader::small_rows`]).
     #[inline(always)]
     fn draw<S: SpanShader<N>>(&self, shader: &mut S) {
         let planes = &self.planes;
+        let last = self.last;
+        let mut runs = RowRuns::new(&self.edges, last + 1);
+        if HAS_DIVIDER {
+            let scan = SmallScan {
+                x0: self.x0,
+                y0: self.y0,
+                rows: self.rows + 1,
+                runs,
+                planes,
+            };
+            if shader.small_rows(&scan) {
+                return;
+            }
+        }
         let (dx, dy) = (planes.step(), planes.row_step());
         let steps = shader.prepare(dx);
         let [e0, e1, e2] = self.edges;
-        let last = self.last;
         let (mut k0, mut k1, mut k2) = (e0.k, e1.k, e2.k);
         // The attributes at the row's first column, stepped row by row (wrapping, like
         // `Planes::at`).
@@ -154,9 +165,13 @@ impl<const N: usize> SmallTriangle<N> {
         let mut y = self.y0;
         for _ in 0..self.rows + 1 {
             let (start, column) = if HAS_DIVIDER {
-                run_by_division([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last)
+                let run = runs.run();
+                runs.advance();
+                run
             } else {
-                run_by_scan([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last)
+                let run = run_by_scan([(k0, e0.a), (k1, e1.a), (k2, e2.a)], last);
+                (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
+                run
             };
             if column > start {
                 let span = Span {
@@ -170,12 +185,188 @@ impl<const N: usize> SmallTriangle<N> {
                 }
                 shader.span(&steps, span, values);
             }
-            (k0, k1, k2) = (k0 + e0.b, k1 + e1.b, k2 + e2.b);
             for k in 0..N {
                 row_values[k] = row_values[k].wrapping_add(dy[k]);
             }
             // Past the last row only after it (which may be i32::MAX).
             y = y.wrapping_add(1);
+        }
+    }
+}
+
+/// A small triangle's rows as a shader that draws them all at once sees them
+/// ([`SpanShader::small_rows`]): its region's first pixel, its rows' runs and its planes.
+pub(crate) struct SmallScan<'p, const N: usize> {
+    x0: i32,
+    y0: i32,
+    rows: u32,
+    runs: RowRuns,
+    planes: &'p Planes<N>,
+}
+
+impl<const N: usize> SmallScan<'_, N> {
+    /// The region's first pixel (its top-left one, inside the clip).
+    #[inline(always)]
+    pub(crate) fn origin(&self) -> (i32, i32) {
+        (self.x0, self.y0)
+    }
+
+    /// The same rows with the origin's row counted from the first row of `band` (the rows of a
+    /// band's buffer).
+    #[inline(always)]
+    pub(crate) fn in_band(&self, band: &Band) -> Self {
+        SmallScan {
+            y0: band.local(self.y0),
+            runs: self.runs,
+            planes: self.planes,
+            ..*self
+        }
+    }
+
+    /// Rows of the region, 1 to [`SMALL`].
+    #[inline(always)]
+    pub(crate) fn rows(&self) -> u32 {
+        self.rows
+    }
+
+    /// The first row's runs; [`RowRuns::advance`] moves to the next.
+    #[inline(always)]
+    pub(crate) fn runs(&self) -> &RowRuns {
+        &self.runs
+    }
+
+    /// The attribute planes, from the region's first pixel.
+    #[inline(always)]
+    pub(crate) fn planes(&self) -> &Planes<N> {
+        self.planes
+    }
+}
+
+/// A bound of the run of a row: `⌊max(n, 0) / d⌋` for the numerator `n` of the row and the
+/// divisor `d`; `n` changes by `step` a row.
+#[derive(Clone, Copy)]
+pub(crate) struct RowBound {
+    /// The numerator at the current row.
+    pub(crate) numerator: i32,
+    /// The divisor, 1 to 2¹³.
+    pub(crate) divisor: NonZeroU32,
+    /// The numerator's change from a row to the next.
+    pub(crate) step: i32,
+}
+
+impl RowBound {
+    /// The bound at the current row.
+    #[inline(always)]
+    fn at(&self) -> u32 {
+        self.numerator.max(0) as u32 / self.divisor
+    }
+}
+
+/// The covered runs of a small triangle's rows by one division an edge, the edges classified
+/// once per triangle: `run_by_scan`'s runs (the same integers; tested).
+///
+/// An edge with `K` at the row's first column and `a` a column (`K ≥ 0` inside) is
+/// * a start bound if `a > 0`: inside from column `⌈−K/a⌉ = ⌊(a − 1 − K)/a⌋` on when `K < 0`,
+///   everywhere when `K ≥ 0` (the numerator `a − 1 − K` is then below `a`: the bound is 0);
+/// * an end bound if `a < 0`: inside up to column `⌊K/|a|⌋`, so the run ends before
+///   `⌊(K + |a|)/|a|⌋`, which is 0 (an empty run) for `K < 0`;
+/// * horizontal (`a = 0`): inside everywhere or nowhere by the sign of `K`, which is the start
+///   bound `⌊−16·K / 1⌋`: 0 for `K ≥ 0`, at least 16 (past every column) for `K < 0`.
+///
+/// The three `a` sum to 0 and at most one is 0 (else the triangle has no area), so there are
+/// one or two start bounds and one or two end bounds: `bounds` holds a start bound, the middle
+/// one (of either kind) and an end bound.
+#[derive(Clone, Copy)]
+pub(crate) struct RowRuns {
+    /// Start bound, the middle bound, end bound.
+    pub(crate) bounds: [RowBound; 3],
+    /// Whether the middle bound is a start bound.
+    pub(crate) middle_starts: bool,
+    /// Columns of the region: runs end there at the latest.
+    pub(crate) columns: u32,
+}
+
+impl RowRuns {
+    /// The runs of the rows from the first of a region of `columns` columns (at most
+    /// [`SMALL`]), for its edges `edges`.
+    #[inline(always)]
+    fn new(edges: &[Edge; 3], columns: u32) -> Self {
+        // Each edge's bound, and whether it is an end bound. Below 2¹³ in magnitude: no
+        // overflow.
+        let bound = |e: &Edge| match NonZeroU32::new(e.a.unsigned_abs()) {
+            None => {
+                let numerator = -e.k * SMALL as i32;
+                let step = -e.b * SMALL as i32;
+                (
+                    RowBound {
+                        numerator,
+                        divisor: NonZeroU32::MIN,
+                        step,
+                    },
+                    false,
+                )
+            }
+            Some(m) if e.a > 0 => {
+                let (numerator, step) = (e.a - 1 - e.k, -e.b);
+                (
+                    RowBound {
+                        numerator,
+                        divisor: m,
+                        step,
+                    },
+                    false,
+                )
+            }
+            Some(m) => {
+                let (numerator, step) = (e.k + m.get() as i32, e.b);
+                (
+                    RowBound {
+                        numerator,
+                        divisor: m,
+                        step,
+                    },
+                    true,
+                )
+            }
+        };
+        let [mut b0, mut b1, mut b2] = [bound(&edges[0]), bound(&edges[1]), bound(&edges[2])];
+        // An end bound last, then a start bound first.
+        if !b2.1 {
+            if b0.1 {
+                (b0, b2) = (b2, b0);
+            } else {
+                (b1, b2) = (b2, b1);
+            }
+        }
+        if b0.1 {
+            (b0, b1) = (b1, b0);
+        }
+        RowRuns {
+            bounds: [b0.0, b1.0, b2.0],
+            middle_starts: !b1.1,
+            columns,
+        }
+    }
+
+    /// The current row's run `start..end` (columns from the region's first); empty if
+    /// `end ≤ start`.
+    #[inline(always)]
+    pub(crate) fn run(&self) -> (u32, u32) {
+        let [s, m, e] = self.bounds;
+        let (mut start, mut end) = (s.at(), e.at().min(self.columns));
+        if self.middle_starts {
+            start = start.max(m.at());
+        } else {
+            end = end.min(m.at());
+        }
+        (start, end)
+    }
+
+    /// Moves to the next row.
+    #[inline(always)]
+    pub(crate) fn advance(&mut self) {
+        for b in &mut self.bounds {
+            b.numerator += b.step;
         }
     }
 }
@@ -198,28 +389,6 @@ fn run_by_scan(edges: [(i32, i32); 3], last: u32) -> (u32, u32) {
         column += 1;
     }
     (start, column)
-}
-
-/// [`run_by_scan`]'s run by one division an edge, where a division is an instruction: an edge
-/// with `a > 0` is inside from column `⌈−k/a⌉`, one with `a < 0` up to column `⌊k/|a|⌋`, a
-/// horizontal one everywhere or nowhere. The same integers.
-#[inline(always)]
-fn run_by_division(edges: [(i32, i32); 3], last: u32) -> (u32, u32) {
-    let (mut start, mut end) = (0u32, last + 1);
-    for (k, a) in edges {
-        let m = a.unsigned_abs();
-        if k < 0 {
-            // Below 2²⁶ and 2¹³: the sum fits. An edge with a ≤ 0 excludes the whole row.
-            let first = match NonZeroU32::new(m) {
-                Some(m) if a > 0 => (k.unsigned_abs() + m.get() - 1) / m,
-                _ => u32::MAX,
-            };
-            start = start.max(first);
-        } else if let Some(m) = NonZeroU32::new(m).filter(|_| a < 0) {
-            end = end.min(k as u32 / m + 1);
-        }
-    }
-    (start.min(end), end)
 }
 
 /// Draws the triangle `v` with `attributes` inside `clip` through `shader` if it is small and
@@ -293,8 +462,8 @@ fn scaled(n: i32, r: i32, s: u32) -> u32 {
     lo.wrapping_shr(s) | hi.wrapping_shl(32 - s)
 }
 
-/// The planes of a small triangle of doubled area `area2` (below 2²⁵; `order` maps oriented
-/// to input vertices) whose edges opposite oriented vertices 1 and 2 are `e1`, `e2` with their
+/// The planes of a small triangle of doubled area `area2` (below 2²⁵; `swap`: its oriented
+/// vertices 1 and 2 are input vertices 2 and 1) whose edges opposite oriented vertices 1 and 2 are `e1`, `e2` with their
 /// values `l1`, `l2` at the first pixel; `None` for slivers whose attributes change by more than
 /// 2¹⁴ LSB a pixel.
 ///
@@ -307,7 +476,7 @@ fn scaled(n: i32, r: i32, s: u32) -> u32 {
 #[inline(always)]
 fn small_planes<const N: usize>(
     attributes: &Attributes<N>,
-    order: [usize; 3],
+    swap: bool,
     area2: u32,
     (e1, l1): (Edge, i32),
     (e2, l2): (Edge, i32),
@@ -318,13 +487,17 @@ fn small_planes<const N: usize>(
     let s = 38 - t;
     // Barycentrics of oriented vertices 1 and 2 at the first pixel, 24 fractional bits: below
     // 2⁸ for a first pixel in the box, and below 2³⁰ (else a sliver: `None`).
-    let fits = |l: i32| (((i64::from(l) * i64::from(r)) >> (s + 29)) + 1) as u64 <= 1;
+    // (l·r) >> (s + 29) in {−1, 0}, from the high word of the product (s + 29 > 32).
+    let fits = |l: i32| {
+        let high = ((i64::from(l) * i64::from(r)) >> 32) as i32;
+        ((high >> (s - 3)) + 1) as u32 <= 1
+    };
     if !fits(l1) || !fits(l2) {
         return None;
     }
     let (b1, b2) = (scaled(l1, r, s) as i32, scaled(l2, r, s) as i32);
-    let value = |k: usize| attributes.values[order[k] % 3];
-    let (c0, c1, c2) = (value(0), value(1), value(2));
+    let [c0, c1, c2] = attributes.values;
+    let (c1, c2) = if swap { (c2, c1) } else { (c1, c2) };
     // Steps of at most 2¹⁴ LSB a pixel: |Nx| < area2·2¹⁴ (below 2³⁹, and 2³⁰ suffices).
     let limit = (u64::from(area2) << 14).min(1 << 30) as u32;
     let mut planes = Planes::zero();
@@ -416,21 +589,49 @@ mod tests {
         }
     }
 
-    /// The run by division is the run by scanning (the firmware of cores without a divider scans),
-    /// for rows of random edges, empty and full ones included.
+    /// The runs by division are the runs by scanning (the firmware of cores without a divider
+    /// scans), row after row, for random edges of triangles (their `a` sum to 0; horizontal
+    /// edges included), empty and full rows included.
     #[test]
     fn runs_by_division_and_by_scan_agree() {
         let mut next = crate::random(0x5ca1_ab1e_0000_0003);
-        let mut value = || (next() % (1 << 14)) as i32 - (1 << 13);
-        for _ in 0..200_000 {
-            let edges = [(); 3].map(|_| (value() * 16, value() / 4));
-            let last = value().unsigned_abs() % 16;
-            let (s, e) = run_by_scan(edges, last);
-            let (ds, de) = run_by_division(edges, last);
-            let scanned = if e > s { (s, e) } else { (0, 0) };
-            let divided = if de > ds { (ds, de) } else { (0, 0) };
-            assert_eq!(scanned, divided, "{edges:?} {last}");
+        let mut value = |bits: u32| (next() % (1 << bits)) as i32 - (1 << (bits - 1));
+        let (mut partial, mut flat) = (0, 0);
+        for i in 0..100_000 {
+            let mut a = [value(13), value(13) >> (i % 4), 0];
+            if i % 5 == 0 {
+                a[i % 2] = 0;
+            }
+            a[2] = -a[0] - a[1];
+            if a.iter().all(|&a| a == 0) || a[2].unsigned_abs() >= 1 << 13 {
+                continue;
+            }
+            a.rotate_left(i % 3);
+            let last = (value(5) & 15) as u32;
+            let edges: [Edge; 3] = core::array::from_fn(|j| {
+                let b = value(13) >> (i % 3);
+                // Near the row's crossing of the region, or anywhere.
+                let k = if i % 4 == 0 {
+                    value(20)
+                } else {
+                    -a[j] * value(6) + value(9)
+                };
+                Edge { a: a[j], b, k }
+            });
+            flat += usize::from(a.contains(&0));
+            let mut runs = RowRuns::new(&edges, last + 1);
+            for row in 0..16 {
+                let at = edges.map(|e| (e.k + row * e.b, e.a));
+                let (s, e) = run_by_scan(at, last);
+                let (ds, de) = runs.run();
+                let scanned = if e > s { (s, e) } else { (0, 0) };
+                let divided = if de > ds { (ds, de) } else { (0, 0) };
+                assert_eq!(scanned, divided, "{at:?} {last}");
+                partial += usize::from(e > s && (s > 0 || e <= last));
+                runs.advance();
+            }
         }
+        assert!(partial > 50_000 && flat > 10_000, "{partial} {flat}");
     }
 
     /// Exactly the pixels of the per-pixel edge tests of the general set-up, once each, and

@@ -13,6 +13,7 @@ use super::band::Band;
 use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
+use super::scan::SmallScan;
 use super::walk::{general_walk, Region, Span, Walk, Width};
 use crate::arch::{CORTEX_M, LANES};
 use crate::fixed_point::Coord;
@@ -40,6 +41,14 @@ pub(crate) trait SpanShader<const N: usize> {
     /// default) keeps a firmware that draws only with this shader from linking the scan.
     #[inline(always)]
     fn scans_small(&self) -> bool {
+        false
+    }
+
+    /// All rows of a scanned small triangle at once (where a dedicated row loop is faster than a
+    /// call a span): `true` if done, `false` (the default) to be handed its spans. Asked only
+    /// where a division is an instruction.
+    #[inline(always)]
+    fn small_rows(&mut self, _scan: &SmallScan<'_, N>) -> bool {
         false
     }
 

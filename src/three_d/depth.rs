@@ -142,6 +142,12 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
         self.clear_depth();
     }
 
+    /// The colour and depth buffers (row-major, of the same length) and the row length.
+    #[inline(always)]
+    pub(crate) fn buffers_mut(&mut self) -> (&mut [C], &mut [u16], usize) {
+        (self.color.pixels_mut(), self.depth, self.width as usize)
+    }
+
     /// Colour and depth of the pixels of `span`, a span of a walk clipped to this target: the
     /// row and column checks are debug assertions, the slices' own bounds checks remain, so a
     /// wrong span could only ever write other pixels of this target.

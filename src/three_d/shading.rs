@@ -52,11 +52,13 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
+use crate::arch;
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
 use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
+use crate::raster::scan::SmallScan;
 use crate::raster::{Span, SpanShader};
 
 /// How a mesh is lit.
@@ -426,6 +428,11 @@ trait DepthPixel<C, const N: usize> {
     fn color(&mut self, values: &[u32; N]) -> C;
     /// Moves to the next pixel.
     fn advance(&mut self) {}
+    /// All rows of a small triangle at once into `target` (a target's row loop): `true` if
+    /// drawn, `false` (the default) to be handed its spans.
+    fn rows(&mut self, _target: &mut DepthTarget<'_, C>, _scan: &SmallScan<'_, N>) -> bool {
+        false
+    }
 }
 
 impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
@@ -442,6 +449,11 @@ impl<C: PixelColor, P: DepthPixel<C, N>, const N: usize> SpanShader<N>
     fn prepare(&mut self, step: [u32; N]) {
         self.step = step;
         self.pixel.prepare(&step);
+    }
+
+    #[inline(always)]
+    fn small_rows(&mut self, scan: &SmallScan<'_, N>) -> bool {
+        self.pixel.rows(self.target, scan)
     }
 
     #[inline(always)]
@@ -648,11 +660,44 @@ impl<C: GouraudColor> ShadeTable<C> {
 /// The colour at the interpolated light level (attribute 1).
 struct Leveled<'t, C>(&'t [C; 256]);
 
-impl<C: Copy> DepthPixel<C, 2> for Leveled<'_, C> {
+impl<C: PixelColor> DepthPixel<C, 2> for Leveled<'_, C> {
     #[inline(always)]
     fn color(&mut self, values: &[u32; 2]) -> C {
         // 8.24 of the 0–255 scale, +½: the nearest level.
         self.0[(values[1] >> STEP_BITS_PLANES) as u8 as usize]
+    }
+
+    /// The row loop of [`arch::level_rows`] where there is one (ARMv7-M): the same depths and
+    /// colours as the spans through [`color`](Self::color).
+    #[inline(always)]
+    fn rows(&mut self, target: &mut DepthTarget<'_, C>, scan: &SmallScan<'_, 2>) -> bool {
+        if !arch::LEVEL_ROWS {
+            return false;
+        }
+        let (colors, depths, width) = target.buffers_mut();
+        let runs = scan.runs();
+        // The region is inside the clip, inside the target.
+        let (x0, y0) = scan.origin();
+        let (Ok(x0), Ok(y0)) = (usize::try_from(x0), usize::try_from(y0)) else {
+            return false;
+        };
+        let first = y0.checked_mul(width).and_then(|r| r.checked_add(x0));
+        let (Some(first), true) = (first, x0 + runs.columns as usize <= width) else {
+            return false;
+        };
+        let planes = scan.planes();
+        let (v, dx, dy) = (planes.first(), planes.step(), planes.row_step());
+        let rows = arch::LevelRows {
+            first,
+            width,
+            columns: runs.columns,
+            rows: scan.rows(),
+            bounds: runs.bounds.map(|b| (b.numerator, b.divisor, b.step)),
+            middle_starts: runs.middle_starts,
+            depth: [v[0], dx[0], dy[0]],
+            level: [v[1], dx[1], dy[1]],
+        };
+        arch::level_rows(colors, depths, &rows, self.0)
     }
 }
 
