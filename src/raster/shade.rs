@@ -206,10 +206,11 @@ pub(super) fn shade_general<T, const N: usize>(
     };
     // The planes are those of the whole region, the walk only the band's rows: stepped planes
     // advanced to its first row, exact ones evaluated at each pixel wherever the walk starts.
-    let planes = match GeneralPlanes::new(setup, &region, attributes) {
-        GeneralPlanes::Stepped(p) => GeneralPlanes::Stepped(p.advanced(skip)),
-        exact => exact,
-    };
+    // In place: moving the exact planes would copy them.
+    let mut planes = GeneralPlanes::new(setup, &region, attributes);
+    if let GeneralPlanes::Stepped(p) = &mut planes {
+        *p = p.advanced(skip);
+    }
     let walk = general_walk(setup, &rows);
     fold_general(walk, &planes, shader);
 }
