@@ -30,6 +30,10 @@ mod bands;
 mod board;
 
 #[cfg(target_os = "none")]
+#[path = "common/report_panic.rs"]
+mod report_panic;
+
+#[cfg(target_os = "none")]
 #[allow(dead_code)]
 #[path = "common/clock.rs"]
 mod clock;
@@ -201,12 +205,6 @@ mod firmware {
             hprintln!("error: a band rendering differs from the frame drawn whole");
         }
         board::exit(same)
-    }
-
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo) -> ! {
-        hprintln!("panic: {}", info);
-        board::exit(false)
     }
 }
 

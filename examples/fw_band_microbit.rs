@@ -44,6 +44,10 @@ mod stack;
 #[path = "common/nopanic.rs"]
 mod nopanic;
 
+#[cfg(target_os = "none")]
+#[path = "common/plain_print.rs"]
+mod plain_print;
+
 /// Rows of a band: 320 × 8 × 4 = 10 KiB of the micro:bit's 16.
 const ROWS: u32 = 8;
 
@@ -55,52 +59,20 @@ mod firmware {
     use core::hint::black_box;
 
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::hio;
     use embedded_graphics::pixelcolor::Rgb565;
 
     use crate::bands::{self, Buffers, Mode, Seen};
+    use crate::plain_print::{decimal, hex, print};
     use crate::scene3d::{self, Model};
     use crate::{board, clock, stack, BAND, ROWS};
-
-    /// Writes `text` to the host's stdout (no formatting machinery, nothing that can panic).
-    fn print(text: &[u8]) {
-        if let Ok(mut out) = hio::hstdout() {
-            let _ = out.write_all(text);
-        }
-    }
-
-    /// `n` in decimal.
-    fn decimal(mut n: u64) {
-        let mut digits = [0u8; 20];
-        let mut first = digits.len();
-        while first > 0 {
-            first -= 1;
-            if let Some(d) = digits.get_mut(first) {
-                *d = b'0' + (n % 10) as u8;
-            }
-            n /= 10;
-            if n == 0 {
-                break;
-            }
-        }
-        print(digits.get(first..).unwrap_or(&[]));
-    }
-
-    /// `n` as `0x` and eight hexadecimal digits.
-    fn hex(n: u32) {
-        let digits: [u8; 8] =
-            core::array::from_fn(|k| b"0123456789abcdef"[(n >> (28 - 4 * k) & 15) as usize]);
-        print(b"0x");
-        print(&digits);
-    }
 
     /// The line of `bands::BandLine`, printed piece by piece.
     fn band_line(seen: &Seen) {
         print(b"bands knot 320x240 rows=");
         decimal(u64::from(seen.rows));
-        print(b" colors=");
+        print(b" colors=0x");
         hex(seen.colors.0);
-        print(b" depths=");
+        print(b" depths=0x");
         hex(seen.depths.0);
         print(b"\n");
     }

@@ -33,6 +33,10 @@ mod scene;
 mod board;
 
 #[cfg(target_os = "none")]
+#[path = "common/report_panic.rs"]
+mod report_panic;
+
+#[cfg(target_os = "none")]
 #[path = "common/clock.rs"]
 mod clock;
 
@@ -504,12 +508,6 @@ mod firmware {
         );
         // The word at the end of the stack was painted; if it changed, the stack overflowed.
         board::exit(deepest > end)
-    }
-
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo) -> ! {
-        hprintln!("panic: {}", info);
-        board::exit(false)
     }
 }
 

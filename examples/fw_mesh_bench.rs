@@ -28,6 +28,10 @@ mod scene3d;
 mod board;
 
 #[cfg(target_os = "none")]
+#[path = "common/report_panic.rs"]
+mod report_panic;
+
+#[cfg(target_os = "none")]
 #[allow(dead_code)]
 #[path = "common/clock.rs"]
 mod clock;
@@ -159,12 +163,6 @@ mod firmware {
             hprintln!("error: the frames with and without the vertex scratch differ");
         }
         board::exit(same)
-    }
-
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo) -> ! {
-        hprintln!("panic: {}", info);
-        board::exit(false)
     }
 }
 

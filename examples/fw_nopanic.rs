@@ -33,11 +33,14 @@ mod board;
 mod nopanic;
 
 #[cfg(target_os = "none")]
+#[path = "common/plain_print.rs"]
+mod plain_print;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use core::hint::black_box;
 
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::hio;
     use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
     use embedded_graphics::prelude::*;
@@ -52,6 +55,7 @@ mod firmware {
         Vertex,
     };
 
+    use crate::plain_print::{decimal, hex, print};
     use crate::{board, scene};
 
     /// Size of the framebuffers for the other colour formats.
@@ -80,37 +84,6 @@ mod firmware {
         }
     }
 
-    /// Writes `text` to the host's stdout without formatting machinery.
-    fn print(text: &[u8]) {
-        if let Ok(mut out) = hio::hstdout() {
-            let _ = out.write_all(text);
-        }
-    }
-
-    /// `n` in decimal.
-    fn print_decimal(mut n: u32) {
-        let mut digits = [0u8; 10];
-        let mut first = digits.len();
-        while first > 0 {
-            first -= 1;
-            if let Some(d) = digits.get_mut(first) {
-                *d = b'0' + (n % 10) as u8;
-            }
-            n /= 10;
-            if n == 0 {
-                break;
-            }
-        }
-        print(digits.get(first..).unwrap_or(&[]));
-    }
-
-    /// `v` as eight hexadecimal digits.
-    fn print_hex(v: u32) {
-        let digits: [u8; 8] =
-            core::array::from_fn(|k| b"0123456789abcdef"[((v >> (28 - 4 * k)) & 15) as usize]);
-        print(&digits);
-    }
-
     #[entry]
     fn main() -> ! {
         static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
@@ -129,11 +102,11 @@ mod firmware {
         scene::render(&mut fb);
         // The same line as fw_scene's `scene::ChecksumLine`.
         print(b"scene ");
-        print_decimal(width);
+        decimal(u64::from(width));
         print(b"x");
-        print_decimal(height);
+        decimal(u64::from(height));
         print(b" fnv1a=0x");
-        print_hex(scene::checksum(fb.pixels()));
+        hex(scene::checksum(fb.pixels()));
         print(b"\n");
 
         // Other colour formats, both entry points, opaque framebuffer sizes.

@@ -23,6 +23,10 @@ mod scene;
 mod board;
 
 #[cfg(target_os = "none")]
+#[path = "common/report_panic.rs"]
+mod report_panic;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::hprintln;
@@ -51,12 +55,6 @@ mod firmware {
         };
         hprintln!("{}", line);
         board::exit(true)
-    }
-
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo) -> ! {
-        hprintln!("panic: {}", info);
-        board::exit(false)
     }
 }
 

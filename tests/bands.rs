@@ -494,6 +494,23 @@ fn meshes_with_every_shading_and_clipping_are_the_whole_frame() {
     assert!(clipped > 20, "{clipped} faces clipped");
 }
 
+/// The bench scene's knot binned for the bands of `layout`.
+fn knot_bin<'a>(
+    pipeline: &'a Pipeline,
+    layout: &BandLayout,
+    scratch: &'a mut [ProjectedVertex],
+    storage: &'a mut [BinEntry],
+) -> Result<MeshBin<'a, Rgb565>, BandError> {
+    MeshBin::new(
+        pipeline,
+        &scene3d::KNOT,
+        &scene3d::MATERIAL,
+        layout,
+        scratch,
+        storage,
+    )
+}
+
 /// A bin's counts are the whole frame's.
 #[test]
 fn mesh_bin_counts_are_the_frames() {
@@ -508,15 +525,7 @@ fn mesh_bin_counts_are_the_frames() {
     let layout = BandLayout::new(Size::new(w, h), 16).unwrap();
     let mut scratch = vec![ProjectedVertex::EMPTY; scene3d::KNOT.vertices.len()];
     let mut storage = vec![BinEntry::EMPTY; 15 + 6144];
-    let bin = MeshBin::new(
-        &pipeline,
-        &scene3d::KNOT,
-        &scene3d::MATERIAL,
-        &layout,
-        &mut scratch,
-        &mut storage,
-    )
-    .unwrap();
+    let bin = knot_bin(&pipeline, &layout, &mut scratch, &mut storage).unwrap();
     assert_eq!(bin.stats(), want);
 }
 
@@ -579,26 +588,11 @@ fn bad_input_is_an_error_before_drawing() {
     let layout = BandLayout::new(Size::new(320, 240), 16).unwrap();
     let mut scratch = vec![ProjectedVertex::EMPTY; scene3d::KNOT.vertices.len()];
     let mut storage = vec![BinEntry::EMPTY; 15 + 6144];
-    let faces = MeshBin::new(
-        &pipeline,
-        &scene3d::KNOT,
-        &scene3d::MATERIAL,
-        &layout,
-        &mut scratch,
-        &mut storage,
-    )
-    .unwrap()
-    .len();
+    let faces = knot_bin(&pipeline, &layout, &mut scratch, &mut storage)
+        .unwrap()
+        .len();
     let mut storage = vec![BinEntry::EMPTY; 15 + faces - 1];
-    let error = MeshBin::new(
-        &pipeline,
-        &scene3d::KNOT,
-        &scene3d::MATERIAL,
-        &layout,
-        &mut scratch,
-        &mut storage,
-    )
-    .unwrap_err();
+    let error = knot_bin(&pipeline, &layout, &mut scratch, &mut storage).unwrap_err();
     assert_eq!(
         error,
         BandError::BinTooSmall {
@@ -607,15 +601,7 @@ fn bad_input_is_an_error_before_drawing() {
         }
     );
     let mut few = vec![BinEntry::EMPTY; 3];
-    let error = MeshBin::new(
-        &pipeline,
-        &scene3d::KNOT,
-        &scene3d::MATERIAL,
-        &layout,
-        &mut scratch,
-        &mut few,
-    )
-    .unwrap_err();
+    let error = knot_bin(&pipeline, &layout, &mut scratch, &mut few).unwrap_err();
     assert_eq!(
         error,
         BandError::BinTooSmall {
@@ -624,27 +610,11 @@ fn bad_input_is_an_error_before_drawing() {
         }
     );
     let mut storage = vec![BinEntry::EMPTY; 15 + faces];
-    let error = MeshBin::new(
-        &pipeline,
-        &scene3d::KNOT,
-        &scene3d::MATERIAL,
-        &layout,
-        &mut scratch[..100],
-        &mut storage,
-    )
-    .unwrap_err();
+    let error = knot_bin(&pipeline, &layout, &mut scratch[..100], &mut storage).unwrap_err();
     assert!(matches!(error, BandError::Scratch(_)), "{error:?}");
 
     // A band of another layout.
-    let mut bin = MeshBin::new(
-        &pipeline,
-        &scene3d::KNOT,
-        &scene3d::MATERIAL,
-        &layout,
-        &mut scratch,
-        &mut storage,
-    )
-    .unwrap();
+    let mut bin = knot_bin(&pipeline, &layout, &mut scratch, &mut storage).unwrap();
     let other = BandLayout::new(Size::new(320, 240), 15).unwrap();
     let (mut c, mut d) = (vec![Rgb565::BLACK; 320 * 15], vec![0; 320 * 15]);
     let mut band = DepthBand::new(&mut c, &mut d, &other, 0).unwrap();
