@@ -13,7 +13,8 @@
 //!   per-pixel lighting of quadratically interpolated normals).
 //! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
 //! * `band` — a band's rows as two clip-space planes: how a band's draw without a bin rejects
-//!   the faces outside it before projecting them (band rendering is [`crate::band`]).
+//!   the faces outside it before projecting them (band rendering itself is the `band` module,
+//!   which builds on this one).
 //! * [`meshes`] — meshes in flash (an icosphere and a torus) and, on the host, mesh data to
 //!   generate them; [`obj`] reads Wavefront OBJ files (host).
 
