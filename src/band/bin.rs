@@ -454,10 +454,15 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         let frame = self.frame.with_clip(band.clip(self.pipeline));
         let (target, placement) = band.parts();
         let (mesh, scratch) = (&self.mesh, self.scratch);
-        self.lists.each(placement.index, |item| {
-            let k = (item & !CLIPPED) as usize;
-            frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
-        });
+        // The refill inlined in the list's walk: a call per face otherwise.
+        self.lists.each(
+            placement.index,
+            #[inline(always)]
+            |item| {
+                let k = (item & !CLIPPED) as usize;
+                frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
+            },
+        );
         Ok(())
     }
 }

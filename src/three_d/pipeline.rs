@@ -340,11 +340,7 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         v: [&ProjectedVertex; 3],
     ) {
         let tri = v.map(|v| v.screen());
-        let levels = || {
-            let face = v.iter().all(|v| v.has_normal()).then_some(0);
-            let face = face.unwrap_or_else(|| frame.face_level(&model()));
-            v.map(|v| if v.has_normal() { v.level() } else { face })
-        };
+        let levels = || frame.vertex_levels(model, v);
         frame.fill(mesh, idx, model, &tri, levels, None, self);
     }
 
@@ -536,6 +532,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     /// Fills face `k` of `mesh` (a face [`scratch_faces`](Self::scratch_faces) handed a sink,
     /// `clipped` if through [`FaceSink::clipped`]) into `target`, its vertices read from
     /// `scratch`: the same pixels as then. Nothing for a face not in the mesh.
+    #[inline(always)]
     pub(crate) fn refill(
         &self,
         mesh: &Mesh<'_>,
@@ -556,11 +553,45 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         };
         let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
         if clipped {
-            if let Ok(face) = self.clip_face(model, &[*a, *b, *c]) {
-                self.fill_fan(mesh, &idx, model, &face, target);
-            }
+            self.refill_clipped(mesh, &idx, &[*a, *b, *c], target);
         } else {
-            target.face(self, mesh, k, &idx, model, [a, b, c]);
+            // `DepthTarget::face`, its levels inlined (LLVM calls them here otherwise).
+            let v = [a, b, c];
+            let tri = v.map(|v| v.screen());
+            self.fill(
+                mesh,
+                &idx,
+                model,
+                &tri,
+                #[inline(always)]
+                || self.vertex_levels(model, v),
+                None,
+                target,
+            );
+        }
+    }
+
+    /// The light levels of a face's vertices `v` (at `model`): their own, or the face's for
+    /// those without a normal.
+    #[inline(always)]
+    fn vertex_levels(&self, model: impl Fn() -> [Vec3; 3], v: [&ProjectedVertex; 3]) -> [u16; 3] {
+        let face = v.iter().all(|v| v.has_normal()).then_some(0);
+        let face = face.unwrap_or_else(|| self.face_level(&model()));
+        v.map(|v| if v.has_normal() { v.level() } else { face })
+    }
+
+    /// [`refill`](Self::refill) of a clipped face (out of line: rare, and its polygon is large).
+    #[inline(never)]
+    fn refill_clipped(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        v: &[ProjectedVertex; 3],
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+        if let Ok(face) = self.clip_face(model, v) {
+            self.fill_fan(mesh, idx, model, &face, target);
         }
     }
 
