@@ -28,7 +28,8 @@ use crate::Vec3;
 /// bin reports how many it needs when its storage is too short.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct BinEntry {
-    /// The triangle's number (and [`CLIPPED`]); for a band's head, the last entry of its list.
+    /// The triangle's number (and [`CLIPPED`]); for a band's head, the last entry of its list
+    /// (the head itself while the list is empty).
     item: u32,
     /// The next entry of the list.
     next: u32,
@@ -67,7 +68,8 @@ struct Lists<'b> {
     /// Bands (the first entries), and triangles recorded (or counted past the storage's end).
     bands: u32,
     records: u32,
-    /// More triangles than fit `u32` or the flag's range.
+    /// A triangle numbered past the flag's range (so far fewer than 2³¹ are recorded: `bands +
+    /// records` fits `u32`).
     limit: bool,
     /// The list of triangles still open after the band drawn last, and the band expected next.
     active: u32,
@@ -81,8 +83,12 @@ impl<'b> Lists<'b> {
         if bands > u32::from(u16::MAX) + 1 {
             return Err(BandError::BinLimit);
         }
-        for head in entries.iter_mut().take(bands as usize) {
-            *head = BinEntry::EMPTY;
+        for (band, head) in entries.iter_mut().take(bands as usize).enumerate() {
+            *head = BinEntry {
+                // Below 2¹⁶ + 1.
+                item: band as u32,
+                ..BinEntry::EMPTY
+            };
         }
         Ok(Lists {
             entries,
@@ -94,14 +100,13 @@ impl<'b> Lists<'b> {
         })
     }
 
-    /// Records `item`, in bands `first ..= last` (below the number of bands).
-    #[inline]
+    /// Records `item` (a number below [`CLIPPED`], each once, and its flags), in bands
+    /// `first ..= last` (below the number of bands).
+    #[inline(always)]
     fn push(&mut self, item: u32, first: u32, last: u32) {
-        // The slots follow the bands' heads; past `u32::MAX` nothing is stored, and `finish`
-        // reports it.
-        let slot = self.bands.wrapping_add(self.records);
-        self.records = self.records.wrapping_add(1);
-        self.limit |= self.records == 0 || slot < self.bands;
+        // The slots follow the bands' heads: below 2¹⁶ + 1 + 2³¹, no overflow.
+        let slot = self.bands + self.records;
+        self.records += 1;
         let Some(e) = self.entries.get_mut(slot as usize) else {
             // Counted, not stored: `finish` reports the storage too small.
             return;
@@ -112,14 +117,13 @@ impl<'b> Lists<'b> {
             first: first as u16,
             last: last as u16,
         };
-        // Appended to its first band's list (the head keeps the tail in `item`).
+        // Appended to its first band's list: linked from the tail the head keeps in `item` (the
+        // head itself for an empty list).
         let Some(head) = self.entries.get_mut(first as usize) else {
             return;
         };
         let tail = core::mem::replace(&mut head.item, slot);
-        if tail == NONE {
-            head.next = slot;
-        } else if let Some(t) = self.entries.get_mut(tail as usize) {
+        if let Some(t) = self.entries.get_mut(tail as usize) {
             t.next = slot;
         }
     }

@@ -141,7 +141,7 @@ impl RowWindow for Band {
 /// Walks the triangle `v` with `attributes` over `clip` like [`shade`], but only the rows of
 /// `band` (in frame rows; the spans reach `shader` as they are): the same spans and values as
 /// `shade` gives those rows. Nothing for a band outside `clip`.
-#[inline(never)]
+#[inline(always)]
 pub(crate) fn shade_rows<const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,

@@ -704,6 +704,7 @@ impl<C: PixelColor> DepthPixel<C, 2> for Leveled<'_, C> {
 /// Fills the triangle with the material colour of `table` at the light levels `levels`
 /// (8.8 fixed point of the 0–255 scale, per vertex) interpolated across it, depth-tested: the
 /// pipeline's Gouraud fill.
+#[inline(never)]
 pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
