@@ -8,6 +8,13 @@
 //! are those still open from the bands above (a list kept in order) merged with those starting
 //! there: each band costs the triangles it touches. Drawn in any other order, a band finds its
 //! triangles by reading every entry (the same pixels, more work).
+//!
+//! A [`MeshBin`] uses the storage past the entries it needs, if any: a small Gouraud face
+//! reaching the next band leaves its set-up there (7 entries: its region, edges and planes,
+//! the integers the set-up computes), and the next band draws its rows from it instead of
+//! setting the face up again — the same pixels, a set-up less for each face crossing a band
+//! boundary. The set-ups are kept in a ring in the order the faces are drawn; when it is full
+//! (or the storage has no spare entry) a face is set up again.
 
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
@@ -17,6 +24,7 @@ use super::{BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::compact::{first_centre_from, last_centre_to};
+use crate::raster::scan::{Kept, KEPT_WORDS};
 use crate::three_d::{
     fit_scratch, DrawStats, FaceSink, Frame, Material, Mesh, Pipeline, ProjectedVertex, TargetClip,
 };
@@ -74,6 +82,9 @@ struct Lists<'b> {
     /// The list of triangles still open after the band drawn last, and the band expected next.
     active: u32,
     next_band: u32,
+    /// The ring of kept set-ups in the storage past the lists: its first and its length.
+    kept_start: u32,
+    kept_len: u32,
 }
 
 impl<'b> Lists<'b> {
@@ -97,6 +108,8 @@ impl<'b> Lists<'b> {
             limit: false,
             active: NONE,
             next_band: 0,
+            kept_start: 0,
+            kept_len: 0,
         })
     }
 
@@ -148,54 +161,162 @@ impl<'b> Lists<'b> {
         self.records as usize
     }
 
-    /// Calls `f` with every item touching `band`, in the order they were recorded.
-    fn each(&mut self, band: u32, mut f: impl FnMut(u32)) {
+    /// Calls `f` with every item touching `band`, in the order they were recorded, whether it
+    /// comes from the band above and whether it reaches the next band (both only when the
+    /// bands are drawn top to bottom), and the set-ups kept ([`Kept`]) for the items reaching
+    /// this band from above (in their order).
+    fn each(&mut self, band: u32, mut f: impl FnMut(u32, bool, bool, &mut KeptRing<'_>)) {
         if band >= self.bands {
             return;
         }
+        let end = (self.bands as usize + self.records as usize).min(self.entries.len());
+        let (entries, spare) = self.entries.split_at_mut(end);
         if band != self.next_band {
-            // Out of order: every entry, read.
-            let records = self.entries.iter().skip(self.bands as usize);
+            // Out of order: every entry, read; nothing kept.
+            let mut none = KeptRing::new(&mut [], &mut self.kept_start, &mut self.kept_len);
+            none.clear();
+            let records = entries.iter().skip(self.bands as usize);
             for e in records.take(self.records as usize) {
                 if u32::from(e.first) <= band && band <= u32::from(e.last) {
-                    f(e.item);
+                    f(e.item, false, false, &mut none);
                 }
             }
             return;
         }
+        let mut kept = KeptRing::new(spare, &mut self.kept_start, &mut self.kept_len);
+        if band == 0 {
+            kept.clear();
+        }
         // The open triangles merged with those starting here, by slot (their order); those
         // reaching further down stay open.
-        let (mut open, mut starting) = (self.active, self.head(band));
+        let (mut open, mut starting) = (
+            self.active,
+            entries.get(band as usize).map_or(NONE, |h| h.next),
+        );
         let (mut head, mut tail) = (NONE, NONE);
         loop {
             let slot = open.min(starting);
-            let Some(e) = self.entries.get(slot as usize).copied() else {
+            let Some(e) = entries.get(slot as usize).copied() else {
                 break;
             };
-            if slot == open {
+            let above = slot == open;
+            if above {
                 open = e.next;
             } else {
                 starting = e.next;
             }
-            f(e.item);
-            if u32::from(e.last) > band {
-                match self.entries.get_mut(tail as usize) {
+            let continues = u32::from(e.last) > band;
+            f(e.item, above, continues, &mut kept);
+            if continues {
+                match entries.get_mut(tail as usize) {
                     Some(t) => t.next = slot,
                     None => head = slot,
                 }
                 tail = slot;
             }
         }
-        if let Some(t) = self.entries.get_mut(tail as usize) {
+        if let Some(t) = entries.get_mut(tail as usize) {
             t.next = NONE;
         }
         self.active = head;
         self.next_band = band + 1;
     }
+}
 
-    /// The first entry of `band`'s list.
-    fn head(&self, band: u32) -> u32 {
-        self.entries.get(band as usize).map_or(NONE, |h| h.next)
+/// Entries a kept set-up takes in the storage past the lists: its words, three an entry, the
+/// last entry's second its triangle's item.
+const KEPT_ENTRIES: usize = 7;
+const _: () = assert!(KEPT_WORDS == 3 * (KEPT_ENTRIES - 1) + 1);
+
+/// The set-ups of the triangles reaching the next band, kept in the storage past the lists: a
+/// ring of [`KEPT_ENTRIES`] entries each, in the order the triangles are drawn (the order of the
+/// next band's open list), so the next band takes them from the front as it meets them.
+pub(crate) struct KeptRing<'e> {
+    spare: &'e mut [BinEntry],
+    start: &'e mut u32,
+    len: &'e mut u32,
+}
+
+impl<'e> KeptRing<'e> {
+    fn new(spare: &'e mut [BinEntry], start: &'e mut u32, len: &'e mut u32) -> Self {
+        KeptRing { spare, start, len }
+    }
+
+    /// Set-ups the ring holds at most.
+    #[inline(always)]
+    fn capacity(&self) -> u32 {
+        // Fewer entries than 2³² · 7.
+        (self.spare.len() / KEPT_ENTRIES) as u32
+    }
+
+    /// Empties it.
+    fn clear(&mut self) {
+        (*self.start, *self.len) = (0, 0);
+    }
+
+    /// The entries of set-up `n` of the ring's storage.
+    #[inline(always)]
+    fn at(&mut self, n: u32) -> Option<&mut [BinEntry; KEPT_ENTRIES]> {
+        let from = n as usize * KEPT_ENTRIES;
+        self.spare
+            .get_mut(from..from + KEPT_ENTRIES)
+            .and_then(|e| e.try_into().ok())
+    }
+
+    /// The set-up of `item` if it is the front one (taken off the ring).
+    #[inline(always)]
+    pub(crate) fn take(&mut self, item: u32) -> Option<Kept> {
+        if *self.len == 0 {
+            return None;
+        }
+        let start = *self.start;
+        let entries = self.at(start)?;
+        let [body @ .., end] = entries;
+        if end.next != item {
+            return None;
+        }
+        let mut kept = Kept::EMPTY;
+        let (words, last) = kept.0.split_at_mut(KEPT_WORDS - 1);
+        for (w, e) in words.chunks_exact_mut(3).zip(body.iter()) {
+            (w[0], w[1], w[2]) = (e.item, e.next, u32::from(e.first) | u32::from(e.last) << 16);
+        }
+        last[0] = end.item;
+        let next = start + 1;
+        *self.start = if next == self.capacity() { 0 } else { next };
+        *self.len -= 1;
+        Some(kept)
+    }
+
+    /// Appends the set-up of `item` (nothing when the ring is full).
+    #[inline(always)]
+    pub(crate) fn put(&mut self, item: u32, kept: &Kept) {
+        let capacity = self.capacity();
+        if *self.len >= capacity {
+            return;
+        }
+        // Both below the capacity: the sum fits.
+        let end = *self.start + *self.len;
+        let end = if end >= capacity { end - capacity } else { end };
+        let Some([body @ .., last]) = self.at(end) else {
+            return;
+        };
+        let (words, rest) = kept.0.split_at(KEPT_WORDS - 1);
+        for (e, w) in body.iter_mut().zip(words.chunks_exact(3)) {
+            *e = BinEntry {
+                item: w[0],
+                next: w[1],
+                first: w[2] as u16,
+                last: (w[2] >> 16) as u16,
+            };
+        }
+        // The last word, and the item the set-up belongs to.
+        *last = BinEntry {
+            item: rest[0],
+            next: item,
+            first: 0,
+            last: 0,
+        };
+        *self.len += 1;
     }
 }
 
@@ -322,7 +443,7 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
             return Err(BandError::OtherLayout);
         }
         let items = self.items;
-        self.lists.each(band.index(), |k| {
+        self.lists.each(band.index(), |k, _, _, _| {
             if let Some(item) = items.get(k as usize) {
                 item.draw_band(band);
             }
@@ -397,9 +518,10 @@ impl<C> core::fmt::Debug for MeshBin<'_, C> {
 impl<'a, C: GouraudColor> MeshBin<'a, C> {
     /// Runs the vertex and face stages of `mesh` with `material` through `pipeline` for the frame
     /// of `layout`, its vertices into `scratch` (one [`ProjectedVertex`] per mesh vertex), its
-    /// faces into `storage` (one entry per band and per face kept). Errors, before anything is
-    /// drawn: the scratch too short, the storage too short (`BinTooSmall` with the number
-    /// needed), more than 2³¹ faces.
+    /// faces into `storage` (one entry per band and per face kept; entries beyond those keep the
+    /// set-ups of faces crossing into the next band, 7 each, saving their set-up there). Errors,
+    /// before anything is drawn: the scratch too short, the storage too short (`BinTooSmall`
+    /// with the number needed), more than 2³¹ faces.
     pub fn new(
         pipeline: &'a Pipeline,
         mesh: &Mesh<'a>,
@@ -462,9 +584,26 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         self.lists.each(
             placement.index,
             #[inline(always)]
-            |item| {
+            |item, above, continues, kept| {
                 let k = (item & !CLIPPED) as usize;
-                frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
+                let clipped = item & CLIPPED != 0;
+                if let Some(set_up) = above.then(|| kept.take(item)).flatten() {
+                    // Set up in a band above: its rows here from the same integers.
+                    if frame.resume(target, &set_up) {
+                        if continues {
+                            kept.put(item, &set_up);
+                        }
+                        return;
+                    }
+                }
+                if continues {
+                    let mut set_up = Kept::EMPTY;
+                    if frame.refill_keeping(mesh, scratch, k, clipped, target, &mut set_up) {
+                        kept.put(item, &set_up);
+                    }
+                } else {
+                    frame.refill(mesh, scratch, k, clipped, target);
+                }
             },
         );
         Ok(())

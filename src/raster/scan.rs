@@ -414,7 +414,9 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
 /// [`shade`] for the rows of `band` only (see [`band`](super::band)): the triangle is set up
 /// over `clip` as `shade` sets it up, then its scan starts at the band's first row — the edge
 /// values and the planes stepped there by whole rows, the integers the scan reaches — and
-/// stops after the band's last.
+/// stops after the band's last. With `keep`, a small triangle's set-up is also written there
+/// (if it fits: `N ≤ 2`), for [`resume_rows`] to draw other bands' rows of it:
+/// `Some(true)` then.
 #[inline(always)]
 pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     v: [(Coord, Coord); 3],
@@ -422,34 +424,119 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     clip: &Rectangle,
     band: &Band,
     shader: &mut S,
-) -> bool {
+    keep: Option<&mut Kept>,
+) -> Option<bool> {
     match SmallTriangle::new(v, attributes, clip) {
-        Ok(mut triangle) => {
-            // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
-            let last = triangle.y0 + triangle.rows as i32;
-            if triangle.y0 < band.first {
-                if last < band.first {
-                    return true;
-                }
-                let skip = (band.first - triangle.y0) as u32;
-                for e in &mut triangle.edges {
-                    e.k += e.b * skip as i32;
-                }
-                triangle.planes = triangle.planes.advanced(skip);
-                triangle.y0 = band.first;
-                triangle.rows -= skip;
-            }
-            if last > band.last {
-                if triangle.y0 > band.last {
-                    return true;
-                }
-                triangle.rows = (band.last - triangle.y0) as u32;
-            }
-            triangle.draw(shader);
-            true
+        Ok(triangle) => {
+            let kept = keep.is_some_and(|keep| triangle.keep(keep));
+            triangle.draw_rows(band, shader);
+            Some(kept)
         }
-        Err(NotSmall::Empty) => true,
-        Err(NotSmall::Other) => false,
+        Err(NotSmall::Empty) => Some(false),
+        Err(NotSmall::Other) => None,
+    }
+}
+
+/// Draws the rows of `band` of the small triangle whose set-up [`shade_rows`] kept in `kept`:
+/// what `shade_rows` draws there.
+#[inline(always)]
+pub(crate) fn resume_rows<const N: usize, S: SpanShader<N>>(
+    kept: &Kept,
+    band: &Band,
+    shader: &mut S,
+) {
+    if let Some(triangle) = SmallTriangle::<N>::kept(kept) {
+        triangle.draw_rows(band, shader);
+    }
+}
+
+/// Words of a kept set-up: the region (4), the edges (9) and two planes (6).
+pub(crate) const KEPT_WORDS: usize = 19;
+
+/// A small triangle's set-up over the frame's clip, kept by [`shade_rows`] to draw the rows of
+/// later bands without setting it up again (a bin's triangles crossing bands): the same
+/// integers, so the same pixels and values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Kept(pub(crate) [u32; KEPT_WORDS]);
+
+impl Kept {
+    /// Nothing kept yet.
+    pub(crate) const EMPTY: Kept = Kept([0; KEPT_WORDS]);
+}
+
+impl<const N: usize> SmallTriangle<N> {
+    /// Writes the set-up into `kept`; `false` (nothing written) for more than two planes.
+    #[inline(always)]
+    fn keep(&self, kept: &mut Kept) -> bool {
+        if 13 + 3 * N > KEPT_WORDS {
+            return false;
+        }
+        let w = &mut kept.0;
+        w[0] = self.x0 as u32;
+        w[1] = self.y0 as u32;
+        w[2] = self.last;
+        w[3] = self.rows;
+        for (k, e) in self.edges.iter().enumerate() {
+            (w[4 + 3 * k], w[5 + 3 * k], w[6 + 3 * k]) = (e.a as u32, e.b as u32, e.k as u32);
+        }
+        let (value, dx, dy) = (
+            self.planes.first(),
+            self.planes.step(),
+            self.planes.row_step(),
+        );
+        for k in 0..N {
+            (w[13 + k], w[13 + N + k], w[13 + 2 * N + k]) = (value[k], dx[k], dy[k]);
+        }
+        true
+    }
+
+    /// The set-up [`keep`](Self::keep) wrote into `kept` (`None` for more than two planes).
+    #[inline(always)]
+    fn kept(kept: &Kept) -> Option<Self> {
+        if 13 + 3 * N > KEPT_WORDS {
+            return None;
+        }
+        let w = &kept.0;
+        let edge = |k: usize| Edge {
+            a: w[4 + 3 * k] as i32,
+            b: w[5 + 3 * k] as i32,
+            k: w[6 + 3 * k] as i32,
+        };
+        let plane = |from: usize| core::array::from_fn(|k| w[from + k]);
+        Some(SmallTriangle {
+            x0: w[0] as i32,
+            y0: w[1] as i32,
+            last: w[2],
+            rows: w[3],
+            edges: [edge(0), edge(1), edge(2)],
+            planes: Planes::from_parts(plane(13), plane(13 + N), plane(13 + 2 * N)),
+        })
+    }
+
+    /// Draws the rows of `band` (see [`shade_rows`]).
+    #[inline(always)]
+    fn draw_rows<S: SpanShader<N>>(mut self, band: &Band, shader: &mut S) {
+        // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
+        let last = self.y0 + self.rows as i32;
+        if self.y0 < band.first {
+            if last < band.first {
+                return;
+            }
+            let skip = (band.first - self.y0) as u32;
+            for e in &mut self.edges {
+                e.k += e.b * skip as i32;
+            }
+            self.planes = self.planes.advanced(skip);
+            self.y0 = band.first;
+            self.rows -= skip;
+        }
+        if last > band.last {
+            if self.y0 > band.last {
+                return;
+            }
+            self.rows = (band.last - self.y0) as u32;
+        }
+        self.draw(shader);
     }
 }
 

@@ -72,7 +72,8 @@ use super::shading::{
 use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
-use crate::raster::band::{AllRows, RowWindow};
+use crate::raster::band::{AllRows, Band, RowWindow};
+use crate::raster::scan::Kept;
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -594,7 +595,67 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             self.fill_fan(mesh, idx, model, &face, target);
         }
     }
+}
 
+impl<C: GouraudColor> Frame<'_, C, Band> {
+    /// [`refill`](Self::refill), keeping the set-up of a small Gouraud face (not clipped) in
+    /// `keep` for [`resume`](Self::resume): whether it did.
+    #[inline(always)]
+    pub(crate) fn refill_keeping(
+        &self,
+        mesh: &Mesh<'_>,
+        scratch: &[ProjectedVertex],
+        k: usize,
+        clipped: bool,
+        target: &mut DepthTarget<'_, C>,
+        keep: &mut Kept,
+    ) -> bool {
+        let Fill::Gouraud(table) = &self.fill else {
+            self.refill(mesh, scratch, k, clipped, target);
+            return false;
+        };
+        if clipped {
+            self.refill(mesh, scratch, k, clipped, target);
+            return false;
+        }
+        let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
+            return false;
+        };
+        let (Some(a), Some(b), Some(c)) = (
+            scratch.get(idx[0]),
+            scratch.get(idx[1]),
+            scratch.get(idx[2]),
+        ) else {
+            return false;
+        };
+        let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+        let v = [a, b, c];
+        // What `fill` draws for the face.
+        let levels = self.vertex_levels(model, v);
+        shading::draw_levels_keeping(
+            target,
+            &self.clip,
+            &v.map(|v| v.screen()),
+            levels,
+            table,
+            keep,
+        )
+    }
+
+    /// Draws the band's rows of the face whose set-up [`refill_keeping`](Self::refill_keeping)
+    /// kept in `kept` (in a band of the same frame): the pixels `refill` gives them. `false`
+    /// (nothing drawn) if this draw does not keep set-ups.
+    #[inline(always)]
+    pub(crate) fn resume(&self, target: &mut DepthTarget<'_, C>, kept: &Kept) -> bool {
+        let Fill::Gouraud(table) = &self.fill else {
+            return false;
+        };
+        shading::resume_levels(target, self.clip.rows(), table, kept);
+        true
+    }
+}
+
+impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
         let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
