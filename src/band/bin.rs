@@ -275,7 +275,7 @@ impl<'e> KeptRing<'e> {
         if end.next != item {
             return None;
         }
-        let mut kept = Kept::EMPTY;
+        let mut kept = Kept([0; KEPT_WORDS]);
         let (words, last) = kept.0.split_at_mut(KEPT_WORDS - 1);
         for (w, e) in words.chunks_exact_mut(3).zip(body.iter()) {
             (w[0], w[1], w[2]) = (e.item, e.next, u32::from(e.first) | u32::from(e.last) << 16);
@@ -597,10 +597,8 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
                     }
                 }
                 if continues {
-                    let mut set_up = Kept::EMPTY;
-                    if frame.refill_keeping(mesh, scratch, k, clipped, target, &mut set_up) {
-                        kept.put(item, &set_up);
-                    }
+                    let mut keep = |set_up: &Kept| kept.put(item, set_up);
+                    frame.refill_keeping(mesh, scratch, k, clipped, target, &mut keep);
                 } else {
                     frame.refill(mesh, scratch, k, clipped, target);
                 }

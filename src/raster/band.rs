@@ -121,7 +121,7 @@ impl RowWindow for Band {
             shader,
             band: *self,
         };
-        shade_rows(v, attributes, clip, *self, &mut local, None);
+        shade_rows(v, attributes, clip, *self, &mut local, false);
         local.shader
     }
 
@@ -141,8 +141,7 @@ impl RowWindow for Band {
 /// Walks the triangle `v` with `attributes` over `clip` like [`shade`], but only the rows of
 /// `band` (in frame rows; the spans reach `shader` as they are): the same spans and values as
 /// `shade` gives those rows. Nothing for a band outside `clip`. With `keep`, a small
-/// triangle's set-up is kept there too (see [`scan::shade_rows`](super::scan::shade_rows)):
-/// `true` then.
+/// triangle's set-up (see [`scan::shade_rows`](super::scan::shade_rows)), if it is one.
 #[inline(always)]
 pub(crate) fn shade_rows<const N: usize>(
     v: [(Coord, Coord); 3],
@@ -150,29 +149,29 @@ pub(crate) fn shade_rows<const N: usize>(
     clip: &Rectangle,
     band: Band,
     shader: &mut impl SpanShader<N>,
-    keep: Option<&mut Kept>,
-) -> bool {
+    keep: bool,
+) -> Option<Kept> {
     if shader.scans_small() {
         if let Some(kept) = super::scan::shade_rows(v, attributes, clip, &band, shader, keep) {
             return kept;
         }
     }
     match CompactTriangle::new(v, clip) {
-        Ok(None) => return false,
+        Ok(None) => return None,
         Ok(Some(triangle)) => {
             if compact_rows(&triangle, attributes, &band, shader).is_ok() {
-                return false;
+                return None;
             }
         }
         Err(TooLarge) => {}
     }
     shade_general(v, attributes, clip, Some(band), shader);
-    false
+    None
 }
 
 impl Band {
-    /// [`RowWindow::shade`], keeping a small triangle's set-up in `keep` for
-    /// [`resume`](Self::resume) (if the shader scans small triangles): whether it did.
+    /// [`RowWindow::shade`], giving a small triangle's set-up for [`resume`](Self::resume) (if
+    /// the shader scans small triangles).
     #[inline(always)]
     pub(crate) fn shade_keeping<const N: usize, S: SpanShader<N>>(
         &self,
@@ -180,13 +179,12 @@ impl Band {
         attributes: &Attributes<N>,
         clip: &Rectangle,
         shader: S,
-        keep: &mut Kept,
-    ) -> bool {
+    ) -> Option<Kept> {
         let mut local = Local {
             shader,
             band: *self,
         };
-        shade_rows(v, attributes, clip, *self, &mut local, Some(keep))
+        shade_rows(v, attributes, clip, *self, &mut local, true)
     }
 
     /// Draws this band's rows of the triangle whose set-up [`shade_keeping`](Self::shade_keeping)

@@ -414,9 +414,9 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
 /// [`shade`] for the rows of `band` only (see [`band`](super::band)): the triangle is set up
 /// over `clip` as `shade` sets it up, then its scan starts at the band's first row — the edge
 /// values and the planes stepped there by whole rows, the integers the scan reaches — and
-/// stops after the band's last. With `keep`, a small triangle's set-up is also written there
-/// (if it fits: `N ≤ 2`), for [`resume_rows`] to draw other bands' rows of it:
-/// `Some(true)` then.
+/// stops after the band's last. `None` if the triangle is not drawn here (not small), else
+/// the triangle's set-up if asked to `keep` it (and it fits: `N ≤ 2`), for [`resume_rows`] to
+/// draw other bands' rows of it.
 #[inline(always)]
 pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     v: [(Coord, Coord); 3],
@@ -424,15 +424,15 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     clip: &Rectangle,
     band: &Band,
     shader: &mut S,
-    keep: Option<&mut Kept>,
-) -> Option<bool> {
+    keep: bool,
+) -> Option<Option<Kept>> {
     match SmallTriangle::new(v, attributes, clip) {
         Ok(triangle) => {
-            let kept = keep.is_some_and(|keep| triangle.keep(keep));
+            let kept = if keep { triangle.keep() } else { None };
             triangle.draw_rows(band, shader);
             Some(kept)
         }
-        Err(NotSmall::Empty) => Some(false),
+        Err(NotSmall::Empty) => Some(None),
         Err(NotSmall::Other) => None,
     }
 }
@@ -459,38 +459,34 @@ pub(crate) const KEPT_WORDS: usize = 19;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Kept(pub(crate) [u32; KEPT_WORDS]);
 
-impl Kept {
-    /// Nothing kept yet.
-    pub(crate) const EMPTY: Kept = Kept([0; KEPT_WORDS]);
-}
-
 impl<const N: usize> SmallTriangle<N> {
-    /// Writes the set-up into `kept`; `false` (nothing written) for more than two planes.
+    /// The set-up, in words; `None` for more than two planes.
     #[inline(always)]
-    fn keep(&self, kept: &mut Kept) -> bool {
+    fn keep(&self) -> Option<Kept> {
         if 13 + 3 * N > KEPT_WORDS {
-            return false;
+            return None;
         }
-        let w = &mut kept.0;
-        w[0] = self.x0 as u32;
-        w[1] = self.y0 as u32;
-        w[2] = self.last;
-        w[3] = self.rows;
-        for (k, e) in self.edges.iter().enumerate() {
-            (w[4 + 3 * k], w[5 + 3 * k], w[6 + 3 * k]) = (e.a as u32, e.b as u32, e.k as u32);
-        }
-        let (value, dx, dy) = (
+        let [e0, e1, e2] = self.edges;
+        let region = [self.x0 as u32, self.y0 as u32, self.last, self.rows];
+        let edges = [e0.a, e0.b, e0.k, e1.a, e1.b, e1.k, e2.a, e2.b, e2.k].map(|w| w as u32);
+        let planes = [
             self.planes.first(),
             self.planes.step(),
             self.planes.row_step(),
-        );
-        for k in 0..N {
-            (w[13 + k], w[13 + N + k], w[13 + 2 * N + k]) = (value[k], dx[k], dy[k]);
-        }
-        true
+        ];
+        // Built whole: no store of a word written again.
+        Some(Kept(core::array::from_fn(|i| match i {
+            0..4 => region[i],
+            4..13 => edges[i - 4],
+            _ => planes
+                .get((i - 13) / N)
+                .and_then(|p| p.get((i - 13) % N))
+                .copied()
+                .unwrap_or(0),
+        })))
     }
 
-    /// The set-up [`keep`](Self::keep) wrote into `kept` (`None` for more than two planes).
+    /// The set-up [`keep`](Self::keep) gave as `kept` (`None` for more than two planes).
     #[inline(always)]
     fn kept(kept: &Kept) -> Option<Self> {
         if 13 + 3 * N > KEPT_WORDS {

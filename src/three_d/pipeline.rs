@@ -598,8 +598,8 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
 }
 
 impl<C: GouraudColor> Frame<'_, C, Band> {
-    /// [`refill`](Self::refill), keeping the set-up of a small Gouraud face (not clipped) in
-    /// `keep` for [`resume`](Self::resume): whether it did.
+    /// [`refill`](Self::refill), handing the set-up of a small Gouraud face (not clipped) to
+    /// `keep` (for [`resume`](Self::resume)).
     #[inline(always)]
     pub(crate) fn refill_keeping(
         &self,
@@ -608,25 +608,25 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
         k: usize,
         clipped: bool,
         target: &mut DepthTarget<'_, C>,
-        keep: &mut Kept,
-    ) -> bool {
+        keep: &mut dyn FnMut(&Kept),
+    ) {
         let Fill::Gouraud(table) = &self.fill else {
             self.refill(mesh, scratch, k, clipped, target);
-            return false;
+            return;
         };
         if clipped {
             self.refill(mesh, scratch, k, clipped, target);
-            return false;
+            return;
         }
         let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
-            return false;
+            return;
         };
         let (Some(a), Some(b), Some(c)) = (
             scratch.get(idx[0]),
             scratch.get(idx[1]),
             scratch.get(idx[2]),
         ) else {
-            return false;
+            return;
         };
         let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
         let v = [a, b, c];

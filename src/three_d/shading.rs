@@ -716,8 +716,8 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
 }
 
-/// [`draw_levels`] into a band (`clip`'s rows), keeping a small triangle's set-up in `keep`
-/// for [`resume_levels`]: whether it did.
+/// [`draw_levels`] into a band (`clip`'s rows), handing a small triangle's set-up to `keep`
+/// (for [`resume_levels`]).
 #[inline(never)]
 pub(crate) fn draw_levels_keeping<C: PixelColor>(
     target: &mut DepthTarget<'_, C>,
@@ -725,8 +725,8 @@ pub(crate) fn draw_levels_keeping<C: PixelColor>(
     vertices: &[ScreenVertex; 3],
     levels: [u16; 3],
     table: &ShadeTable<C>,
-    keep: &mut Kept,
-) -> bool {
+    keep: &mut dyn FnMut(&Kept),
+) {
     let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
     let fill = DepthFill {
         target,
@@ -734,8 +734,9 @@ pub(crate) fn draw_levels_keeping<C: PixelColor>(
         pixel: Leveled(&table.colors),
     };
     let v = vertices.map(|v| v.position());
-    clip.rows
-        .shade_keeping(v, &attributes, &clip.rect, fill, keep)
+    if let Some(kept) = clip.rows.shade_keeping(v, &attributes, &clip.rect, fill) {
+        keep(&kept);
+    }
 }
 
 /// The rows of `band` of the triangle [`draw_levels_keeping`] kept in `kept` (with `table`):
