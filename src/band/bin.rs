@@ -10,7 +10,7 @@
 //! triangles by reading every entry (the same pixels, more work).
 //!
 //! A [`MeshBin`] uses the storage past the entries it needs, if any: a small Gouraud face
-//! reaching the next band leaves its set-up there (7 entries: its region, edges and planes,
+//! reaching the next band leaves its set-up there (5 entries: its region, edges and planes,
 //! the integers the set-up computes), and the next band draws its rows from it instead of
 //! setting the face up again — the same pixels, a set-up less for each face crossing a band
 //! boundary. The set-ups are kept in a ring in the order the faces are drawn; when it is full
@@ -224,9 +224,9 @@ impl<'b> Lists<'b> {
 }
 
 /// Entries a kept set-up takes in the storage past the lists: its words, three an entry, the
-/// last entry's second its triangle's item.
-const KEPT_ENTRIES: usize = 7;
-const _: () = assert!(KEPT_WORDS == 3 * (KEPT_ENTRIES - 1) + 1);
+/// last entry's band numbers its triangle's item.
+const KEPT_ENTRIES: usize = 5;
+const _: () = assert!(KEPT_WORDS == 3 * (KEPT_ENTRIES - 1) + 2);
 
 /// The set-ups of the triangles reaching the next band, kept in the storage past the lists: a
 /// ring of [`KEPT_ENTRIES`] entries each, in the order the triangles are drawn (the order of the
@@ -245,7 +245,7 @@ impl<'e> KeptRing<'e> {
     /// Set-ups the ring holds at most.
     #[inline(always)]
     fn capacity(&self) -> u32 {
-        // Fewer entries than 2³² · 7.
+        // Fewer entries than 2³² · 5.
         (self.spare.len() / KEPT_ENTRIES) as u32
     }
 
@@ -271,16 +271,17 @@ impl<'e> KeptRing<'e> {
         }
         let start = *self.start;
         let entries = self.at(start)?;
+        let word = |e: &BinEntry| u32::from(e.first) | u32::from(e.last) << 16;
         let [body @ .., end] = entries;
-        if end.next != item {
+        if word(end) != item {
             return None;
         }
         let mut kept = Kept([0; KEPT_WORDS]);
-        let (words, last) = kept.0.split_at_mut(KEPT_WORDS - 1);
+        let (words, last) = kept.0.split_at_mut(KEPT_WORDS - 2);
         for (w, e) in words.chunks_exact_mut(3).zip(body.iter()) {
-            (w[0], w[1], w[2]) = (e.item, e.next, u32::from(e.first) | u32::from(e.last) << 16);
+            (w[0], w[1], w[2]) = (e.item, e.next, word(e));
         }
-        last[0] = end.item;
+        (last[0], last[1]) = (end.item, end.next);
         let next = start + 1;
         *self.start = if next == self.capacity() { 0 } else { next };
         *self.len -= 1;
@@ -300,7 +301,7 @@ impl<'e> KeptRing<'e> {
         let Some([body @ .., last]) = self.at(end) else {
             return;
         };
-        let (words, rest) = kept.0.split_at(KEPT_WORDS - 1);
+        let (words, rest) = kept.0.split_at(KEPT_WORDS - 2);
         for (e, w) in body.iter_mut().zip(words.chunks_exact(3)) {
             *e = BinEntry {
                 item: w[0],
@@ -309,12 +310,12 @@ impl<'e> KeptRing<'e> {
                 last: (w[2] >> 16) as u16,
             };
         }
-        // The last word, and the item the set-up belongs to.
+        // The last two words, and the item the set-up belongs to.
         *last = BinEntry {
             item: rest[0],
-            next: item,
-            first: 0,
-            last: 0,
+            next: rest[1],
+            first: item as u16,
+            last: (item >> 16) as u16,
         };
         *self.len += 1;
     }
@@ -519,7 +520,7 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
     /// Runs the vertex and face stages of `mesh` with `material` through `pipeline` for the frame
     /// of `layout`, its vertices into `scratch` (one [`ProjectedVertex`] per mesh vertex), its
     /// faces into `storage` (one entry per band and per face kept; entries beyond those keep the
-    /// set-ups of faces crossing into the next band, 7 each, saving their set-up there). Errors,
+    /// set-ups of faces crossing into the next band, 5 each, saving their set-up there). Errors,
     /// before anything is drawn: the scratch too short, the storage too short (`BinTooSmall`
     /// with the number needed), more than 2³¹ faces.
     pub fn new(

@@ -450,8 +450,9 @@ pub(crate) fn resume_rows<const N: usize, S: SpanShader<N>>(
     }
 }
 
-/// Words of a kept set-up: the region (4), the edges (9) and two planes (6).
-pub(crate) const KEPT_WORDS: usize = 19;
+/// Words of a kept set-up: the region's first pixel (2), the edges (6, their coefficients and
+/// the region's size packed in three) and two planes (6).
+pub(crate) const KEPT_WORDS: usize = 14;
 
 /// A small triangle's set-up over the frame's clip, kept by [`shade_rows`] to draw the rows of
 /// later bands without setting it up again (a bin's triangles crossing bands): the same
@@ -459,16 +460,37 @@ pub(crate) const KEPT_WORDS: usize = 19;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Kept(pub(crate) [u32; KEPT_WORDS]);
 
+/// An edge's coefficients (below 2¹² in magnitude: 14 bits each) and a 4-bit field in a word.
+#[inline(always)]
+fn pack(e: &Edge, field: u32) -> u32 {
+    (e.a as u32 & 0x3FFF) | (e.b as u32 & 0x3FFF) << 14 | field << 28
+}
+
+/// The coefficients and field [`pack`] put in `w`.
+#[inline(always)]
+fn unpack(w: u32) -> (i32, i32, u32) {
+    (((w << 18) as i32) >> 18, ((w << 4) as i32) >> 18, w >> 28)
+}
+
 impl<const N: usize> SmallTriangle<N> {
     /// The set-up, in words; `None` for more than two planes.
     #[inline(always)]
     fn keep(&self) -> Option<Kept> {
-        if 13 + 3 * N > KEPT_WORDS {
+        if 8 + 3 * N > KEPT_WORDS {
             return None;
         }
         let [e0, e1, e2] = self.edges;
-        let region = [self.x0 as u32, self.y0 as u32, self.last, self.rows];
-        let edges = [e0.a, e0.b, e0.k, e1.a, e1.b, e1.k, e2.a, e2.b, e2.k].map(|w| w as u32);
+        // The region's last column and row offsets are below 16 (a small triangle's box).
+        let head = [
+            self.x0 as u32,
+            self.y0 as u32,
+            pack(&e0, self.last),
+            pack(&e1, self.rows),
+            pack(&e2, 0),
+            e0.k as u32,
+            e1.k as u32,
+            e2.k as u32,
+        ];
         let planes = [
             self.planes.first(),
             self.planes.step(),
@@ -476,11 +498,10 @@ impl<const N: usize> SmallTriangle<N> {
         ];
         // Built whole: no store of a word written again.
         Some(Kept(core::array::from_fn(|i| match i {
-            0..4 => region[i],
-            4..13 => edges[i - 4],
+            0..8 => head[i],
             _ => planes
-                .get((i - 13) / N)
-                .and_then(|p| p.get((i - 13) % N))
+                .get((i - 8) / N)
+                .and_then(|p| p.get((i - 8) % N))
                 .copied()
                 .unwrap_or(0),
         })))
@@ -489,23 +510,21 @@ impl<const N: usize> SmallTriangle<N> {
     /// The set-up [`keep`](Self::keep) gave as `kept` (`None` for more than two planes).
     #[inline(always)]
     fn kept(kept: &Kept) -> Option<Self> {
-        if 13 + 3 * N > KEPT_WORDS {
+        if 8 + 3 * N > KEPT_WORDS {
             return None;
         }
         let w = &kept.0;
-        let edge = |k: usize| Edge {
-            a: w[4 + 3 * k] as i32,
-            b: w[5 + 3 * k] as i32,
-            k: w[6 + 3 * k] as i32,
-        };
+        let ((a0, b0, last), (a1, b1, rows), (a2, b2, _)) =
+            (unpack(w[2]), unpack(w[3]), unpack(w[4]));
+        let edge = |a: i32, b: i32, k: u32| Edge { a, b, k: k as i32 };
         let plane = |from: usize| core::array::from_fn(|k| w[from + k]);
         Some(SmallTriangle {
             x0: w[0] as i32,
             y0: w[1] as i32,
-            last: w[2],
-            rows: w[3],
-            edges: [edge(0), edge(1), edge(2)],
-            planes: Planes::from_parts(plane(13), plane(13 + N), plane(13 + 2 * N)),
+            last,
+            rows,
+            edges: [edge(a0, b0, w[5]), edge(a1, b1, w[6]), edge(a2, b2, w[7])],
+            planes: Planes::from_parts(plane(8), plane(8 + N), plane(8 + 2 * N)),
         })
     }
 
