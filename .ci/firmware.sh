@@ -39,7 +39,7 @@ MESH_FRAME_LIMIT=4700000
 
 # Band rendering (fw_band, fw_band_microbit; issue #14): the bin's knot frame in 16-row bands on
 # the Cortex-M4 at most this many per cent over the frame drawn whole in the same firmware
-# (measured +14.3 %, the issue's goal being 15 %: the bin's faces take the whole frame's fill, and
+# (measured +14.4 %, the issue's goal being 15 %: the bin's faces take the whole frame's fill, and
 # the faces crossing a band boundary resume from set-ups kept in the bin's spare storage, which
 # fw_band has), and the micro:bit's frame in 8-row bands without a bin at most this many
 # instructions (128 M measured).
