@@ -404,6 +404,66 @@ fn knot_bands_are_the_whole_frame_at_every_height() {
     }
 }
 
+/// A mesh bin whose storage keeps no set-up of the faces crossing bands (exactly the entries
+/// it needs), a few (a ring that fills up) or many, its bands drawn top to bottom, out of order
+/// and again: every band the whole frame's rows.
+#[test]
+fn mesh_bins_keep_set_ups_in_any_storage_and_order() {
+    let (want_colors, want_depth) = knot_frame();
+    let (w, h) = scene3d::SIZE;
+    let pipeline = scene3d::pipeline(scene3d::Model::Knot);
+    let material = scene3d::MATERIAL;
+    for rows in [3, 16, 37] {
+        let layout = BandLayout::new(Size::new(w, h), rows).unwrap();
+        let n = layout.buffer_len();
+        let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
+        let mut scratch = vec![ProjectedVertex::EMPTY; scene3d::KNOT.vertices.len()];
+        let mut storage = vec![BinEntry::EMPTY; 240 + 6144];
+        let kept = MeshBin::new(
+            &pipeline,
+            &scene3d::KNOT,
+            &material,
+            &layout,
+            &mut scratch,
+            &mut storage,
+        )
+        .unwrap()
+        .len();
+        let needed = layout.count() as usize + kept;
+        let count = layout.count();
+        let mut order: Vec<u32> = (0..count).collect();
+        order.extend([count - 1, 0, 2, 1, 2, 3, 4, 3]);
+        for spare in [0, 1, 7, 7 * 5 + 3, 2000] {
+            let mut storage = vec![BinEntry::EMPTY; needed + spare];
+            let mut bin = MeshBin::new(
+                &pipeline,
+                &scene3d::KNOT,
+                &material,
+                &layout,
+                &mut scratch,
+                &mut storage,
+            )
+            .unwrap();
+            for &index in &order {
+                let mut band = DepthBand::new(&mut colors, &mut depth, &layout, index).unwrap();
+                band.clear(scene3d::BACKGROUND);
+                bin.draw(&mut band).unwrap();
+                let from = (index * rows * w) as usize;
+                let len = band.pixels().len();
+                let what = format!("{rows}-row band {index}, {spare} spare entries");
+                assert!(
+                    band.pixels() == &want_colors[from..from + len],
+                    "colours, {what}"
+                );
+                assert!(
+                    band.depth() == &want_depth[from..from + len],
+                    "depths, {what}"
+                );
+            }
+        }
+    }
+}
+
 /// Meshes with every shading and culling, the camera close enough to clip some faces at the
 /// near plane, on viewports that are not the frame, in bands of every height.
 #[test]

@@ -82,3 +82,17 @@ pub(crate) fn level_rows<C: Copy>(
 ) -> bool {
     false
 }
+
+/// Sets every entry of `entries` to `value`, the 4-byte-aligned middle a word (two entries) at
+/// a time. A 16-bit buffer is only known to be 2-byte aligned where it is cleared, and LLVM
+/// turns a fill at that alignment into the byte-granular `memset` call, on Cortex-M four times
+/// the instructions of the word-aligned one it picks here.
+#[allow(unsafe_code)]
+pub(crate) fn fill_u16(entries: &mut [u16], value: u16) {
+    // SAFETY: any two `u16`s are a valid `u32` and any `u32` is two valid `u16`s; `align_to_mut`
+    // gives the middle only what is aligned and in bounds.
+    let (head, middle, tail) = unsafe { entries.align_to_mut::<u32>() };
+    head.fill(value);
+    middle.fill(u32::from(value) * 0x0001_0001);
+    tail.fill(value);
+}

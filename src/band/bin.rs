@@ -8,6 +8,13 @@
 //! are those still open from the bands above (a list kept in order) merged with those starting
 //! there: each band costs the triangles it touches. Drawn in any other order, a band finds its
 //! triangles by reading every entry (the same pixels, more work).
+//!
+//! A [`MeshBin`] uses the storage past the entries it needs, if any: a small Gouraud face
+//! reaching the next band leaves its set-up there (5 entries: its region, edges and planes,
+//! the integers the set-up computes), and the next band draws its rows from it instead of
+//! setting the face up again — the same pixels, a set-up less for each face crossing a band
+//! boundary. The set-ups are kept in a ring in the order the faces are drawn; when it is full
+//! (or the storage has no spare entry) a face is set up again.
 
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
@@ -17,6 +24,7 @@ use super::{BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::compact::{first_centre_from, last_centre_to};
+use crate::raster::scan::{Kept, KEPT_WORDS};
 use crate::three_d::{
     fit_scratch, DrawStats, FaceSink, Frame, Material, Mesh, Pipeline, ProjectedVertex, TargetClip,
 };
@@ -28,7 +36,8 @@ use crate::Vec3;
 /// bin reports how many it needs when its storage is too short.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct BinEntry {
-    /// The triangle's number (and [`CLIPPED`]); for a band's head, the last entry of its list.
+    /// The triangle's number (and [`CLIPPED`]); for a band's head, the last entry of its list
+    /// (the head itself while the list is empty).
     item: u32,
     /// The next entry of the list.
     next: u32,
@@ -67,11 +76,15 @@ struct Lists<'b> {
     /// Bands (the first entries), and triangles recorded (or counted past the storage's end).
     bands: u32,
     records: u32,
-    /// More triangles than fit `u32` or the flag's range.
+    /// A triangle numbered past the flag's range (so far fewer than 2³¹ are recorded: `bands +
+    /// records` fits `u32`).
     limit: bool,
     /// The list of triangles still open after the band drawn last, and the band expected next.
     active: u32,
     next_band: u32,
+    /// The ring of kept set-ups in the storage past the lists: its first and its length.
+    kept_start: u32,
+    kept_len: u32,
 }
 
 impl<'b> Lists<'b> {
@@ -81,8 +94,12 @@ impl<'b> Lists<'b> {
         if bands > u32::from(u16::MAX) + 1 {
             return Err(BandError::BinLimit);
         }
-        for head in entries.iter_mut().take(bands as usize) {
-            *head = BinEntry::EMPTY;
+        for (band, head) in entries.iter_mut().take(bands as usize).enumerate() {
+            *head = BinEntry {
+                // Below 2¹⁶ + 1.
+                item: band as u32,
+                ..BinEntry::EMPTY
+            };
         }
         Ok(Lists {
             entries,
@@ -91,17 +108,18 @@ impl<'b> Lists<'b> {
             limit: false,
             active: NONE,
             next_band: 0,
+            kept_start: 0,
+            kept_len: 0,
         })
     }
 
-    /// Records `item`, in bands `first ..= last` (below the number of bands).
-    #[inline]
+    /// Records `item` (a number below [`CLIPPED`], each once, and its flags), in bands
+    /// `first ..= last` (below the number of bands).
+    #[inline(always)]
     fn push(&mut self, item: u32, first: u32, last: u32) {
-        // The slots follow the bands' heads; past `u32::MAX` nothing is stored, and `finish`
-        // reports it.
-        let slot = self.bands.wrapping_add(self.records);
-        self.records = self.records.wrapping_add(1);
-        self.limit |= self.records == 0 || slot < self.bands;
+        // The slots follow the bands' heads: below 2¹⁶ + 1 + 2³¹, no overflow.
+        let slot = self.bands + self.records;
+        self.records += 1;
         let Some(e) = self.entries.get_mut(slot as usize) else {
             // Counted, not stored: `finish` reports the storage too small.
             return;
@@ -112,14 +130,13 @@ impl<'b> Lists<'b> {
             first: first as u16,
             last: last as u16,
         };
-        // Appended to its first band's list (the head keeps the tail in `item`).
+        // Appended to its first band's list: linked from the tail the head keeps in `item` (the
+        // head itself for an empty list).
         let Some(head) = self.entries.get_mut(first as usize) else {
             return;
         };
         let tail = core::mem::replace(&mut head.item, slot);
-        if tail == NONE {
-            head.next = slot;
-        } else if let Some(t) = self.entries.get_mut(tail as usize) {
+        if let Some(t) = self.entries.get_mut(tail as usize) {
             t.next = slot;
         }
     }
@@ -144,54 +161,163 @@ impl<'b> Lists<'b> {
         self.records as usize
     }
 
-    /// Calls `f` with every item touching `band`, in the order they were recorded.
-    fn each(&mut self, band: u32, mut f: impl FnMut(u32)) {
+    /// Calls `f` with every item touching `band`, in the order they were recorded, whether it
+    /// comes from the band above and whether it reaches the next band (both only when the
+    /// bands are drawn top to bottom), and the set-ups kept ([`Kept`]) for the items reaching
+    /// this band from above (in their order).
+    fn each(&mut self, band: u32, mut f: impl FnMut(u32, bool, bool, &mut KeptRing<'_>)) {
         if band >= self.bands {
             return;
         }
+        let end = (self.bands as usize + self.records as usize).min(self.entries.len());
+        let (entries, spare) = self.entries.split_at_mut(end);
         if band != self.next_band {
-            // Out of order: every entry, read.
-            let records = self.entries.iter().skip(self.bands as usize);
+            // Out of order: every entry, read; nothing kept.
+            let mut none = KeptRing::new(&mut [], &mut self.kept_start, &mut self.kept_len);
+            none.clear();
+            let records = entries.iter().skip(self.bands as usize);
             for e in records.take(self.records as usize) {
                 if u32::from(e.first) <= band && band <= u32::from(e.last) {
-                    f(e.item);
+                    f(e.item, false, false, &mut none);
                 }
             }
             return;
         }
+        let mut kept = KeptRing::new(spare, &mut self.kept_start, &mut self.kept_len);
+        if band == 0 {
+            kept.clear();
+        }
         // The open triangles merged with those starting here, by slot (their order); those
         // reaching further down stay open.
-        let (mut open, mut starting) = (self.active, self.head(band));
+        let (mut open, mut starting) = (
+            self.active,
+            entries.get(band as usize).map_or(NONE, |h| h.next),
+        );
         let (mut head, mut tail) = (NONE, NONE);
         loop {
             let slot = open.min(starting);
-            let Some(e) = self.entries.get(slot as usize).copied() else {
+            let Some(e) = entries.get(slot as usize).copied() else {
                 break;
             };
-            if slot == open {
+            let above = slot == open;
+            if above {
                 open = e.next;
             } else {
                 starting = e.next;
             }
-            f(e.item);
-            if u32::from(e.last) > band {
-                match self.entries.get_mut(tail as usize) {
+            let continues = u32::from(e.last) > band;
+            f(e.item, above, continues, &mut kept);
+            if continues {
+                match entries.get_mut(tail as usize) {
                     Some(t) => t.next = slot,
                     None => head = slot,
                 }
                 tail = slot;
             }
         }
-        if let Some(t) = self.entries.get_mut(tail as usize) {
+        if let Some(t) = entries.get_mut(tail as usize) {
             t.next = NONE;
         }
         self.active = head;
         self.next_band = band + 1;
     }
+}
 
-    /// The first entry of `band`'s list.
-    fn head(&self, band: u32) -> u32 {
-        self.entries.get(band as usize).map_or(NONE, |h| h.next)
+/// Entries a kept set-up takes in the storage past the lists: its words, three an entry, the
+/// last entry's band numbers its triangle's item.
+const KEPT_ENTRIES: usize = 5;
+const _: () = assert!(KEPT_WORDS == 3 * (KEPT_ENTRIES - 1) + 2);
+
+/// The set-ups of the triangles reaching the next band, kept in the storage past the lists: a
+/// ring of [`KEPT_ENTRIES`] entries each, in the order the triangles are drawn (the order of the
+/// next band's open list), so the next band takes them from the front as it meets them.
+pub(crate) struct KeptRing<'e> {
+    spare: &'e mut [BinEntry],
+    start: &'e mut u32,
+    len: &'e mut u32,
+}
+
+impl<'e> KeptRing<'e> {
+    fn new(spare: &'e mut [BinEntry], start: &'e mut u32, len: &'e mut u32) -> Self {
+        KeptRing { spare, start, len }
+    }
+
+    /// Set-ups the ring holds at most.
+    #[inline(always)]
+    fn capacity(&self) -> u32 {
+        // Fewer entries than 2³² · 5.
+        (self.spare.len() / KEPT_ENTRIES) as u32
+    }
+
+    /// Empties it.
+    fn clear(&mut self) {
+        (*self.start, *self.len) = (0, 0);
+    }
+
+    /// The entries of set-up `n` of the ring's storage.
+    #[inline(always)]
+    fn at(&mut self, n: u32) -> Option<&mut [BinEntry; KEPT_ENTRIES]> {
+        let from = n as usize * KEPT_ENTRIES;
+        self.spare
+            .get_mut(from..from + KEPT_ENTRIES)
+            .and_then(|e| e.try_into().ok())
+    }
+
+    /// The set-up of `item` if it is the front one (taken off the ring).
+    #[inline(always)]
+    pub(crate) fn take(&mut self, item: u32) -> Option<Kept> {
+        if *self.len == 0 {
+            return None;
+        }
+        let start = *self.start;
+        let entries = self.at(start)?;
+        let word = |e: &BinEntry| u32::from(e.first) | u32::from(e.last) << 16;
+        let [body @ .., end] = entries;
+        if word(end) != item {
+            return None;
+        }
+        let mut kept = Kept([0; KEPT_WORDS]);
+        let (words, last) = kept.0.split_at_mut(KEPT_WORDS - 2);
+        for (w, e) in words.chunks_exact_mut(3).zip(body.iter()) {
+            (w[0], w[1], w[2]) = (e.item, e.next, word(e));
+        }
+        (last[0], last[1]) = (end.item, end.next);
+        let next = start + 1;
+        *self.start = if next == self.capacity() { 0 } else { next };
+        *self.len -= 1;
+        Some(kept)
+    }
+
+    /// Appends the set-up of `item` (nothing when the ring is full).
+    #[inline(always)]
+    pub(crate) fn put(&mut self, item: u32, kept: &Kept) {
+        let capacity = self.capacity();
+        if *self.len >= capacity {
+            return;
+        }
+        // Both below the capacity: the sum fits.
+        let end = *self.start + *self.len;
+        let end = if end >= capacity { end - capacity } else { end };
+        let Some([body @ .., last]) = self.at(end) else {
+            return;
+        };
+        let (words, rest) = kept.0.split_at(KEPT_WORDS - 2);
+        for (e, w) in body.iter_mut().zip(words.chunks_exact(3)) {
+            *e = BinEntry {
+                item: w[0],
+                next: w[1],
+                first: w[2] as u16,
+                last: (w[2] >> 16) as u16,
+            };
+        }
+        // The last two words, and the item the set-up belongs to.
+        *last = BinEntry {
+            item: rest[0],
+            next: rest[1],
+            first: item as u16,
+            last: (item >> 16) as u16,
+        };
+        *self.len += 1;
     }
 }
 
@@ -318,7 +444,7 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
             return Err(BandError::OtherLayout);
         }
         let items = self.items;
-        self.lists.each(band.index(), |k| {
+        self.lists.each(band.index(), |k, _, _, _| {
             if let Some(item) = items.get(k as usize) {
                 item.draw_band(band);
             }
@@ -393,9 +519,10 @@ impl<C> core::fmt::Debug for MeshBin<'_, C> {
 impl<'a, C: GouraudColor> MeshBin<'a, C> {
     /// Runs the vertex and face stages of `mesh` with `material` through `pipeline` for the frame
     /// of `layout`, its vertices into `scratch` (one [`ProjectedVertex`] per mesh vertex), its
-    /// faces into `storage` (one entry per band and per face kept). Errors, before anything is
-    /// drawn: the scratch too short, the storage too short (`BinTooSmall` with the number
-    /// needed), more than 2³¹ faces.
+    /// faces into `storage` (one entry per band and per face kept; entries beyond those keep the
+    /// set-ups of faces crossing into the next band, 5 each, saving their set-up there). Errors,
+    /// before anything is drawn: the scratch too short, the storage too short (`BinTooSmall`
+    /// with the number needed), more than 2³¹ faces.
     pub fn new(
         pipeline: &'a Pipeline,
         mesh: &Mesh<'a>,
@@ -454,10 +581,30 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         let frame = self.frame.with_clip(band.clip(self.pipeline));
         let (target, placement) = band.parts();
         let (mesh, scratch) = (&self.mesh, self.scratch);
-        self.lists.each(placement.index, |item| {
-            let k = (item & !CLIPPED) as usize;
-            frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
-        });
+        // The refill inlined in the list's walk: a call per face otherwise.
+        self.lists.each(
+            placement.index,
+            #[inline(always)]
+            |item, above, continues, kept| {
+                let k = (item & !CLIPPED) as usize;
+                let clipped = item & CLIPPED != 0;
+                if let Some(set_up) = above.then(|| kept.take(item)).flatten() {
+                    // Set up in a band above: its rows here from the same integers.
+                    if frame.resume(target, &set_up) {
+                        if continues {
+                            kept.put(item, &set_up);
+                        }
+                        return;
+                    }
+                }
+                if continues {
+                    let mut keep = |set_up: &Kept| kept.put(item, set_up);
+                    frame.refill_keeping(mesh, scratch, k, clipped, target, &mut keep);
+                } else {
+                    frame.refill(mesh, scratch, k, clipped, target);
+                }
+            },
+        );
         Ok(())
     }
 }

@@ -20,7 +20,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::compact::{first_centre_from, last_centre_to, CompactTriangle, TooLarge};
 use super::plane::{Attributes, Planes};
-use super::scan::SmallScan;
+use super::scan::{Kept, SmallScan};
 use super::shade::{fold_planes, shade, shade_general, SpanShader};
 use super::walk::Span;
 use crate::arch::LANES;
@@ -121,7 +121,7 @@ impl RowWindow for Band {
             shader,
             band: *self,
         };
-        shade_rows(v, attributes, clip, *self, &mut local);
+        shade_rows(v, attributes, clip, *self, &mut local, false);
         local.shader
     }
 
@@ -140,28 +140,64 @@ impl RowWindow for Band {
 
 /// Walks the triangle `v` with `attributes` over `clip` like [`shade`], but only the rows of
 /// `band` (in frame rows; the spans reach `shader` as they are): the same spans and values as
-/// `shade` gives those rows. Nothing for a band outside `clip`.
-#[inline(never)]
+/// `shade` gives those rows. Nothing for a band outside `clip`. With `keep`, a small
+/// triangle's set-up (see [`scan::shade_rows`](super::scan::shade_rows)), if it is one.
+#[inline(always)]
 pub(crate) fn shade_rows<const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
     clip: &Rectangle,
     band: Band,
     shader: &mut impl SpanShader<N>,
-) {
-    if shader.scans_small() && super::scan::shade_rows(v, attributes, clip, &band, shader) {
-        return;
+    keep: bool,
+) -> Option<Kept> {
+    if shader.scans_small() {
+        if let Some(kept) = super::scan::shade_rows(v, attributes, clip, &band, shader, keep) {
+            return kept;
+        }
     }
     match CompactTriangle::new(v, clip) {
-        Ok(None) => return,
+        Ok(None) => return None,
         Ok(Some(triangle)) => {
             if compact_rows(&triangle, attributes, &band, shader).is_ok() {
-                return;
+                return None;
             }
         }
         Err(TooLarge) => {}
     }
     shade_general(v, attributes, clip, Some(band), shader);
+    None
+}
+
+impl Band {
+    /// [`RowWindow::shade`], giving a small triangle's set-up for [`resume`](Self::resume) (if
+    /// the shader scans small triangles).
+    #[inline(always)]
+    pub(crate) fn shade_keeping<const N: usize, S: SpanShader<N>>(
+        &self,
+        v: [(Coord, Coord); 3],
+        attributes: &Attributes<N>,
+        clip: &Rectangle,
+        shader: S,
+    ) -> Option<Kept> {
+        let mut local = Local {
+            shader,
+            band: *self,
+        };
+        shade_rows(v, attributes, clip, *self, &mut local, true)
+    }
+
+    /// Draws this band's rows of the triangle whose set-up [`shade_keeping`](Self::shade_keeping)
+    /// kept in `kept` through `shader` (of the type it drew with): the pixels and values
+    /// `RowWindow::shade` gives them.
+    #[inline(always)]
+    pub(crate) fn resume<const N: usize, S: SpanShader<N>>(&self, kept: &Kept, shader: S) {
+        let mut local = Local {
+            shader,
+            band: *self,
+        };
+        super::scan::resume_rows(kept, self, &mut local);
+    }
 }
 
 /// The band's rows of a compact triangle: the walk of a copy set up from the band's first row,

@@ -351,6 +351,13 @@ impl<const N: usize> Planes<N> {
         self.value
     }
 
+    /// The planes of the values at the first pixel and the per-pixel and per-row steps (those
+    /// [`first`](Self::first), [`step`](Self::step) and [`row_step`](Self::row_step) give).
+    #[inline(always)]
+    pub(crate) fn from_parts(value: [u32; N], dx: [u32; N], dy: [u32; N]) -> Self {
+        Planes { value, dx, dy }
+    }
+
     /// The planes from `rows` rows below the first pixel on: their `at(column, row)` is this
     /// one's `at(column, rows + row)`, the same integers modulo 2³² (a band's walk that starts
     /// lower than the region).

@@ -414,7 +414,9 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
 /// [`shade`] for the rows of `band` only (see [`band`](super::band)): the triangle is set up
 /// over `clip` as `shade` sets it up, then its scan starts at the band's first row — the edge
 /// values and the planes stepped there by whole rows, the integers the scan reaches — and
-/// stops after the band's last.
+/// stops after the band's last. `None` if the triangle is not drawn here (not small), else
+/// the triangle's set-up if asked to `keep` it (and it fits: `N ≤ 2`), for [`resume_rows`] to
+/// draw other bands' rows of it.
 #[inline(always)]
 pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     v: [(Coord, Coord); 3],
@@ -422,34 +424,134 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     clip: &Rectangle,
     band: &Band,
     shader: &mut S,
-) -> bool {
+    keep: bool,
+) -> Option<Option<Kept>> {
     match SmallTriangle::new(v, attributes, clip) {
-        Ok(mut triangle) => {
-            // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
-            let last = triangle.y0 + triangle.rows as i32;
-            if triangle.y0 < band.first {
-                if last < band.first {
-                    return true;
-                }
-                let skip = (band.first - triangle.y0) as u32;
-                for e in &mut triangle.edges {
-                    e.k += e.b * skip as i32;
-                }
-                triangle.planes = triangle.planes.advanced(skip);
-                triangle.y0 = band.first;
-                triangle.rows -= skip;
-            }
-            if last > band.last {
-                if triangle.y0 > band.last {
-                    return true;
-                }
-                triangle.rows = (band.last - triangle.y0) as u32;
-            }
-            triangle.draw(shader);
-            true
+        Ok(triangle) => {
+            let kept = if keep { triangle.keep() } else { None };
+            triangle.draw_rows(band, shader);
+            Some(kept)
         }
-        Err(NotSmall::Empty) => true,
-        Err(NotSmall::Other) => false,
+        Err(NotSmall::Empty) => Some(None),
+        Err(NotSmall::Other) => None,
+    }
+}
+
+/// Draws the rows of `band` of the small triangle whose set-up [`shade_rows`] kept in `kept`:
+/// what `shade_rows` draws there.
+#[inline(always)]
+pub(crate) fn resume_rows<const N: usize, S: SpanShader<N>>(
+    kept: &Kept,
+    band: &Band,
+    shader: &mut S,
+) {
+    if let Some(triangle) = SmallTriangle::<N>::kept(kept) {
+        triangle.draw_rows(band, shader);
+    }
+}
+
+/// Words of a kept set-up: the region's first pixel (2), the edges (6, their coefficients and
+/// the region's size packed in three) and two planes (6).
+pub(crate) const KEPT_WORDS: usize = 14;
+
+/// A small triangle's set-up over the frame's clip, kept by [`shade_rows`] to draw the rows of
+/// later bands without setting it up again (a bin's triangles crossing bands): the same
+/// integers, so the same pixels and values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Kept(pub(crate) [u32; KEPT_WORDS]);
+
+/// An edge's coefficients (below 2¹² in magnitude: 14 bits each) and a 4-bit field in a word.
+#[inline(always)]
+fn pack(e: &Edge, field: u32) -> u32 {
+    (e.a as u32 & 0x3FFF) | (e.b as u32 & 0x3FFF) << 14 | field << 28
+}
+
+/// The coefficients and field [`pack`] put in `w`.
+#[inline(always)]
+fn unpack(w: u32) -> (i32, i32, u32) {
+    (((w << 18) as i32) >> 18, ((w << 4) as i32) >> 18, w >> 28)
+}
+
+impl<const N: usize> SmallTriangle<N> {
+    /// The set-up, in words; `None` for more than two planes.
+    #[inline(always)]
+    fn keep(&self) -> Option<Kept> {
+        if 8 + 3 * N > KEPT_WORDS {
+            return None;
+        }
+        let [e0, e1, e2] = self.edges;
+        // The region's last column and row offsets are below 16 (a small triangle's box).
+        let head = [
+            self.x0 as u32,
+            self.y0 as u32,
+            pack(&e0, self.last),
+            pack(&e1, self.rows),
+            pack(&e2, 0),
+            e0.k as u32,
+            e1.k as u32,
+            e2.k as u32,
+        ];
+        let planes = [
+            self.planes.first(),
+            self.planes.step(),
+            self.planes.row_step(),
+        ];
+        // Built whole: no store of a word written again.
+        Some(Kept(core::array::from_fn(|i| match i {
+            0..8 => head[i],
+            _ => planes
+                .get((i - 8) / N)
+                .and_then(|p| p.get((i - 8) % N))
+                .copied()
+                .unwrap_or(0),
+        })))
+    }
+
+    /// The set-up [`keep`](Self::keep) gave as `kept` (`None` for more than two planes).
+    #[inline(always)]
+    fn kept(kept: &Kept) -> Option<Self> {
+        if 8 + 3 * N > KEPT_WORDS {
+            return None;
+        }
+        let w = &kept.0;
+        let ((a0, b0, last), (a1, b1, rows), (a2, b2, _)) =
+            (unpack(w[2]), unpack(w[3]), unpack(w[4]));
+        let edge = |a: i32, b: i32, k: u32| Edge { a, b, k: k as i32 };
+        let plane = |from: usize| core::array::from_fn(|k| w[from + k]);
+        Some(SmallTriangle {
+            x0: w[0] as i32,
+            y0: w[1] as i32,
+            last,
+            rows,
+            edges: [edge(a0, b0, w[5]), edge(a1, b1, w[6]), edge(a2, b2, w[7])],
+            planes: Planes::from_parts(plane(8), plane(8 + N), plane(8 + 2 * N)),
+        })
+    }
+
+    /// Draws the rows of `band` (see [`shade_rows`]).
+    #[inline(always)]
+    fn draw_rows<S: SpanShader<N>>(mut self, band: &Band, shader: &mut S) {
+        // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
+        let last = self.y0 + self.rows as i32;
+        if self.y0 < band.first {
+            if last < band.first {
+                return;
+            }
+            let skip = (band.first - self.y0) as u32;
+            for e in &mut self.edges {
+                e.k += e.b * skip as i32;
+            }
+            self.planes = self.planes.advanced(skip);
+            self.y0 = band.first;
+            self.rows -= skip;
+        }
+        if last > band.last {
+            if self.y0 > band.last {
+                return;
+            }
+            self.rows = (band.last - self.y0) as u32;
+        }
+        self.draw(shader);
     }
 }
 

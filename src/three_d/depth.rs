@@ -133,7 +133,7 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
 
     /// Resets every depth to [`DEPTH_CLEAR`].
     pub fn clear_depth(&mut self) {
-        fill_row(self.depth, DEPTH_CLEAR);
+        crate::arch::fill_u16(self.depth, DEPTH_CLEAR);
     }
 
     /// Fills the colour buffer with `color` and resets the z-buffer.

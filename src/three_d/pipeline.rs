@@ -72,7 +72,8 @@ use super::shading::{
 use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
-use crate::raster::band::{AllRows, RowWindow};
+use crate::raster::band::{AllRows, Band, RowWindow};
+use crate::raster::scan::Kept;
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -340,11 +341,7 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         v: [&ProjectedVertex; 3],
     ) {
         let tri = v.map(|v| v.screen());
-        let levels = || {
-            let face = v.iter().all(|v| v.has_normal()).then_some(0);
-            let face = face.unwrap_or_else(|| frame.face_level(&model()));
-            v.map(|v| if v.has_normal() { v.level() } else { face })
-        };
+        let levels = || frame.vertex_levels(model, v);
         frame.fill(mesh, idx, model, &tri, levels, None, self);
     }
 
@@ -536,6 +533,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     /// Fills face `k` of `mesh` (a face [`scratch_faces`](Self::scratch_faces) handed a sink,
     /// `clipped` if through [`FaceSink::clipped`]) into `target`, its vertices read from
     /// `scratch`: the same pixels as then. Nothing for a face not in the mesh.
+    #[inline(always)]
     pub(crate) fn refill(
         &self,
         mesh: &Mesh<'_>,
@@ -556,14 +554,108 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         };
         let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
         if clipped {
-            if let Ok(face) = self.clip_face(model, &[*a, *b, *c]) {
-                self.fill_fan(mesh, &idx, model, &face, target);
-            }
+            self.refill_clipped(mesh, &idx, &[*a, *b, *c], target);
         } else {
-            target.face(self, mesh, k, &idx, model, [a, b, c]);
+            // `DepthTarget::face`, its levels inlined (LLVM calls them here otherwise).
+            let v = [a, b, c];
+            let tri = v.map(|v| v.screen());
+            self.fill(
+                mesh,
+                &idx,
+                model,
+                &tri,
+                #[inline(always)]
+                || self.vertex_levels(model, v),
+                None,
+                target,
+            );
         }
     }
 
+    /// The light levels of a face's vertices `v` (at `model`): their own, or the face's for
+    /// those without a normal.
+    #[inline(always)]
+    fn vertex_levels(&self, model: impl Fn() -> [Vec3; 3], v: [&ProjectedVertex; 3]) -> [u16; 3] {
+        let face = v.iter().all(|v| v.has_normal()).then_some(0);
+        let face = face.unwrap_or_else(|| self.face_level(&model()));
+        v.map(|v| if v.has_normal() { v.level() } else { face })
+    }
+
+    /// [`refill`](Self::refill) of a clipped face (out of line: rare, and its polygon is large).
+    #[inline(never)]
+    fn refill_clipped(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        v: &[ProjectedVertex; 3],
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+        if let Ok(face) = self.clip_face(model, v) {
+            self.fill_fan(mesh, idx, model, &face, target);
+        }
+    }
+}
+
+impl<C: GouraudColor> Frame<'_, C, Band> {
+    /// [`refill`](Self::refill), handing the set-up of a small Gouraud face (not clipped) to
+    /// `keep` (for [`resume`](Self::resume)).
+    #[inline(always)]
+    pub(crate) fn refill_keeping(
+        &self,
+        mesh: &Mesh<'_>,
+        scratch: &[ProjectedVertex],
+        k: usize,
+        clipped: bool,
+        target: &mut DepthTarget<'_, C>,
+        keep: &mut dyn FnMut(&Kept),
+    ) {
+        let Fill::Gouraud(table) = &self.fill else {
+            self.refill(mesh, scratch, k, clipped, target);
+            return;
+        };
+        if clipped {
+            self.refill(mesh, scratch, k, clipped, target);
+            return;
+        }
+        let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
+            return;
+        };
+        let (Some(a), Some(b), Some(c)) = (
+            scratch.get(idx[0]),
+            scratch.get(idx[1]),
+            scratch.get(idx[2]),
+        ) else {
+            return;
+        };
+        let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+        let v = [a, b, c];
+        // What `fill` draws for the face.
+        let levels = self.vertex_levels(model, v);
+        shading::draw_levels_keeping(
+            target,
+            &self.clip,
+            &v.map(|v| v.screen()),
+            levels,
+            table,
+            keep,
+        )
+    }
+
+    /// Draws the band's rows of the face whose set-up [`refill_keeping`](Self::refill_keeping)
+    /// kept in `kept` (in a band of the same frame): the pixels `refill` gives them. `false`
+    /// (nothing drawn) if this draw does not keep set-ups.
+    #[inline(always)]
+    pub(crate) fn resume(&self, target: &mut DepthTarget<'_, C>, kept: &Kept) -> bool {
+        let Fill::Gouraud(table) = &self.fill else {
+            return false;
+        };
+        shading::resume_levels(target, self.clip.rows(), table, kept);
+        true
+    }
+}
+
+impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
         let (e1, e2) = (model[1] - model[0], model[2] - model[0]);

@@ -55,10 +55,10 @@ use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
 use crate::arch;
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
-use crate::raster::band::{AllRows, RowWindow};
+use crate::raster::band::{AllRows, Band, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
-use crate::raster::scan::SmallScan;
+use crate::raster::scan::{Kept, SmallScan};
 use crate::raster::{Span, SpanShader};
 
 /// How a mesh is lit.
@@ -704,6 +704,7 @@ impl<C: PixelColor> DepthPixel<C, 2> for Leveled<'_, C> {
 /// Fills the triangle with the material colour of `table` at the light levels `levels`
 /// (8.8 fixed point of the 0–255 scale, per vertex) interpolated across it, depth-tested: the
 /// pipeline's Gouraud fill.
+#[inline(never)]
 pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
@@ -713,6 +714,46 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
 ) {
     let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
+}
+
+/// [`draw_levels`] into a band (`clip`'s rows), handing a small triangle's set-up to `keep`
+/// (for [`resume_levels`]).
+#[inline(never)]
+pub(crate) fn draw_levels_keeping<C: PixelColor>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<Band>,
+    vertices: &[ScreenVertex; 3],
+    levels: [u16; 3],
+    table: &ShadeTable<C>,
+    keep: &mut dyn FnMut(&Kept),
+) {
+    let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
+    let fill = DepthFill {
+        target,
+        step: [0; 2],
+        pixel: Leveled(&table.colors),
+    };
+    let v = vertices.map(|v| v.position());
+    if let Some(kept) = clip.rows.shade_keeping(v, &attributes, &clip.rect, fill) {
+        keep(&kept);
+    }
+}
+
+/// The rows of `band` of the triangle [`draw_levels_keeping`] kept in `kept` (with `table`):
+/// the pixels `draw_levels` gives them.
+#[inline(never)]
+pub(crate) fn resume_levels<C: PixelColor>(
+    target: &mut DepthTarget<'_, C>,
+    band: &Band,
+    table: &ShadeTable<C>,
+    kept: &Kept,
+) {
+    let fill = DepthFill {
+        target,
+        step: [0; 2],
+        pixel: Leveled(&table.colors),
+    };
+    band.resume(kept, fill);
 }
 
 /// Fills the triangle with `color` where it is nearer than the z-buffer, inside `clip` and the
