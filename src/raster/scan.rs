@@ -499,7 +499,11 @@ fn small_planes<const N: usize>(
     let [c0, c1, c2] = attributes.values;
     let (c1, c2) = if swap { (c2, c1) } else { (c1, c2) };
     // Steps of at most 2¹⁴ LSB a pixel: |Nx| < area2·2¹⁴ (below 2³⁹, and 2³⁰ suffices).
-    let limit = (u64::from(area2) << 14).min(1 << 30) as u32;
+    let limit = if area2 < 1 << 16 {
+        area2 << 14
+    } else {
+        1 << 30
+    };
     let mut planes = Planes::zero();
     for k in 0..N {
         let base = i32::from(c0[k]);
