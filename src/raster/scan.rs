@@ -482,8 +482,9 @@ fn small_planes<const N: usize>(
     (e2, l2): (Edge, i32),
 ) -> Option<Planes<N>> {
     let t = leading_zeros_32(area2);
-    // ⌊2⁶³/d⌋ ≤ 2³², halved and clamped below 2³¹: a relative change under 2⁻³⁰.
-    let r = (reciprocal_63(area2 << t) >> 1).min(i32::MAX as u64) as i32;
+    // ⌊2⁶³/d⌋ ≤ 2³², clamped below 2³² and halved (in 32 bits): below 2³¹, a relative change
+    // under 2⁻³⁰.
+    let r = (reciprocal_63(area2 << t).min(u64::from(u32::MAX)) as u32 >> 1) as i32;
     let s = 38 - t;
     // Barycentrics of oriented vertices 1 and 2 at the first pixel, 24 fractional bits: below
     // 2⁸ for a first pixel in the box, and below 2³⁰ (else a sliver: `None`).
