@@ -514,13 +514,14 @@ fn small_planes<const N: usize>(
         if nx.unsigned_abs() >= limit || ny.unsigned_abs() >= limit {
             return None;
         }
-        // 2⁻³² units: below 2⁴⁸.
-        let v =
-            (i64::from(base) << 24) + i64::from(d1) * i64::from(b1) + i64::from(d2) * i64::from(b2);
+        // 2⁻³² units: below 2⁴⁸. The vertex value `base·2²⁴` is a multiple of 2⁸: added after
+        // the rounding shift, as `base·2¹⁶`, the same integer modulo 2³².
+        let v = i64::from(d1) * i64::from(b1) + i64::from(d2) * i64::from(b2);
+        let value = (((v + (1 << 7)) >> 8) as u32).wrapping_add((base as u32) << 16);
         let half = attributes.half[k];
         planes.set(
             k,
-            (((v + (1 << 7)) >> 8) as u32).wrapping_add(half),
+            value.wrapping_add(half),
             scaled(nx, r, s),
             scaled(ny, r, s),
         );
