@@ -149,9 +149,37 @@ pub(crate) fn shade_rows<const N: usize>(
     band: Band,
     shader: &mut impl SpanShader<N>,
 ) {
-    if shader.scans_small() && super::scan::shade_rows(v, attributes, clip, &band, shader) {
+    if shader.scans_small() {
+        if !super::scan::shade_rows(v, attributes, clip, &band, shader) {
+            walked_rows_not_small(v, *attributes, clip, band, shader);
+        }
         return;
     }
+    walked_rows(v, attributes, clip, band, shader);
+}
+
+/// [`walked_rows`] out of line, for shaders that scan small triangles (as `shade` keeps the
+/// walk's set-up out of the scan's frame).
+#[inline(never)]
+fn walked_rows_not_small<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: Attributes<N>,
+    clip: &Rectangle,
+    band: Band,
+    shader: &mut impl SpanShader<N>,
+) {
+    walked_rows(v, &attributes, clip, band, shader);
+}
+
+/// [`shade_rows`] for the triangles that are not scanned.
+#[inline(always)]
+fn walked_rows<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    band: Band,
+    shader: &mut impl SpanShader<N>,
+) {
     match CompactTriangle::new(v, clip) {
         Ok(None) => return,
         Ok(Some(triangle)) => {
