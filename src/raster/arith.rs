@@ -142,19 +142,14 @@ fn reciprocal_63_by_digits(d: u32) -> u64 {
     // d > 2³¹: the top half is at least 2¹⁵.
     let high = NonZeroU32::new(d >> 16).unwrap_or(NonZeroU32::MIN);
     // The digit ⌊rem·2¹⁶/d⌋ and its remainder, for rem < d. The estimate rem/high exceeds the
-    // digit by less than rem·2¹⁶/(high·d) < 2¹⁶/high ≤ 2: at most two corrections. Its product
-    // with d is below 2¹⁷·2³², rem·2¹⁶ below 2⁴⁸: the remainder is exact in an `i64`.
+    // digit by less than rem·2¹⁶/(high·d) < 2¹⁶/high ≤ 2, so `e`, its product with d (below
+    // 2¹⁷·2³²) less rem·2¹⁶, is in (−d, 2d): the digit is the estimate less [e > 0] + [e > d],
+    // and the remainder, below d, the low word of c·d − e.
     let digit = |rem: u32| {
-        let mut q = rem / high;
-        let mut r =
-            ((u64::from(rem) << 16) as i64).wrapping_sub((u64::from(q) * u64::from(d)) as i64);
-        for _ in 0..2 {
-            if r < 0 {
-                q = q.wrapping_sub(1);
-                r = r.wrapping_add(i64::from(d));
-            }
-        }
-        (q, r as u32)
+        let q = rem / high;
+        let e = (u64::from(q) * u64::from(d)).wrapping_sub(u64::from(rem) << 16) as i64;
+        let c = u32::from(e > 0) + u32::from(e > i64::from(d));
+        (q.wrapping_sub(c), c.wrapping_mul(d).wrapping_sub(e as u32))
     };
     // 2⁶³ = 2³¹·2³² with 2³¹ < d: two digits below 2¹⁶ each; the next digits of the dividend
     // are 0.
