@@ -168,16 +168,17 @@ pub(crate) fn level_rows<C: Copy>(
     if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
         return false;
     }
-    // The region's last pixel, in both buffers; its columns within a buffer row.
+    // The region's last pixel, in both buffers; its columns within a buffer row. In 64 bits:
+    // indices are 32-bit here, so the sum cannot wrap.
     let (columns, count) = (rows.columns as usize, rows.rows as usize);
-    let last = (count.wrapping_sub(1))
-        .checked_mul(rows.width)
-        .and_then(|r| r.checked_add(rows.first))
-        .and_then(|r| r.checked_add(columns.wrapping_sub(1)));
+    let wide = |n: usize| n as u64;
+    let last = wide(rows.first)
+        + wide(count.wrapping_sub(1)) * wide(rows.width)
+        + wide(columns.wrapping_sub(1));
     let inside = columns >= 1
         && count >= 1
         && columns <= rows.width
-        && last.is_some_and(|last| last < colors.len() && last < depths.len());
+        && last < wide(colors.len().min(depths.len()));
     // Strides and offsets in bytes fit 32 bits where the buffers do (a 32-bit address space).
     if !inside || u32::try_from(rows.width * 2).is_err() {
         return false;

@@ -130,9 +130,9 @@ pub(crate) fn reciprocal_63(d: u32) -> u64 {
     }
 }
 
-/// [`reciprocal_63`] from two 32-bit divisions: schoolbook division of 2⁶³ by the normalised
-/// `d` in 16-bit digits, each digit estimated from `d`'s top half and corrected (at most twice),
-/// as in Hacker's Delight's `divlu`.
+/// [`reciprocal_63`] from two 32-bit divisions: schoolbook division of 2⁶³ by `d` in 16-bit
+/// digits, each digit estimated from `d`'s top half and corrected by its exact remainder (one
+/// 32 × 32 → 64-bit product; a multiply instruction where there is a divider).
 #[inline]
 fn reciprocal_63_by_digits(d: u32) -> u64 {
     if d <= 1 << 31 {
@@ -141,30 +141,21 @@ fn reciprocal_63_by_digits(d: u32) -> u64 {
     }
     // d > 2³¹: the top half is at least 2¹⁵.
     let high = NonZeroU32::new(d >> 16).unwrap_or(NonZeroU32::MIN);
-    let low = d & 0xFFFF;
-    // One digit of (remainder·2¹⁶ + next) / d: the estimate from the divisor's top half is at
-    // most two too large.
+    // The digit ⌊rem·2¹⁶/d⌋ and its remainder, for rem < d. The estimate rem/high exceeds the
+    // digit by less than rem·2¹⁶/(high·d) < 2¹⁶/high ≤ 2, so `e`, its product with d (below
+    // 2¹⁷·2³²) less rem·2¹⁶, is in (−d, 2d): the digit is the estimate less [e > 0] + [e > d],
+    // and the remainder, below d, the low word of c·d − e.
     let digit = |rem: u32| {
-        let mut q = rem / high;
-        let mut rhat = rem - q * high.get();
-        while q >> 16 != 0 || q * low > rhat << 16 {
-            q -= 1;
-            rhat += high.get();
-            if rhat >> 16 != 0 {
-                break;
-            }
-        }
-        q
+        let q = rem / high;
+        let e = (u64::from(q) * u64::from(d)).wrapping_sub(u64::from(rem) << 16) as i64;
+        let c = u32::from(e > 0) + u32::from(e > i64::from(d));
+        (q.wrapping_sub(c), c.wrapping_mul(d).wrapping_sub(e as u32))
     };
     // 2⁶³ = 2³¹·2³² with 2³¹ < d: two digits below 2¹⁶ each; the next digits of the dividend
     // are 0.
-    let q1 = digit(1 << 31);
-    // (2³¹·2¹⁶ − q1·d) mod 2³²: the true remainder is below d.
-    let rem = (1u32 << 31)
-        .wrapping_shl(16)
-        .wrapping_sub(q1.wrapping_mul(d));
-    let q0 = digit(rem);
-    u64::from(q1 << 16 | q0)
+    let (q1, rem) = digit(1 << 31);
+    let (q0, _) = digit(rem);
+    u64::from(q1) << 16 | u64::from(q0)
 }
 
 /// [`reciprocal_63`] without a division.

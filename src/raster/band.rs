@@ -152,21 +152,50 @@ pub(crate) fn shade_rows<const N: usize>(
     keep: bool,
 ) -> Option<Kept> {
     if shader.scans_small() {
-        if let Some(kept) = super::scan::shade_rows(v, attributes, clip, &band, shader, keep) {
-            return kept;
-        }
+        return match super::scan::shade_rows(v, attributes, clip, &band, shader, keep) {
+            Some(kept) => kept,
+            None => {
+                walked_rows_not_small(v, *attributes, clip, band, shader);
+                None
+            }
+        };
     }
+    walked_rows(v, attributes, clip, band, shader);
+    None
+}
+
+/// [`walked_rows`] out of line, for shaders that scan small triangles (as `shade` keeps the
+/// walk's set-up out of the scan's frame).
+#[inline(never)]
+fn walked_rows_not_small<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: Attributes<N>,
+    clip: &Rectangle,
+    band: Band,
+    shader: &mut impl SpanShader<N>,
+) {
+    walked_rows(v, &attributes, clip, band, shader);
+}
+
+/// [`shade_rows`] for the triangles that are not scanned.
+#[inline(always)]
+fn walked_rows<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    band: Band,
+    shader: &mut impl SpanShader<N>,
+) {
     match CompactTriangle::new(v, clip) {
-        Ok(None) => return None,
+        Ok(None) => return,
         Ok(Some(triangle)) => {
             if compact_rows(&triangle, attributes, &band, shader).is_ok() {
-                return None;
+                return;
             }
         }
         Err(TooLarge) => {}
     }
     shade_general(v, attributes, clip, Some(band), shader);
-    None
 }
 
 impl Band {

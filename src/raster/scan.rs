@@ -584,8 +584,9 @@ fn small_planes<const N: usize>(
     (e2, l2): (Edge, i32),
 ) -> Option<Planes<N>> {
     let t = leading_zeros_32(area2);
-    // ⌊2⁶³/d⌋ ≤ 2³², halved and clamped below 2³¹: a relative change under 2⁻³⁰.
-    let r = (reciprocal_63(area2 << t) >> 1).min(i32::MAX as u64) as i32;
+    // ⌊2⁶³/d⌋ ≤ 2³², clamped below 2³² and halved (in 32 bits): below 2³¹, a relative change
+    // under 2⁻³⁰.
+    let r = (reciprocal_63(area2 << t).min(u64::from(u32::MAX)) as u32 >> 1) as i32;
     let s = 38 - t;
     // Barycentrics of oriented vertices 1 and 2 at the first pixel, 24 fractional bits: below
     // 2⁸ for a first pixel in the box, and below 2³⁰ (else a sliver: `None`).
@@ -601,7 +602,11 @@ fn small_planes<const N: usize>(
     let [c0, c1, c2] = attributes.values;
     let (c1, c2) = if swap { (c2, c1) } else { (c1, c2) };
     // Steps of at most 2¹⁴ LSB a pixel: |Nx| < area2·2¹⁴ (below 2³⁹, and 2³⁰ suffices).
-    let limit = (u64::from(area2) << 14).min(1 << 30) as u32;
+    let limit = if area2 < 1 << 16 {
+        area2 << 14
+    } else {
+        1 << 30
+    };
     let mut planes = Planes::zero();
     for k in 0..N {
         let base = i32::from(c0[k]);
@@ -611,13 +616,14 @@ fn small_planes<const N: usize>(
         if nx.unsigned_abs() >= limit || ny.unsigned_abs() >= limit {
             return None;
         }
-        // 2⁻³² units: below 2⁴⁸.
-        let v =
-            (i64::from(base) << 24) + i64::from(d1) * i64::from(b1) + i64::from(d2) * i64::from(b2);
+        // 2⁻³² units: below 2⁴⁸. The vertex value `base·2²⁴` is a multiple of 2⁸: added after
+        // the rounding shift, as `base·2¹⁶`, the same integer modulo 2³².
+        let v = i64::from(d1) * i64::from(b1) + i64::from(d2) * i64::from(b2);
+        let value = (((v + (1 << 7)) >> 8) as u32).wrapping_add((base as u32) << 16);
         let half = attributes.half[k];
         planes.set(
             k,
-            (((v + (1 << 7)) >> 8) as u32).wrapping_add(half),
+            value.wrapping_add(half),
             scaled(nx, r, s),
             scaled(ny, r, s),
         );

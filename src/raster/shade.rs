@@ -88,9 +88,37 @@ pub(crate) fn shade<const N: usize>(
     clip: &Rectangle,
     shader: &mut impl SpanShader<N>,
 ) {
-    if shader.scans_small() && super::scan::shade(v, attributes, clip, shader) {
+    if shader.scans_small() {
+        if !super::scan::shade(v, attributes, clip, shader) {
+            shade_not_small(v, *attributes, clip, shader);
+        }
         return;
     }
+    shade_walked(v, attributes, clip, shader);
+}
+
+/// [`shade_walked`] out of line, for shaders that scan small triangles: their triangles are
+/// mostly small, and the walk's set-up kept out of the scan's frame leaves it its registers (the
+/// attributes by value: a copy made here, not one the scan's frame keeps in memory for it).
+#[inline(never)]
+fn shade_not_small<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: Attributes<N>,
+    clip: &Rectangle,
+    shader: &mut impl SpanShader<N>,
+) {
+    shade_walked(v, &attributes, clip, shader);
+}
+
+/// [`shade`] for the triangles that are not scanned: the compact set-up and walk, or the
+/// general ones.
+#[inline(always)]
+fn shade_walked<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    shader: &mut impl SpanShader<N>,
+) {
     match CompactTriangle::new(v, clip) {
         Ok(None) => return,
         Ok(Some(triangle)) => {

@@ -91,11 +91,9 @@ impl ClipVolume {
         let [x, y, z, w] = p.map(i64::from);
         // 32 × 32-bit products: the factors are below 2¹⁵.
         let [gx, gy] = self.guard.map(i64::from);
-        w >= W_MIN
-            && z + w >= 0
-            && w - z >= 0
-            && (x << 8).abs() <= gx * w
-            && (y << 8).abs() <= gy * w
+        // `|v| ≤ l` as one unsigned comparison, `v + l ≤ 2l`, for `l ≥ 0` (below 2⁴⁸ here).
+        let within = |v: i64, l: i64| (v + l) as u64 <= (2 * l) as u64;
+        w >= W_MIN && within(z, w) && within(x << 8, gx * w) && within(y << 8, gy * w)
     }
 
     /// [`outcode`](Self::outcode) of a point outside some plane.

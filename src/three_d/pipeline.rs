@@ -524,7 +524,10 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             };
             // Only flat shading, faces without normals and clipping need the positions again:
             // in range, as the scratch has one entry per vertex.
-            let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
+            // By value: a closure holding the address of `idx` would keep it in memory every
+            // face, for the clipped ones.
+            let vertices = mesh.vertices;
+            let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
             self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
         }
         stats
@@ -695,7 +698,9 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
             return;
         }
         if codes[0] | codes[1] | codes[2] != 0 {
-            sink.clipped(self, mesh, k, idx, model, v.map(|v| *v), stats);
+            // A copy for the call: the caller's indices need not be in memory otherwise.
+            let idx = *idx;
+            sink.clipped(self, mesh, k, &idx, model, v.map(|v| *v), stats);
             return;
         }
         let [p0, p1, p2] = v.map(|v| v.position_bits());

@@ -676,15 +676,11 @@ impl<C: PixelColor> DepthPixel<C, 2> for Leveled<'_, C> {
         }
         let (colors, depths, width) = target.buffers_mut();
         let runs = scan.runs();
-        // The region is inside the clip, inside the target.
+        // The region is inside the clip, inside the target: its origin is a pixel of the
+        // buffers (and `level_rows` checks that the region is inside them).
         let (x0, y0) = scan.origin();
-        let (Ok(x0), Ok(y0)) = (usize::try_from(x0), usize::try_from(y0)) else {
-            return false;
-        };
-        let first = y0.checked_mul(width).and_then(|r| r.checked_add(x0));
-        let (Some(first), true) = (first, x0 + runs.columns as usize <= width) else {
-            return false;
-        };
+        debug_assert!(x0 >= 0 && y0 >= 0 && x0 as usize + runs.columns as usize <= width);
+        let first = (y0 as usize).wrapping_mul(width).wrapping_add(x0 as usize);
         let planes = scan.planes();
         let (v, dx, dy) = (planes.first(), planes.step(), planes.row_step());
         let rows = arch::LevelRows {

@@ -154,7 +154,14 @@ impl VertexLight {
         // Raw components (below 2³¹) times the light's (within ±2¹⁴): below 2⁴⁷, 30 fractional
         // bits.
         let dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        let diffuse = ((dot + (1 << 13)) >> 14).clamp(0, (1 << 16) - 1) as u32;
+        // ⌊(dot + 2¹³)/2¹⁴⌋ clamped to [0, 2¹⁶ − 1]: the clamp before the shift, where the
+        // upper bound is a 32-bit one.
+        let rounded = dot + (1 << 13);
+        let diffuse = if rounded < 0 {
+            0
+        } else {
+            (rounded.min((1 << 30) - 1) as u32) >> 14
+        };
         // Below 2³²: (2¹⁶ − a)·d with d < 2¹⁶.
         let lit = (((1 << 16) - self.ambient) * diffuse + (1 << 15)) >> 16;
         let level = (self.ambient + lit).min(1 << 16);
