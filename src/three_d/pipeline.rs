@@ -464,11 +464,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         let mut sides = SideCache::new();
         for (k, face) in mesh.indices.iter().enumerate() {
             let idx = face.map(usize::from);
-            let (Some(a), Some(b), Some(c)) = (
-                mesh.vertices.get(idx[0]),
-                mesh.vertices.get(idx[1]),
-                mesh.vertices.get(idx[2]),
-            ) else {
+            let Some([a, b, c]) = at_face(mesh.vertices, &idx) else {
                 stats.degenerate += 1;
                 continue;
             };
@@ -514,6 +510,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         let mut stats = DrawStats::default();
         for (k, face) in mesh.indices.iter().enumerate() {
             let idx = face.map(usize::from);
+            // Each vertex by name (the array form costs the frame instructions).
             let (Some(a), Some(b), Some(c)) = (
                 scratch.get(idx[0]),
                 scratch.get(idx[1]),
@@ -548,11 +545,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
             return;
         };
-        let (Some(a), Some(b), Some(c)) = (
-            scratch.get(idx[0]),
-            scratch.get(idx[1]),
-            scratch.get(idx[2]),
-        ) else {
+        let Some([a, b, c]) = at_face(scratch, &idx) else {
             return;
         };
         let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
@@ -624,11 +617,7 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
         let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
             return;
         };
-        let (Some(a), Some(b), Some(c)) = (
-            scratch.get(idx[0]),
-            scratch.get(idx[1]),
-            scratch.get(idx[2]),
-        ) else {
+        let Some([a, b, c]) = at_face(scratch, &idx) else {
             return;
         };
         let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
@@ -866,4 +855,10 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
             self.fill(mesh, idx, model, &tri, || face.levels, Some(bary), target);
         }
     }
+}
+
+/// The entries of `items` at a face's three indices, if all are there.
+#[inline(always)]
+fn at_face<'i, T>(items: &'i [T], idx: &[usize; 3]) -> Option<[&'i T; 3]> {
+    Some([items.get(idx[0])?, items.get(idx[1])?, items.get(idx[2])?])
 }
