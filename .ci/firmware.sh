@@ -83,17 +83,22 @@ run_qemu() {
         -kernel "target/$target/release/examples/$example"
 }
 
+# Runs `example` into $OUTPUT and fails, showing what it printed, unless it exits with 0.
+run_ok() {
+    local target=$1 machine=$2 cpu=$3 example=$4 status=0
+    OUTPUT=$(run_qemu "$target" "$machine" "$cpu" "$example") || status=$?
+    [ "$status" -eq 0 ] && return
+    printf '%s\n' "$OUTPUT" >&2
+    [ "$status" -eq 124 ] && fail "$example on $machine timed out after ${TIMEOUT}s"
+    fail "$example on $machine exited with status $status"
+}
+
 # Runs `example` and checks its exit status and its checksum line against the host's.
 check_scene() {
-    local target=$1 machine=$2 cpu=$3 example=$4 output status line size want
-    status=0
-    output=$(run_qemu "$target" "$machine" "$cpu" "$example") || status=$?
+    local target=$1 machine=$2 cpu=$3 example=$4 output line size want
+    run_ok "$target" "$machine" "$cpu" "$example"
+    output=$OUTPUT
     printf '%s\n' "$output" | sed "s/^/  $example: /"
-    if [ "$status" -eq 124 ]; then
-        fail "$example on $machine timed out after ${TIMEOUT}s"
-    elif [ "$status" -ne 0 ]; then
-        fail "$example on $machine exited with status $status"
-    fi
     line=$(printf '%s\n' "$output" | grep '^scene ' || true)
     [ "$(printf '%s\n' "$line" | grep -c '^scene ')" -eq 1 ] ||
         fail "$example on $machine printed no single checksum line"
@@ -147,12 +152,8 @@ for board in "${BOARDS[@]}"; do
     check_scene "$target" "$machine" "$cpu" fw_scene
     check_scene "$target" "$machine" "$cpu" fw_nopanic
 
-    status=0
-    output=$(run_qemu "$target" "$machine" "$cpu" fw_bench) || status=$?
-    [ "$status" -eq 0 ] || {
-        printf '%s\n' "$output" >&2
-        fail "fw_bench on $machine exited with status $status"
-    }
+    run_ok "$target" "$machine" "$cpu" fw_bench
+    output=$OUTPUT
     grep -q '^| GouraudTriangle::draw_into | large |' <<<"$output" ||
         fail "fw_bench on $machine printed no table"
     printf '%s\n\n' "$output" >>"$bench"
@@ -228,12 +229,8 @@ check_bands() {
     echo "  ok: $what: $count band renderings equal the frame drawn whole"
 }
 cargo build --quiet --release --target thumbv7em-none-eabihf --example fw_band
-status=0
-output=$(run_qemu thumbv7em-none-eabihf mps2-an386 cortex-m4 fw_band) || status=$?
-[ "$status" -eq 0 ] || {
-    printf '%s\n' "$output" >&2
-    fail "fw_band on mps2-an386 exited with status $status"
-}
+run_ok thumbv7em-none-eabihf mps2-an386 cortex-m4 fw_band
+output=$OUTPUT
 check_bands "fw_band on mps2-an386" "$output" 12
 # The bin's frame in 16-row bands against the frame drawn whole.
 over=$(printf '%s\n' "$output" | grep -E '^\| 16 \|' | head -n 1 | cut -d'|' -f7 | tr -d ' %+')
@@ -248,12 +245,8 @@ if ! cargo build --quiet --release --target thumbv6m-none-eabi --example fw_band
     fail "fw_band_microbit does not link: a panic path in the band renderer or 3D pipeline, or" \
         "it does not fit the micro:bit's memory"
 fi
-status=0
-output=$(run_qemu thumbv6m-none-eabi microbit cortex-m0 fw_band_microbit) || status=$?
-[ "$status" -eq 0 ] || {
-    printf '%s\n' "$output" >&2
-    fail "fw_band_microbit on microbit exited with status $status"
-}
+run_ok thumbv6m-none-eabi microbit cortex-m0 fw_band_microbit
+output=$OUTPUT
 check_bands "fw_band_microbit on microbit" "$output" 1
 frame=$(printf '%s\n' "$output" | grep -E '^\| [0-9]+ \|' | head -n 1 | cut -d'|' -f2 | tr -d ' ')
 [ -n "$frame" ] || fail "fw_band_microbit printed no frame figure"
