@@ -24,7 +24,7 @@ use super::{BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::compact::{first_centre_from, last_centre_to};
-use crate::raster::scan::{Kept, KEPT_WORDS};
+use crate::raster::scan::{KeptWords, KEPT_WORDS};
 use crate::three_d::{
     fit_scratch, DrawStats, FaceSink, Frame, Material, Mesh, Pipeline, ProjectedVertex, TargetClip,
 };
@@ -41,9 +41,8 @@ pub struct BinEntry {
     item: u32,
     /// The next entry of the list.
     next: u32,
-    /// The triangle's first and last band.
-    first: u16,
-    last: u16,
+    /// The triangle's first band (low half) and last band (high half).
+    bands: u32,
 }
 
 impl BinEntry {
@@ -51,9 +50,20 @@ impl BinEntry {
     pub const EMPTY: BinEntry = BinEntry {
         item: NONE,
         next: NONE,
-        first: 0,
-        last: 0,
+        bands: 0,
     };
+
+    /// The triangle's first band.
+    #[inline(always)]
+    fn first(&self) -> u32 {
+        self.bands & 0xFFFF
+    }
+
+    /// The triangle's last band.
+    #[inline(always)]
+    fn last(&self) -> u32 {
+        self.bands >> 16
+    }
 }
 
 impl Default for BinEntry {
@@ -124,11 +134,11 @@ impl<'b> Lists<'b> {
             // Counted, not stored: `finish` reports the storage too small.
             return;
         };
+        // Both below 2¹⁶.
         *e = BinEntry {
             item,
             next: NONE,
-            first: first as u16,
-            last: last as u16,
+            bands: first | last << 16,
         };
         // Appended to its first band's list: linked from the tail the head keeps in `item` (the
         // head itself for an empty list).
@@ -177,7 +187,7 @@ impl<'b> Lists<'b> {
             none.clear();
             let records = entries.iter().skip(self.bands as usize);
             for e in records.take(self.records as usize) {
-                if u32::from(e.first) <= band && band <= u32::from(e.last) {
+                if e.first() <= band && band <= e.last() {
                     f(e.item, false, false, &mut none);
                 }
             }
@@ -205,7 +215,7 @@ impl<'b> Lists<'b> {
             } else {
                 starting = e.next;
             }
-            let continues = u32::from(e.last) > band;
+            let continues = e.last() > band;
             f(e.item, above, continues, &mut kept);
             if continues {
                 match entries.get_mut(tail as usize) {
@@ -223,14 +233,40 @@ impl<'b> Lists<'b> {
     }
 }
 
-/// Entries a kept set-up takes in the storage past the lists: its words, three an entry, the
-/// last entry's band numbers its triangle's item.
+/// Entries a kept set-up takes in the storage past the lists: its words, three an entry, and
+/// the item of its triangle in the last word.
 const KEPT_ENTRIES: usize = 5;
-const _: () = assert!(KEPT_WORDS == 3 * (KEPT_ENTRIES - 1) + 2);
+const _: () = assert!(KEPT_WORDS == 3 * KEPT_ENTRIES - 1);
+
+/// One set-up's entries in the ring: its words in place.
+type Slot = [BinEntry; KEPT_ENTRIES];
+
+impl KeptWords for Slot {
+    #[inline(always)]
+    fn word(&self, i: usize) -> u32 {
+        self.get(i / 3).map_or(0, |e| match i % 3 {
+            0 => e.item,
+            1 => e.next,
+            _ => e.bands,
+        })
+    }
+
+    #[inline(always)]
+    fn set_word(&mut self, i: usize, w: u32) {
+        if let Some(e) = self.get_mut(i / 3) {
+            match i % 3 {
+                0 => e.item = w,
+                1 => e.next = w,
+                _ => e.bands = w,
+            }
+        }
+    }
+}
 
 /// The set-ups of the triangles reaching the next band, kept in the storage past the lists: a
 /// ring of [`KEPT_ENTRIES`] entries each, in the order the triangles are drawn (the order of the
-/// next band's open list), so the next band takes them from the front as it meets them.
+/// next band's open list), so the next band takes them from the front as it meets them. The
+/// raster core writes and reads a set-up where it lies in the ring ([`KeptWords`]).
 pub(crate) struct KeptRing<'e> {
     spare: &'e mut [BinEntry],
     start: &'e mut u32,
@@ -256,67 +292,93 @@ impl<'e> KeptRing<'e> {
 
     /// The entries of set-up `n` of the ring's storage.
     #[inline(always)]
-    fn at(&mut self, n: u32) -> Option<&mut [BinEntry; KEPT_ENTRIES]> {
+    fn at(&self, n: u32) -> Option<&Slot> {
+        let from = n as usize * KEPT_ENTRIES;
+        self.spare
+            .get(from..from + KEPT_ENTRIES)
+            .and_then(|e| e.try_into().ok())
+    }
+
+    /// [`at`](Self::at), to write.
+    #[inline(always)]
+    fn at_mut(&mut self, n: u32) -> Option<&mut Slot> {
         let from = n as usize * KEPT_ENTRIES;
         self.spare
             .get_mut(from..from + KEPT_ENTRIES)
             .and_then(|e| e.try_into().ok())
     }
 
-    /// The set-up of `item` if it is the front one (taken off the ring).
+    /// The position after the last set-up (below the capacity), if the ring is not full.
     #[inline(always)]
-    pub(crate) fn take(&mut self, item: u32) -> Option<Kept> {
+    fn end(&self) -> Option<u32> {
+        let capacity = self.capacity();
+        if *self.len >= capacity {
+            return None;
+        }
+        // Both below the capacity: the sum fits.
+        let end = *self.start + *self.len;
+        Some(if end >= capacity { end - capacity } else { end })
+    }
+
+    /// The position of `item`'s set-up if it is the front one (taken off the ring: valid until
+    /// the next [`vacant`](Self::vacant)).
+    #[inline(always)]
+    pub(crate) fn take(&mut self, item: u32) -> Option<u32> {
         if *self.len == 0 {
             return None;
         }
         let start = *self.start;
-        let entries = self.at(start)?;
-        let word = |e: &BinEntry| u32::from(e.first) | u32::from(e.last) << 16;
-        let [body @ .., end] = entries;
-        if word(end) != item {
+        if self.at(start)?.last()?.bands != item {
             return None;
         }
-        let mut kept = Kept([0; KEPT_WORDS]);
-        let (words, last) = kept.0.split_at_mut(KEPT_WORDS - 2);
-        for (w, e) in words.chunks_exact_mut(3).zip(body.iter()) {
-            (w[0], w[1], w[2]) = (e.item, e.next, word(e));
-        }
-        (last[0], last[1]) = (end.item, end.next);
         let next = start + 1;
         *self.start = if next == self.capacity() { 0 } else { next };
         *self.len -= 1;
-        Some(kept)
+        Some(start)
     }
 
-    /// Appends the set-up of `item` (nothing when the ring is full).
+    /// The set-up at position `n`.
     #[inline(always)]
-    pub(crate) fn put(&mut self, item: u32, kept: &Kept) {
-        let capacity = self.capacity();
-        if *self.len >= capacity {
-            return;
-        }
-        // Both below the capacity: the sum fits.
-        let end = *self.start + *self.len;
-        let end = if end >= capacity { end - capacity } else { end };
-        let Some([body @ .., last]) = self.at(end) else {
+    pub(crate) fn get(&self, n: u32) -> Option<&Slot> {
+        self.at(n)
+    }
+
+    /// Appends the set-up at position `n` (just taken) again, for the band after the next.
+    #[inline(always)]
+    pub(crate) fn requeue(&mut self, n: u32) {
+        let Some(end) = self.end() else {
             return;
         };
-        let (words, rest) = kept.0.split_at(KEPT_WORDS - 2);
-        for (e, w) in body.iter_mut().zip(words.chunks_exact(3)) {
-            *e = BinEntry {
-                item: w[0],
-                next: w[1],
-                first: w[2] as u16,
-                last: (w[2] >> 16) as u16,
+        if end != n {
+            let Some(&slot) = self.at(n) else {
+                return;
             };
+            let Some(to) = self.at_mut(end) else {
+                return;
+            };
+            *to = slot;
         }
-        // The last two words, and the item the set-up belongs to.
-        *last = BinEntry {
-            item: rest[0],
-            next: rest[1],
-            first: item as u16,
-            last: (item >> 16) as u16,
+        *self.len += 1;
+    }
+
+    /// The storage of the next set-up, if the ring is not full: the raster core writes it, and
+    /// [`commit`](Self::commit) appends it.
+    #[inline(always)]
+    pub(crate) fn vacant(&mut self) -> Option<&mut Slot> {
+        let end = self.end()?;
+        self.at_mut(end)
+    }
+
+    /// Appends the set-up written into [`vacant`](Self::vacant) as `item`'s.
+    #[inline(always)]
+    pub(crate) fn commit(&mut self, item: u32) {
+        let Some(end) = self.end() else {
+            return;
         };
+        let Some(last) = self.at_mut(end).and_then(|s| s.last_mut()) else {
+            return;
+        };
+        last.bands = item;
         *self.len += 1;
     }
 }
@@ -581,6 +643,14 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         let frame = self.frame.with_clip(band.clip(self.pipeline));
         let (target, placement) = band.parts();
         let (mesh, scratch) = (&self.mesh, self.scratch);
+        let Some(table) = frame.levels() else {
+            // Nothing kept set up: each face set up again in each band.
+            self.lists.each(placement.index, |item, _, _, _| {
+                let k = (item & !CLIPPED) as usize;
+                frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
+            });
+            return Ok(());
+        };
         // The refill inlined in the list's walk: a call per face otherwise.
         self.lists.each(
             placement.index,
@@ -588,21 +658,27 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
             |item, above, continues, kept| {
                 let k = (item & !CLIPPED) as usize;
                 let clipped = item & CLIPPED != 0;
-                if let Some(set_up) = above.then(|| kept.take(item)).flatten() {
+                if let Some(n) = above.then(|| kept.take(item)).flatten() {
                     // Set up in a band above: its rows here from the same integers.
-                    if frame.resume(target, &set_up) {
+                    if let Some(set_up) = kept.get(n) {
+                        frame.resume_levels(table, target, set_up);
                         if continues {
-                            kept.put(item, &set_up);
+                            kept.requeue(n);
                         }
                         return;
                     }
                 }
                 if continues {
-                    let mut keep = |set_up: &Kept| kept.put(item, set_up);
-                    frame.refill_keeping(mesh, scratch, k, clipped, target, &mut keep);
-                } else {
-                    frame.refill(mesh, scratch, k, clipped, target);
+                    if let Some(slot) = kept.vacant() {
+                        if frame
+                            .refill_levels_keeping(table, mesh, scratch, k, clipped, target, slot)
+                        {
+                            kept.commit(item);
+                        }
+                        return;
+                    }
                 }
+                frame.refill_levels(table, mesh, scratch, k, clipped, target);
             },
         );
         Ok(())

@@ -20,7 +20,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::compact::{first_centre_from, last_centre_to, CompactTriangle, TooLarge};
 use super::plane::{Attributes, Planes};
-use super::scan::{Kept, SmallScan};
+use super::scan::{Kept, KeptWords, SmallScan};
 use super::shade::{fold_planes, shade, shade_general, SpanShader};
 use super::walk::Span;
 use crate::arch::LANES;
@@ -121,7 +121,7 @@ impl RowWindow for Band {
             shader,
             band: *self,
         };
-        shade_rows(v, attributes, clip, *self, &mut local, false);
+        shade_rows(v, attributes, clip, *self, &mut local, None::<&mut Kept>);
         local.shader
     }
 
@@ -140,8 +140,8 @@ impl RowWindow for Band {
 
 /// Walks the triangle `v` with `attributes` over `clip` like [`shade`], but only the rows of
 /// `band` (in frame rows; the spans reach `shader` as they are): the same spans and values as
-/// `shade` gives those rows. Nothing for a band outside `clip`. With `keep`, a small
-/// triangle's set-up (see [`scan::shade_rows`](super::scan::shade_rows)), if it is one.
+/// `shade` gives those rows. Nothing for a band outside `clip`. With `keep`, whether a small
+/// triangle's set-up went there (see [`scan::shade_rows`](super::scan::shade_rows)).
 #[inline(always)]
 pub(crate) fn shade_rows<const N: usize>(
     v: [(Coord, Coord); 3],
@@ -149,19 +149,19 @@ pub(crate) fn shade_rows<const N: usize>(
     clip: &Rectangle,
     band: Band,
     shader: &mut impl SpanShader<N>,
-    keep: bool,
-) -> Option<Kept> {
+    keep: Option<&mut impl KeptWords>,
+) -> bool {
     if shader.scans_small() {
         return match super::scan::shade_rows(v, attributes, clip, &band, shader, keep) {
             Some(kept) => kept,
             None => {
                 walked_rows_not_small(v, *attributes, clip, band, shader);
-                None
+                false
             }
         };
     }
     walked_rows(v, attributes, clip, band, shader);
-    None
+    false
 }
 
 /// [`walked_rows`] out of line, for shaders that scan small triangles (as `shade` keeps the
@@ -199,8 +199,8 @@ fn walked_rows<const N: usize>(
 }
 
 impl Band {
-    /// [`RowWindow::shade`], giving a small triangle's set-up for [`resume`](Self::resume) (if
-    /// the shader scans small triangles).
+    /// [`RowWindow::shade`], writing a small triangle's set-up into `keep` for
+    /// [`resume`](Self::resume) (if the shader scans small triangles): whether it did.
     #[inline(always)]
     pub(crate) fn shade_keeping<const N: usize, S: SpanShader<N>>(
         &self,
@@ -208,19 +208,24 @@ impl Band {
         attributes: &Attributes<N>,
         clip: &Rectangle,
         shader: S,
-    ) -> Option<Kept> {
+        keep: &mut impl KeptWords,
+    ) -> bool {
         let mut local = Local {
             shader,
             band: *self,
         };
-        shade_rows(v, attributes, clip, *self, &mut local, true)
+        shade_rows(v, attributes, clip, *self, &mut local, Some(keep))
     }
 
     /// Draws this band's rows of the triangle whose set-up [`shade_keeping`](Self::shade_keeping)
     /// kept in `kept` through `shader` (of the type it drew with): the pixels and values
     /// `RowWindow::shade` gives them.
     #[inline(always)]
-    pub(crate) fn resume<const N: usize, S: SpanShader<N>>(&self, kept: &Kept, shader: S) {
+    pub(crate) fn resume<const N: usize, S: SpanShader<N>>(
+        &self,
+        kept: &impl KeptWords,
+        shader: S,
+    ) {
         let mut local = Local {
             shader,
             band: *self,

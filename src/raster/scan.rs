@@ -140,9 +140,15 @@ impl<const N: usize> SmallTriangle<N> {
     /// (or all rows at once, if it takes them: [`SpanShader::small_rows`]).
     #[inline(always)]
     fn draw<S: SpanShader<N>>(&self, shader: &mut S) {
+        self.draw_runs(RowRuns::new(&self.edges, self.last + 1), shader);
+    }
+
+    /// [`draw`](Self::draw) with the runs of its first row (the edges' with a divider; the
+    /// edges themselves are scanned without one).
+    #[inline(always)]
+    fn draw_runs<S: SpanShader<N>>(&self, mut runs: RowRuns, shader: &mut S) {
         let planes = &self.planes;
         let last = self.last;
-        let mut runs = RowRuns::new(&self.edges, last + 1);
         if HAS_DIVIDER {
             let scan = SmallScan {
                 x0: self.x0,
@@ -415,8 +421,8 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
 /// over `clip` as `shade` sets it up, then its scan starts at the band's first row — the edge
 /// values and the planes stepped there by whole rows, the integers the scan reaches — and
 /// stops after the band's last. `None` if the triangle is not drawn here (not small), else
-/// the triangle's set-up if asked to `keep` it (and it fits: `N ≤ 2`), for [`resume_rows`] to
-/// draw other bands' rows of it.
+/// whether its set-up went into `keep` (if given, and it fits: `N ≤ 2`), for [`resume_rows`]
+/// to draw other bands' rows of it.
 #[inline(always)]
 pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     v: [(Coord, Coord); 3],
@@ -424,15 +430,17 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     clip: &Rectangle,
     band: &Band,
     shader: &mut S,
-    keep: bool,
-) -> Option<Option<Kept>> {
+    keep: Option<&mut impl KeptWords>,
+) -> Option<bool> {
     match SmallTriangle::new(v, attributes, clip) {
         Ok(triangle) => {
-            let kept = if keep { triangle.keep() } else { None };
-            triangle.draw_rows(band, shader);
+            // The runs once, for the set-up kept and this band's rows.
+            let runs = RowRuns::new(&triangle.edges, triangle.last + 1);
+            let kept = keep.is_some_and(|k| triangle.keep(&runs, k));
+            triangle.draw_rows(runs, band, shader);
             Some(kept)
         }
-        Err(NotSmall::Empty) => Some(None),
+        Err(NotSmall::Empty) => Some(false),
         Err(NotSmall::Other) => None,
     }
 }
@@ -441,96 +449,139 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
 /// what `shade_rows` draws there.
 #[inline(always)]
 pub(crate) fn resume_rows<const N: usize, S: SpanShader<N>>(
-    kept: &Kept,
+    kept: &impl KeptWords,
     band: &Band,
     shader: &mut S,
 ) {
-    if let Some(triangle) = SmallTriangle::<N>::kept(kept) {
-        triangle.draw_rows(band, shader);
-    }
+    SmallTriangle::<N>::draw_kept(kept, band, shader);
 }
 
-/// Words of a kept set-up: the region's first pixel (2), the edges (6, their coefficients and
-/// the region's size packed in three) and two planes (6).
+/// Words of a kept set-up: the region's first pixel, its size, the three bounds of its rows'
+/// runs (6) and two planes (6).
 pub(crate) const KEPT_WORDS: usize = 14;
 
-/// A small triangle's set-up over the frame's clip, kept by [`shade_rows`] to draw the rows of
-/// later bands without setting it up again (a bin's triangles crossing bands): the same
-/// integers, so the same pixels and values.
+/// Where a small triangle's set-up over the frame's clip is kept by [`shade_rows`] to draw
+/// the rows of later bands without setting it up again (a bin's triangles crossing bands): the
+/// same integers, so the same pixels and values. Words `0..KEPT_WORDS`, written and read in
+/// place (a bin keeps them in its storage: no copy of a set-up a band).
+pub(crate) trait KeptWords {
+    /// Word `i` (below [`KEPT_WORDS`]).
+    fn word(&self, i: usize) -> u32;
+    /// Sets word `i` (below [`KEPT_WORDS`]) to `w`.
+    fn set_word(&mut self, i: usize, w: u32);
+}
+
+/// A set-up's words on their own.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Kept(pub(crate) [u32; KEPT_WORDS]);
 
-/// An edge's coefficients (below 2¹² in magnitude: 14 bits each) and a 4-bit field in a word.
-#[inline(always)]
-fn pack(e: &Edge, field: u32) -> u32 {
-    (e.a as u32 & 0x3FFF) | (e.b as u32 & 0x3FFF) << 14 | field << 28
+impl KeptWords for Kept {
+    #[inline(always)]
+    fn word(&self, i: usize) -> u32 {
+        self.0.get(i).copied().unwrap_or(0)
+    }
+
+    #[inline(always)]
+    fn set_word(&mut self, i: usize, w: u32) {
+        if let Some(v) = self.0.get_mut(i) {
+            *v = w;
+        }
+    }
 }
 
-/// The coefficients and field [`pack`] put in `w`.
+/// A bound's divisor (1 to 2¹², less one: 12 bits) and step (below 2¹⁷ in magnitude: the
+/// other 20) in a word.
 #[inline(always)]
-fn unpack(w: u32) -> (i32, i32, u32) {
-    (((w << 18) as i32) >> 18, ((w << 4) as i32) >> 18, w >> 28)
+fn pack_bound(b: &RowBound) -> u32 {
+    (b.divisor.get() - 1) | (b.step as u32) << 12
+}
+
+/// The bound [`pack_bound`] put in `w`, with its numerator.
+#[inline(always)]
+fn unpack_bound(numerator: u32, w: u32) -> RowBound {
+    RowBound {
+        numerator: numerator as i32,
+        divisor: NonZeroU32::new((w & 0xFFF) + 1).unwrap_or(NonZeroU32::MIN),
+        step: w as i32 >> 12,
+    }
 }
 
 impl<const N: usize> SmallTriangle<N> {
-    /// The set-up, in words; `None` for more than two planes.
+    /// Writes the set-up into `kept`, with `runs` (its first row's) in place of its edges, so
+    /// that the bands below draw from them with no edge classified again. `false` (nothing
+    /// written) for more than two planes, a region past 2¹⁶ pixels from the clip's origin (the
+    /// first pixel takes one word), or no divider (the runs come from the edges' values).
     #[inline(always)]
-    fn keep(&self) -> Option<Kept> {
-        if 8 + 3 * N > KEPT_WORDS {
-            return None;
+    fn keep(&self, runs: &RowRuns, kept: &mut impl KeptWords) -> bool {
+        if 8 + 3 * N > KEPT_WORDS || !HAS_DIVIDER {
+            return false;
         }
-        let [e0, e1, e2] = self.edges;
+        let (Ok(x0), Ok(y0)) = (u16::try_from(self.x0), u16::try_from(self.y0)) else {
+            return false;
+        };
+        let [b0, b1, b2] = &runs.bounds;
         // The region's last column and row offsets are below 16 (a small triangle's box).
         let head = [
-            self.x0 as u32,
-            self.y0 as u32,
-            pack(&e0, self.last),
-            pack(&e1, self.rows),
-            pack(&e2, 0),
-            e0.k as u32,
-            e1.k as u32,
-            e2.k as u32,
+            u32::from(x0) | u32::from(y0) << 16,
+            self.last | self.rows << 4 | u32::from(runs.middle_starts) << 8,
+            b0.numerator as u32,
+            b1.numerator as u32,
+            b2.numerator as u32,
+            pack_bound(b0),
+            pack_bound(b1),
+            pack_bound(b2),
         ];
+        for (i, w) in head.into_iter().enumerate() {
+            kept.set_word(i, w);
+        }
         let planes = [
             self.planes.first(),
             self.planes.step(),
             self.planes.row_step(),
         ];
-        // Built whole: no store of a word written again.
-        Some(Kept(core::array::from_fn(|i| match i {
-            0..8 => head[i],
-            _ => planes
-                .get((i - 8) / N)
-                .and_then(|p| p.get((i - 8) % N))
-                .copied()
-                .unwrap_or(0),
-        })))
-    }
-
-    /// The set-up [`keep`](Self::keep) gave as `kept` (`None` for more than two planes).
-    #[inline(always)]
-    fn kept(kept: &Kept) -> Option<Self> {
-        if 8 + 3 * N > KEPT_WORDS {
-            return None;
+        for (p, plane) in planes.iter().enumerate() {
+            for (k, w) in plane.iter().enumerate() {
+                kept.set_word(8 + p * N + k, *w);
+            }
         }
-        let w = &kept.0;
-        let ((a0, b0, last), (a1, b1, rows), (a2, b2, _)) =
-            (unpack(w[2]), unpack(w[3]), unpack(w[4]));
-        let edge = |a: i32, b: i32, k: u32| Edge { a, b, k: k as i32 };
-        let plane = |from: usize| core::array::from_fn(|k| w[from + k]);
-        Some(SmallTriangle {
-            x0: w[0] as i32,
-            y0: w[1] as i32,
-            last,
-            rows,
-            edges: [edge(a0, b0, w[5]), edge(a1, b1, w[6]), edge(a2, b2, w[7])],
-            planes: Planes::from_parts(plane(8), plane(8 + N), plane(8 + 2 * N)),
-        })
+        true
     }
 
-    /// Draws the rows of `band` (see [`shade_rows`]).
+    /// Draws the rows of `band` of the set-up [`keep`](Self::keep) wrote into `kept`: what
+    /// [`draw_rows`](Self::draw_rows) draws there from the set-up itself.
     #[inline(always)]
-    fn draw_rows<S: SpanShader<N>>(mut self, band: &Band, shader: &mut S) {
+    fn draw_kept<S: SpanShader<N>>(kept: &impl KeptWords, band: &Band, shader: &mut S) {
+        if 8 + 3 * N > KEPT_WORDS || !HAS_DIVIDER {
+            return;
+        }
+        let w = |i: usize| kept.word(i);
+        let (origin, size) = (w(0), w(1));
+        let last = size & 15;
+        let runs = RowRuns {
+            bounds: [
+                unpack_bound(w(2), w(5)),
+                unpack_bound(w(3), w(6)),
+                unpack_bound(w(4), w(7)),
+            ],
+            middle_starts: size & 1 << 8 != 0,
+            columns: last + 1,
+        };
+        let plane = |from: usize| core::array::from_fn(|k| w(from + k));
+        let unused = Edge { a: 0, b: 0, k: 0 };
+        let triangle = SmallTriangle {
+            x0: (origin & 0xFFFF) as i32,
+            y0: (origin >> 16) as i32,
+            last,
+            rows: size >> 4 & 15,
+            edges: [unused; 3],
+            planes: Planes::from_parts(plane(8), plane(8 + N), plane(8 + 2 * N)),
+        };
+        triangle.draw_rows(runs, band, shader);
+    }
+
+    /// Draws the rows of `band` (see [`shade_rows`]), `runs` those of the region's first row.
+    #[inline(always)]
+    fn draw_rows<S: SpanShader<N>>(mut self, mut runs: RowRuns, band: &Band, shader: &mut S) {
         // Rows y0 ..= y0 + rows, below 16 of them: no overflow.
         let last = self.y0 + self.rows as i32;
         if self.y0 < band.first {
@@ -540,6 +591,9 @@ impl<const N: usize> SmallTriangle<N> {
             let skip = (band.first - self.y0) as u32;
             for e in &mut self.edges {
                 e.k += e.b * skip as i32;
+            }
+            for b in &mut runs.bounds {
+                b.numerator += b.step * skip as i32;
             }
             self.planes = self.planes.advanced(skip);
             self.y0 = band.first;
@@ -551,7 +605,7 @@ impl<const N: usize> SmallTriangle<N> {
             }
             self.rows = (band.last - self.y0) as u32;
         }
-        self.draw(shader);
+        self.draw_runs(runs, shader);
     }
 }
 

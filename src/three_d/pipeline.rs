@@ -73,7 +73,7 @@ use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
 use crate::raster::band::{AllRows, Band, RowWindow};
-use crate::raster::scan::Kept;
+use crate::raster::scan::KeptWords;
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -342,7 +342,7 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
     ) {
         let tri = v.map(|v| v.screen());
         let levels = || frame.vertex_levels(model, v);
-        frame.fill(mesh, idx, model, &tri, levels, None, self);
+        frame.fill(mesh, idx, model, tri, levels, None, self);
     }
 
     #[inline(always)]
@@ -559,7 +559,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 mesh,
                 &idx,
                 model,
-                &tri,
+                tri,
                 #[inline(always)]
                 || self.vertex_levels(model, v),
                 None,
@@ -572,8 +572,18 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     /// those without a normal.
     #[inline(always)]
     fn vertex_levels(&self, model: impl Fn() -> [Vec3; 3], v: [&ProjectedVertex; 3]) -> [u16; 3] {
-        let face = v.iter().all(|v| v.has_normal()).then_some(0);
-        let face = face.unwrap_or_else(|| self.face_level(&model()));
+        if v.iter().all(|v| v.has_normal()) {
+            v.map(|v| v.level())
+        } else {
+            self.mixed_levels(&model(), v)
+        }
+    }
+
+    /// [`vertex_levels`](Self::vertex_levels) of a face with a vertex without a normal (out of
+    /// line: meshes have normals for all their vertices or for none).
+    #[inline(never)]
+    fn mixed_levels(&self, model: &[Vec3; 3], v: [&ProjectedVertex; 3]) -> [u16; 3] {
+        let face = self.face_level(model);
         v.map(|v| if v.has_normal() { v.level() } else { face })
     }
 
@@ -594,56 +604,88 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
 }
 
 impl<C: GouraudColor> Frame<'_, C, Band> {
-    /// [`refill`](Self::refill), handing the set-up of a small Gouraud face (not clipped) to
-    /// `keep` (for [`resume`](Self::resume)).
+    /// The light levels' colours of a Gouraud draw, whose small faces a band's draw can keep
+    /// set up for the next band ([`refill_levels`](Self::refill_levels)); `None` for the
+    /// other shadings.
     #[inline(always)]
-    pub(crate) fn refill_keeping(
+    pub(crate) fn levels(&self) -> Option<&ShadeTable<C>> {
+        match &self.fill {
+            Fill::Gouraud(table) => Some(table),
+            _ => None,
+        }
+    }
+
+    /// [`refill`](Self::refill) of a Gouraud draw (`table` from [`levels`](Self::levels)).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn refill_levels(
         &self,
+        table: &ShadeTable<C>,
         mesh: &Mesh<'_>,
         scratch: &[ProjectedVertex],
         k: usize,
         clipped: bool,
         target: &mut DepthTarget<'_, C>,
-        keep: &mut dyn FnMut(&Kept),
     ) {
-        let Fill::Gouraud(table) = &self.fill else {
-            self.refill(mesh, scratch, k, clipped, target);
-            return;
-        };
         if clipped {
             self.refill(mesh, scratch, k, clipped, target);
-            return;
+        } else if let Some((tri, levels)) = self.face_levels(mesh, scratch, k) {
+            shading::draw_levels(target, &self.clip, tri, levels, table);
         }
-        let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
-            return;
-        };
-        let Some([a, b, c]) = at_face(scratch, &idx) else {
-            return;
-        };
-        let model = || idx.map(|i| mesh.vertices.get(i).copied().unwrap_or_default());
-        let v = [a, b, c];
-        // What `fill` draws for the face.
-        let levels = self.vertex_levels(model, v);
-        shading::draw_levels_keeping(
-            target,
-            &self.clip,
-            &v.map(|v| v.screen()),
-            levels,
-            table,
-            keep,
-        )
     }
 
-    /// Draws the band's rows of the face whose set-up [`refill_keeping`](Self::refill_keeping)
-    /// kept in `kept` (in a band of the same frame): the pixels `refill` gives them. `false`
-    /// (nothing drawn) if this draw does not keep set-ups.
+    /// [`refill_levels`](Self::refill_levels), writing the set-up of a small face (not
+    /// clipped) into `keep` (for [`resume_levels`](Self::resume_levels)): whether it did.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub(crate) fn resume(&self, target: &mut DepthTarget<'_, C>, kept: &Kept) -> bool {
-        let Fill::Gouraud(table) = &self.fill else {
+    pub(crate) fn refill_levels_keeping(
+        &self,
+        table: &ShadeTable<C>,
+        mesh: &Mesh<'_>,
+        scratch: &[ProjectedVertex],
+        k: usize,
+        clipped: bool,
+        target: &mut DepthTarget<'_, C>,
+        keep: &mut impl KeptWords,
+    ) -> bool {
+        if clipped {
+            self.refill(mesh, scratch, k, clipped, target);
+            return false;
+        }
+        let Some((tri, levels)) = self.face_levels(mesh, scratch, k) else {
             return false;
         };
+        shading::draw_levels_keeping(target, &self.clip, tri, levels, table, keep)
+    }
+
+    /// The screen triangle of face `k` of `mesh` (not clipped, its vertices in `scratch`) and
+    /// the light levels `fill` draws it with.
+    #[inline(always)]
+    fn face_levels<'s>(
+        &self,
+        mesh: &Mesh<'_>,
+        scratch: &'s [ProjectedVertex],
+        k: usize,
+    ) -> Option<([&'s ScreenVertex; 3], [u16; 3])> {
+        let idx = mesh.indices.get(k)?.map(usize::from);
+        let v = at_face(scratch, &idx)?;
+        // By value: the indices stay in registers.
+        let vertices = mesh.vertices;
+        let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
+        Some((v.map(|v| v.screen()), self.vertex_levels(model, v)))
+    }
+
+    /// Draws the band's rows of the face whose set-up [`refill_levels`](Self::refill_levels)
+    /// kept in `kept` (in a band of the same frame, `table` from [`levels`](Self::levels)):
+    /// the pixels `refill` gives them.
+    #[inline(always)]
+    pub(crate) fn resume_levels(
+        &self,
+        table: &ShadeTable<C>,
+        target: &mut DepthTarget<'_, C>,
+        kept: &impl KeptWords,
+    ) {
         shading::resume_levels(target, self.clip.rows(), table, kept);
-        true
     }
 }
 
@@ -733,7 +775,7 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
-        tri: &[ScreenVertex; 3],
+        tri: [&ScreenVertex; 3],
         levels: impl FnOnce() -> [u16; 3],
         bary: Option<[Bary; 3]>,
         target: &mut DepthTarget<'_, C>,
@@ -850,9 +892,9 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
             else {
                 continue;
             };
-            let tri = [s0.0, s1.0, s2.0];
+            let tri = [&s0.0, &s1.0, &s2.0];
             let bary = [s0.1, s1.1, s2.1];
-            self.fill(mesh, idx, model, &tri, || face.levels, Some(bary), target);
+            self.fill(mesh, idx, model, tri, || face.levels, Some(bary), target);
         }
     }
 }

@@ -58,7 +58,7 @@ use crate::draw::SpanColors;
 use crate::raster::band::{AllRows, Band, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
-use crate::raster::scan::{Kept, SmallScan};
+use crate::raster::scan::{KeptWords, SmallScan};
 use crate::raster::{Span, SpanShader};
 
 /// How a mesh is lit.
@@ -385,7 +385,7 @@ const DEPTH_HALF: u32 = 1 << (DEPTH_SHIFT - 1);
 /// offsets.
 #[inline(always)]
 fn with_depth<const M: usize, const N: usize>(
-    vertices: &[ScreenVertex; 3],
+    vertices: [&ScreenVertex; 3],
     more: [[u16; M]; 3],
     half: [u32; M],
 ) -> Attributes<N> {
@@ -521,7 +521,7 @@ impl<R: RowWindow> TargetClip<R> {
 fn depth_fill<C: PixelColor, P: DepthPixel<C, N>, R: RowWindow, const N: usize>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
-    vertices: &[ScreenVertex; 3],
+    vertices: [&ScreenVertex; 3],
     attributes: &Attributes<N>,
     pixel: P,
 ) {
@@ -704,7 +704,7 @@ impl<C: PixelColor> DepthPixel<C, 2> for Leveled<'_, C> {
 pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
-    vertices: &[ScreenVertex; 3],
+    vertices: [&ScreenVertex; 3],
     levels: [u16; 3],
     table: &ShadeTable<C>,
 ) {
@@ -712,17 +712,17 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
 }
 
-/// [`draw_levels`] into a band (`clip`'s rows), handing a small triangle's set-up to `keep`
-/// (for [`resume_levels`]).
+/// [`draw_levels`] into a band (`clip`'s rows), writing a small triangle's set-up into `keep`
+/// (for [`resume_levels`]): whether it did.
 #[inline(never)]
 pub(crate) fn draw_levels_keeping<C: PixelColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<Band>,
-    vertices: &[ScreenVertex; 3],
+    vertices: [&ScreenVertex; 3],
     levels: [u16; 3],
     table: &ShadeTable<C>,
-    keep: &mut dyn FnMut(&Kept),
-) {
+    keep: &mut impl KeptWords,
+) -> bool {
     let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
     let fill = DepthFill {
         target,
@@ -730,9 +730,8 @@ pub(crate) fn draw_levels_keeping<C: PixelColor>(
         pixel: Leveled(&table.colors),
     };
     let v = vertices.map(|v| v.position());
-    if let Some(kept) = clip.rows.shade_keeping(v, &attributes, &clip.rect, fill) {
-        keep(&kept);
-    }
+    clip.rows
+        .shade_keeping(v, &attributes, &clip.rect, fill, keep)
 }
 
 /// The rows of `band` of the triangle [`draw_levels_keeping`] kept in `kept` (with `table`):
@@ -742,7 +741,7 @@ pub(crate) fn resume_levels<C: PixelColor>(
     target: &mut DepthTarget<'_, C>,
     band: &Band,
     table: &ShadeTable<C>,
-    kept: &Kept,
+    kept: &impl KeptWords,
 ) {
     let fill = DepthFill {
         target,
@@ -764,14 +763,14 @@ pub fn draw_flat<C: PixelColor>(
     color: C,
 ) {
     let clip = TargetClip::new(clip, target);
-    fill_flat(target, &clip, vertices, color);
+    fill_flat(target, &clip, vertices.each_ref(), color);
 }
 
 /// [`draw_flat`] inside a clip already within the target.
 pub(crate) fn fill_flat<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
-    vertices: &[ScreenVertex; 3],
+    vertices: [&ScreenVertex; 3],
     color: C,
 ) {
     let attributes = with_depth(vertices, [[]; 3], []);
@@ -787,6 +786,7 @@ pub fn draw_gouraud<C: GouraudColor>(
     vertices: &[ScreenVertex; 3],
     colors: [C; 3],
 ) {
+    let vertices = vertices.each_ref();
     let channels = Attributes::channels(colors.map(|c| c.channels()));
     let attributes = with_depth(vertices, channels.values, channels.half);
     let steps = SpanSteps::default();
@@ -811,14 +811,14 @@ pub fn draw_quadratic<C: GouraudColor>(
     color: C,
 ) {
     let clip = TargetClip::new(clip, target);
-    fill_quadratic(target, &clip, vertices, normals, light, color);
+    fill_quadratic(target, &clip, vertices.each_ref(), normals, light, color);
 }
 
 /// [`draw_quadratic`] inside a clip already within the target.
 pub(crate) fn fill_quadratic<C: GouraudColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
-    vertices: &[ScreenVertex; 3],
+    vertices: [&ScreenVertex; 3],
     normals: &QuadraticNormals,
     light: &Light,
     color: C,

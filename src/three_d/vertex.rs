@@ -36,10 +36,10 @@ pub(crate) const NO_NORMAL: u8 = 1 << 7;
 /// private to the pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ProjectedVertex {
-    /// Sub-pixel screen position (valid when the vertex is inside the view volume).
-    x: i32,
-    y: i32,
-    depth: u16,
+    /// Sub-pixel screen position and depth (valid when the vertex is inside the view volume),
+    /// in the form the fills take by reference: a face's vertices are drawn from the scratch
+    /// where they are, not copied.
+    screen: ScreenVertex,
     /// Light level, 8.8 fixed point of the 0–255 scale (Gouraud only).
     level: u16,
     /// Outside which clip planes (bit `k` for plane `k`), and [`NO_NORMAL`].
@@ -49,9 +49,7 @@ pub struct ProjectedVertex {
 impl ProjectedVertex {
     /// An entry for a scratch array: `[ProjectedVertex::EMPTY; N]`.
     pub const EMPTY: ProjectedVertex = ProjectedVertex {
-        x: 0,
-        y: 0,
-        depth: 0,
+        screen: ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0),
         level: 0,
         code: 0,
     };
@@ -70,18 +68,14 @@ impl ProjectedVertex {
 
     /// Position and depth (meaningful when [`outside`](Self::outside) is 0).
     #[inline(always)]
-    pub(crate) fn screen(&self) -> ScreenVertex {
-        ScreenVertex::new(
-            Coord::from_bits(self.x),
-            Coord::from_bits(self.y),
-            self.depth,
-        )
+    pub(crate) fn screen(&self) -> &ScreenVertex {
+        &self.screen
     }
 
     /// Raw sub-pixel position.
     #[inline(always)]
     pub(crate) fn position_bits(&self) -> (i32, i32) {
-        (self.x, self.y)
+        (self.screen.x.to_bits(), self.screen.y.to_bits())
     }
 
     /// The Gouraud light level (8.8 of the 0–255 scale).
@@ -382,9 +376,7 @@ impl VertexStage {
             ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0)
         };
         ProjectedVertex {
-            x: screen.x.to_bits(),
-            y: screen.y.to_bits(),
-            depth: screen.depth,
+            screen,
             level: 0,
             code,
         }
