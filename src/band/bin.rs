@@ -2,19 +2,21 @@
 //! storage; each band then draws only its own triangles, in the frame's order.
 //!
 //! The storage is a slice of [`BinEntry`] (12 bytes): one per band (the head of the list of
-//! the triangles whose first band it is) and one per triangle kept (its number, its first and
-//! last band, the link to the next of its list). The triangles are recorded in the frame's
-//! order, so a list's order is theirs. Drawing the bands top to bottom, the triangles of a band
-//! are those still open from the bands above (a list kept in order) merged with those starting
-//! there: each band costs the triangles it touches. Drawn in any other order, a band finds its
-//! triangles by reading every entry (the same pixels, more work).
+//! the triangles whose first band it is) and one per triangle kept (what a band needs to draw
+//! it — a mesh face's three vertex indices, so that a band reads its vertices without the
+//! mesh's indices; a 2D triangle's number and first band —, its last band, the link to the next
+//! of its list). The triangles are recorded in the frame's order, so a list's order is theirs.
+//! Drawing the bands top to bottom, the triangles of a band are those still open from the
+//! bands above (a list kept in order) merged with those starting there: each band costs the
+//! triangles it touches. Drawn in any other order, a band reads every entry and draws those
+//! reaching it or a lower band (the same pixels, more work).
 //!
 //! A [`MeshBin`] uses the storage past the entries it needs, if any: a small Gouraud face
-//! reaching the next band leaves its set-up there (5 entries: its region, edges and planes,
-//! the integers the set-up computes), and the next band draws its rows from it instead of
-//! setting the face up again — the same pixels, a set-up less for each face crossing a band
-//! boundary. The set-ups are kept in a ring in the order the faces are drawn; when it is full
-//! (or the storage has no spare entry) a face is set up again.
+//! reaching the next band leaves its set-up there (5 entries: its region, its rows' run bounds
+//! and planes, the integers the set-up computes), and the next band draws its rows from it
+//! where it lies instead of setting the face up again — the same pixels, a set-up less for
+//! each face crossing a band boundary. The set-ups are kept in a ring in the order the faces
+//! are drawn; when it is full (or the storage has no spare entry) a face is set up again.
 
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
@@ -36,12 +38,14 @@ use crate::Vec3;
 /// bin reports how many it needs when its storage is too short.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct BinEntry {
-    /// The triangle's number (and [`CLIPPED`]); for a band's head, the last entry of its list
-    /// (the head itself while the list is empty).
+    /// What the bin records of the triangle (a mesh face's first two vertex indices, a 2D
+    /// triangle's number); for a band's head, the last entry of its list (the head itself
+    /// while the list is empty).
     item: u32,
     /// The next entry of the list.
     next: u32,
-    /// The triangle's first band (low half) and last band (high half).
+    /// 16 more bits of the record (a mesh face's third vertex index, a 2D triangle's first
+    /// band), the triangle's last band (15 bits) and a flag (a mesh face to clip again).
     bands: u32,
 }
 
@@ -53,16 +57,41 @@ impl BinEntry {
         bands: 0,
     };
 
-    /// The triangle's first band.
-    #[inline(always)]
-    fn first(&self) -> u32 {
-        self.bands & 0xFFFF
-    }
-
     /// The triangle's last band.
     #[inline(always)]
     fn last(&self) -> u32 {
-        self.bands >> 16
+        self.bands >> 16 & MAX_BAND
+    }
+
+    /// The triangle as recorded, in entry `slot`.
+    #[inline(always)]
+    fn record(&self, slot: u32) -> Record {
+        Record {
+            item: self.item,
+            low: self.bands & 0xFFFF,
+            flag: self.bands >> 31 != 0,
+            slot,
+        }
+    }
+}
+
+/// The largest band number (and one less than the most bands a bin takes).
+const MAX_BAND: u32 = (1 << 15) - 1;
+
+/// A triangle as a bin recorded it ([`Lists::push`]), and the entry it is in (unique to it).
+#[derive(Clone, Copy)]
+struct Record {
+    item: u32,
+    low: u32,
+    flag: bool,
+    slot: u32,
+}
+
+impl Record {
+    /// A mesh face's vertex indices ([`Recorder::record`]).
+    #[inline(always)]
+    fn face(&self) -> [usize; 3] {
+        [self.item & 0xFFFF, self.item >> 16, self.low].map(|i| i as usize)
     }
 }
 
@@ -75,9 +104,8 @@ impl Default for BinEntry {
 /// No entry.
 const NONE: u32 = u32::MAX;
 
-/// Set in a mesh face's number when the face crosses the view volume's boundary: it is clipped
-/// again when drawn.
-const CLIPPED: u32 = 1 << 31;
+/// Triangles a bin numbers at most: `bands + records` fits `u32`.
+const MAX_RECORDS: u32 = 1 << 31;
 
 /// The bands' lists in a caller's storage.
 #[derive(Debug)]
@@ -86,8 +114,8 @@ struct Lists<'b> {
     /// Bands (the first entries), and triangles recorded (or counted past the storage's end).
     bands: u32,
     records: u32,
-    /// A triangle numbered past the flag's range (so far fewer than 2³¹ are recorded: `bands +
-    /// records` fits `u32`).
+    /// A triangle numbered past [`MAX_RECORDS`] (so far fewer are recorded: `bands + records`
+    /// fits `u32`).
     limit: bool,
     /// The list of triangles still open after the band drawn last, and the band expected next.
     active: u32,
@@ -101,7 +129,7 @@ impl<'b> Lists<'b> {
     /// Empty lists for the bands of `layout` in `entries`.
     fn new(layout: &BandLayout, entries: &'b mut [BinEntry]) -> Result<Self, BandError> {
         let bands = layout.count();
-        if bands > u32::from(u16::MAX) + 1 {
+        if bands > MAX_BAND + 1 {
             return Err(BandError::BinLimit);
         }
         for (band, head) in entries.iter_mut().take(bands as usize).enumerate() {
@@ -123,22 +151,22 @@ impl<'b> Lists<'b> {
         })
     }
 
-    /// Records `item` (a number below [`CLIPPED`], each once, and its flags), in bands
-    /// `first ..= last` (below the number of bands).
+    /// Records a triangle as `item`, `low` and `flag` (the [`Record`] the walk gives back), in
+    /// bands `first ..= last` (below the number of bands); fewer than [`MAX_RECORDS`] times.
     #[inline(always)]
-    fn push(&mut self, item: u32, first: u32, last: u32) {
-        // The slots follow the bands' heads: below 2¹⁶ + 1 + 2³¹, no overflow.
+    fn push(&mut self, (item, low, flag): (u32, u16, bool), first: u32, last: u32) {
+        // The slots follow the bands' heads: below 2¹⁵ + 2³¹, no overflow.
         let slot = self.bands + self.records;
         self.records += 1;
         let Some(e) = self.entries.get_mut(slot as usize) else {
             // Counted, not stored: `finish` reports the storage too small.
             return;
         };
-        // Both below 2¹⁶.
+        // The last band is below 2¹⁵.
         *e = BinEntry {
             item,
             next: NONE,
-            bands: first | last << 16,
+            bands: u32::from(low) | last << 16 | u32::from(flag) << 31,
         };
         // Appended to its first band's list: linked from the tail the head keeps in `item` (the
         // head itself for an empty list).
@@ -171,24 +199,25 @@ impl<'b> Lists<'b> {
         self.records as usize
     }
 
-    /// Calls `f` with every item touching `band`, in the order they were recorded, whether it
+    /// Calls `f` with every triangle touching `band` (drawn top to bottom; in any other order,
+    /// every triangle reaching it or a lower band), in the order they were recorded, whether it
     /// comes from the band above and whether it reaches the next band (both only when the
-    /// bands are drawn top to bottom), and the set-ups kept ([`Kept`]) for the items reaching
-    /// this band from above (in their order).
-    fn each(&mut self, band: u32, mut f: impl FnMut(u32, bool, bool, &mut KeptRing<'_>)) {
+    /// bands are drawn top to bottom), and the set-ups kept for the triangles reaching this band
+    /// from above (in their order).
+    fn each(&mut self, band: u32, mut f: impl FnMut(Record, bool, bool, &mut KeptRing<'_>)) {
         if band >= self.bands {
             return;
         }
         let end = (self.bands as usize + self.records as usize).min(self.entries.len());
         let (entries, spare) = self.entries.split_at_mut(end);
         if band != self.next_band {
-            // Out of order: every entry, read; nothing kept.
+            // Out of order: every entry, read; nothing kept. (The entries keep no first band.)
             let mut none = KeptRing::new(&mut [], &mut self.kept_start, &mut self.kept_len);
             none.clear();
-            let records = entries.iter().skip(self.bands as usize);
-            for e in records.take(self.records as usize) {
-                if e.first() <= band && band <= e.last() {
-                    f(e.item, false, false, &mut none);
+            let records = entries.iter().zip(0..).skip(self.bands as usize);
+            for (e, slot) in records.take(self.records as usize) {
+                if band <= e.last() {
+                    f(e.record(slot), false, false, &mut none);
                 }
             }
             return;
@@ -216,7 +245,7 @@ impl<'b> Lists<'b> {
                 starting = e.next;
             }
             let continues = e.last() > band;
-            f(e.item, above, continues, &mut kept);
+            f(e.record(slot), above, continues, &mut kept);
             if continues {
                 match entries.get_mut(tail as usize) {
                     Some(t) => t.next = slot,
@@ -234,7 +263,7 @@ impl<'b> Lists<'b> {
 }
 
 /// Entries a kept set-up takes in the storage past the lists: its words, three an entry, and
-/// the item of its triangle in the last word.
+/// the entry of its triangle (its slot, unique to it) in the last word.
 const KEPT_ENTRIES: usize = 5;
 const _: () = assert!(KEPT_WORDS == 3 * KEPT_ENTRIES - 1);
 
@@ -320,15 +349,15 @@ impl<'e> KeptRing<'e> {
         Some(if end >= capacity { end - capacity } else { end })
     }
 
-    /// The position of `item`'s set-up if it is the front one (taken off the ring: valid until
-    /// the next [`vacant`](Self::vacant)).
+    /// The position of the set-up of the triangle in entry `slot` if it is the front one (taken
+    /// off the ring: valid until the next [`vacant`](Self::vacant)).
     #[inline(always)]
-    pub(crate) fn take(&mut self, item: u32) -> Option<u32> {
+    pub(crate) fn take(&mut self, slot: u32) -> Option<u32> {
         if *self.len == 0 {
             return None;
         }
         let start = *self.start;
-        if self.at(start)?.last()?.bands != item {
+        if self.at(start)?.last()?.bands != slot {
             return None;
         }
         let next = start + 1;
@@ -369,16 +398,17 @@ impl<'e> KeptRing<'e> {
         self.at_mut(end)
     }
 
-    /// Appends the set-up written into [`vacant`](Self::vacant) as `item`'s.
+    /// Appends the set-up written into [`vacant`](Self::vacant) as that of the triangle in entry
+    /// `slot`.
     #[inline(always)]
-    pub(crate) fn commit(&mut self, item: u32) {
+    pub(crate) fn commit(&mut self, slot: u32) {
         let Some(end) = self.end() else {
             return;
         };
         let Some(last) = self.at_mut(end).and_then(|s| s.last_mut()) else {
             return;
         };
-        last.bands = item;
+        last.bands = slot;
         *self.len += 1;
     }
 }
@@ -472,8 +502,10 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
             let Some((first, last)) = rows.and_then(|r| r.bands(top, bottom)) else {
                 continue;
             };
+            // The first band in the record's low half: the out-of-order walk skips the
+            // triangles below the band.
             match u32::try_from(k) {
-                Ok(k) if k < CLIPPED => lists.push(k, first, last),
+                Ok(k) if k < MAX_RECORDS => lists.push((k, first as u16, false), first, last),
                 _ => return Err(BandError::BinLimit),
             }
         }
@@ -506,8 +538,12 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
             return Err(BandError::OtherLayout);
         }
         let items = self.items;
-        self.lists.each(band.index(), |k, _, _, _| {
-            if let Some(item) = items.get(k as usize) {
+        let index = band.index();
+        self.lists.each(index, |r, _, _, _| {
+            if r.low > index {
+                return;
+            }
+            if let Some(item) = items.get(r.item as usize) {
                 item.draw_band(band);
             }
         });
@@ -585,6 +621,8 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
     /// set-ups of faces crossing into the next band, 5 each, saving their set-up there). Errors,
     /// before anything is drawn: the scratch too short, the storage too short (`BinTooSmall`
     /// with the number needed), more than 2³¹ faces.
+    // Out of line: the frame's work once, and the same code whatever the caller.
+    #[inline(never)]
     pub fn new(
         pipeline: &'a Pipeline,
         mesh: &Mesh<'a>,
@@ -645,9 +683,8 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         let (mesh, scratch) = (&self.mesh, self.scratch);
         let Some(table) = frame.levels() else {
             // Nothing kept set up: each face set up again in each band.
-            self.lists.each(placement.index, |item, _, _, _| {
-                let k = (item & !CLIPPED) as usize;
-                frame.refill(mesh, scratch, k, item & CLIPPED != 0, target);
+            self.lists.each(placement.index, |r, _, _, _| {
+                frame.refill(mesh, scratch, &r.face(), r.flag, target);
             });
             return Ok(());
         };
@@ -655,10 +692,9 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         self.lists.each(
             placement.index,
             #[inline(always)]
-            |item, above, continues, kept| {
-                let k = (item & !CLIPPED) as usize;
-                let clipped = item & CLIPPED != 0;
-                if let Some(n) = above.then(|| kept.take(item)).flatten() {
+            |r, above, continues, kept| {
+                let (idx, clipped) = (r.face(), r.flag);
+                if let Some(n) = above.then(|| kept.take(r.slot)).flatten() {
                     // Set up in a band above: its rows here from the same integers.
                     if let Some(set_up) = kept.get(n) {
                         frame.resume_levels(table, target, set_up);
@@ -670,15 +706,15 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
                 }
                 if continues {
                     if let Some(slot) = kept.vacant() {
-                        if frame
-                            .refill_levels_keeping(table, mesh, scratch, k, clipped, target, slot)
-                        {
-                            kept.commit(item);
+                        if frame.refill_levels_keeping(
+                            table, mesh, scratch, &idx, clipped, target, slot,
+                        ) {
+                            kept.commit(r.slot);
                         }
                         return;
                     }
                 }
-                frame.refill_levels(table, mesh, scratch, k, clipped, target);
+                frame.refill_levels(table, mesh, scratch, &idx, clipped, target);
             },
         );
         Ok(())
@@ -693,17 +729,23 @@ struct Recorder<'b> {
 }
 
 impl Recorder<'_> {
-    /// Records face `k` (flags included) reaching the sub-pixel heights `top ..= bottom`.
+    /// Records face `k` (vertices `idx`; to be clipped again if `clipped`) reaching the
+    /// sub-pixel heights `top ..= bottom`: its vertex indices, so that a band reads its
+    /// vertices without the mesh's indices.
     #[inline(always)]
-    fn record(&mut self, k: usize, flags: u32, (top, bottom): (i32, i32)) {
+    fn record(&mut self, k: usize, idx: &[usize; 3], clipped: bool, (top, bottom): (i32, i32)) {
         let (top, bottom) = (first_centre_from(top), last_centre_to(bottom));
         let Some((first, last)) = self.rows.and_then(|r| r.bands(top, bottom)) else {
             return;
         };
-        match u32::try_from(k) {
-            Ok(k) if k < CLIPPED => self.lists.push(k | flags, first, last),
-            _ => self.lists.limit = true,
+        if k >= MAX_RECORDS as usize {
+            self.lists.limit = true;
+            return;
         }
+        // A mesh's indices are `u16`s.
+        let [a, b, c] = idx.map(|i| i as u16);
+        let item = u32::from(a) | u32::from(b) << 16;
+        self.lists.push((item, c, clipped), first, last);
     }
 }
 
@@ -714,13 +756,13 @@ impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
         _: &Frame<'_, C, R>,
         _: &Mesh<'_>,
         k: usize,
-        _: &[usize; 3],
+        idx: &[usize; 3],
         _: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
     ) {
         let y = v.map(|v| v.position_bits().1);
         let heights = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
-        self.record(k, 0, heights);
+        self.record(k, idx, false, heights);
     }
 
     fn clipped<R: RowWindow>(
@@ -728,7 +770,7 @@ impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
         frame: &Frame<'_, C, R>,
         _: &Mesh<'_>,
         k: usize,
-        _: &[usize; 3],
+        idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [ProjectedVertex; 3],
         stats: &mut DrawStats,
@@ -738,7 +780,7 @@ impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
         match frame.clip_face(model, &v) {
             Ok(face) => {
                 stats.drawn += 1;
-                self.record(k, CLIPPED, face.heights());
+                self.record(k, idx, true, face.heights());
             }
             Err(dropped) => dropped.count(stats),
         }

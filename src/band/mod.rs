@@ -206,7 +206,7 @@ pub enum BandError {
         /// Entries given.
         given: usize,
     },
-    /// More triangles than a bin numbers (2³¹), or more bands (65,536).
+    /// More triangles than a bin numbers (2³¹), or more bands (32,768).
     BinLimit,
     /// The vertex scratch of a [`MeshBin`] is too short.
     Scratch(ScratchTooSmall),

@@ -340,9 +340,7 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
     ) {
-        let tri = v.map(|v| v.screen());
-        let levels = || frame.vertex_levels(model, v);
-        frame.fill(mesh, idx, model, tri, levels, None, self);
+        frame.fill(mesh, idx, model, v, None, self);
     }
 
     #[inline(always)]
@@ -530,21 +528,20 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         stats
     }
 
-    /// Fills face `k` of `mesh` (a face [`scratch_faces`](Self::scratch_faces) handed a sink,
-    /// `clipped` if through [`FaceSink::clipped`]) into `target`, its vertices read from
-    /// `scratch`: the same pixels as then. Nothing for a face not in the mesh.
+    /// Fills the face of `mesh` of the vertices `idx` (a face
+    /// [`scratch_faces`](Self::scratch_faces) handed a sink, `clipped` if through
+    /// [`FaceSink::clipped`]) into `target`, its vertices read from `scratch`: the same pixels
+    /// as then. Nothing for indices past the scratch.
     #[inline(always)]
     pub(crate) fn refill(
         &self,
         mesh: &Mesh<'_>,
         scratch: &[ProjectedVertex],
-        k: usize,
+        idx: &[usize; 3],
         clipped: bool,
         target: &mut DepthTarget<'_, C>,
     ) {
-        let Some(idx) = mesh.indices.get(k).map(|f| f.map(usize::from)) else {
-            return;
-        };
+        let idx = *idx;
         let Some([a, b, c]) = at_face(scratch, &idx) else {
             return;
         };
@@ -552,19 +549,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         if clipped {
             self.refill_clipped(mesh, &idx, &[*a, *b, *c], target);
         } else {
-            // `DepthTarget::face`, its levels inlined (LLVM calls them here otherwise).
-            let v = [a, b, c];
-            let tri = v.map(|v| v.screen());
-            self.fill(
-                mesh,
-                &idx,
-                model,
-                tri,
-                #[inline(always)]
-                || self.vertex_levels(model, v),
-                None,
-                target,
-            );
+            self.fill(mesh, &idx, model, [a, b, c], None, target);
         }
     }
 
@@ -572,19 +557,25 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     /// those without a normal.
     #[inline(always)]
     fn vertex_levels(&self, model: impl Fn() -> [Vec3; 3], v: [&ProjectedVertex; 3]) -> [u16; 3] {
-        if v.iter().all(|v| v.has_normal()) {
-            v.map(|v| v.level())
-        } else {
-            self.mixed_levels(&model(), v)
-        }
+        let face = v.iter().all(|v| v.has_normal()).then_some(0);
+        let face = face.unwrap_or_else(|| self.face_level(&model()));
+        v.map(|v| if v.has_normal() { v.level() } else { face })
     }
 
-    /// [`vertex_levels`](Self::vertex_levels) of a face with a vertex without a normal (out of
-    /// line: meshes have normals for all their vertices or for none).
-    #[inline(never)]
-    fn mixed_levels(&self, model: &[Vec3; 3], v: [&ProjectedVertex; 3]) -> [u16; 3] {
-        let face = self.face_level(model);
-        v.map(|v| if v.has_normal() { v.level() } else { face })
+    /// The vertices `v` (at `model`) lit as [`vertex_levels`](Self::vertex_levels) lights
+    /// them, if a vertex has no normal (`None`: the vertices as they are). For a Gouraud fill,
+    /// which reads the levels from the vertices.
+    #[inline(always)]
+    fn relit(
+        &self,
+        model: impl Fn() -> [Vec3; 3],
+        v: [&ProjectedVertex; 3],
+    ) -> Option<[ProjectedVertex; 3]> {
+        if v.iter().all(|v| v.has_normal()) {
+            return None;
+        }
+        let levels = self.vertex_levels(model, v);
+        Some([0, 1, 2].map(|k| ProjectedVertex::lit(*v[k].screen(), levels[k])))
     }
 
     /// [`refill`](Self::refill) of a clipped face (out of line: rare, and its polygon is large).
@@ -623,14 +614,22 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
         table: &ShadeTable<C>,
         mesh: &Mesh<'_>,
         scratch: &[ProjectedVertex],
-        k: usize,
+        idx: &[usize; 3],
         clipped: bool,
         target: &mut DepthTarget<'_, C>,
     ) {
         if clipped {
-            self.refill(mesh, scratch, k, clipped, target);
-        } else if let Some((tri, levels)) = self.face_levels(mesh, scratch, k) {
-            shading::draw_levels(target, &self.clip, tri, levels, table);
+            self.refill(mesh, scratch, idx, clipped, target);
+        } else if let Some((model, v)) = self.face_vertices(mesh, scratch, idx) {
+            let lit;
+            let v = match self.relit(model, v) {
+                None => v,
+                Some(relit) => {
+                    lit = relit;
+                    lit.each_ref()
+                }
+            };
+            shading::draw_levels(target, &self.clip, v, table);
         }
     }
 
@@ -643,36 +642,44 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
         table: &ShadeTable<C>,
         mesh: &Mesh<'_>,
         scratch: &[ProjectedVertex],
-        k: usize,
+        idx: &[usize; 3],
         clipped: bool,
         target: &mut DepthTarget<'_, C>,
         keep: &mut impl KeptWords,
     ) -> bool {
         if clipped {
-            self.refill(mesh, scratch, k, clipped, target);
+            self.refill(mesh, scratch, idx, clipped, target);
             return false;
         }
-        let Some((tri, levels)) = self.face_levels(mesh, scratch, k) else {
+        let Some((model, v)) = self.face_vertices(mesh, scratch, idx) else {
             return false;
         };
-        shading::draw_levels_keeping(target, &self.clip, tri, levels, table, keep)
+        let lit;
+        let v = match self.relit(model, v) {
+            None => v,
+            Some(relit) => {
+                lit = relit;
+                lit.each_ref()
+            }
+        };
+        shading::draw_levels_keeping(target, &self.clip, v, table, keep)
     }
 
-    /// The screen triangle of face `k` of `mesh` (not clipped, its vertices in `scratch`) and
-    /// the light levels `fill` draws it with.
+    /// The model positions (on demand) and the vertices in `scratch` of the face of `mesh` of
+    /// the vertices `idx`.
     #[inline(always)]
-    fn face_levels<'s>(
+    fn face_vertices<'s, 'm>(
         &self,
-        mesh: &Mesh<'_>,
+        mesh: &Mesh<'m>,
         scratch: &'s [ProjectedVertex],
-        k: usize,
-    ) -> Option<([&'s ScreenVertex; 3], [u16; 3])> {
-        let idx = mesh.indices.get(k)?.map(usize::from);
+        idx: &[usize; 3],
+    ) -> Option<(impl Fn() -> [Vec3; 3] + Copy + 'm, [&'s ProjectedVertex; 3])> {
+        let idx = *idx;
         let v = at_face(scratch, &idx)?;
         // By value: the indices stay in registers.
         let vertices = mesh.vertices;
         let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
-        Some((v.map(|v| v.screen()), self.vertex_levels(model, v)))
+        Some((model, v))
     }
 
     /// Draws the band's rows of the face whose set-up [`refill_levels`](Self::refill_levels)
@@ -775,28 +782,29 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
         mesh: &Mesh<'_>,
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
-        tri: [&ScreenVertex; 3],
-        levels: impl FnOnce() -> [u16; 3],
+        v: [&ProjectedVertex; 3],
         bary: Option<[Bary; 3]>,
         target: &mut DepthTarget<'_, C>,
     ) {
         let clip = &self.clip;
+        let tri = v.map(|v| v.screen());
         match &self.fill {
             Fill::Unlit(color) => shading::fill_flat(target, clip, tri, *color),
             Fill::Flat(table) => {
                 let level = self.face_level(&model());
                 shading::fill_flat(target, clip, tri, table.at(level));
             }
+            // A fan's vertices carry the levels interpolated at them (`fill_fan`).
             Fill::Gouraud(table) => {
-                let levels = levels();
-                let levels = match bary {
-                    None => levels,
-                    Some(bary) => bary.map(|b| {
-                        let l: i64 = (0..3).map(|k| i64::from(b[k]) * i64::from(levels[k])).sum();
-                        ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
-                    }),
+                let lit;
+                let v = match self.relit(model, v) {
+                    None => v,
+                    Some(relit) => {
+                        lit = relit;
+                        lit.each_ref()
+                    }
                 };
-                shading::draw_levels(target, clip, tri, levels, table);
+                shading::draw_levels(target, clip, v, table);
             }
             Fill::Quadratic(color) => {
                 let normals = QuadraticNormals::new(self.world_normals(mesh, idx, &model()));
@@ -871,9 +879,7 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
         if !self.keeps(area < 0) {
             return Err(Dropped::Culled);
         }
-        let face = v.iter().all(|v| v.has_normal()).then_some(0);
-        let face = face.unwrap_or_else(|| self.face_level(&model()));
-        let levels = v.map(|v| if v.has_normal() { v.level() } else { face });
+        let levels = self.vertex_levels(model, v.each_ref());
         Ok(ClippedFace { screen, levels })
     }
 
@@ -892,9 +898,16 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
             else {
                 continue;
             };
-            let tri = [&s0.0, &s1.0, &s2.0];
             let bary = [s0.1, s1.1, s2.1];
-            self.fill(mesh, idx, model, tri, || face.levels, Some(bary), target);
+            // The face's levels at the fan's vertices.
+            let level = |b: &Bary| {
+                let l: i64 = (0..3)
+                    .map(|k| i64::from(b[k]) * i64::from(face.levels[k]))
+                    .sum();
+                ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
+            };
+            let v = [s0, s1, s2].map(|s| ProjectedVertex::lit(s.0, level(&s.1)));
+            self.fill(mesh, idx, model, v.each_ref(), Some(bary), target);
         }
     }
 }

@@ -52,6 +52,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{inv_sqrt, normalize_wide, sat32, Scalar, Vec3};
+use super::vertex::ProjectedVertex;
 use crate::arch;
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
@@ -697,18 +698,19 @@ impl<C: PixelColor> DepthPixel<C, 2> for Leveled<'_, C> {
     }
 }
 
-/// Fills the triangle with the material colour of `table` at the light levels `levels`
-/// (8.8 fixed point of the 0–255 scale, per vertex) interpolated across it, depth-tested: the
-/// pipeline's Gouraud fill.
+/// Fills the triangle of the vertices `v` with the material colour of `table` at their light
+/// levels (8.8 fixed point of the 0–255 scale) interpolated across it, depth-tested: the
+/// pipeline's Gouraud fill. The vertices are read where they are (a draw's scratch).
 #[inline(never)]
 pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
-    vertices: [&ScreenVertex; 3],
-    levels: [u16; 3],
+    v: [&ProjectedVertex; 3],
     table: &ShadeTable<C>,
 ) {
-    let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
+    let vertices = v.map(|v| v.screen());
+    let levels = v.map(|v| [v.level()]);
+    let attributes = with_depth(vertices, levels, [1 << (STEP_BITS_PLANES - 1)]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
 }
 
@@ -718,12 +720,13 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
 pub(crate) fn draw_levels_keeping<C: PixelColor>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<Band>,
-    vertices: [&ScreenVertex; 3],
-    levels: [u16; 3],
+    v: [&ProjectedVertex; 3],
     table: &ShadeTable<C>,
     keep: &mut impl KeptWords,
 ) -> bool {
-    let attributes = with_depth(vertices, levels.map(|l| [l]), [1 << (STEP_BITS_PLANES - 1)]);
+    let vertices = v.map(|v| v.screen());
+    let levels = v.map(|v| [v.level()]);
+    let attributes = with_depth(vertices, levels, [1 << (STEP_BITS_PLANES - 1)]);
     let fill = DepthFill {
         target,
         step: [0; 2],

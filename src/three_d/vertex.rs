@@ -54,6 +54,15 @@ impl ProjectedVertex {
         code: 0,
     };
 
+    /// A vertex inside the view volume at `screen`, lit at `level` (a clipped face's fan).
+    pub(crate) fn lit(screen: ScreenVertex, level: u16) -> Self {
+        ProjectedVertex {
+            screen,
+            level,
+            code: 0,
+        }
+    }
+
     /// The clip planes the vertex is outside of (0: inside the view volume).
     #[inline(always)]
     pub(crate) fn outside(&self) -> u8 {
