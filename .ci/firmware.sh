@@ -41,9 +41,10 @@ MESH_FRAME_LIMIT=4300000
 # the Cortex-M4 at most this many per cent over the frame drawn whole in the same firmware
 # (measured +14.7 %, the goal being 15 %: the bin's faces take the whole frame's fill, and
 # the faces crossing a band boundary resume from set-ups kept in the bin's spare storage, which
-# fw_band has), and the micro:bit's frame in 8-row bands without a bin at most this many
-# instructions (131 M measured).
-BAND_BIN_OVERHEAD_LIMIT=23
+# fw_band has; the limit leaves about 3 points for compilers, as the same source has measured
+# a point apart in two builds), and the micro:bit's frame in 8-row bands without a bin at most
+# this many instructions (131 M measured).
+BAND_BIN_OVERHEAD_LIMIT=18
 MICROBIT_BAND_FRAME_LIMIT=160000000
 
 # The firmware issue's targets, instructions per covered pixel on large triangles (enforced:

@@ -921,3 +921,42 @@ fn color_band_is_a_draw_target_in_frame_coordinates() {
     }
     assert_eq!(first_difference(&whole, &got, w), None);
 }
+
+/// A bin takes frames of up to 32,768 bands and refuses more before anything is drawn
+/// (`BinLimit`), a 2D bin and a mesh bin alike.
+#[test]
+fn bins_refuse_more_bands_than_they_number() {
+    let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
+    let scene = [SolidTriangle::new(
+        [c(0, 0), c(3, 0), c(0, 40_000)],
+        Gray8::WHITE,
+    )];
+    let pipeline = scene3d::pipeline(scene3d::Model::Knot);
+    let material = Material::new(Rgb888::WHITE, Shading::Gouraud);
+    let mut scratch = vec![ProjectedVertex::EMPTY; ICOSPHERE.vertices.len()];
+    for (height, fits) in [(32_768, true), (32_769, false), (40_000, false)] {
+        let layout = BandLayout::new(Size::new(4, height), 1).unwrap();
+        let mut storage = vec![BinEntry::EMPTY; height as usize + 1];
+        let bin = TriangleBin::new(&layout, &scene, &mut storage);
+        assert_eq!(bin.is_ok(), fits, "2D, {height} bands");
+        if !fits {
+            assert_eq!(bin.unwrap_err(), BandError::BinLimit);
+        }
+        let mut storage = vec![BinEntry::EMPTY; height as usize + 1000];
+        let bin = MeshBin::new(
+            &pipeline,
+            &ICOSPHERE,
+            &material,
+            &layout,
+            &mut scratch,
+            &mut storage,
+        );
+        match bin {
+            Ok(_) => assert!(fits, "mesh, {height} bands"),
+            Err(e) => assert!(
+                !fits && e == BandError::BinLimit,
+                "mesh, {height} bands: {e:?}"
+            ),
+        }
+    }
+}
