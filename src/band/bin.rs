@@ -321,7 +321,7 @@ impl<'e> KeptRing<'e> {
 
     /// The entries of set-up `n` of the ring's storage.
     #[inline(always)]
-    fn at(&self, n: u32) -> Option<&Slot> {
+    pub(crate) fn at(&self, n: u32) -> Option<&Slot> {
         let from = n as usize * KEPT_ENTRIES;
         self.spare
             .get(from..from + KEPT_ENTRIES)
@@ -364,12 +364,6 @@ impl<'e> KeptRing<'e> {
         *self.start = if next == self.capacity() { 0 } else { next };
         *self.len -= 1;
         Some(start)
-    }
-
-    /// The set-up at position `n`.
-    #[inline(always)]
-    pub(crate) fn get(&self, n: u32) -> Option<&Slot> {
-        self.at(n)
     }
 
     /// Appends the set-up at position `n` (just taken) again, for the band after the next.
@@ -696,7 +690,7 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
                 let (idx, clipped) = (r.face(), r.flag);
                 if let Some(n) = above.then(|| kept.take(r.slot)).flatten() {
                     // Set up in a band above: its rows here from the same integers.
-                    if let Some(set_up) = kept.get(n) {
+                    if let Some(set_up) = kept.at(n) {
                         frame.resume_levels(table, target, set_up);
                         if continues {
                             kept.requeue(n);
