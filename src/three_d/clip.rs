@@ -11,8 +11,7 @@
 
 use heapless::Vec as HVec;
 
-use super::math::sat32;
-use super::shading::Bary;
+use super::math::{sat32, Bary};
 
 /// Smallest `w` kept by clipping (raw `I16F16`, 2⁻⁸).
 pub(crate) const W_MIN: i64 = 256;

@@ -38,6 +38,13 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use fixed::types::I16F16;
 
+/// Barycentric coordinates with 30 fractional bits (clipped vertices in their face, points of
+/// the quadratic normal field).
+pub(crate) type Bary = [i32; 3];
+
+/// `1.0` in [`Bary`] units.
+pub(crate) const BARY_ONE: i32 = 1 << 30;
+
 /// The scalar type of the 3D pipeline: signed fixed point with 16 fractional bits.
 pub type Scalar = I16F16;
 

@@ -22,6 +22,7 @@ mod band;
 mod camera;
 mod clip;
 mod depth;
+mod light;
 mod math;
 mod mesh;
 pub mod meshes;
@@ -32,6 +33,7 @@ mod shading;
 mod vertex;
 
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
+pub use light::Light;
 pub use math::{
     inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
 };
@@ -40,6 +42,6 @@ pub(crate) use pipeline::{fit_scratch, FaceSink, Frame};
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub(crate) use shading::TargetClip;
 pub use shading::{
-    draw_flat, draw_gouraud, draw_quadratic, shade, Light, Material, QuadraticNormals, Shading,
+    draw_flat, draw_gouraud, draw_quadratic, shade, Material, QuadraticNormals, Shading,
 };
 pub use vertex::ProjectedVertex;

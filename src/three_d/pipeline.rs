@@ -64,11 +64,10 @@ use embedded_graphics::primitives::Rectangle;
 use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
-use super::math::{normalize_wide, Mat4, Vec3, Vec4};
+use super::light::Light;
+use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
-use super::shading::{
-    self, Bary, Light, Material, QuadraticNormals, ShadeTable, Shading, TargetClip, BARY_ONE,
-};
+use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
