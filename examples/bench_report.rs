@@ -376,6 +376,7 @@ fn parse_model(name: &str) -> Model {
 fn mesh(model: Model) -> &'static Mesh<'static> {
     static TORUS: std::sync::OnceLock<Mesh<'static>> = std::sync::OnceLock::new();
     match model {
+        Model::Spot => &scene3d::SPOT,
         Model::Knot => &scene3d::KNOT,
         Model::Torus => TORUS.get_or_init(|| {
             scene3d::torus(

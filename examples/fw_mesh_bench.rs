@@ -46,8 +46,8 @@ mod firmware {
     use embedded_raster::three_d::{DepthTarget, Mesh, ProjectedVertex, Vec3};
 
     use crate::clock::Ratio;
-    use crate::scene3d::{self, FrameLine, Model, MAX_VERTICES, PIXELS, SIZE};
-    use crate::scene3d::{TORUS_FACES, TORUS_VERTICES};
+    use crate::scene3d::{self, FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
+    use crate::scene3d::{TORUS_FACES, TORUS_VERTICES, TURNTABLE_POSES};
     use crate::{board, clock};
 
     /// The instruction set this build runs.
@@ -79,13 +79,15 @@ mod firmware {
             // Profiling build (.ci/profile.sh): only this frame, a few times.
             let model = if profile.starts_with("torus") {
                 Model::Torus
+            } else if profile.starts_with("spot") {
+                Model::Spot
             } else {
                 Model::Knot
             };
-            let mesh: &Mesh<'_> = if model == Model::Torus {
-                &torus
-            } else {
-                &scene3d::KNOT
+            let mesh: &Mesh<'_> = match model {
+                Model::Spot => &scene3d::SPOT,
+                Model::Knot => &scene3d::KNOT,
+                Model::Torus => &torus,
             };
             for _ in 0..4 {
                 let scratch = (!profile.ends_with("faces")).then_some(&mut SCRATCH[..]);
@@ -98,11 +100,12 @@ mod firmware {
             }
             board::exit(true)
         }
-        let mut lines = [None, None];
-        let mut rows = [(0u64, 0u64, 0u32); 2];
+        let mut lines = [None, None, None];
+        let mut rows = [(0u64, 0u64, 0u32); 3];
         let mut same = true;
         for (k, model) in Model::ALL.into_iter().enumerate() {
             let mesh: &Mesh<'_> = match model {
+                Model::Spot => &scene3d::SPOT,
                 Model::Knot => &scene3d::KNOT,
                 Model::Torus => &torus,
             };
@@ -136,9 +139,17 @@ mod firmware {
                 checksum,
             });
         }
+        let mut poses = [0u64; TURNTABLE_POSES as usize];
+        let mut pose = 0;
+        let turntable =
+            scene3d::turntable_checksum(&scene3d::SPOT, &mut target, &mut SCRATCH[..], |frame| {
+                poses[pose] = clock::instructions(clock::measure(1, || frame()), calibration);
+                pose += 1;
+            });
         for line in lines.iter().flatten() {
             hprintln!("{}", line);
         }
+        hprintln!("{}", TurntableLine(turntable));
         hprintln!("\n### 3D frame, {}\n", CODE);
         hprintln!(
             "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px | without scratch |"
@@ -158,6 +169,19 @@ mod firmware {
                 without
             );
         }
+        let (min, max) = (poses.iter().min(), poses.iter().max());
+        let mean = poses.iter().sum::<u64>() / poses.len() as u64;
+        hprintln!(
+            "\n| spot turntable ({} poses, yaw every 30°) | fewest | mean | most |",
+            TURNTABLE_POSES
+        );
+        hprintln!("|---|---:|---:|---:|");
+        hprintln!(
+            "| instructions a frame | {} | {} | {} |",
+            min.copied().unwrap_or(0),
+            mean,
+            max.copied().unwrap_or(0)
+        );
         hprintln!();
         if !same {
             hprintln!("error: the frames with and without the vertex scratch differ");
@@ -170,7 +194,8 @@ mod firmware {
 fn main() {
     use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
     use embedded_raster::three_d::{DepthTarget, ProjectedVertex, Vec3};
-    use scene3d::{FrameLine, Model, MAX_VERTICES, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
+    use scene3d::{FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
+    use scene3d::{TORUS_FACES, TORUS_VERTICES};
 
     let mut v = Box::new([Vec3::ZERO; TORUS_VERTICES]);
     let mut n = Box::new([Vec3::ZERO; TORUS_VERTICES]);
@@ -181,6 +206,7 @@ fn main() {
     let mut scratch = vec![ProjectedVertex::EMPTY; MAX_VERTICES];
     for model in Model::ALL {
         let mesh = match model {
+            Model::Spot => &scene3d::SPOT,
             Model::Knot => &scene3d::KNOT,
             Model::Torus => &torus,
         };
@@ -207,4 +233,6 @@ fn main() {
             std::fs::write(&path, ppm).expect("write the picture");
         }
     }
+    let turntable = scene3d::turntable_checksum(&scene3d::SPOT, &mut target, &mut scratch, |f| f());
+    println!("{}", TurntableLine(turntable));
 }

@@ -80,6 +80,36 @@ fn bench_knot_matches_its_generator() {
     );
 }
 
+/// The 3D benchmark's spot (`examples/common/scene3d.rs`): Keenan Crane's cow, released by its
+/// author into the public domain (`examples/common/meshes/spot/README.txt`), 5,856 faces. Its
+/// texture coordinates are dropped and the vertices they split welded back (2,930), the normals
+/// computed around each position, the box centred and its largest half-side scaled to 1.
+fn bench_spot() -> MeshData {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/common/meshes/spot/spot_triangulated.obj"
+    );
+    let mut spot = obj::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+    spot.uvs.clear();
+    spot.weld();
+    spot.scale_to_fit(1.0);
+    spot
+}
+
+#[test]
+fn bench_spot_matches_its_obj() {
+    let spot = bench_spot();
+    assert_eq!(spot.indices.len(), 5856);
+    assert_eq!(spot.vertices.len(), 2930);
+    check_closed_and_oriented(&spot);
+    check_source(
+        &spot,
+        "SPOT",
+        "embedded_raster",
+        "examples/common/meshes/spot.rs",
+    );
+}
+
 /// Every face is counter-clockwise seen from outside: its geometric normal agrees with its
 /// vertex normals; every normal is unit length; every edge is shared by exactly two faces in
 /// opposite directions (a closed, consistently oriented surface).

@@ -3,8 +3,11 @@
 //! framebuffer with a 16-bit z-buffer, back faces culled, Gouraud-lit by one directional light
 //! plus ambient, colour and depth cleared first, from a fixed camera and pose.
 //!
-//! Two meshes:
+//! Three meshes:
 //!
+//! * [`SPOT`]: Keenan Crane's cow, 5,856 faces (2,930 vertices), which its author released into
+//!   the public domain (`meshes/spot/README.txt`), stored in flash (`meshes/spot.rs`, converted
+//!   on the host from `meshes/spot/spot_triangulated.obj` by `tests/meshes.rs`, which checks it).
 //! * [`KNOT`]: a tube around the trefoil knot, 6,144 faces (3,072 vertices) whose radius swells
 //!   and narrows along it, stored in flash (`meshes/knot.rs`, generated on the host by
 //!   `meshes::torus_knot` and checked by `tests/meshes.rs`). It overlaps itself, so the depth
@@ -29,6 +32,15 @@ mod knot;
 
 pub use knot::KNOT;
 
+#[allow(clippy::all)]
+#[rustfmt::skip]
+#[path = "meshes/spot.rs"]
+mod spot;
+
+// Not every file that includes the scene draws spot (the band tests and firmware draw the knot).
+#[allow(unused_imports)]
+pub use spot::SPOT;
+
 /// The frame: 320×240, a common SPI display's size.
 pub const SIZE: (u32, u32) = (320, 240);
 
@@ -47,9 +59,11 @@ pub const TORUS_FACES: usize = 2 * TORUS_VERTICES;
 /// Vertices of the larger mesh: the scratch the frames need.
 pub const MAX_VERTICES: usize = TORUS_VERTICES;
 
-/// The two bench meshes.
+/// The three bench meshes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Model {
+    /// [`SPOT`].
+    Spot,
     /// [`KNOT`].
     Knot,
     /// The torus of [`torus`].
@@ -57,12 +71,13 @@ pub enum Model {
 }
 
 impl Model {
-    /// Both, in report order.
-    pub const ALL: [Model; 2] = [Model::Knot, Model::Torus];
+    /// All, in report order.
+    pub const ALL: [Model; 3] = [Model::Spot, Model::Knot, Model::Torus];
 
     /// The name in reports.
     pub fn name(self) -> &'static str {
         match self {
+            Model::Spot => "spot",
             Model::Knot => "knot",
             Model::Torus => "torus",
         }
@@ -71,6 +86,7 @@ impl Model {
     /// The model's pose: a rotation that shows the mesh overlapping itself.
     fn pose(self) -> Mat4 {
         match self {
+            Model::Spot => spot_pose(Angle::from_degrees(145)),
             Model::Knot => {
                 Mat4::rotation_x(Angle::from_degrees(-35))
                     * Mat4::rotation_y(Angle::from_degrees(20))
@@ -83,6 +99,22 @@ impl Model {
     }
 }
 
+/// Spot tilted 15° towards the camera and turned by `yaw` about its vertical axis (145°: a
+/// three-quarter view of its face).
+fn spot_pose(yaw: Angle) -> Mat4 {
+    Mat4::rotation_x(Angle::from_degrees(15)) * Mat4::rotation_y(yaw)
+}
+
+/// Poses of the spot turntable ([`turntable`]).
+pub const TURNTABLE_POSES: i32 = 12;
+
+/// The pipeline of pose `step` (of [`TURNTABLE_POSES`]) of spot turning on a turntable: the
+/// frame of [`Model::Spot`] with the yaw `step` × 30°, so a bench sees the whole range of faces
+/// drawn (about 2,000 to 2,700 of the 5,856) rather than one pose.
+pub fn turntable(step: i32) -> Pipeline {
+    posed(spot_pose(Angle::from_turns(step, TURNTABLE_POSES)))
+}
+
 /// The background colour.
 pub const BACKGROUND: Rgb565 = Rgb565::new(3, 6, 4);
 
@@ -92,6 +124,11 @@ pub const MATERIAL: Material<Rgb565> = Material::new(Rgb565::new(30, 48, 16), Sh
 /// The pipeline of `model`'s frame: a 60° perspective camera 2.5 units from the origin, the
 /// light from the upper left and in front, ambient 0.15.
 pub fn pipeline(model: Model) -> Pipeline {
+    posed(model.pose())
+}
+
+/// The frame's camera, light and viewport with the model posed by `pose`.
+fn posed(pose: Mat4) -> Pipeline {
     let (w, h) = SIZE;
     let projection = Mat4::perspective(
         Angle::from_degrees(60),
@@ -105,7 +142,7 @@ pub fn pipeline(model: Model) -> Pipeline {
         Scalar::from_bits(9830),
     );
     let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
-    Pipeline::new(model.pose(), projection * view, viewport, light)
+    Pipeline::new(pose, projection * view, viewport, light)
 }
 
 /// The torus into the caller's arrays: major radius 1, tube radius 0.35, [`TORUS_RINGS`] ×
@@ -148,8 +185,17 @@ pub fn render(
     target: &mut DepthTarget<'_, Rgb565>,
     scratch: Option<&mut [ProjectedVertex]>,
 ) -> DrawStats {
+    render_with(&pipeline(model), mesh, target, scratch)
+}
+
+/// [`render`] through `pipeline` (a [`turntable`] pose, say).
+pub fn render_with(
+    pipeline: &Pipeline,
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: Option<&mut [ProjectedVertex]>,
+) -> DrawStats {
     target.clear(BACKGROUND);
-    let pipeline = pipeline(model);
     match scratch {
         Some(scratch) => pipeline
             .draw_mesh_with(mesh, &MATERIAL, target, scratch)
@@ -172,6 +218,34 @@ pub fn checksum(colors: &[Rgb565], depth: &[u16]) -> u32 {
         .chain(depth.iter().copied());
     for w in words {
         for b in w.to_le_bytes() {
+            h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
+}
+
+/// [`checksum`] of every [`turntable`] frame (rendered with `scratch`), folded into one FNV-1a
+/// hash, and each frame's pipeline counts (drawn faces); `measure` wraps each frame's rendering
+/// (the firmware times it there).
+pub fn turntable_checksum(
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: &mut [ProjectedVertex],
+    mut measure: impl FnMut(&mut dyn FnMut()),
+) -> u32 {
+    let mut h = 0x811c_9dc5u32;
+    for step in 0..TURNTABLE_POSES {
+        let pipeline = turntable(step);
+        measure(&mut || {
+            core::hint::black_box(render_with(
+                &pipeline,
+                core::hint::black_box(mesh),
+                target,
+                Some(&mut *scratch),
+            ));
+        });
+        let frame = checksum(target.framebuffer().pixels(), target.depth());
+        for b in frame.to_le_bytes() {
             h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
         }
     }
@@ -206,6 +280,20 @@ impl core::fmt::Display for FrameLine {
             s.degenerate,
             self.covered,
             self.checksum
+        )
+    }
+}
+
+/// The line of the [`turntable`]'s frames ([`turntable_checksum`]), compared like the frame
+/// lines.
+pub struct TurntableLine(pub u32);
+
+impl core::fmt::Display for TurntableLine {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "frame spot-turntable {}x{} poses={} fnv1a={:#010x}",
+            SIZE.0, SIZE.1, TURNTABLE_POSES, self.0
         )
     }
 }
