@@ -18,7 +18,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use core::num::NonZeroU32;
+use core::num::{NonZeroU32, NonZeroU64};
 
 use super::arith::{leading_zeros_32, reciprocal_63};
 use super::band::Band;
@@ -27,7 +27,7 @@ use super::edge::owns_centres_on;
 use super::plane::{Attributes, Planes};
 use super::shade::SpanShader;
 use super::walk::Span;
-use crate::arch::HAS_DIVIDER;
+use crate::arch::{CORTEX_M, HAS_DIVIDER};
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
 /// Width and height of a small triangle's vertex bounding box stay below this many pixels.
@@ -169,8 +169,13 @@ impl<const N: usize> SmallTriangle<N> {
         // `Planes::at`).
         let mut row_values = planes.first();
         let mut y = self.y0;
+        let mut quick = QuickRuns::new(&runs);
         for _ in 0..self.rows + 1 {
-            let (start, column) = if HAS_DIVIDER {
+            let (start, column) = if HAS_DIVIDER && !CORTEX_M {
+                let run = quick.run();
+                quick.advance();
+                run
+            } else if HAS_DIVIDER {
                 let run = runs.run();
                 runs.advance();
                 run
@@ -373,6 +378,58 @@ impl RowRuns {
     pub(crate) fn advance(&mut self) {
         for b in &mut self.bounds {
             b.numerator += b.step;
+        }
+    }
+}
+
+/// [`RowRuns`] with each bound's division a multiply by its divisor's reciprocal, found once per
+/// triangle: on a host, a division takes several times a multiply's latency (on Cortex-M it is
+/// one instruction).
+struct QuickRuns {
+    /// Start bound, middle bound, end bound: numerator, step, `⌊2³⁵ / d⌋ + 1` for the divisor `d`.
+    bounds: [(i32, i32, u64); 3],
+    middle_starts: bool,
+    columns: u32,
+}
+
+impl QuickRuns {
+    #[inline(always)]
+    fn new(runs: &RowRuns) -> Self {
+        let reciprocal = |d: NonZeroU32| (1u64 << 35) / NonZeroU64::from(d) + 1;
+        QuickRuns {
+            bounds: runs
+                .bounds
+                .map(|b| (b.numerator, b.step, reciprocal(b.divisor))),
+            middle_starts: runs.middle_starts,
+            columns: runs.columns,
+        }
+    }
+
+    /// `⌊n / d⌋` for `n = max(numerator, 0)`. The reciprocal exceeds `2³⁵/d` by at most 1, so
+    /// the product exceeds `2³⁵·n/d` by at most `n`, and the quotient is exact while `n·d < 2³⁵`:
+    /// a small triangle's numerators stay below 2¹⁹ (2²² for the divisor 1 of a horizontal
+    /// edge) and its divisors below 2¹³; the product stays below 2⁶⁴.
+    #[inline(always)]
+    fn at((numerator, _, reciprocal): (i32, i32, u64)) -> u32 {
+        ((numerator.max(0) as u64 * reciprocal) >> 35) as u32
+    }
+
+    #[inline(always)]
+    fn run(&self) -> (u32, u32) {
+        let [s, m, e] = self.bounds;
+        let (mut start, mut end) = (Self::at(s), Self::at(e).min(self.columns));
+        if self.middle_starts {
+            start = start.max(Self::at(m));
+        } else {
+            end = end.min(Self::at(m));
+        }
+        (start, end)
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        for b in &mut self.bounds {
+            b.0 += b.1;
         }
     }
 }
@@ -752,7 +809,7 @@ mod tests {
     }
 
     /// The runs by division are the runs by scanning (the firmware of cores without a divider
-    /// scans), row after row, for random edges of triangles (their `a` sum to 0; horizontal
+    /// scans) and by the reciprocals of a host, row after row, for random edges of triangles (their `a` sum to 0; horizontal
     /// edges included), empty and full rows included.
     #[test]
     fn runs_by_division_and_by_scan_agree() {
@@ -782,6 +839,7 @@ mod tests {
             });
             flat += usize::from(a.contains(&0));
             let mut runs = RowRuns::new(&edges, last + 1);
+            let mut quick = QuickRuns::new(&runs);
             for row in 0..16 {
                 let at = edges.map(|e| (e.k + row * e.b, e.a));
                 let (s, e) = run_by_scan(at, last);
@@ -789,8 +847,10 @@ mod tests {
                 let scanned = if e > s { (s, e) } else { (0, 0) };
                 let divided = if de > ds { (ds, de) } else { (0, 0) };
                 assert_eq!(scanned, divided, "{at:?} {last}");
+                assert_eq!(quick.run(), runs.run(), "{at:?} {last}");
                 partial += usize::from(e > s && (s > 0 || e <= last));
                 runs.advance();
+                quick.advance();
             }
         }
         assert!(partial > 50_000 && flat > 10_000, "{partial} {flat}");
