@@ -517,11 +517,12 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 continue;
             };
             // Only flat shading, faces without normals and clipping need the positions again:
-            // in range, as the scratch has one entry per vertex.
-            // By value: a closure holding the address of `idx` would keep it in memory every
-            // face, for the clipped ones.
+            // in range, as the scratch has one entry per vertex. The closure reads the mesh's
+            // own indices: a copy of `idx` in it would be stored every face, and on a host
+            // reading the three stored words back as one costs a stalled store forwarding.
             let vertices = mesh.vertices;
-            let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
+            let model =
+                move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
             self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
         }
         stats
