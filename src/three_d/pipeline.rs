@@ -69,6 +69,7 @@ use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
+use crate::arch;
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
 use crate::raster::band::{AllRows, Band, RowWindow};
@@ -517,13 +518,20 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 continue;
             };
             // Only flat shading, faces without normals and clipping need the positions again:
-            // in range, as the scratch has one entry per vertex. The closure reads the mesh's
-            // own indices: a copy of `idx` in it would be stored every face, and on a host
-            // reading the three stored words back as one costs a stalled store forwarding.
+            // in range, as the scratch has one entry per vertex.
             let vertices = mesh.vertices;
-            let model =
-                move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
-            self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
+            if arch::CORTEX_M {
+                // By value: a closure holding the address of `idx` would keep it in memory
+                // every face, for the clipped ones.
+                let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
+                self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
+            } else {
+                // The mesh's own indices: the copy of `idx` above is stored every face, and a
+                // host reading the three stored words back as one stalls its store forwarding.
+                let model =
+                    move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
+                self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
+            }
         }
         stats
     }
