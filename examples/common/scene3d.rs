@@ -225,8 +225,7 @@ pub fn checksum(colors: &[Rgb565], depth: &[u16]) -> u32 {
 }
 
 /// [`checksum`] of every [`turntable`] frame (rendered with `scratch`), folded into one FNV-1a
-/// hash, and each frame's pipeline counts (drawn faces); `measure` wraps each frame's rendering
-/// (the firmware times it there).
+/// hash; `measure` runs each frame's rendering (the firmware times it there).
 pub fn turntable_checksum(
     mesh: &Mesh<'_>,
     target: &mut DepthTarget<'_, Rgb565>,

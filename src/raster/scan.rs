@@ -169,11 +169,11 @@ impl<const N: usize> SmallTriangle<N> {
         // `Planes::at`).
         let mut row_values = planes.first();
         let mut y = self.y0;
-        let mut quick = QuickRuns::new(&runs);
+        let mut reciprocal_runs = ReciprocalRuns::new(&runs);
         for _ in 0..self.rows + 1 {
             let (start, column) = if HAS_DIVIDER && !CORTEX_M {
-                let run = quick.run();
-                quick.advance();
+                let run = reciprocal_runs.run();
+                reciprocal_runs.advance();
                 run
             } else if HAS_DIVIDER {
                 let run = runs.run();
@@ -363,14 +363,11 @@ impl RowRuns {
     /// `end ≤ start`.
     #[inline(always)]
     pub(crate) fn run(&self) -> (u32, u32) {
-        let [s, m, e] = self.bounds;
-        let (mut start, mut end) = (s.at(), e.at().min(self.columns));
-        if self.middle_starts {
-            start = start.max(m.at());
-        } else {
-            end = end.min(m.at());
-        }
-        (start, end)
+        run_between(
+            self.bounds.map(|b| b.at()),
+            self.middle_starts,
+            self.columns,
+        )
     }
 
     /// Moves to the next row.
@@ -382,21 +379,34 @@ impl RowRuns {
     }
 }
 
+/// The run `start..end` of a row between the values of its start bound, its middle bound (a
+/// start bound if `middle_starts`, else an end bound) and its end bound, over `columns`.
+#[inline(always)]
+fn run_between([s, m, e]: [u32; 3], middle_starts: bool, columns: u32) -> (u32, u32) {
+    let (mut start, mut end) = (s, e.min(columns));
+    if middle_starts {
+        start = start.max(m);
+    } else {
+        end = end.min(m);
+    }
+    (start, end)
+}
+
 /// [`RowRuns`] with each bound's division a multiply by its divisor's reciprocal, found once per
 /// triangle: on a host, a division takes several times a multiply's latency (on Cortex-M it is
 /// one instruction).
-struct QuickRuns {
+struct ReciprocalRuns {
     /// Start bound, middle bound, end bound: numerator, step, `⌊2³⁵ / d⌋ + 1` for the divisor `d`.
     bounds: [(i32, i32, u64); 3],
     middle_starts: bool,
     columns: u32,
 }
 
-impl QuickRuns {
+impl ReciprocalRuns {
     #[inline(always)]
     fn new(runs: &RowRuns) -> Self {
         let reciprocal = |d: NonZeroU32| (1u64 << 35) / NonZeroU64::from(d) + 1;
-        QuickRuns {
+        ReciprocalRuns {
             bounds: runs
                 .bounds
                 .map(|b| (b.numerator, b.step, reciprocal(b.divisor))),
@@ -414,18 +424,13 @@ impl QuickRuns {
         ((numerator.max(0) as u64 * reciprocal) >> 35) as u32
     }
 
+    /// [`RowRuns::run`].
     #[inline(always)]
     fn run(&self) -> (u32, u32) {
-        let [s, m, e] = self.bounds;
-        let (mut start, mut end) = (Self::at(s), Self::at(e).min(self.columns));
-        if self.middle_starts {
-            start = start.max(Self::at(m));
-        } else {
-            end = end.min(Self::at(m));
-        }
-        (start, end)
+        run_between(self.bounds.map(Self::at), self.middle_starts, self.columns)
     }
 
+    /// [`RowRuns::advance`].
     #[inline(always)]
     fn advance(&mut self) {
         for b in &mut self.bounds {
@@ -839,7 +844,7 @@ mod tests {
             });
             flat += usize::from(a.contains(&0));
             let mut runs = RowRuns::new(&edges, last + 1);
-            let mut quick = QuickRuns::new(&runs);
+            let mut reciprocal_runs = ReciprocalRuns::new(&runs);
             for row in 0..16 {
                 let at = edges.map(|e| (e.k + row * e.b, e.a));
                 let (s, e) = run_by_scan(at, last);
@@ -847,10 +852,10 @@ mod tests {
                 let scanned = if e > s { (s, e) } else { (0, 0) };
                 let divided = if de > ds { (ds, de) } else { (0, 0) };
                 assert_eq!(scanned, divided, "{at:?} {last}");
-                assert_eq!(quick.run(), runs.run(), "{at:?} {last}");
+                assert_eq!(reciprocal_runs.run(), runs.run(), "{at:?} {last}");
                 partial += usize::from(e > s && (s > 0 || e <= last));
                 runs.advance();
-                quick.advance();
+                reciprocal_runs.advance();
             }
         }
         assert!(partial > 50_000 && flat > 10_000, "{partial} {flat}");
