@@ -43,7 +43,7 @@ mod firmware {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
-    use embedded_raster::three_d::{DepthTarget, Mesh, ProjectedVertex, Vec3};
+    use embedded_raster::three_d::{DepthTarget, ProjectedVertex, Vec3};
 
     use crate::clock::Ratio;
     use crate::scene3d::{self, FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
@@ -84,11 +84,7 @@ mod firmware {
             } else {
                 Model::Knot
             };
-            let mesh: &Mesh<'_> = match model {
-                Model::Spot => &scene3d::SPOT,
-                Model::Knot => &scene3d::KNOT,
-                Model::Torus => &torus,
-            };
+            let mesh = model.mesh(&torus);
             for _ in 0..4 {
                 let scratch = (!profile.ends_with("faces")).then_some(&mut SCRATCH[..]);
                 black_box(scene3d::render(
@@ -104,11 +100,7 @@ mod firmware {
         let mut rows = [(0u64, 0u64, 0u32); 3];
         let mut same = true;
         for (k, model) in Model::ALL.into_iter().enumerate() {
-            let mesh: &Mesh<'_> = match model {
-                Model::Spot => &scene3d::SPOT,
-                Model::Knot => &scene3d::KNOT,
-                Model::Torus => &torus,
-            };
+            let mesh = model.mesh(&torus);
             // Untimed frames for the counts and the checksums, then the timed ones.
             let stats = scene3d::render(model, mesh, &mut target, Some(&mut SCRATCH[..]));
             let covered = scene3d::covered(target.depth());
@@ -141,11 +133,11 @@ mod firmware {
         }
         let mut poses = [0u64; TURNTABLE_POSES as usize];
         let mut pose = 0;
-        let turntable =
-            scene3d::turntable_checksum(&scene3d::SPOT, &mut target, &mut SCRATCH[..], |frame| {
-                poses[pose] = clock::instructions(clock::measure(1, || frame()), calibration);
-                pose += 1;
-            });
+        let spot = Model::Spot.mesh(&torus);
+        let turntable = scene3d::turntable_checksum(spot, &mut target, &mut SCRATCH[..], |frame| {
+            poses[pose] = clock::instructions(clock::measure(1, || frame()), calibration);
+            pose += 1;
+        });
         for line in lines.iter().flatten() {
             hprintln!("{}", line);
         }
@@ -205,11 +197,7 @@ fn main() {
     let mut target = DepthTarget::new(&mut colors, &mut depth, SIZE.0, SIZE.1).expect("buffers");
     let mut scratch = vec![ProjectedVertex::EMPTY; MAX_VERTICES];
     for model in Model::ALL {
-        let mesh = match model {
-            Model::Spot => &scene3d::SPOT,
-            Model::Knot => &scene3d::KNOT,
-            Model::Torus => &torus,
-        };
+        let mesh = model.mesh(&torus);
         scene3d::render(model, mesh, &mut target, None);
         let without = scene3d::checksum(target.framebuffer().pixels(), target.depth());
         let stats = scene3d::render(model, mesh, &mut target, Some(&mut scratch));

@@ -83,6 +83,15 @@ impl Model {
         }
     }
 
+    /// The model's mesh: a flash one, or `torus` (generated into RAM by [`torus`]).
+    pub fn mesh<'a>(self, torus: &'a Mesh<'a>) -> &'a Mesh<'a> {
+        match self {
+            Model::Spot => &SPOT,
+            Model::Knot => &KNOT,
+            Model::Torus => torus,
+        }
+    }
+
     /// The model's pose: a rotation that shows the mesh overlapping itself.
     fn pose(self) -> Mat4 {
         match self {
