@@ -570,20 +570,22 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         v.map(|v| if v.has_normal() { v.level() } else { face })
     }
 
-    /// The vertices `v` (at `model`) lit as [`vertex_levels`](Self::vertex_levels) lights
-    /// them, if a vertex has no normal (`None`: the vertices as they are). For a Gouraud fill,
-    /// which reads the levels from the vertices.
+    /// The vertices `v` (at `model`) as a Gouraud fill reads them, with the levels
+    /// [`vertex_levels`](Self::vertex_levels) gives: `v` itself when every vertex has a normal,
+    /// else relit copies, kept in `lit` (the caller's, so that the fill reads them in place).
     #[inline(always)]
-    fn relit(
+    fn lit_vertices<'v>(
         &self,
         model: impl Fn() -> [Vec3; 3],
-        v: [&ProjectedVertex; 3],
-    ) -> Option<[ProjectedVertex; 3]> {
+        v: [&'v ProjectedVertex; 3],
+        lit: &'v mut Option<[ProjectedVertex; 3]>,
+    ) -> [&'v ProjectedVertex; 3] {
         if v.iter().all(|v| v.has_normal()) {
-            return None;
+            return v;
         }
         let levels = self.vertex_levels(model, v);
-        Some([0, 1, 2].map(|k| ProjectedVertex::lit(*v[k].screen(), levels[k])))
+        lit.insert([0, 1, 2].map(|k| ProjectedVertex::lit(*v[k].screen(), levels[k])))
+            .each_ref()
     }
 
     /// [`refill`](Self::refill) of a clipped face (out of line: rare, and its polygon is large).
@@ -629,14 +631,8 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
         if clipped {
             self.refill(mesh, scratch, idx, clipped, target);
         } else if let Some((model, v)) = self.face_vertices(mesh, scratch, idx) {
-            let lit;
-            let v = match self.relit(model, v) {
-                None => v,
-                Some(relit) => {
-                    lit = relit;
-                    lit.each_ref()
-                }
-            };
+            let mut lit = None;
+            let v = self.lit_vertices(model, v, &mut lit);
             shading::draw_levels(target, &self.clip, v, table);
         }
     }
@@ -662,14 +658,8 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
         let Some((model, v)) = self.face_vertices(mesh, scratch, idx) else {
             return false;
         };
-        let lit;
-        let v = match self.relit(model, v) {
-            None => v,
-            Some(relit) => {
-                lit = relit;
-                lit.each_ref()
-            }
-        };
+        let mut lit = None;
+        let v = self.lit_vertices(model, v, &mut lit);
         shading::draw_levels_keeping(target, &self.clip, v, table, keep)
     }
 
@@ -804,14 +794,8 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
             }
             // A fan's vertices carry the levels interpolated at them (`fill_fan`).
             Fill::Gouraud(table) => {
-                let lit;
-                let v = match self.relit(model, v) {
-                    None => v,
-                    Some(relit) => {
-                        lit = relit;
-                        lit.each_ref()
-                    }
-                };
+                let mut lit = None;
+                let v = self.lit_vertices(model, v, &mut lit);
                 shading::draw_levels(target, clip, v, table);
             }
             Fill::Quadratic(color) => {
