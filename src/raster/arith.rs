@@ -1,11 +1,12 @@
 //! Integer arithmetic for the set-up, fast on every core and small on Cortex-M: full products of
 //! 32-bit factors from 16-bit limbs where there is no long multiply (Cortex-M0), exact reciprocals
 //! by a seed table and Newton steps (32-bit) or one quotient bit an iteration (64-bit) where there
-//! is no divider, the rare 128-bit divisions of the general set-up by shifting and subtracting
-//! (one small routine instead of the library's kilobytes), leading zeros by halving where there
+//! is no divider, the rare 64-bit divisions on Cortex-M0 and 128-bit divisions of the general
+//! set-up by shifting and subtracting (small routines instead of the library's kilobytes),
+//! leading zeros by halving where there
 //! is no `clz`. Each form is checked against the native operation on the host.
 
-use core::num::NonZeroU32;
+use core::num::{NonZeroU32, NonZeroU64};
 
 use crate::arch::{FAST_WIDE_DIVISION, HAS_DIVIDER, NO_CLZ, NO_LONG_MULTIPLY};
 
@@ -265,6 +266,47 @@ fn div_rem_shifting(n: u128, d: u128) -> (u128, u128) {
     (q, r)
 }
 
+/// `(⌊n / d⌋, n mod d)`: the library division where there is a 32-bit divider (ARMv7-M builds
+/// the 64-bit one from it; hosts have the instruction), [`div_rem_u64_shifting`] on ARMv6-M,
+/// where the library's 64-bit division is nearly a kilobyte of flash and only rare set-ups divide
+/// in 64 bits (the general walk's boundaries, the gradients of compact slivers).
+#[inline]
+pub(crate) fn div_rem_u64(n: u64, d: NonZeroU64) -> (u64, u64) {
+    if HAS_DIVIDER {
+        (n / d, n % d)
+    } else {
+        div_rem_u64_shifting(n, d.get())
+    }
+}
+
+/// [`div_rem_u64`] by shifting and subtracting: one bit of `n` an iteration (leading zero bytes
+/// skipped), or one 32-bit division when both fit 32 bits.
+#[inline(never)]
+fn div_rem_u64_shifting(n: u64, d: u64) -> (u64, u64) {
+    if let (Ok(n), Ok(d)) = (u32::try_from(n), u32::try_from(d)) {
+        let d = d.max(1);
+        return (u64::from(n / d), u64::from(n % d));
+    }
+    // `q` holds the bits of `n` still to come at the top and the quotient's bits below them.
+    let (mut q, mut r) = (n, 0u64);
+    let mut bits = 64;
+    while bits > 0 && q >> 56 == 0 {
+        q <<= 8;
+        bits -= 8;
+    }
+    for _ in 0..bits {
+        // r < d: with the carry out, 2r + 1 ≥ d and the wrapping difference is exact.
+        let carry = r >> 63 != 0;
+        r = (r << 1) | (q >> 63);
+        q <<= 1;
+        if carry || r >= d {
+            r = r.wrapping_sub(d);
+            q |= 1;
+        }
+    }
+    (q, r)
+}
+
 /// Leading zero bits of `v > 0`: by halving steps on ARMv6-M (Cortex-M0 has no `clz`
 /// instruction; the library routine is a call of about the same length), the instruction
 /// elsewhere.
@@ -348,6 +390,35 @@ mod tests {
         }
         assert_eq!(div_floor_wide(i128::MIN, 1), i128::MIN);
         assert_eq!(div_floor_wide(-7, 2), -4);
+    }
+
+    #[test]
+    fn division_of_64_bits_by_shifting_is_exact() {
+        let mut rng = crate::rng::Rng(0xbb67_ae85_84ca_a73b_u64);
+        let check = |n: u64, d: u64| {
+            assert_eq!(div_rem_u64_shifting(n, d), (n / d, n % d), "{n} / {d}");
+            let nonzero = NonZeroU64::new(d).unwrap();
+            assert_eq!(div_rem_u64(n, nonzero), (n / d, n % d), "{n} / {d}");
+        };
+        for _ in 0..200_000 {
+            let n = rng.next() >> rng.below(64);
+            let d = (rng.next() >> rng.below(64)).max(1);
+            check(n, d);
+            check(n, (d >> 32).max(1));
+        }
+        for (n, d) in [
+            (0, 1),
+            (u64::MAX, 1),
+            (u64::MAX, u64::MAX),
+            (u64::MAX - 1, u64::MAX),
+            (u64::MAX, 1 << 63),
+            ((1 << 63) - 1, 1 << 63),
+            (1 << 59, 3),
+            (u64::from(u32::MAX), u64::from(u32::MAX) + 1),
+            (5, 7),
+        ] {
+            check(n, d);
+        }
     }
 
     #[test]

@@ -22,8 +22,8 @@ use crate::fixed_point::SUBPIXEL_BITS;
 use core::num::NonZeroU64;
 
 use crate::raster::arith::{
-    div_floor_wide, div_rem_wide, leading_zeros_32, mul_i32_wide, mul_u32_u33, mul_wide,
-    reciprocal_125, reciprocal_63, wrapping_mul_i32,
+    div_floor_wide, div_rem_u64, div_rem_wide, leading_zeros_32, mul_i32_wide, mul_u32_u33,
+    mul_wide, reciprocal_125, reciprocal_63, wrapping_mul_i32,
 };
 use crate::raster::compact::CompactSetup;
 use crate::raster::edge::{dot2, TriangleSetup};
@@ -215,6 +215,12 @@ impl<const N: usize> Planes<N> {
     /// values.
     #[inline(always)]
     pub(crate) fn compact(setup: &CompactSetup, attributes: &Attributes<N>) -> Self {
+        if N == 0 && crate::arch::NO_LONG_MULTIPLY {
+            // No attributes (solid fills): no gradients. Where the gradients' reciprocal and
+            // products are library calls (Cortex-M0) the compiler cannot drop them unused;
+            // elsewhere it does, and the test would only move code.
+            return Self::zero();
+        }
         let scale = GradientScale::new(setup.area2, setup.reach);
         let gx = setup.a.map(|a| scale.of(a));
         let gy = setup.b.map(|b| scale.of(b));
@@ -483,7 +489,7 @@ impl GradientScale {
         // The same quotient by division for the tiniest areas, and on Cortex-M0, where the
         // refinement's 64-bit products cost flash the compact path does not have.
         if self.r == 0 || crate::arch::NO_LONG_MULTIPLY {
-            return ((u64::from(m) << 40) + area2 / 2) / self.area2;
+            return div_rem_u64((u64::from(m) << 40) + area2 / 2, self.area2).0;
         }
         // Here 4 ≤ t ≤ 23 (the limit admits every m < 2¹⁹ for smaller t) and area2 < 2^(32−t).
         // q0 is at most the exact quotient and below it by under m·2^(t−23) + 1, so the

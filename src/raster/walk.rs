@@ -34,11 +34,13 @@
 //! assert_eq!(pixels, 16);
 //! ```
 
+use core::num::NonZeroU64;
 use core::ops::{Add, Sub};
 
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
+use crate::raster::arith::div_rem_u64;
 use crate::raster::compact::CompactTriangle;
 use crate::raster::edge::{owns_centres_on, TriangleSetup};
 
@@ -74,8 +76,9 @@ impl Span {
 // One copy for the general set-up's few divisions.
 #[inline(never)]
 fn div_mod_floor(n: i64, d: i64) -> (i64, i64) {
-    let d = d.unsigned_abs().max(1);
-    let (q, r) = (n.unsigned_abs() / d, n.unsigned_abs() % d);
+    let d = NonZeroU64::new(d.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
+    let (q, r) = div_rem_u64(n.unsigned_abs(), d);
+    let d = d.get();
     // |n| ≤ 2⁶³, so the negated quotient fits.
     let q = q as i64;
     match (n < 0, r) {
