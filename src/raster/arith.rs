@@ -190,6 +190,16 @@ fn reciprocal_63_newton(d: u32) -> u64 {
     x
 }
 
+/// Whether a rare loop has steps left, counting `left` down to 0: the count is hidden from the
+/// optimiser at every step, so the loop keeps one body instead of several unrolled copies
+/// (flash on Cortex-M; these loops run only in rare set-ups).
+#[inline(always)]
+fn rare_step(left: &mut u32) -> bool {
+    let more = core::hint::black_box(*left) != 0;
+    *left = left.wrapping_sub(1);
+    more
+}
+
 /// `⌊2^125 / d⌋` for `2^63 ≤ d < 2^64`: the library division on 64-bit hosts; elsewhere one
 /// quotient bit an iteration in 64-bit arithmetic (a 128-bit library division costs thousands
 /// of instructions and several kilobytes of flash on Cortex-M0).
@@ -202,7 +212,8 @@ pub(crate) fn reciprocal_125(d: u64) -> u64 {
     if r >= d {
         (q, r) = (1, r.wrapping_sub(d));
     }
-    for _ in 0..62 {
+    let mut left = 62;
+    while rare_step(&mut left) {
         // r < d < 2^64, so 2r < 2^65: with the carry out, 2r ≥ d and 2r − d < d wraps exactly.
         let carry = r >> 63 != 0;
         r <<= 1;
@@ -253,7 +264,7 @@ fn div_rem_shifting(n: u128, d: u128) -> (u128, u128) {
         q <<= 32;
         bits -= 32;
     }
-    for _ in 0..bits {
+    while rare_step(&mut bits) {
         // r < d: with the carry out, 2r + 1 ≥ d and the wrapping difference is exact.
         let carry = r >> 127 != 0;
         r = (r << 1) | (q >> 127);
@@ -279,22 +290,13 @@ pub(crate) fn div_rem_u64(n: u64, d: NonZeroU64) -> (u64, u64) {
     }
 }
 
-/// [`div_rem_u64`] by shifting and subtracting: one bit of `n` an iteration (leading zero bytes
-/// skipped), or one 32-bit division when both fit 32 bits.
+/// [`div_rem_u64`] by shifting and subtracting: one bit of `n` an iteration, from the top.
 #[inline(never)]
 fn div_rem_u64_shifting(n: u64, d: u64) -> (u64, u64) {
-    if let (Ok(n), Ok(d)) = (u32::try_from(n), u32::try_from(d)) {
-        let d = d.max(1);
-        return (u64::from(n / d), u64::from(n % d));
-    }
     // `q` holds the bits of `n` still to come at the top and the quotient's bits below them.
     let (mut q, mut r) = (n, 0u64);
-    let mut bits = 64;
-    while bits > 0 && q >> 56 == 0 {
-        q <<= 8;
-        bits -= 8;
-    }
-    for _ in 0..bits {
+    let mut left = 64;
+    while rare_step(&mut left) {
         // r < d: with the carry out, 2r + 1 ≥ d and the wrapping difference is exact.
         let carry = r >> 63 != 0;
         r = (r << 1) | (q >> 63);
