@@ -135,9 +135,10 @@ pub(super) fn next_state(lane: [u32; 3], steps: &SpanSteps) -> [u32; 3] {
 #[inline(always)]
 fn lanes(value: [u32; 3]) -> [u32; 3] {
     // Values are below 2³⁰ (at most 6 integer bits): the unsigned rounding cannot overflow.
-    core::array::from_fn(|i| {
-        let k = F - LANE_FRACTION[i];
-        value[i].wrapping_add(1 << (k - 1)) >> k
+    let mut fraction = LANE_FRACTION.into_iter();
+    value.map(|v| {
+        let k = F - fraction.next().unwrap_or(0);
+        v.wrapping_add(1 << (k - 1)) >> k
     })
 }
 

@@ -192,7 +192,7 @@ impl CompactTriangle {
             return Ok(None);
         };
         let order = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
-        let o = order.map(|k| rel[k]);
+        let o = order.map(|k| rel.get(k).copied().unwrap_or_default());
 
         // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first
         // centre at or after m, the last at or before it and the last strictly before it:
@@ -300,7 +300,9 @@ impl CompactTriangle {
         } else {
             let middle_y = pick(middle).2.wrapping_add(self.origin.1);
             // First row whose centre is not above the middle vertex, as an offset from y0.
-            let switch = (first_centre_from(middle_y) - self.y0).clamp(0, rows + 1);
+            // (`max` and `min`, not `clamp`: its bounds check is a panic path where it is not
+            // inlined.)
+            let switch = (first_centre_from(middle_y) - self.y0).max(0).min(rows + 1);
             (
                 boundary(bottom, 0)?,
                 boundary(top, switch.min(rows))?,

@@ -125,12 +125,11 @@ impl TriangleSetup {
             .all(|&(x, y)| x.abs() < NARROW_LIMIT && y.abs() < NARROW_LIMIT);
         let [p0, p1, p2] = vertices;
         let area2 = dot2(p1.0 - p0.0, p2.1 - p0.1, p0.0 - p2.0, p1.1 - p0.1, narrow);
-        let (order, area2) = match area2 {
+        let (order, area2, [o0, o1, o2]) = match area2 {
             0 => return None,
-            a if a > 0 => ([0, 1, 2], a),
-            a => ([0, 2, 1], -a),
+            a if a > 0 => ([0, 1, 2], a, [p0, p1, p2]),
+            a => ([0, 2, 1], -a, [p0, p2, p1]),
         };
-        let [o0, o1, o2] = order.map(|k| vertices[k]);
         Some(TriangleSetup {
             edges: [
                 EdgeFunction::new(o1, o2),

@@ -11,7 +11,7 @@
 
 use heapless::Vec as HVec;
 
-use super::math::{sat32, Bary};
+use super::math::{sat32, zip_with, Bary};
 
 /// Smallest `w` kept by clipping (raw `I16F16`, 2⁻⁸).
 pub(crate) const W_MIN: i64 = 256;
@@ -146,8 +146,8 @@ fn intersect(inside: &ClipVertex, di: i64, outside: &ClipVertex, d_o: i64) -> Cl
         sat32(a + (((b - a) * t + (1 << 29)) >> 30))
     };
     ClipVertex {
-        p: [0, 1, 2, 3].map(|k| lerp(inside.p[k], outside.p[k])),
-        bary: [0, 1, 2].map(|k| lerp(inside.bary[k], outside.bary[k])),
+        p: zip_with(inside.p, outside.p, lerp),
+        bary: zip_with(inside.bary, outside.bary, lerp),
     }
 }
 

@@ -161,6 +161,30 @@ fn float_turns(turns: f64) -> Angle {
     Angle((steps & 0xffff) as u16)
 }
 
+/// `[f(a₀, b₀), f(a₁, b₁), …]`, without indexing: no bounds check is left to panic where the
+/// optimiser does not inline the closure (the drawing code links without panic paths at
+/// `opt-level` `"s"` and `"z"` too).
+#[inline(always)]
+pub(crate) fn zip_with<T: Copy + Default, R, const N: usize>(
+    a: [T; N],
+    b: [T; N],
+    mut f: impl FnMut(T, T) -> R,
+) -> [R; N] {
+    let mut b = b.into_iter();
+    a.map(|a| f(a, b.next().unwrap_or_default()))
+}
+
+/// [`zip_with`] of three vectors' components.
+#[inline(always)]
+pub(crate) fn zip3_with<T: Copy, R>(
+    [a0, a1, a2]: [T; 3],
+    [b0, b1, b2]: [T; 3],
+    [c0, c1, c2]: [T; 3],
+    mut f: impl FnMut(T, T, T) -> R,
+) -> [R; 3] {
+    [f(a0, b0, c0), f(a1, b1, c1), f(a2, b2, c2)]
+}
+
 /// Saturates a wide value to `i32`.
 #[inline]
 pub(crate) fn sat32(v: i64) -> i32 {
@@ -694,10 +718,12 @@ impl Mul for Mat4 {
     fn mul(self, rhs: Mat4) -> Mat4 {
         let (a, b) = (self.to_bits(), rhs.to_bits());
         let mut out = [[0i32; 4]; 4];
-        for (r, row) in out.iter_mut().enumerate() {
+        for (row, a_row) in out.iter_mut().zip(a) {
             for (c, v) in row.iter_mut().enumerate() {
-                let acc: i64 = (0..4)
-                    .map(|k| i64::from(a[r][k]) * i64::from(b[k][c]))
+                let acc: i64 = a_row
+                    .iter()
+                    .zip(b)
+                    .map(|(&x, b_row)| i64::from(x) * i64::from(b_row.get(c).copied().unwrap_or(0)))
                     .fold(0, i64::saturating_add);
                 *v = sat32(acc.saturating_add(1 << 15) >> SCALAR_BITS);
             }

@@ -572,7 +572,8 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
 
     /// The vertices `v` (at `model`) as a Gouraud fill reads them, with the levels
     /// [`vertex_levels`](Self::vertex_levels) gives: `v` itself when every vertex has a normal,
-    /// else relit copies, kept in `lit` (the caller's, so that the fill reads them in place).
+    /// else relit copies ([`relit`](Self::relit)), kept in `lit` (the caller's, so that the fill
+    /// reads them in place).
     #[inline(always)]
     fn lit_vertices<'v>(
         &self,
@@ -583,9 +584,22 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         if v.iter().all(|v| v.has_normal()) {
             return v;
         }
-        let levels = self.vertex_levels(model, v);
-        lit.insert([0, 1, 2].map(|k| ProjectedVertex::lit(*v[k].screen(), levels[k])))
-            .each_ref()
+        lit.insert(self.relit(model, v)).each_ref()
+    }
+
+    /// Copies of the vertices `v` (at `model`), some without a normal, lit as
+    /// [`vertex_levels`](Self::vertex_levels) lights them. Out of line: rare, and the face loop
+    /// keeps its registers.
+    #[cold]
+    #[inline(never)]
+    fn relit(
+        &self,
+        model: impl Fn() -> [Vec3; 3],
+        v: [&ProjectedVertex; 3],
+    ) -> [ProjectedVertex; 3] {
+        let ([a, b, c], [la, lb, lc]) = (v, self.vertex_levels(model, v));
+        let lit = |v: &ProjectedVertex, level| ProjectedVertex::lit(*v.screen(), level);
+        [lit(a, la), lit(b, lb), lit(c, lc)]
     }
 
     /// [`refill`](Self::refill) of a clipped face (out of line: rare, and its polygon is large).

@@ -52,7 +52,9 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
 use super::light::Light;
-use super::math::{inv_sqrt, normalize_wide, sat32, Bary, Scalar, Vec3, BARY_ONE};
+use super::math::{
+    inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
+};
 use super::vertex::ProjectedVertex;
 use crate::arch;
 use crate::color::{GouraudColor, SpanSteps};
@@ -122,7 +124,7 @@ impl QuadraticNormals {
         let n = n.map(Vec3::normalize);
         let mid = |a: Vec3, b: Vec3| {
             let (a, b) = (a.to_bits(), b.to_bits());
-            normalize_wide([0, 1, 2].map(|k| i64::from(a[k]) + i64::from(b[k])))
+            normalize_wide(zip_with(a, b, |a, b| i64::from(a) + i64::from(b)))
         };
         QuadraticNormals {
             vertices: n,
@@ -180,7 +182,10 @@ impl QuadraticNormals {
             let acc: i64 = w
                 .iter()
                 .zip(nodes.iter())
-                .map(|(w, n)| w.saturating_mul(i64::from(n.to_bits()[k])))
+                .map(|(w, n)| {
+                    let n = n.to_bits().get(k).copied().unwrap_or(0);
+                    w.saturating_mul(i64::from(n))
+                })
                 .fold(0, i64::saturating_add);
             sat32(acc.saturating_add(1 << 29) >> 30)
         };
@@ -192,7 +197,7 @@ impl QuadraticNormals {
     /// quadratic through its values at the sub-triangle's vertices and edge midpoints.
     pub(crate) fn restricted(&self, b: [Bary; 3]) -> Self {
         let mid =
-            |p: Bary, q: Bary| [0, 1, 2].map(|k| ((i64::from(p[k]) + i64::from(q[k])) >> 1) as i32);
+            |p: Bary, q: Bary| zip_with(p, q, |p, q| ((i64::from(p) + i64::from(q)) >> 1) as i32);
         QuadraticNormals {
             vertices: b.map(|c| self.at_bary(c)),
             midpoints: [
@@ -231,13 +236,14 @@ impl NormalPlane {
         let m = n.midpoints.map(|v| v.to_bits().map(i64::from));
         let (n0, n1, n2) = (v[0], v[1], v[2]);
         let (m01, m12, m20) = (m[0], m[1], m[2]);
+        let m20_m12 = zip_with(m20, m12, |a, b| a + b);
         let k = [
             n2,
-            [0, 1, 2].map(|i| -n0[i] - 3 * n2[i] + 4 * m20[i]),
-            [0, 1, 2].map(|i| -n1[i] - 3 * n2[i] + 4 * m12[i]),
-            [0, 1, 2].map(|i| 2 * n0[i] + 2 * n2[i] - 4 * m20[i]),
-            [0, 1, 2].map(|i| 4 * n2[i] + 4 * m01[i] - 4 * m20[i] - 4 * m12[i]),
-            [0, 1, 2].map(|i| 2 * n1[i] + 2 * n2[i] - 4 * m12[i]),
+            zip3_with(n0, n2, m20, |n0, n2, m20| -n0 - 3 * n2 + 4 * m20),
+            zip3_with(n1, n2, m12, |n1, n2, m12| -n1 - 3 * n2 + 4 * m12),
+            zip3_with(n0, n2, m20, |n0, n2, m20| 2 * n0 + 2 * n2 - 4 * m20),
+            zip3_with(n2, m01, m20_m12, |n2, m01, m| 4 * n2 + 4 * m01 - 4 * m),
+            zip3_with(n1, n2, m12, |n1, n2, m12| 2 * n1 + 2 * n2 - 4 * m12),
         ];
         // dc_k/dx per pixel: the edge opposite input vertex k changes by 256·a per pixel.
         let gradient = |vertex: usize| {
@@ -260,13 +266,13 @@ impl NormalPlane {
             i128::from(gu) * i128::from(gv),
             i128::from(gv) * i128::from(gv),
         );
-        let c = [0, 1, 2].map(|i| {
-            let sum =
-                i128::from(k[3][i]) * gu2 + i128::from(k[4][i]) * guv + i128::from(k[5][i]) * gv2;
+        let c = zip3_with(k[3], k[4], k[5], |k3, k4, k5| {
+            let sum = i128::from(k3) * gu2 + i128::from(k4) * guv + i128::from(k5) * gv2;
             (sum >> shift) as i64
         });
-        let b0 = [0, 1, 2]
-            .map(|i| (k[1][i].wrapping_mul(gu)).wrapping_add(k[2][i].wrapping_mul(gv)) >> 16);
+        let b0 = zip_with(k[1], k[2], |k1, k2| {
+            (k1.wrapping_mul(gu)).wrapping_add(k2.wrapping_mul(gv)) >> 16
+        });
         NormalPlane {
             k,
             b0,
@@ -561,11 +567,19 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
 
     #[inline(always)]
     fn advance(&mut self) {
-        for i in 0..3 {
-            self.n[i] = self.n[i].wrapping_add(self.d1[i]);
-            self.d1[i] = self.d1[i].wrapping_add(self.d2[i]);
-        }
+        wrapping_add_each(&mut self.n, &self.d1);
+        wrapping_add_each(&mut self.d1, &self.d2);
     }
+}
+
+/// `a += b` component by component, wrapping (no index, so no bounds check is left to panic
+/// where the loop is not unrolled).
+#[inline(always)]
+fn wrapping_add_each(a: &mut [i64; 3], b: &[i64; 3]) {
+    let ([a0, a1, a2], [b0, b1, b2]) = (a, b);
+    *a0 = a0.wrapping_add(*b0);
+    *a1 = a1.wrapping_add(*b1);
+    *a2 = a2.wrapping_add(*b2);
 }
 
 /// A material colour at the 256 light levels of a Gouraud-lit mesh: `table[i]` is

@@ -248,7 +248,10 @@ impl VertexStage {
             .leading_zeros()
             .saturating_sub(9);
         let limit = i64::from(i32::MAX) - (1 << 25);
-        let centre = |corner: i32, half: i64| (i64::from(corner) * 256 + half).clamp(-limit, limit);
+        // `max` and `min`, not `clamp`: its bounds check is a panic path where the closure is
+        // not inlined (`opt-level` `"z"`).
+        let centre =
+            |corner: i32, half: i64| (i64::from(corner) * 256 + half).max(-limit).min(limit);
         VertexStage {
             mvp,
             direct,
