@@ -166,6 +166,39 @@ for board in "${BOARDS[@]}"; do
     check_target "$output" "$cpu" GouraudTriangle::draw_into "${GOURAUD_TARGET[$cpu]:-}"
 done
 
+# ---- size-optimised builds ----------------------------------------------------------------------
+# Firmware is often built for size: at opt-level "s" and "z" the drawing code must still have no
+# panic path (fw_nopanic links only then) and draw the host's pixels. Their own target
+# directories keep the release builds above.
+echo "--- fw_nopanic at opt-level s and z"
+for level in s z; do
+    for board in "thumbv6m-none-eabi microbit cortex-m0" "thumbv7em-none-eabihf mps2-an386 cortex-m4"; do
+        read -r target machine cpu <<<"$board"
+        dir="target/opt-level-$level"
+        log=$(mktemp)
+        if ! CARGO_PROFILE_RELEASE_OPT_LEVEL=$level cargo build --quiet --release --target "$target" \
+            --target-dir "$dir" --example fw_nopanic 2>"$log"; then
+            grep -E 'undefined symbol|referenced by|>>>' "$log" >&2 || cat "$log" >&2
+            rm -f "$log"
+            fail "fw_nopanic does not link for $target at opt-level $level: a panic path is left" \
+                "in the drawing code. List the calls to core::panicking in its disassembly."
+        fi
+        rm -f "$log"
+        status=0
+        output=$(timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" "${QEMU_FLAGS[@]}" \
+            -kernel "$dir/$target/release/examples/fw_nopanic") || status=$?
+        [ "$status" -eq 0 ] || {
+            printf '%s\n' "$output" >&2
+            fail "fw_nopanic at opt-level $level on $machine exited with status $status"
+        }
+        line=$(printf '%s\n' "$output" | grep '^scene ' || true)
+        want=$(printf '%s\n' "$EXPECTED" | grep "^scene $(cut -d' ' -f2 <<<"$line") " || true)
+        [ -n "$line" ] && [ "$line" = "$want" ] ||
+            fail "fw_nopanic at opt-level $level on $machine: '$line', host: '$want'"
+        echo "  ok: fw_nopanic at opt-level $level links for $target and matches the host on $machine"
+    done
+done
+
 # ---- 3D frame ---------------------------------------------------------------------------------
 # fw_mesh_bench renders the 3D bench scene (320×240, 300 KB of buffers: MPS2 boards only) and must
 # print the host's frame lines. The Cortex-M0 code (thumbv6m) runs on the mps2-an385 model, linked
