@@ -81,21 +81,22 @@ check_target() {
     echo "  ok: $renderer on $cpu: $figure instructions a pixel (target ≤ $target)"
 }
 
-# Runs one firmware ELF; prints its output, returns QEMU's exit status (124 on timeout).
-run_qemu() {
-    local target=$1 machine=$2 cpu=$3 example=$4
-    timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" "${QEMU_FLAGS[@]}" \
-        -kernel "target/$target/release/examples/$example"
-}
-
-# Runs `example` into $OUTPUT and fails, showing what it printed, unless it exits with 0.
-run_ok() {
-    local target=$1 machine=$2 cpu=$3 example=$4 status=0
-    OUTPUT=$(run_qemu "$target" "$machine" "$cpu" "$example") || status=$?
+# Runs the firmware ELF `elf` (called `what` in messages) into $OUTPUT and fails, showing what it
+# printed, unless it exits with 0 (QEMU's status 124: timed out).
+run_elf() {
+    local machine=$1 cpu=$2 elf=$3 what=$4 status=0
+    OUTPUT=$(timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" "${QEMU_FLAGS[@]}" \
+        -kernel "$elf") || status=$?
     [ "$status" -eq 0 ] && return
     printf '%s\n' "$OUTPUT" >&2
-    [ "$status" -eq 124 ] && fail "$example on $machine timed out after ${TIMEOUT}s"
-    fail "$example on $machine exited with status $status"
+    [ "$status" -eq 124 ] && fail "$what on $machine timed out after ${TIMEOUT}s"
+    fail "$what on $machine exited with status $status"
+}
+
+# Runs the release build of `example` for `target` (see run_elf).
+run_ok() {
+    local target=$1 machine=$2 cpu=$3 example=$4
+    run_elf "$machine" "$cpu" "target/$target/release/examples/$example" "$example"
 }
 
 # Runs `example` and checks its exit status and its checksum line against the host's.
@@ -185,14 +186,9 @@ for level in s z; do
                 "in the drawing code. List the calls to core::panicking in its disassembly."
         fi
         rm -f "$log"
-        status=0
-        output=$(timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" "${QEMU_FLAGS[@]}" \
-            -kernel "$dir/$target/release/examples/fw_nopanic") || status=$?
-        [ "$status" -eq 0 ] || {
-            printf '%s\n' "$output" >&2
-            fail "fw_nopanic at opt-level $level on $machine exited with status $status"
-        }
-        line=$(printf '%s\n' "$output" | grep '^scene ' || true)
+        run_elf "$machine" "$cpu" "$dir/$target/release/examples/fw_nopanic" \
+            "fw_nopanic at opt-level $level"
+        line=$(printf '%s\n' "$OUTPUT" | grep '^scene ' || true)
         want=$(printf '%s\n' "$EXPECTED" | grep "^scene $(cut -d' ' -f2 <<<"$line") " || true)
         [ -n "$line" ] && [ "$line" = "$want" ] ||
             fail "fw_nopanic at opt-level $level on $machine: '$line', host: '$want'"
@@ -223,13 +219,8 @@ for board in "${MESH_BOARDS[@]}"; do
         RUSTFLAGS="-C link-arg=-Tlink.x" \
             cargo build --quiet --release --target "$target" --target-dir "$dir" --example fw_mesh_bench
     fi
-    status=0
-    output=$(timeout "$TIMEOUT" qemu-system-arm -machine "$machine" -cpu "$cpu" "${QEMU_FLAGS[@]}" \
-        -kernel "$dir/$target/release/examples/fw_mesh_bench") || status=$?
-    [ "$status" -eq 0 ] || {
-        printf '%s\n' "$output" >&2
-        fail "fw_mesh_bench ($target) on $machine exited with status $status"
-    }
+    run_elf "$machine" "$cpu" "$dir/$target/release/examples/fw_mesh_bench" "fw_mesh_bench ($target)"
+    output=$OUTPUT
     got=$(printf '%s\n' "$output" | grep '^frame ' || true)
     [ "$got" = "$(printf '%s\n' "$FRAMES" | grep '^frame ')" ] ||
         fail "fw_mesh_bench ($target) on $machine: frames differ from the host's:\n$got"
