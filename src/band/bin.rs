@@ -25,7 +25,7 @@ use super::target::{BandDrawable, ColorBand, DepthBand};
 use super::{BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::raster::band::{AllRows, RowWindow};
-use crate::raster::compact::{first_centre_from, last_centre_to};
+use crate::raster::edge::{first_centre_from, last_centre_to};
 use crate::raster::scan::{KeptWords, KEPT_WORDS};
 use crate::three_d::{
     fit_scratch, DrawStats, FaceSink, Frame, Material, Mesh, Pipeline, ProjectedVertex, TargetClip,

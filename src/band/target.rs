@@ -71,7 +71,7 @@ pub trait BandDrawable<C: PixelColor> {
 
 /// The pixel rows whose centres lie between the vertices' heights.
 fn rows_of(y: [crate::Coord; 3]) -> Option<(i32, i32)> {
-    use crate::raster::compact::{first_centre_from, last_centre_to};
+    use crate::raster::edge::{first_centre_from, last_centre_to};
     let y = y.map(|y| y.to_bits());
     let (top, bottom) = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
     let (first, last) = (first_centre_from(top), last_centre_to(bottom));

@@ -18,7 +18,8 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use super::compact::{first_centre_from, last_centre_to, CompactTriangle, TooLarge};
+use super::compact::{CompactTriangle, TooLarge};
+use super::edge::{first_centre_from, last_centre_to};
 use super::plane::{Attributes, Planes};
 use super::scan::{Kept, KeptWords, SmallScan};
 use super::shade::{fold_planes, shade, shade_general, SpanShader};

@@ -41,7 +41,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::raster::arith::mul_i32_wide;
-use crate::raster::edge::owns_centres_on;
+use crate::raster::edge::{first_centre_from, last_centre_before, last_centre_to, owns_centres_on};
 use crate::raster::walk::{Boundary, Walk};
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -70,7 +70,7 @@ fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
 /// does not fit (never inside a compact triangle's bounding box). One copy on Cortex-M0 (flash).
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline(always))]
-fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary<i32>> {
+fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary> {
     // |E| < 2·2¹⁹·2¹⁹ inside the bounding box, so K = ⌊E/256⌋ − t fits i32.
     let e = mul_i32_wide(a, offset.0) + mul_i32_wide(b, offset.1);
     let on_lattice = e & ((1 << SUBPIXEL_BITS) - 1) == 0;
@@ -136,18 +136,6 @@ pub(crate) struct CompactTriangle {
     pub(crate) extent: (u32, u32),
 }
 
-/// The first pixel whose centre is at or after `m` (sub-pixels) on its axis.
-#[inline(always)]
-pub(crate) fn first_centre_from(m: i32) -> i32 {
-    (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80)
-}
-
-/// The last pixel whose centre is at or before `m` (sub-pixels) on its axis.
-#[inline(always)]
-pub(crate) fn last_centre_to(m: i32) -> i32 {
-    (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF < 0x80)
-}
-
 /// The last pixel of `len` from `start` (saturating at the ends of `i32`).
 #[inline(always)]
 pub(crate) fn last_of(start: i32, len: u32) -> i32 {
@@ -197,7 +185,7 @@ impl CompactTriangle {
         // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first
         // centre at or after m, the last at or before it and the last strictly before it:
         let (lo, hi, last) = (first_centre_from, last_centre_to, last_of);
-        let hi_before = |m: i32| (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF <= 0x80);
+        let hi_before = last_centre_before;
         let (cx, cy) = (clip.top_left.x, clip.top_left.y);
         let x0 = lo(min_x).max(cx);
         let x1 = hi(max_x).min(last(cx, clip.size.width));
@@ -257,72 +245,33 @@ impl CompactTriangle {
     /// The walk of the triangle over its pixels; `Err` if an edge value does not fit 32 bits
     /// (never for a compact triangle).
     #[inline(always)]
-    pub(crate) fn walk(&self) -> Result<Walk<i32>, TooLarge> {
+    pub(crate) fn walk(&self) -> Result<Walk, TooLarge> {
         let (px, py) = (self.setup.dx, self.setup.dy);
-        let o = &self.o;
         // Without bounds checks: k is always 0, 1 or 2.
         let pick = |k: usize| match k {
-            0 => (self.coef[0], self.starts[0], o[0].1),
-            1 => (self.coef[1], self.starts[1], o[1].1),
-            _ => (self.coef[2], self.starts[2], o[2].1),
+            0 => (self.coef[0], self.starts[0]),
+            1 => (self.coef[1], self.starts[1]),
+            _ => (self.coef[2], self.starts[2]),
         };
-        // The vertices by height: top, middle, bottom. The long edge (top to bottom, opposite
-        // the middle vertex) bounds one side of every row; the other side has the upper edge
-        // (opposite the bottom vertex) above the middle vertex's row and the lower one (opposite
-        // the top vertex) from that row on — in the row through the vertex both give the same
-        // column (convexity, and the exact column rounding). A horizontal upper or lower edge
-        // only limits the rows (set up in `new`).
-        let (mut top, mut middle, mut bottom) = (0, 1, 2);
-        if o[1].1 < o[0].1 {
-            (top, middle) = (1, 0);
-        }
-        if pick(bottom).2 < pick(middle).2 {
-            (middle, bottom) = (bottom, middle);
-            if pick(middle).2 < pick(top).2 {
-                (top, middle) = (middle, top);
-            }
-        }
-        // Edge k's boundary from the first pixel of row `row` (an offset from y0) on.
-        let boundary = |k: usize, row: i32| {
-            let ((a, b), s, _) = pick(k);
+        // Edge k's boundary from the first pixel of row offset `row` on.
+        let boundary = |k: usize, row: u32| {
+            let ((a, b), s) = pick(k);
             // Inside the bounding box: below 2¹⁹ (and the row offset below 2¹¹ pixels).
-            let offset = (px - s.0, py.wrapping_add(row << SUBPIXEL_BITS) - s.1);
+            let offset = (
+                px - s.0,
+                py.wrapping_add((row as i32) << SUBPIXEL_BITS) - s.1,
+            );
             boundary(a, b, offset).ok_or(TooLarge)
         };
-        let rows = self.y1 - self.y0;
-        let (upper, lower) = (pick(bottom).0 .0, pick(top).0 .0);
-        let (first, next, switch) = if upper == 0 {
-            let only = boundary(top, 0)?;
-            (only, only, rows + 1)
-        } else if lower == 0 {
-            let only = boundary(bottom, 0)?;
-            (only, only, rows + 1)
-        } else {
-            let middle_y = pick(middle).2.wrapping_add(self.origin.1);
-            // First row whose centre is not above the middle vertex, as an offset from y0.
-            // (`max` and `min`, not `clamp`: its bounds check is a panic path where it is not
-            // inlined.)
-            let switch = (first_centre_from(middle_y) - self.y0).max(0).min(rows + 1);
-            (
-                boundary(bottom, 0)?,
-                boundary(top, switch.min(rows))?,
-                switch,
-            )
-        };
-        let long = pick(middle).0 .0;
-        let single = boundary(middle, 0)?;
-        let (left, right, pair_left) = if long > 0 {
-            (single, first, false)
-        } else {
-            (first, single, true)
-        };
-        Ok(Walk::new(
-            (left, right),
-            (next, pair_left, switch as u32),
+        Walk::assemble(
+            self.o.map(|v| v.1),
+            self.origin.1,
+            self.coef.map(|c| c.0),
             (self.x0, self.y0),
             self.x1 - self.x0,
-            (0, rows as u32 + 1),
-        ))
+            (0, (self.y1 - self.y0) as u32 + 1),
+            boundary,
+        )
     }
 }
 

@@ -50,6 +50,24 @@ pub(crate) const fn owns_centres_on(a: i64, b: i64) -> bool {
     a > 0 || (a == 0 && b > 0)
 }
 
+/// The first pixel whose centre is at or after `m` (sub-pixels) on its axis.
+#[inline(always)]
+pub(crate) fn first_centre_from(m: i32) -> i32 {
+    (m >> SUBPIXEL_BITS) + i32::from(m & 0xFF > 0x80)
+}
+
+/// The last pixel whose centre is at or before `m` (sub-pixels) on its axis.
+#[inline(always)]
+pub(crate) fn last_centre_to(m: i32) -> i32 {
+    (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF < 0x80)
+}
+
+/// The last pixel whose centre is strictly before `m` (sub-pixels) on its axis.
+#[inline(always)]
+pub(crate) fn last_centre_before(m: i32) -> i32 {
+    (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF <= 0x80)
+}
+
 /// One edge function: its coefficients and the vertex it starts from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct EdgeFunction {

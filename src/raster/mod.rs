@@ -8,8 +8,9 @@
 //!   million pixels, `i128` beyond.
 //! * `walk` — the covered spans of a triangle clipped to a rectangle, top to bottom, by
 //!   stepping one start and one end boundary column a row (exact quotient and remainder, no
-//!   rounding). `compact` is the same walk for triangles under 2048 px in 32-bit set-up, and
-//!   `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
+//!   rounding, in 32 bits for any triangle). `compact` sets the same walk up in 32-bit
+//!   arithmetic for triangles under 2048 px, `walk` itself exactly in `i64`/`i128` for the
+//!   others; `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
 //! * `scan` — small triangles (under 16 px) for shaders that opt in: each row's run found by
 //!   testing its pixels' edge values, the same spans without the walk's divisions.
 //! * `plane` — attributes (colour channels now) interpolated barycentrically by fixed-point

@@ -22,8 +22,9 @@ use core::num::{NonZeroU32, NonZeroU64};
 
 use super::arith::{leading_zeros_32, reciprocal_63};
 use super::band::Band;
-use super::compact::{first_centre_from, last_centre_to, last_of};
+use super::compact::last_of;
 use super::edge::owns_centres_on;
+use super::edge::{first_centre_from, last_centre_to};
 use super::plane::{Attributes, Planes};
 use super::shade::SpanShader;
 use super::walk::Span;

@@ -14,7 +14,7 @@ use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
 use super::scan::SmallScan;
-use super::walk::{general_walk, Region, Span, Walk, Width};
+use super::walk::{general_walk, Region, Span, Walk};
 use crate::arch::{CORTEX_M, LANES};
 use crate::fixed_point::Coord;
 
@@ -174,8 +174,8 @@ fn shade_compact_triangle<const N: usize, S: SpanShader<N>>(
 /// Prepares `shader` for the planes' steps and hands it the spans of `walk` with the stepped
 /// planes' values at their first pixels.
 #[inline(always)]
-pub(super) fn fold_planes<W: Width, const N: usize, S: SpanShader<N> + ?Sized>(
-    walk: Walk<W>,
+pub(super) fn fold_planes<const N: usize, S: SpanShader<N> + ?Sized>(
+    walk: Walk,
     planes: &Planes<N>,
     shader: &mut S,
 ) {
@@ -208,7 +208,8 @@ pub(super) fn fold_planes<W: Width, const N: usize, S: SpanShader<N> + ?Sized>(
 /// through a vtable, so one copy of this path serves every shader (flash on Cortex-M).
 ///
 /// With a `band`, only its rows are walked (see [`band`](super::band)): the planes (stepped or
-/// exact) are still those of the whole region over `clip`, advanced to the band's first row.
+/// exact) are still those of the whole region over `clip`, and the walk counts its rows from
+/// that region's first.
 #[inline(never)]
 pub(super) fn shade_general<T, const N: usize>(
     v: [(Coord, Coord); 3],
@@ -225,21 +226,17 @@ pub(super) fn shade_general<T, const N: usize>(
     let Some(region) = Region::new(setup, clip) else {
         return;
     };
-    let (rows, skip) = match band {
-        None => (region, 0),
+    let rows = match band {
+        None => region,
         Some(band) => match band.restrict(region.y0, region.y1) {
-            Some((y0, y1, skip)) => (Region { y0, y1, ..region }, skip),
+            Some((y0, y1, _)) => Region { y0, y1, ..region },
             None => return,
         },
     };
-    // The planes are those of the whole region, the walk only the band's rows: stepped planes
-    // advanced to its first row, exact ones evaluated at each pixel wherever the walk starts.
-    // In place: moving the exact planes would copy them.
-    let mut planes = GeneralPlanes::new(setup, &region, attributes);
-    if let GeneralPlanes::Stepped(p) = &mut planes {
-        *p = p.advanced(skip);
-    }
-    let walk = general_walk(setup, &rows);
+    // The planes are those of the whole region, the walk only the band's rows, with its row
+    // offsets from the region's first row: each pixel gets the whole walk's values.
+    let planes = GeneralPlanes::new(setup, &region, attributes);
+    let walk = general_walk(setup, &region, &rows);
     fold_general(walk, &planes, shader);
 }
 
@@ -249,7 +246,7 @@ pub(super) fn shade_general<T, const N: usize>(
 /// set-up's spans are long).
 #[inline(always)]
 fn fold_general<T, const N: usize>(
-    walk: Walk<i64>,
+    walk: Walk,
     planes: &GeneralPlanes<N>,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {

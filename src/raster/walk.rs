@@ -9,15 +9,13 @@
 //! decision is exact — no rounding anywhere.
 //!
 //! One [`Walk`] serves every triangle: one start and one end boundary a row, switching edges at
-//! the middle vertex. The set-up is the compact one ([`compact`](crate::raster::compact),
-//! 32-bit, bounding boxes under 2048 px, columns in `i32`) or the general one here (any
-//! [`Coord`], columns in `i64`).
-//!
-//! The general set-up evaluates each edge function once, exactly, at the clipped region's first
-//! pixel (`i64`, or `i128` for vertices beyond about two million pixels) and bounds it over the
-//! region: an edge that excludes the whole region rejects the triangle, an edge that includes
-//! all of it is dropped. The edges that remain cross the region, so their values there are
-//! below `|a|·W + |b|·H < 2⁵⁷` and every stepped quantity fits `i64`.
+//! the middle vertex ([`Walk::assemble`]). Its columns are `i32` offsets from the region's first
+//! column and its remainders `u32`, whatever the vertices: a boundary is only read in rows within
+//! its edge's height, where its column lies between the edge's end points. The set-ups differ
+//! only in how they find a boundary's first column: the compact one
+//! ([`compact`](crate::raster::compact), bounding boxes under 2048 px) in 32 bits, the general
+//! one here (any [`Coord`]) from the edge's exact value at the boundary's first row (`i64`, or
+//! `i128` for vertices beyond about two million pixels), divided once.
 //!
 //! ```
 //! use embedded_graphics::{prelude::*, primitives::Rectangle};
@@ -35,14 +33,13 @@
 //! ```
 
 use core::num::NonZeroU64;
-use core::ops::{Add, Sub};
 
 use embedded_graphics::primitives::Rectangle;
 
-use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_ONE};
+use crate::fixed_point::Coord;
 use crate::raster::arith::div_rem_u64;
 use crate::raster::compact::CompactTriangle;
-use crate::raster::edge::{owns_centres_on, TriangleSetup};
+use crate::raster::edge::{first_centre_from, last_centre_before, owns_centres_on, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -75,73 +72,18 @@ impl Span {
 /// `(⌊n / d⌋, n mod d)` for `d > 0`, from one unsigned division of the magnitudes.
 // One copy for the general set-up's few divisions.
 #[inline(never)]
-fn div_mod_floor(n: i64, d: i64) -> (i64, i64) {
-    let d = NonZeroU64::new(d.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
+fn div_mod_floor(n: i64, d: u64) -> (i64, u64) {
+    let d = NonZeroU64::new(d).unwrap_or(NonZeroU64::MIN);
     let (q, r) = div_rem_u64(n.unsigned_abs(), d);
     let d = d.get();
     // |n| ≤ 2⁶³, so the negated quotient fits.
     let q = q as i64;
     match (n < 0, r) {
-        (false, _) => (q, r as i64),
+        (false, _) => (q, r),
         (true, 0) => (q.wrapping_neg(), 0),
-        (true, r) => (q.wrapping_neg().wrapping_sub(1), (d - r) as i64),
+        (true, r) => (q.wrapping_neg().wrapping_sub(1), d - r),
     }
 }
-
-/// The integer width boundary columns are stepped in: `i32` for the compact set-up (edge
-/// coefficients below 2¹⁹), `i64` for the general one.
-pub(crate) trait Width: Copy + Ord + core::fmt::Debug {
-    /// The remainders' type (`[0, m)`, `m` below 2¹⁹ for `i32` and 2³⁴ for `i64`).
-    type Rem: Copy
-        + Ord
-        + Default
-        + core::fmt::Debug
-        + Add<Output = Self::Rem>
-        + Sub<Output = Self::Rem>;
-    /// Column offset 0 (the region's first column).
-    const ZERO: Self;
-    /// `self + other`, wrapping (never wraps under the walk's bounds).
-    fn plus(self, other: Self) -> Self;
-    /// `self + 1` (`up`) or `self − 1`, wrapping.
-    fn carry(self, up: bool) -> Self;
-    /// The region's last column offset, below 2²⁵.
-    fn from_column(column: i32) -> Self;
-    /// A column offset known to lie in `[0, last]`.
-    fn column(self) -> u32;
-}
-
-/// [`Width`] for a signed integer type with its unsigned remainder type.
-macro_rules! width {
-    ($t:ty, $rem:ty) => {
-        impl Width for $t {
-            type Rem = $rem;
-            const ZERO: Self = 0;
-            #[inline(always)]
-            fn plus(self, other: Self) -> Self {
-                self.wrapping_add(other)
-            }
-            #[inline(always)]
-            fn carry(self, up: bool) -> Self {
-                if up {
-                    self.wrapping_add(1)
-                } else {
-                    self.wrapping_sub(1)
-                }
-            }
-            #[inline(always)]
-            fn from_column(column: i32) -> Self {
-                column.into()
-            }
-            #[inline(always)]
-            fn column(self) -> u32 {
-                self as u32
-            }
-        }
-    };
-}
-
-width!(i32, u32);
-width!(i64, u64);
 
 /// One boundary of the rows' spans: the first covered column (an edge with `a > 0`, a start
 /// boundary) or the last one (`a < 0`, an end boundary), as an offset from the region's first
@@ -150,37 +92,51 @@ width!(i64, u64);
 /// Row to row the column moves by `⌊b / |a|⌋` towards the edge's outside and the remainder `rem`
 /// (the edge's reduced value at the column, in `[0, |a|)`) grows by `b mod |a|`; a carry moves
 /// it one column more (left for start boundaries, right for end ones). Exact: no rounding.
+///
+/// `|a|` is below 2³² for every [`Coord`] (a difference of two raw `i32` heights), so the
+/// remainders are `u32`; the carry is tested against `|a| − (b mod |a|)`, which cannot
+/// overflow where `rem + (b mod |a|)` could. The column is an `i32` offset: a boundary is only
+/// read in rows whose centres lie within its edge's height (see [`Walk`]), where the column
+/// lies between the edge's end points, within 2²⁵ of the region.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Boundary<W: Width> {
-    x: W,
-    rem: W::Rem,
-    step: W,
-    rem_step: W::Rem,
-    m: W::Rem,
+pub(crate) struct Boundary {
+    x: i32,
+    rem: u32,
+    step: i32,
+    rem_step: u32,
+    /// `|a| − rem_step`: a remainder at or above it carries.
+    carry_at: u32,
 }
 
-impl<W: Width> Boundary<W> {
-    /// The boundary with column `x`, remainder `rem` and per-row steps, for `|a| = m`.
+impl Boundary {
+    /// The boundary with column `x`, remainder `rem` and per-row steps, for `|a| = m`
+    /// (`rem, rem_step < m`).
     #[inline(always)]
-    pub(crate) fn from_parts(x: W, rem: W::Rem, step: W, rem_step: W::Rem, m: W::Rem) -> Self {
+    pub(crate) fn from_parts(x: i32, rem: u32, step: i32, rem_step: u32, m: u32) -> Self {
         Boundary {
             x,
             rem,
             step,
             rem_step,
-            m,
+            carry_at: m.wrapping_sub(rem_step),
         }
     }
 
     /// The next row's boundary; `END` for end boundaries (the carry moves right).
     #[inline(always)]
     fn advance<const END: bool>(&mut self) {
-        // rem, rem_step < m: no overflow; columns stay within the width's bound over the region.
-        self.rem = self.rem + self.rem_step;
-        self.x = self.x.plus(self.step);
-        if self.rem >= self.m {
-            self.rem = self.rem - self.m;
-            self.x = self.x.carry(END);
+        // Wrapping: past its edge's last row a boundary is no longer read.
+        self.x = self.x.wrapping_add(self.step);
+        if self.rem >= self.carry_at {
+            // rem + rem_step − m, in [0, m).
+            self.rem -= self.carry_at;
+            self.x = if END {
+                self.x.wrapping_add(1)
+            } else {
+                self.x.wrapping_sub(1)
+            };
+        } else {
+            self.rem += self.rem_step;
         }
     }
 }
@@ -194,13 +150,13 @@ impl<W: Width> Boundary<W> {
 /// both are left edges or both are not). So the rows come in two stretches, each with two fixed
 /// boundaries and no per-row test for the switch. Horizontal edges only limit the rows.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Walk<W: Width> {
+pub(crate) struct Walk {
     /// The current row's start and end boundaries …
-    left: Boundary<W>,
-    right: Boundary<W>,
+    left: Boundary,
+    right: Boundary,
     /// … and the one that replaces the start (`next_left`) or end boundary at row offset
     /// `switch` (at most `rows`).
-    next: Boundary<W>,
+    next: Boundary,
     next_left: bool,
     switch: u32,
     /// First column and row of the region.
@@ -213,16 +169,10 @@ pub(crate) struct Walk<W: Width> {
     row: u32,
 }
 
-impl<W: Width> Walk<W> {
+impl Walk {
     /// A walk with no rows.
     pub(crate) fn empty() -> Self {
-        let none = Boundary::from_parts(
-            W::ZERO,
-            W::Rem::default(),
-            W::ZERO,
-            W::Rem::default(),
-            W::Rem::default(),
-        );
+        let none = Boundary::from_parts(0, 0, 0, 0, 0);
         Walk::new((none, none), (none, false, 0), (0, 0), -1, (0, 0))
     }
 
@@ -232,8 +182,8 @@ impl<W: Width> Walk<W> {
     /// one.
     #[inline(always)]
     pub(crate) fn new(
-        (left, right): (Boundary<W>, Boundary<W>),
-        (next, next_left, switch): (Boundary<W>, bool, u32),
+        (left, right): (Boundary, Boundary),
+        (next, next_left, switch): (Boundary, bool, u32),
         (x0, y0): (i32, i32),
         last: i32,
         (first, rows): (u32, u32),
@@ -257,22 +207,96 @@ impl<W: Width> Walk<W> {
         walk
     }
 
+    /// The walk of an oriented triangle over the columns `origin.0 ..= origin.0 + last` and the
+    /// row offsets `first .. rows` from `origin.1`. Its vertices are at heights `base + ys[k]`
+    /// (sub-pixels), the edge opposite vertex `k` has an x coefficient of sign `a[k]`, and
+    /// `boundary(k, row)` is that edge's boundary at row offset `row`. The compact and the
+    /// general set-up differ only in `boundary` (32-bit, or exact in `i64`/`i128`).
+    ///
+    /// The vertices by height: top, middle, bottom. The long edge (top to bottom, opposite the
+    /// middle vertex) bounds one side of every row; the other side has the upper edge (opposite
+    /// the bottom vertex) above the middle vertex's row and the lower one (opposite the top
+    /// vertex) from that row on — in the row through the vertex both give the same column
+    /// (convexity, and the exact column rounding). So each boundary is asked for, and read, only
+    /// in rows whose centres lie within its edge's height. A horizontal upper or lower edge
+    /// only limits the rows (the callers' row range).
+    #[inline(always)]
+    pub(crate) fn assemble<E>(
+        ys: [i32; 3],
+        base: i32,
+        a: [i32; 3],
+        origin: (i32, i32),
+        last: i32,
+        (first, rows): (u32, u32),
+        boundary: impl Fn(usize, u32) -> Result<Boundary, E>,
+    ) -> Result<Walk, E> {
+        // Without bounds checks: k is always 0, 1 or 2.
+        let pick = |v: [i32; 3], k: usize| match k {
+            0 => v[0],
+            1 => v[1],
+            _ => v[2],
+        };
+        let (mut top, mut middle, mut bottom) = (0, 1, 2);
+        if ys[1] < ys[0] {
+            (top, middle) = (1, 0);
+        }
+        if pick(ys, bottom) < pick(ys, middle) {
+            (middle, bottom) = (bottom, middle);
+            if pick(ys, middle) < pick(ys, top) {
+                (top, middle) = (middle, top);
+            }
+        }
+        let (upper, lower) = (pick(a, bottom), pick(a, top));
+        let (pair, next, switch) = if upper == 0 {
+            let only = boundary(top, first)?;
+            (only, only, rows)
+        } else if lower == 0 {
+            let only = boundary(bottom, first)?;
+            (only, only, rows)
+        } else {
+            let middle_y = pick(ys, middle).wrapping_add(base);
+            // First row whose centre is not above the middle vertex, as an offset from the
+            // origin. (`max` and `min`, not `clamp`: its bounds check is a panic path where it
+            // is not inlined.)
+            let switch = first_centre_from(middle_y)
+                .wrapping_sub(origin.1)
+                .max(first as i32)
+                .min(rows as i32) as u32;
+            (
+                boundary(bottom, first)?,
+                boundary(top, switch.min(rows - 1))?,
+                switch,
+            )
+        };
+        let single = boundary(middle, first)?;
+        let (left, right, pair_left) = if pick(a, middle) > 0 {
+            (single, pair, false)
+        } else {
+            (pair, single, true)
+        };
+        Ok(Walk::new(
+            (left, right),
+            (next, pair_left, switch),
+            origin,
+            last,
+            (first, rows),
+        ))
+    }
+
     /// The span of the current row between the boundaries, clipped to the region, with its
     /// first column's offset from the region's first column.
     #[inline(always)]
     fn span(&self) -> Option<(Span, u32)> {
-        let start = self.left.x.max(W::ZERO);
-        let end = self.right.x.min(W::from_column(self.last));
+        let start = self.left.x.max(0);
+        let end = self.right.x.min(self.last);
         // 0 ≤ start ≤ end ≤ last < 2²⁵: the offsets fit.
         (start <= end).then(|| {
-            let (start, end) = (start.column(), end.column());
-            let x_start = self.x0.wrapping_add(start as i32);
             let span = Span {
                 y: self.y0.wrapping_add(self.row as i32),
-                x_start,
-                x_end: self.x0.wrapping_add(end as i32).wrapping_add(1),
+                x_start: self.x0.wrapping_add(start),
+                x_end: self.x0.wrapping_add(end).wrapping_add(1),
             };
-            (span, start)
+            (span, start as u32)
         })
     }
 
@@ -318,16 +342,15 @@ impl<W: Width> Walk<W> {
         let mut stop = if row < switch { switch } else { rows };
         loop {
             while row < stop {
-                let start = left.x.max(W::ZERO);
-                let end = right.x.min(W::from_column(last));
+                let start = left.x.max(0);
+                let end = right.x.min(last);
                 if start <= end {
-                    let (start, end) = (start.column(), end.column());
                     let span = Span {
                         y: y0.wrapping_add(row as i32),
-                        x_start: x0.wrapping_add(start as i32),
-                        x_end: x0.wrapping_add(end as i32).wrapping_add(1),
+                        x_start: x0.wrapping_add(start),
+                        x_end: x0.wrapping_add(end).wrapping_add(1),
                     };
-                    acc = f(acc, span, start, row);
+                    acc = f(acc, span, start as u32, row);
                 }
                 row += 1;
                 left.advance::<false>();
@@ -404,205 +427,119 @@ impl Region {
     }
 }
 
-/// How one edge function meets the region.
-#[derive(Debug, Clone, Copy)]
-enum Crossing {
-    /// Every pixel of the region is inside the edge.
-    Inside,
-    /// The edge crosses the region: coefficients and value `k` at the region's top-left pixel.
-    Cross { a: i64, b: i64, k: i64 },
-}
-
-/// Classifies the edges of `setup` against `region` into `out`; `false` if one excludes all of
-/// it (nothing to draw).
-// Written through `out`: returning the array (in an `Option` or not) costs a copy of it.
-#[inline(always)]
-fn classify(setup: &TriangleSetup, region: &Region, out: &mut [Crossing; 3]) -> bool {
-    let (x0, y0) = (i64::from(region.x0), i64::from(region.y0));
-    let (w, h) = (region.width() - 1, region.height() - 1);
-    for (e, out) in setup.edges.iter().zip(out.iter_mut()) {
-        // The edge's value at the region's top-left pixel (inside the bounding box, so the
-        // products of a narrow triangle fit i64) and its range over the region: |a|·w and
-        // |b|·h are below 2³²·2²⁴. An edge that crosses the region has |k| below their sum;
-        // clamping the others keeps their sign and every sum here in i64.
-        let k = e.reduced(e.exact_at(x0, y0, setup.narrow));
-        let k = k.clamp(-(1 << 60), 1 << 60) as i64;
-        let (da, db) = (e.a * w, e.b * h);
-        let min = k + da.min(0) + db.min(0);
-        let max = k + da.max(0) + db.max(0);
-        if max < 0 {
-            return false;
-        }
-        *out = if min < 0 {
-            // The edge crosses the region, so |k| ≤ |a|·w + |b|·h < 2⁵⁷: not clamped.
-            Crossing::Cross { a: e.a, b: e.b, k }
-        } else {
-            Crossing::Inside
-        };
-    }
-    true
-}
-
-/// The boundary of the general set-up for edge coefficients `a ≠ 0`, `b` and reduced value `k`
-/// at the region's first column: columns stay below 2⁵⁹ over the region (the crossing edges'
-/// values there are below 2⁵⁸), remainders below 2³⁴.
-fn general_boundary(a: i64, b: i64, k: i64) -> Boundary<i64> {
-    let m = a.abs();
+/// The boundary of the general set-up for an edge with coefficients `a ≠ 0`, `b` whose reduced
+/// value at the walk's first column is `k`. Where the boundary is read (rows within its edge's
+/// height) its column and every step between those rows fit `i32`; elsewhere the values wrap
+/// unread.
+fn general_boundary(a: i64, b: i64, k: i64) -> Boundary {
+    // |a| < 2³²: a difference of two raw `i32` heights.
+    let m = a.unsigned_abs();
     let (q, rem) = div_mod_floor(k, m);
     let (step, rem_step) = div_mod_floor(b, m);
     // Remainders in [0, m): non-negative. A start boundary (a > 0) is the first x with
     // k + a·x ≥ 0, and moving one column left subtracts m; an end boundary the last x with
     // k − m·x ≥ 0, and moving one column right subtracts m.
-    let toward_inside = |v: i64| if a > 0 { v.wrapping_neg() } else { v };
+    let toward_inside = |v: i64| if a > 0 { v.wrapping_neg() } else { v } as i32;
     Boundary::from_parts(
         toward_inside(q),
-        rem as u64,
+        rem as u32,
         toward_inside(step),
-        rem_step as u64,
-        m as u64,
+        rem_step as u32,
+        m as u32,
     )
 }
 
-/// A boundary that never limits the span: far left (start) or far right (end) of any region.
-const fn open_boundary(end: bool) -> Boundary<i64> {
-    Boundary {
-        x: if end { 1 << 40 } else { -(1 << 40) },
-        rem: 0,
-        step: 0,
-        rem_step: 0,
-        m: 1,
-    }
-}
-
-/// The walk of `setup` (any [`Coord`] vertices) over `region`, columns in `i64` (edges of the
-/// general set-up can be near horizontal far off-screen; its triangles' spans are long, so the
-/// width costs little).
+/// The walk of `setup` (any [`Coord`] vertices) over the rows `rows.y0 ..= rows.y1` of
+/// `region`, with columns and rows counted from the region's first pixel (the planes'
+/// origin). The edge values are exact (`i64`, or `i128` far off-screen) at the first row
+/// of each boundary; the walk itself is the compact set-up's.
 // One copy for all callers; everything it calls is inlined into it.
 #[inline(never)]
-pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region) -> Walk<i64> {
-    // Open boundaries, not `Walk::empty`'s zeroed ones (a call to clear memory on Cortex-M).
-    let open = (open_boundary(false), open_boundary(true));
-    let no_rows = Walk::new(open, (open.0, true, 0), (0, 0), -1, (0, 0));
-    let crossings = &mut [Crossing::Inside; 3];
-    if !classify(setup, region, crossings) {
-        return no_rows;
-    }
-    let row0 = i64::from(region.y0);
-    let (mut y0, mut y1) = (row0, i64::from(region.y1));
-    // Horizontal edges limit the rows: `b·(j − row0) + k ≥ 0`.
-    for c in crossings.iter() {
-        if let Crossing::Cross { a: 0, b, k } = *c {
-            if owns_centres_on(0, b) {
-                // First row with b·d + k ≥ 0: d = ⌈−k/b⌉.
-                let (q, r) = div_mod_floor(-k, b);
-                y0 = y0.max(row0 + q + i64::from(r > 0));
-            } else if b < 0 {
-                // Last row with k − |b|·d ≥ 0: d = ⌊k/|b|⌋.
-                y1 = y1.min(row0 + div_mod_floor(k, -b).0);
-            }
-        }
-    }
-    if y0 > y1 {
-        return no_rows;
-    }
-    // Each side's crossing edges (a > 0 bound the start, a < 0 the end): none, one, or two
-    // that meet at that side's middle vertex; above its row the upper edge binds, from its row
-    // on the lower one.
-    let rows = y1 - row0 + 1;
-    let mut first = [None; 2];
-    let (mut next, mut next_left, mut switch) = (None, true, rows);
-    for (side, first) in first.iter_mut().enumerate() {
-        let start = side == 0;
-        let mut found = [3usize; 2];
-        let mut n = 0;
-        for (k, c) in crossings.iter().enumerate() {
-            if let Crossing::Cross { a, .. } = *c {
-                if a != 0 && (a > 0) == start {
-                    if let Some(slot) = found.get_mut(n) {
-                        *slot = k;
-                    }
-                    n += 1;
-                }
-            }
-        }
-        let [p, q] = found;
-        if q == 3 {
-            *first = Some((p, y0));
-            continue;
-        }
-        // The shared vertex is the one neither edge is opposite; `edges[p]` runs to the vertex
-        // opposite `edges[q]`, and is the upper edge if that one is above.
-        let vertex_y = |k: usize| {
-            setup
-                .order
-                .get(k)
-                .and_then(|&v| setup.vertices.get(v))
-                .map_or(0, |v| v.1)
+pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region) -> Walk {
+    // Oriented vertices (raw `Coord` bits, so `i32`).
+    let o = setup.order.map(|k| {
+        setup
+            .vertices
+            .get(k)
+            .map_or((0, 0), |v| (v.0 as i32, v.1 as i32))
+    });
+    let [e0, e1, e2] = &setup.edges;
+    let edges = [e0, e1, e2];
+    // Horizontal edges only limit the rows: a top edge (b > 0) owns the centres on it, a
+    // bottom edge does not.
+    let (mut y0, mut y1) = (rows.y0, rows.y1);
+    // Edge k runs from vertex k + 1 (and a horizontal one stays at its height).
+    for k in 0..3 {
+        let (e, edge_y) = match k {
+            0 => (e0, o[1].1),
+            1 => (e1, o[2].1),
+            _ => (e2, o[0].1),
         };
-        let (upper, lower) = if vertex_y(q) < vertex_y(p) {
-            (p, q)
-        } else {
-            (q, p)
-        };
-        // First row whose centre (256·j + 128) is not above the shared vertex.
-        let row = (vertex_y(3 - p - q) - HALF_PIXEL + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS;
-        if row <= y0 {
-            *first = Some((lower, y0));
-        } else {
-            *first = Some((upper, y0));
-            if row <= y1 {
-                (next, next_left, switch) = (Some((lower, row)), start, row - row0);
+        if e.a == 0 {
+            if owns_centres_on(0, e.b) {
+                y0 = y0.max(first_centre_from(edge_y));
+            } else {
+                y1 = y1.min(last_centre_before(edge_y));
             }
         }
     }
-    // The boundary of edge k from row `row` on; open (never limiting) for none.
-    let boundary = |edge: Option<(usize, i64)>, end: bool| match edge {
-        Some((k, row)) => match crossings.get(k) {
-            Some(&Crossing::Cross { a, b, k }) => general_boundary(a, b, k + b * (row - row0)),
-            _ => open_boundary(end),
-        },
-        None => open_boundary(end),
+    // Row offsets from the region's first row (the planes' origin). A walk without rows (the
+    // horizontal edges leave none) still comes from `assemble`: `Walk::empty`'s zeroed fields
+    // would cost a call to clear memory on Cortex-M.
+    let first = y0.wrapping_sub(region.y0) as u32;
+    let (first, end) = if y0 > y1 {
+        (first + 1, first + 1)
+    } else {
+        (first, y1.wrapping_sub(region.y0) as u32 + 1)
     };
-    let [left, right] = first;
-    // Within the region: rows and columns below 2²⁵.
-    Walk::new(
-        (boundary(left, false), boundary(right, true)),
-        (boundary(next, !next_left), next_left, switch as u32),
+    let x0 = i64::from(region.x0);
+    let walk = Walk::assemble(
+        o.map(|v| v.1),
+        0,
+        edges.map(|e| e.a.signum() as i32),
         (region.x0, region.y0),
-        region.x1 - region.x0,
-        ((y0 - row0) as u32, rows as u32),
-    )
+        region.x1.wrapping_sub(region.x0),
+        (first, end),
+        |k, row| {
+            let e = match k {
+                0 => e0,
+                1 => e1,
+                _ => e2,
+            };
+            let y = i64::from(region.y0) + i64::from(row);
+            // Exact at a pixel of the bounding box; far off a used edge's rows the value is
+            // clamped (only its sign and size matter there: the boundary is not read).
+            let k = e.reduced(e.exact_at(x0, y, setup.narrow));
+            let k = k.clamp(-(1 << 62), 1 << 62) as i64;
+            Ok::<_, core::convert::Infallible>(general_boundary(e.a, e.b, k))
+        },
+    );
+    match walk {
+        Ok(walk) => walk,
+        Err(never) => match never {},
+    }
 }
 
 /// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom: the
 /// walk of the compact set-up (bounding boxes under 2048 px) or of the general one.
 #[derive(Debug, Clone)]
 pub struct Spans {
-    walk: EitherWalk,
-}
-
-/// The walk of the compact set-up (columns in `i32`) or of the general one (`i64`).
-#[derive(Debug, Clone, Copy)]
-enum EitherWalk {
-    Compact(Walk<i32>),
-    General(Walk<i64>),
+    walk: Walk,
 }
 
 impl Spans {
-    /// Spans of `setup` inside `region`.
+    /// Spans of `setup` inside `region` (the general walk).
     #[inline(always)]
     pub(crate) fn new(setup: &TriangleSetup, region: Region) -> Spans {
         Spans {
-            walk: EitherWalk::General(general_walk(setup, &region)),
+            walk: general_walk(setup, &region, &region),
         }
     }
 
-    /// The spans of a compact triangle.
+    /// The spans of a walk (a compact triangle's).
     #[inline(always)]
-    pub(crate) fn compact(walk: Walk<i32>) -> Spans {
-        Spans {
-            walk: EitherWalk::Compact(walk),
-        }
+    pub(crate) fn compact(walk: Walk) -> Spans {
+        Spans { walk }
     }
 
     /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
@@ -635,14 +572,8 @@ impl Spans {
     /// An iterator with no spans.
     pub fn empty() -> Spans {
         Spans {
-            walk: EitherWalk::Compact(Walk::empty()),
+            walk: Walk::empty(),
         }
-    }
-
-    /// Whether the columns are stepped in `i32`: the walk of the compact set-up (bounding boxes
-    /// under 2048 px); the general one steps them in `i64`.
-    pub fn is_narrow(&self) -> bool {
-        matches!(self.walk, EitherWalk::Compact(_))
     }
 }
 
@@ -651,28 +582,14 @@ impl Iterator for Spans {
 
     #[inline]
     fn next(&mut self) -> Option<Span> {
-        match &mut self.walk {
-            EitherWalk::Compact(w) => w.next_span(),
-            EitherWalk::General(w) => w.next_span(),
-        }
-        .map(|(span, _, _)| span)
+        self.walk.next_span().map(|(span, _, _)| span)
     }
 
-    /// One dispatch per triangle; the walk's state then lives in registers.
+    /// The walk's state then lives in registers.
     #[inline]
     fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, mut f: F) -> B {
-        match self.walk {
-            EitherWalk::Compact(w) => w.fold(init, |acc, span, _, _| f(acc, span)),
-            EitherWalk::General(w) => fold_general(w, init, f),
-        }
+        self.walk.fold(init, |acc, span, _, _| f(acc, span))
     }
-}
-
-/// The general walk, out of line: its frame stays off the common path's stack.
-#[inline(never)]
-#[cold]
-fn fold_general<B, F: FnMut(B, Span) -> B>(w: Walk<i64>, init: B, mut f: F) -> B {
-    w.fold(init, |acc, span, _, _| f(acc, span))
 }
 
 /// Calls `f(y, x_start, x_end)` for every covered span of the triangle `v` inside `clip`
@@ -734,18 +651,18 @@ mod tests {
                 -(1 << 57),
             ] {
                 assert_eq!(
-                    div_mod_floor(n, d),
-                    (n.div_euclid(d), n.rem_euclid(d)),
+                    div_mod_floor(n, d as u64),
+                    (n.div_euclid(d), n.rem_euclid(d) as u64),
                     "{n} / {d}"
                 );
             }
         }
     }
 
-    /// Both walks — the compact set-up's (`i32`) and the general one's (`i64`) — and both ways
-    /// of consuming them (`fold` and `next`) against per-pixel edge tests, over triangles from
+    /// The walks of both set-ups — the compact one's and the general one's — and both ways of
+    /// consuming them (`fold` and `next`) against per-pixel edge tests, over triangles from
     /// sub-pixel size to far beyond the clip, including near-horizontal slivers through it whose
-    /// columns leave the `i32` range.
+    /// edges' columns leave the `i32` range outside the rows they bound.
     #[test]
     fn every_walk_matches_per_pixel_edge_tests() {
         let clip = Rectangle::new(Point::new(-3, -2), Size::new(31, 29));
@@ -792,7 +709,6 @@ mod tests {
             let walk = Spans::new(&setup, region);
             assert_eq!(collect(walk.clone()), brute, "general next {v:?}");
             assert_eq!(fold(walk.clone()), brute, "general fold {v:?}");
-            assert!(!walk.is_narrow());
             general += 1;
             // An edge whose boundary column reaches 2³⁰ or more from the region, with spans in
             // the clip.
