@@ -98,9 +98,9 @@ fn palette(k: usize) -> [Rgb565; 3] {
 }
 
 /// Number of triangle sets.
-const SETS: usize = 3;
+const SETS: usize = 4;
 
-/// Triangle set `index` (large, small, tiny) for a `w × h` screen. Sets are built one at a
+/// Triangle set `index` (large, small, tiny, huge) for a `w × h` screen. Sets are built one at a
 /// time: all three would not fit the micro:bit's stack next to its framebuffer.
 fn make_set(index: usize, w: i32, h: i32) -> Set {
     let mut set = Set {
@@ -116,6 +116,22 @@ fn make_set(index: usize, w: i32, h: i32) -> Set {
         0 => {
             let corners = scene::large_triangles(w, h);
             (set.name, set.len, set.reps) = ("large", corners.len(), 4);
+            for (k, (t, c)) in set.triangles.iter_mut().zip(corners).enumerate() {
+                t.corners = c;
+                t.colors = palette(k);
+            }
+        }
+        3 => {
+            // Vertices thousands of pixels apart (the general set-up, `i64` edge values and
+            // exactly rounded planes), each crossing the screen: what they cost beyond their
+            // pixels is that set-up.
+            (set.name, set.len, set.reps) = ("huge", 4, 4);
+            let corners = [
+                [(-3000, -40), (w + 2500, h / 3), (w / 2, h + 2900)],
+                [(w / 3, -2600), (w + 3100, h + 50), (-2700, h * 2 / 3)],
+                [(-5000, h / 2), (w / 2, -4000), (w + 20, h - 3)],
+                [(w + 4000, h / 4), (-1, h * 3 / 4), (w / 4, h + 6000)],
+            ];
             for (k, (t, c)) in set.triangles.iter_mut().zip(corners).enumerate() {
                 t.corners = c;
                 t.colors = palette(k);
@@ -299,6 +315,11 @@ mod firmware {
         let set = &make_set(index, size.width as i32, size.height as i32);
         let mut totals = [(0, 0, 0); RENDERERS.len()];
         for (total, &renderer) in totals.iter_mut().zip(&RENDERERS) {
+            if renderer == Renderer::EgTriangle && set.name == "huge" {
+                // It tests every pixel of the bounding box: 10⁸ instructions a triangle here.
+                hprintln!("| {} | {} | – | – | – | – | – |", renderer.name(), set.name);
+                continue;
+            }
             let pixels = count_pixels(renderer, set, (size.width, size.height));
             run(renderer, set, fb); // warm-up, untimed
             let ticks = measure(set.reps, || run(renderer, set, fb));
@@ -452,24 +473,27 @@ mod firmware {
         for (index, row) in totals.iter_mut().enumerate() {
             *row = bench_set(index, &mut fb, (cal_instructions, cal_ticks));
         }
-        let [large, small, tiny] = totals;
+        let [large, small, tiny, huge] = totals;
         hprintln!(
             "\n| renderer | instr/pixel, large | instr/pixel, small (16 px²) | setup: instr/triangle, \
-             tiny (0–1 px) | setup: small minus large per-pixel |"
+             tiny (0–1 px) | setup: small minus large per-pixel | instr/triangle, huge (general \
+             set-up) |"
         );
-        hprintln!("|---|---:|---:|---:|---:|");
+        hprintln!("|---|---:|---:|---:|---:|---:|");
         for (r, &renderer) in RENDERERS.iter().enumerate() {
             let (lt, lp, _) = large[r];
             let (st, sp, sn) = small[r];
             // Small-set instructions not explained by the large-set per-pixel rate.
             let explained = (sp * lt).checked_div(lp).unwrap_or(0);
+            let (ht, _, hn) = huge[r];
             hprintln!(
-                "| {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} |",
                 renderer.name(),
                 Ratio(lt, lp),
                 Ratio(st, sp),
                 Ratio(tiny[r].0, tiny[r].2),
-                Ratio(st.saturating_sub(explained), sn)
+                Ratio(st.saturating_sub(explained), sn),
+                Ratio(ht, hn)
             );
         }
 

@@ -449,6 +449,18 @@ fn general_boundary(a: i64, b: i64, k: i64) -> Boundary {
     )
 }
 
+/// A boundary that never limits a span: far left of any region (a start boundary) or far right
+/// (an end one).
+const fn open_boundary(end: bool) -> Boundary {
+    Boundary {
+        x: if end { 1 << 30 } else { -(1 << 30) },
+        rem: 0,
+        step: 0,
+        rem_step: 0,
+        carry_at: 1,
+    }
+}
+
 /// The walk of `setup` (any [`Coord`] vertices) over the rows `rows.y0 ..= rows.y1` of
 /// `region`, with columns and rows counted from the region's first pixel (the planes'
 /// origin). The edge values are exact (`i64`, or `i128` far off-screen) at the first row
@@ -493,6 +505,7 @@ pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region
         (first, y1.wrapping_sub(region.y0) as u32 + 1)
     };
     let x0 = i64::from(region.x0);
+    let (width, height) = (region.width() - 1, region.height() - 1);
     let walk = Walk::assemble(
         o.map(|v| v.1),
         0,
@@ -511,7 +524,16 @@ pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region
             // clamped (only its sign and size matter there: the boundary is not read).
             let k = e.reduced(e.exact_at(x0, y, setup.narrow));
             let k = k.clamp(-(1 << 62), 1 << 62) as i64;
-            Ok::<_, core::convert::Infallible>(general_boundary(e.a, e.b, k))
+            // An edge with every pixel of the region inside (from this row down) never limits
+            // a span: an open boundary, without the divisions (on Cortex-M0 a few thousand
+            // instructions; big triangles over a small screen have such edges often).
+            // |a|·w, |b|·h < 2³³·2²⁵.
+            let low = k + (e.a * width).min(0) + (e.b * height).min(0);
+            Ok::<_, core::convert::Infallible>(if low >= 0 {
+                open_boundary(e.a < 0)
+            } else {
+                general_boundary(e.a, e.b, k)
+            })
         },
     );
     match walk {
