@@ -532,12 +532,10 @@ impl<C: GouraudColor> ShadedSpans<C> {
             return Self::empty();
         };
         let spans = Spans::new(setup, region);
-        let planes = match GeneralPlanes::new(setup, &region, &channels) {
-            GeneralPlanes::Stepped(planes) => {
-                return Self::stepped(spans, planes, (region.x0, region.y0))
-            }
-            GeneralPlanes::Exact(planes) => planes,
-        };
+        let planes = ExactPlanes::new(setup, &region, &channels);
+        if let GeneralPlanes::Stepped(stepped) = GeneralPlanes::new(&planes, &region) {
+            return Self::stepped(spans, stepped, (region.x0, region.y0));
+        }
         ShadedSpans {
             spans,
             steps: C::prepare_steps(planes.step()),

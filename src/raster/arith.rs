@@ -277,6 +277,76 @@ fn div_rem_shifting(n: u128, d: u128) -> (u128, u128) {
     (q, r)
 }
 
+/// `round(n / d)` (halves up) modulo 2³², for `d > 0`: what wrapping 32-bit attribute planes
+/// keep of a quotient. Exact for any `n` and `d`; on 32-bit cores, divisors below 2⁶⁴ (every
+/// triangle's doubled area but those of vertices 2²³ pixels apart) take
+/// [`div_rem_low32`], which carries only a 64-bit remainder and the quotient's low 32 bits:
+/// about a third of the full 128-bit division's instructions on a Cortex-M0.
+pub(crate) fn div_round_wrapping(n: i128, d: i128) -> u32 {
+    round_wrapping(n, d, !FAST_WIDE_DIVISION)
+}
+
+/// [`div_round_wrapping`], by [`div_rem_low32`] for divisors below 2⁶⁴ if `low32`.
+#[inline(always)]
+fn round_wrapping(n: i128, d: i128, low32: bool) -> u32 {
+    let d = d.max(1);
+    let magnitude = n.unsigned_abs();
+    // ⌊|n| / d⌋ modulo 2³² and |n| mod d.
+    let (q, r) = match u64::try_from(d) {
+        Ok(d64) if low32 => {
+            let (q, r) = div_rem_low32(magnitude, d64);
+            (q, u128::from(r))
+        }
+        _ => {
+            let (q, r) = div_rem_wide(magnitude, d.unsigned_abs());
+            (q as u32, r)
+        }
+    };
+    let d = d.unsigned_abs();
+    // ⌊n / d⌋ and its remainder in [0, d).
+    let (floor, r) = if n >= 0 || r == 0 {
+        (if n >= 0 { q } else { q.wrapping_neg() }, r)
+    } else {
+        (q.wrapping_neg().wrapping_sub(1), d - r)
+    };
+    // Halves up: one more where 2r ≥ d (r < d < 2¹²⁷: no overflow).
+    floor.wrapping_add(u32::from(2 * r >= d))
+}
+
+/// `(⌊n / d⌋ mod 2³², n mod d)` for `d > 0`, by shifting and subtracting: one bit of `n` an
+/// iteration, taken from its 32-bit words (leading zero words skipped), a 64-bit remainder, the
+/// quotient's bits above the low 32 dropped as they are shifted out.
+#[inline(never)]
+fn div_rem_low32(n: u128, d: u64) -> (u32, u64) {
+    let (mut q, mut r) = (0u32, 0u64);
+    let words = [
+        (n >> 96) as u32,
+        (n >> 64) as u32,
+        (n >> 32) as u32,
+        n as u32,
+    ];
+    let mut started = false;
+    for word in words {
+        started |= word != 0;
+        if !started {
+            continue;
+        }
+        let (mut w, mut bits) = (word, 32);
+        while rare_step(&mut bits) {
+            // r < d: with the carry out, 2r + 1 ≥ d and the wrapping difference is exact.
+            let carry = r >> 63 != 0;
+            r = (r << 1) | u64::from(w >> 31);
+            w <<= 1;
+            q <<= 1;
+            if carry || r >= d {
+                r = r.wrapping_sub(d);
+                q |= 1;
+            }
+        }
+    }
+    (q, r)
+}
+
 /// `(⌊n / d⌋, n mod d)`: the library division where there is a 32-bit divider (ARMv7-M builds
 /// the 64-bit one from it; hosts have the instruction), [`div_rem_u64_shifting`] on ARMv6-M,
 /// where the library's 64-bit division is nearly a kilobyte of flash and only rare set-ups divide
@@ -364,6 +434,47 @@ mod tests {
             check(seed);
             check(seed >> 40);
             check(seed | (u64::MAX >> 30));
+        }
+    }
+
+    /// The wrapping rounded quotient (both the 64-bit-remainder routine and the full division)
+    /// against `i128` arithmetic: `⌊(2n + d) / 2d⌋` modulo 2³².
+    #[test]
+    fn wrapping_rounded_quotients_are_exact() {
+        let mut rng = crate::rng::Rng(0x2545_f491_4f6c_dd1d);
+        for i in 0..100_000 {
+            let n = (((u128::from(rng.next()) << 64) | u128::from(rng.next()))
+                >> (rng.below(40) + 26)) as i128;
+            let n = if i % 2 == 0 { n } else { -n };
+            let d = (u128::from(rng.next()) << 2 | 3) >> rng.below(64);
+            let d = d.max(1) as i128;
+            let want = (2 * n + d).div_euclid(2 * d) as u32;
+            assert_eq!(round_wrapping(n, d, true), want, "{n} / {d}");
+            assert_eq!(round_wrapping(n, d, false), want, "{n} / {d}");
+            let d64 = d as u64;
+            assert_eq!(
+                div_rem_low32(n.unsigned_abs(), d64),
+                (
+                    (n.unsigned_abs() / u128::from(d64)) as u32,
+                    (n.unsigned_abs() % u128::from(d64)) as u64
+                ),
+                "{n} / {d64}"
+            );
+        }
+        // Divisors of 2⁶⁴ and more take the full division.
+        let d = (1i128 << 64) + 12_345;
+        for n in [
+            d * 7 + d / 2,
+            -(d * 7 + d / 2),
+            -(d * 7 + d / 2) - 1,
+            1 << 100,
+        ] {
+            for low32 in [true, false] {
+                assert_eq!(
+                    round_wrapping(n, d, low32),
+                    (2 * n + d).div_euclid(2 * d) as u32
+                );
+            }
         }
     }
 

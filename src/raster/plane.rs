@@ -10,20 +10,21 @@
 //!   wrapping, so the value at a pixel is the same integer modulo 2³² however it is reached. Built
 //!   by the compact set-up (`Planes::compact`: gradients from one 32-bit reciprocal of the area,
 //!   within 2⁻¹⁰ of a unit over a compact region) or the general one ([`GeneralPlanes::new`]:
-//!   rounded once from the exact quotients through [`InverseArea`], under 2⁻²⁴ a pixel of
-//!   distance, below 2⁻⁹ over the largest region it takes, 2¹⁶ px across). With the +½ offset
-//!   every channel is within ½ LSB plus that error of the exact value.
-//! * [`ExactPlanes`] — the general set-up's rare fallback (regions over 2¹⁶ px across, extreme
-//!   slivers whose gradients do not fit): the value at any pixel, divided out exactly in `i128`
-//!   (or stepped at 2⁻⁴⁰ where that fits); each span chunk of at most [`MAX_CHUNK`] pixels
-//!   starts from it, so stepping adds at most 2⁻⁵ LSB.
+//!   the exact quotients rounded to the nearest 2⁻²⁴, under 2⁻²⁵ a pixel of distance, below
+//!   2⁻⁹ over the largest region it takes, 2¹⁶ px across). With the +½ offset every channel is
+//!   within ½ LSB plus that error of the exact value.
+//! * [`ExactPlanes`] — the general set-up's exact values: at any pixel, the quotient rounded to
+//!   the nearest 2⁻²⁴ (one `i128` division, of which only the low 32 bits are kept). The
+//!   stepped planes of the general set-up come from it; regions over 2¹⁶ px across start each
+//!   span chunk of at most [`MAX_CHUNK`] pixels from it, so stepping adds at most 2⁻¹³ LSB.
+//! * `InverseArea` — one reciprocal of the area for the 3D pipeline's normal planes.
 
 use crate::fixed_point::SUBPIXEL_BITS;
 use core::num::NonZeroU64;
 
 use crate::raster::arith::{
-    div_floor_wide, div_rem_u64, div_rem_wide, leading_zeros_32, mul_i32_wide, mul_u32_u33,
-    mul_wide, reciprocal_125, reciprocal_63, wrapping_mul_i32,
+    div_floor_wide, div_rem_u64, div_rem_wide, div_round_wrapping, leading_zeros_32, mul_i32_wide,
+    mul_u32_u33, mul_wide, reciprocal_125, reciprocal_63, wrapping_mul_i32,
 };
 use crate::raster::compact::CompactSetup;
 use crate::raster::edge::{dot2, TriangleSetup};
@@ -32,9 +33,6 @@ use crate::raster::walk::Region;
 /// Fractional bits of the attribute values the walk hands out (8.24 fixed point: attributes have
 /// at most 8 integer bits, so a value fits a `u32`).
 pub const STEP_BITS: u32 = 24;
-
-/// Fractional bits of the per-row accumulator.
-const ROW_BITS: u32 = 32;
 
 /// Longest run of pixels stepped from one exact restart.
 pub const MAX_CHUNK: u32 = 4096;
@@ -49,7 +47,8 @@ fn div_round(n: i128, d: i128) -> i128 {
     div_floor_wide(n.saturating_mul(2).saturating_add(d), d.saturating_mul(2))
 }
 
-/// `1 / area2`, normalised so that one division per triangle serves every attribute.
+/// `1 / area2` for the quadratic normal planes of the 3D pipeline, normalised so that one
+/// division per triangle serves every numerator.
 ///
 /// `recip = ⌊2^shift / area2⌋` with `shift = 61 + bitlen(area2)`, so `2^61 < recip ≤ 2^62` (a
 /// `u64`) and `num · 2^k / area2` is `|num| · recip >> (shift − k)` with a relative error below
@@ -105,55 +104,6 @@ impl InverseArea {
         } else {
             div_round(num << k, self.area2)
         }
-    }
-}
-
-/// Fractional bits (of the 8.8 values) of what [`ExactPlanes`] hands out: 24 of the 8-bit scale.
-const EXACT_BITS: u32 = 16;
-
-/// The per-pixel step ([`EXACT_BITS`] fractional bits) of a per-pixel gradient with
-/// [`ROW_BITS`] fractional bits.
-///
-/// Two's complement, wrapping: adding it steps the value modulo 2^32, which is exact whenever the
-/// stepped values stay in range, as they do inside the triangle.
-#[inline]
-fn step_of(dx: i128) -> u32 {
-    ((dx + (1 << (ROW_BITS - EXACT_BITS - 1))) >> (ROW_BITS - EXACT_BITS)) as u32
-}
-
-/// Per-triangle quantities shared by all stepped planes of a triangle over one region.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct StepContext {
-    /// Offset of the region's top-left pixel centre from oriented vertex 0 (sub-pixel units).
-    px: i64,
-    py: i64,
-    /// `width + height + 2` of the region.
-    extent: i64,
-}
-
-impl StepContext {
-    /// The context of `setup` over `region`.
-    #[inline]
-    pub(crate) fn new(setup: &TriangleSetup, region: &Region) -> StepContext {
-        let (vx, vy) = setup
-            .vertices
-            .get(setup.order[0])
-            .copied()
-            .unwrap_or((0, 0));
-        let (x, y) = (i64::from(region.x0), i64::from(region.y0));
-        let half = 1 << (SUBPIXEL_BITS - 1);
-        // |x|, |y| < 2^31 and |vx|, |vy| ≤ 2^31: no overflow.
-        StepContext {
-            px: (x << SUBPIXEL_BITS) + half - vx,
-            py: (y << SUBPIXEL_BITS) + half - vy,
-            extent: region.width() + region.height() + 2,
-        }
-    }
-
-    /// Whether the region is small enough for stepped planes.
-    #[inline]
-    fn steppable(&self) -> bool {
-        self.extent <= MAX_STEPPED_EXTENT
     }
 }
 
@@ -505,92 +455,52 @@ impl GradientScale {
 
 /// The planes of the general set-up: stepped where their error bound holds, else exact.
 #[derive(Debug, Clone, Copy)]
-pub(crate) enum GeneralPlanes<const N: usize> {
+pub(crate) enum GeneralPlanes<'a, const N: usize> {
     /// The stepped planes (every walk's form), from the region's first pixel.
     Stepped(Planes<N>),
-    /// The exact fallback (regions of more than 2¹⁶ pixels across, extreme slivers).
-    Exact(ExactPlanes<N>),
+    /// The exact planes, for regions more than 2¹⁶ pixels across (borrowed: moved, they
+    /// would be copied).
+    Exact(&'a ExactPlanes<N>),
 }
 
-impl<const N: usize> GeneralPlanes<N> {
-    /// The planes of `attributes` on the triangle `setup` (any size) over `region`.
+impl<'a, const N: usize> GeneralPlanes<'a, N> {
+    /// The planes of `exact` (the exact planes of a triangle over `region`) a walk uses.
     ///
-    /// Stepped planes: each plane's gradients and corner value are rounded once from the exact
-    /// quotients ([`InverseArea`]) to 32 fractional bits ([`Stepped`]), then to 24: the value at
-    /// `(x, y)` is off by under 2⁻²⁴ per pixel of distance from the corner, below 2⁻⁹ LSB over
-    /// 2¹⁶ pixels. If one attribute's accumulator does not fit (regions of more than 2¹⁶ pixels
-    /// across, extreme slivers), all take [`ExactPlanes`].
+    /// The value at the region's first pixel and the gradients are the exact quotients rounded
+    /// to the nearest 2⁻²⁴ ([`ExactPlanes`]), wrapping: the value `(x, y)` pixels away is off
+    /// by under 2⁻²⁵·(1 + x + y), below 2⁻⁹ LSB over regions up to 2¹⁶ pixels across (width
+    /// plus height). Larger regions take the exact planes. Steep gradients need nothing else:
+    /// the covered pixels' values are in range, and wrapping keeps them exact there.
     #[inline]
-    pub(crate) fn new(setup: &TriangleSetup, region: &Region, attributes: &Attributes<N>) -> Self {
-        let mut planes = Planes {
-            value: [0; N],
-            dx: [0; N],
-            dy: [0; N],
-        };
+    pub(crate) fn new(exact: &'a ExactPlanes<N>, region: &Region) -> Self {
         if N == 0 {
-            // No attributes (solid fills): nothing to set up, whatever the region.
-            return GeneralPlanes::Stepped(planes);
-        }
-        let inverse = InverseArea::new(setup.area2);
-        let ctx = StepContext::new(setup, region);
-        let mut stepped = ctx.steppable();
-        for k in 0..N {
-            let p = if stepped {
-                let half = attributes.half.get(k).copied().unwrap_or(0);
-                stepped_plane(setup, &inverse, &ctx, attributes.vertex_values(k), half)
-            } else {
-                None
-            };
-            match p {
-                Some(p) => (planes.value[k], planes.dx[k], planes.dy[k]) = p,
-                None => stepped = false,
-            }
-        }
-        if stepped {
-            GeneralPlanes::Stepped(planes)
+            // No attributes (solid fills): nothing to step, whatever the region.
+            GeneralPlanes::Stepped(Planes::zero())
+        } else if region.width() + region.height() <= MAX_STEPPED_EXTENT {
+            GeneralPlanes::Stepped(Planes {
+                value: exact.at(region.x0, region.y0),
+                dx: exact.step,
+                dy: exact.row_step(),
+            })
         } else {
-            GeneralPlanes::Exact(ExactPlanes::new(setup, &inverse, &ctx, region, attributes))
+            GeneralPlanes::Exact(exact)
         }
     }
 }
 
-/// The stepped plane through `values` (value at the region's first pixel with `half` added,
-/// per-pixel and per-row gradients, 24 fractional bits), or `None` if it needs the exact one.
-// One copy for all attributes (flash on Cortex-M).
-#[inline(never)]
-fn stepped_plane(
-    setup: &TriangleSetup,
-    inverse: &InverseArea,
-    ctx: &StepContext,
-    values: [u16; 3],
-    half: u32,
-) -> Option<(u32, u32, u32)> {
-    // 8.8 values with 24 fractional bits more: 32 of the 8-bit scale.
-    let p = Stepped::new(inverse, ctx, gradient(setup, values), ROW_BITS - 8, 0)?;
-    // Round 32 to 24 fractional bits; wrapping keeps the value modulo 2³².
-    let round = |v: i64| (v.wrapping_add(1 << 7) >> 8) as u32;
-    Some((round(p.value).wrapping_add(half), round(p.dx), round(p.dy)))
-}
-
-/// One attribute of [`ExactPlanes`].
-#[derive(Debug, Clone, Copy)]
-enum ExactPlane {
-    /// Stepped from the region's first pixel: the accumulator ([`ROW_BITS`] fractional bits of
-    /// the 8.8 value, +½).
-    Stepped(Stepped),
-    /// Divided out at each chunk start: `n = Σ cₖ·Eₖ` at the region's first pixel centre and the
-    /// numerator gradients (see [`gradient`]).
-    Exact { n: i128, nx: i64, ny: i64 },
-}
-
-/// The exact planes of [`Attributes`] (regions over 2¹⁶ pixels across, extreme slivers), in the
-/// units of [`Planes`]: the value at any pixel either divided out exactly in `i128` (one
-/// division per attribute) or, for attributes whose [`ROW_BITS`] accumulator fits, stepped from
-/// the region's first pixel with 2⁻⁴⁰ gradients. A walk starts every span chunk of at most
-/// [`MAX_CHUNK`] pixels from [`at`](Self::at), so stepping adds at most 2⁻⁵ LSB.
+/// The exact planes of [`Attributes`] over a region, in the units of [`Planes`]: the value at
+/// any pixel is the exact quotient `Σ cₖ·Eₖ / area2` rounded to the nearest 2⁻²⁴ (one `i128`
+/// division), the gradients likewise. Regions over 2¹⁶ pixels across start every span chunk
+/// of at most [`MAX_CHUNK`] pixels from [`at`](Self::at), so stepping adds at most 2⁻¹³ LSB;
+/// the stepped planes of smaller ones come from it ([`GeneralPlanes::new`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ExactPlanes<const N: usize> {
-    planes: [ExactPlane; N],
+    /// `Σ cₖ·Eₖ` at the region's first pixel centre and its gradients per sub-pixel
+    /// ([`gradient`]), per attribute.
+    n: [i128; N],
+    nx: [i64; N],
+    ny: [i64; N],
+    /// The per-pixel steps.
     step: [u32; N],
     half: [u32; N],
     area2: i128,
@@ -600,49 +510,54 @@ pub(crate) struct ExactPlanes<const N: usize> {
 }
 
 impl<const N: usize> ExactPlanes<N> {
-    /// The planes of `attributes` on the triangle `setup` over `region` (`inverse` and `ctx`
-    /// of the same).
+    /// The planes of `attributes` on the triangle `setup` over `region`.
     #[inline(always)]
-    fn new(
-        setup: &TriangleSetup,
-        inverse: &InverseArea,
-        ctx: &StepContext,
-        region: &Region,
-        attributes: &Attributes<N>,
-    ) -> Self {
-        // Written in place: a built array moved into the planes costs a copy.
-        let mut planes = ExactPlanes {
-            planes: [ExactPlane::Exact { n: 0, nx: 0, ny: 0 }; N],
-            step: [0; N],
-            half: attributes.half,
-            area2: setup.area2,
-            x0: region.x0,
-            y0: region.y0,
-        };
-        for (k, (plane, step)) in planes.planes.iter_mut().zip(&mut planes.step).enumerate() {
+    pub(crate) fn new(setup: &TriangleSetup, region: &Region, attributes: &Attributes<N>) -> Self {
+        let mut planes = Self::empty();
+        planes.set_up(setup, region, attributes);
+        planes
+    }
+
+    /// Sets these planes up for `attributes` on the triangle `setup` over `region`, in place
+    /// (built elsewhere and moved, they would be copied).
+    #[inline(always)]
+    fn set_up(&mut self, setup: &TriangleSetup, region: &Region, attributes: &Attributes<N>) {
+        let planes = self;
+        (planes.half, planes.area2) = (attributes.half, setup.area2);
+        (planes.x0, planes.y0) = (region.x0, region.y0);
+        // The region's first pixel centre from oriented vertex 0, sub-pixels: both within
+        // 2³¹, so below 2³³.
+        let (vx, vy) = setup
+            .order
+            .first()
+            .and_then(|&k| setup.vertices.get(k))
+            .copied()
+            .unwrap_or((0, 0));
+        let centre = |p: i32, v: i64| (i64::from(p) << SUBPIXEL_BITS) + (1 << 7) - v;
+        let (px, py) = (centre(region.x0, vx), centre(region.y0, vy));
+        for k in 0..N {
             let (c0, nx, ny) = gradient(setup, attributes.vertex_values(k));
-            let stepped = if ctx.steppable() {
-                Stepped::new(inverse, ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
-            } else {
-                None
-            };
-            if let Some(p) = stepped {
-                *step = p.step();
-                *plane = ExactPlane::Stepped(p);
-            } else {
-                *step = step_of(inverse.scale(i128::from(nx), ROW_BITS + SUBPIXEL_BITS));
-                // Σ cₖ·Eₖ(p) = c₀·area2 + nx·px + ny·py (the edges through vertex 0 vanish there).
-                let n = i128::from(c0) * setup.area2 + dot2(nx, ctx.px, ny, ctx.py, false);
-                *plane = ExactPlane::Exact { n, nx, ny };
+            // c₀·area2 + nx·px + ny·py < 2⁸¹ + 2⁸²: Σ cₖ·Eₖ at the first pixel centre (the
+            // edges through vertex 0 vanish at it).
+            let n = i128::from(c0) * setup.area2 + dot2(nx, px, ny, py, false);
+            let step = planes.quotient(per_pixel(nx));
+            if let (Some(slot), Some(x), Some(y), Some(s)) = (
+                planes.n.get_mut(k),
+                planes.nx.get_mut(k),
+                planes.ny.get_mut(k),
+                planes.step.get_mut(k),
+            ) {
+                (*slot, *x, *y, *s) = (n, nx, ny, step);
             }
         }
-        planes
     }
 
     /// Attribute planes of no triangle.
     pub(crate) fn empty() -> Self {
         ExactPlanes {
-            planes: [ExactPlane::Exact { n: 0, nx: 0, ny: 0 }; N],
+            n: [0; N],
+            nx: [0; N],
+            ny: [0; N],
             step: [0; N],
             half: [0; N],
             area2: 1,
@@ -651,46 +566,50 @@ impl<const N: usize> ExactPlanes<N> {
         }
     }
 
+    /// `numerator / area2` rounded to the nearest integer, modulo 2³².
+    // One copy for all attributes: a division of up to 2¹⁰² by up to 2⁶⁵, of which only the
+    // low 32 bits are kept.
+    #[inline(never)]
+    fn quotient(&self, numerator: i128) -> u32 {
+        div_round_wrapping(numerator, self.area2)
+    }
+
     /// The per-pixel steps.
     pub(crate) fn step(&self) -> [u32; N] {
         self.step
     }
 
+    /// The per-row steps.
+    fn row_step(&self) -> [u32; N] {
+        core::array::from_fn(|k| self.quotient(per_pixel(self.ny.get(k).copied().unwrap_or(0))))
+    }
+
     /// The values at pixel `(x, y)` of the region.
     pub(crate) fn at(&self, x: i32, y: i32) -> [u32; N] {
-        // Offsets within the region: below 2²⁵.
+        // Offsets within the region: below 2²⁵, so the numerator stays below 2⁸⁵ before the
+        // 16-bit shift to the planes' 2⁻²⁴ units (8.8 values).
         let column = i64::from(x) - i64::from(self.x0);
         let row = i64::from(y) - i64::from(self.y0);
         core::array::from_fn(|k| {
+            let (n, nx, ny) = (
+                self.n.get(k).copied().unwrap_or(0),
+                self.nx.get(k).copied().unwrap_or(0),
+                self.ny.get(k).copied().unwrap_or(0),
+            );
+            let n = n + (dot2(nx, column, ny, row, false) << SUBPIXEL_BITS);
             // The attributes' rounding offsets added.
-            self.planes[k]
-                .at(self.area2, column, row)
-                .wrapping_add(self.half[k])
+            self.quotient(n << (STEP_BITS - 8))
+                .wrapping_add(self.half.get(k).copied().unwrap_or(0))
         })
     }
 }
 
-impl ExactPlane {
-    /// The value (without rounding offset) `column` pixels right of and `row` rows below the
-    /// region's first pixel, of the triangle with doubled area `area2`.
-    // One copy for all attributes: the exact path is rare.
-    #[inline(never)]
-    fn at(&self, area2: i128, column: i64, row: i64) -> u32 {
-        match *self {
-            ExactPlane::Stepped(p) => {
-                let v = p
-                    .value
-                    .wrapping_add(p.dy.wrapping_mul(row))
-                    .wrapping_add(p.dx.wrapping_mul(column));
-                // The accumulator's own +½ taken off.
-                ((v >> (ROW_BITS - EXACT_BITS)) as u32).wrapping_sub(1 << (EXACT_BITS - 1))
-            }
-            ExactPlane::Exact { n, nx, ny } => {
-                let n = (dot2(nx, column, ny, row, false) << SUBPIXEL_BITS) + n;
-                div_floor_wide(n << EXACT_BITS, area2) as u32
-            }
-        }
-    }
+/// The numerator of a gradient per pixel in the planes' units from its numerator gradient per
+/// sub-pixel of the 8.8 values (see [`gradient`]): 2⁸ sub-pixels a pixel, 2¹⁶ more fractional
+/// bits. Below 2⁷⁴.
+#[inline(always)]
+fn per_pixel(n: i64) -> i128 {
+    i128::from(n) << (SUBPIXEL_BITS + STEP_BITS - 8)
 }
 
 /// `(c₀, nx, ny)`: the value at oriented vertex 0 and the numerator gradients `Σ c_k·a_k`,
@@ -705,62 +624,6 @@ pub(crate) fn gradient(setup: &TriangleSetup, values: [u16; 3]) -> (i64, i64, i6
     let [_, e1, e2] = &setup.edges;
     let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
     (c[0], d1 * e1.a + d2 * e2.a, d1 * e1.b + d2 * e2.b)
-}
-
-/// The row accumulator of a stepped plane (`bits` fractional bits, +½ included for
-/// [`ExactPlanes`]): value at the region's top-left pixel and gradients per pixel and per row.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Stepped {
-    pub(crate) value: i64,
-    pub(crate) dx: i64,
-    pub(crate) dy: i64,
-}
-
-impl Stepped {
-    /// The accumulator (`bits` fractional bits, `half` added) of the plane with value `c0` at
-    /// oriented vertex 0 and numerator gradients `nx`, `ny` (see [`gradient`]), or `None` when
-    /// the gradients are too large for stepping.
-    // One copy for the stepped and the exact planes (flash on Cortex-M).
-    #[inline(never)]
-    pub(crate) fn new(
-        inverse: &InverseArea,
-        ctx: &StepContext,
-        (c0, nx, ny): (i64, i64, i64),
-        bits: u32,
-        half: i64,
-    ) -> Option<Stepped> {
-        let dx = i64::try_from(inverse.scale(i128::from(nx), bits + SUBPIXEL_BITS)).ok()?;
-        let dy = i64::try_from(inverse.scale(i128::from(ny), bits + SUBPIXEL_BITS)).ok()?;
-        // c(p) = c₀ + (nx·(p_x − x₀) + ny·(p_y − y₀)) / area2 with vertex 0 of the oriented
-        // order: a small numerator for on-screen triangles, so no division is needed.
-        let (px, py) = (ctx.px, ctx.py);
-        let small = (nx.unsigned_abs() | ny.unsigned_abs() | px.unsigned_abs() | py.unsigned_abs())
-            < 1 << 31;
-        let offset = dot2(nx, px, ny, py, small);
-        let value = i64::try_from(
-            (i128::from(c0) << bits) + inverse.scale(offset, bits) + i128::from(half),
-        )
-        .ok()?;
-        Stepped::checked(value, dx, dy, ctx.extent)
-    }
-
-    /// The accumulator if every value the traversal can ask for stays below 2⁶² in magnitude.
-    #[inline]
-    fn checked(value: i64, dx: i64, dy: i64, extent: i64) -> Option<Stepped> {
-        // Anywhere the traversal can ask for, |value| ≤ |value₀| + (|dx| + |dy|)·extent.
-        let bound = dx
-            .unsigned_abs()
-            .checked_add(dy.unsigned_abs())?
-            .checked_mul(extent.unsigned_abs())?
-            .checked_add(value.unsigned_abs())?;
-        (bound < 1 << 62).then_some(Stepped { value, dx, dy })
-    }
-
-    /// The per-pixel step of [`ExactPlanes`] ([`EXACT_BITS`] fractional bits).
-    #[inline]
-    pub(crate) fn step(&self) -> u32 {
-        step_of(i128::from(self.dx))
-    }
 }
 
 /// Test support: attribute values against the exact barycentric interpolation.
@@ -859,60 +722,28 @@ mod tests {
     use crate::Coord;
     use embedded_graphics::{prelude::*, primitives::Rectangle};
 
-    /// The exact planes of one attribute with vertex values `values` (+½ of the 2⁻⁸ unit at 16
-    /// fractional bits), divided out at every pixel if `exact`.
+    /// The general set-up's exact planes of one attribute with vertex values `values` (+½ LSB)
+    /// over `clip`.
     fn plane(
         v: [(i32, i32); 3],
         values: [u16; 3],
         clip: Rectangle,
-        exact: bool,
-    ) -> Option<(ExactPlanes<1>, TriangleSetup)> {
+    ) -> Option<(ExactPlanes<1>, TriangleSetup, Region)> {
         let setup = TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))?;
         let region = Region::new(&setup, &clip)?;
-        let mut ctx = StepContext::new(&setup, &region);
-        if exact {
-            ctx.extent = MAX_STEPPED_EXTENT + 1;
-        }
         let attributes = Attributes {
             values: values.map(|v| [v]),
-            half: [1 << (EXACT_BITS - 1)],
+            half: [1 << (STEP_BITS - 1)],
         };
-        let inverse = InverseArea::new(setup.area2);
-        let planes = ExactPlanes::new(&setup, &inverse, &ctx, &region, &attributes);
-        Some((planes, setup))
+        let planes = ExactPlanes::new(&setup, &region, &attributes);
+        Some((planes, setup, region))
     }
 
-    fn is_stepped(p: &ExactPlanes<1>) -> bool {
-        matches!(p.planes[0], ExactPlane::Stepped(_))
-    }
-
+    /// The exact planes' values are the exact rational value (`i128` cross products of the
+    /// vertices at each pixel centre) rounded to the nearest 2⁻²⁴, for triangles of any size
+    /// and pixels anywhere in the region.
     #[test]
-    fn exact_and_stepped_agree_at_vertices_scale() {
-        // A right triangle where the plane is c = x (pixel units), evaluated at centres.
-        let clip = Rectangle::new(Point::new(-3, -2), Size::new(64, 64));
-        let v = [(0, 0), (64 * 256, 0), (0, 64 * 256)];
-        let (stepped, _) = plane(v, [0, 64, 0], clip, false).unwrap();
-        let (exact, _) = plane(v, [0, 64, 0], clip, true).unwrap();
-        assert!(is_stepped(&stepped) && !is_stepped(&exact));
-        for p in [stepped, exact] {
-            for y in 0..4 {
-                for x in [0, 5, 17] {
-                    let [v] = p.at(x, y);
-                    let exact = (x as f64 + 0.5 + 0.5) * 65536.0;
-                    assert!(
-                        (f64::from(v) - exact).abs() < 2.0,
-                        "{x},{y}: {v} vs {exact}"
-                    );
-                    assert_eq!(p.at(x + 3, y)[0] >> 16, (x + 3 + 1) as u32);
-                }
-            }
-        }
-    }
-
-    /// The exact planes' divided-out values are the floor of the exact rational value (`i128`
-    /// cross products of the vertices at each pixel centre), for triangles of any size.
-    #[test]
-    fn exact_values_are_the_floor_of_the_plane() {
+    fn exact_values_are_the_rounded_plane() {
         let mut next = crate::random(0x2545_f491_4f6c_dd1d);
         let clip = Rectangle::new(Point::new(-20, -10), Size::new(40, 30));
         let mut checked = 0;
@@ -921,7 +752,7 @@ mod tests {
             let mut r = || ((next() % (2 * range as u64 + 1)) as i64 - range) as i32;
             let v = [(); 3].map(|_| (r(), r()));
             let values = [(); 3].map(|_| next() as u16);
-            let Some((p, _)) = plane(v, values, clip, true) else {
+            let Some((p, _, region)) = plane(v, values, clip) else {
                 continue;
             };
             let q = v.map(|(x, y)| (i128::from(x), i128::from(y)));
@@ -929,7 +760,12 @@ mod tests {
                 (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
             };
             let area2 = cross(q[0], q[1], q[2]);
-            for (x, y) in [(-20, -10), (19, 19), (0, 0), (7, -3)] {
+            let corners = [
+                (region.x0, region.y0),
+                (region.x1, region.y1),
+                (region.x0, region.y1),
+            ];
+            for (x, y) in corners {
                 let c = (i128::from(x) * 256 + 128, i128::from(y) * 256 + 128);
                 let lambda = [
                     cross(c, q[1], q[2]),
@@ -937,14 +773,89 @@ mod tests {
                     cross(c, q[0], q[1]),
                 ];
                 let n: i128 = (0..3).map(|k| i128::from(values[k]) * lambda[k]).sum();
-                // n / area2 with 16 fractional bits, floored, +½.
+                // n / area2 (8.8) in 2⁻²⁴ units of the 8-bit scale, rounded half up, +½ LSB.
                 let (n, d) = if area2 < 0 { (-n, -area2) } else { (n, area2) };
-                let want = (n << 16).div_euclid(d) as u32 + (1 << 15);
-                assert_eq!(p.at(x, y)[0], want, "{v:?} {values:?} ({x}, {y})");
+                let want = ((n << 17) + d).div_euclid(2 * d) as u32;
+                assert_eq!(
+                    p.at(x, y)[0],
+                    want.wrapping_add(1 << 23),
+                    "{v:?} {values:?} ({x}, {y})"
+                );
                 checked += 1;
             }
         }
         assert!(checked > 10_000, "{checked}");
+    }
+
+    /// The general set-up's stepped planes against the exact rationals at every pixel of the
+    /// region, for triangles from a pixel to the whole `Coord` range over a small clip,
+    /// slivers whose gradients wrap many times included.
+    #[test]
+    fn general_planes_are_within_the_documented_error() {
+        let mut next = crate::random(0x9e37_79b9_7f4a_7c15_u64);
+        let clip = Rectangle::new(Point::new(-7, 5), Size::new(24, 18));
+        let (mut checked, mut slivers) = (0, 0);
+        for i in 0..4_000 {
+            let range = 1i64 << (8 + i % 24);
+            let mut r = || ((next() % (2 * range as u64 + 1)) as i64 - range) as i32;
+            let mut v = [(); 3].map(|_| (r(), r()));
+            if i % 3 == 0 {
+                // A sliver: the third vertex a sub-pixel off the line through the others.
+                let (a, b) = (v[0], v[1]);
+                v[2] = ((a.0 / 2 + b.0 / 2) + 1, (a.1 / 2 + b.1 / 2));
+            }
+            let channels: [[u8; 3]; 3] =
+                core::array::from_fn(|_| next().to_le_bytes()[..3].try_into().unwrap());
+            let Some(setup) =
+                TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))
+            else {
+                continue;
+            };
+            let Some(region) = Region::new(&setup, &clip) else {
+                continue;
+            };
+            let exact = ExactPlanes::new(&setup, &region, &Attributes::channels(channels));
+            let GeneralPlanes::Stepped(p) = GeneralPlanes::new(&exact, &region) else {
+                panic!("a small region takes the stepped planes: {v:?}");
+            };
+            if setup.area2 < 1 << 16 && region.width() > 1 {
+                slivers += 1;
+            }
+            let (last, rows) = ((region.width() - 1) as u32, (region.height() - 1) as u32);
+            checked += exact::check_channel_planes(
+                v,
+                &channels,
+                (region.x0, region.y0, last, rows),
+                |column, row| p.at(column, row),
+            );
+        }
+        assert!(
+            checked > 100_000 && slivers > 100,
+            "{checked} values, {slivers} slivers"
+        );
+    }
+
+    /// Regions more than 2¹⁶ pixels across take the exact planes, whose steps start each chunk.
+    #[test]
+    fn huge_regions_take_the_exact_planes() {
+        let clip = Rectangle::new(Point::new(-70_000, -10), Size::new(140_000, 20));
+        let v = [(-80_000 * 256, 0), (80_000 * 256, 256), (0, 9 * 256)];
+        let setup =
+            TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))).unwrap();
+        let region = Region::new(&setup, &clip).unwrap();
+        let attributes = Attributes::channels([[0, 9, 200], [255, 3, 7], [40, 40, 40]]);
+        let exact = ExactPlanes::new(&setup, &region, &attributes);
+        let GeneralPlanes::Exact(p) = GeneralPlanes::new(&exact, &region) else {
+            panic!("a region {} pixels wide", region.width());
+        };
+        // Stepping MAX_CHUNK pixels from an exact value stays within 2⁻¹³ LSB of the next.
+        for x in [-70_000, -3, 60_000] {
+            let (start, end) = (p.at(x, 2), p.at(x + MAX_CHUNK as i32, 2));
+            for k in 0..3 {
+                let stepped = start[k].wrapping_add(p.step()[k].wrapping_mul(MAX_CHUNK));
+                assert!(stepped.abs_diff(end[k]) <= 1 << 11, "{x} channel {k}");
+            }
+        }
     }
 
     #[test]
@@ -962,85 +873,6 @@ mod tests {
                 "{num} {k} {area2}"
             );
         }
-    }
-
-    /// Asserts that `p`, the accumulator of the plane through `values` over `region`, has
-    /// gradients within `gradient` hundredths of a unit (of 2⁻³²) of the exact quotients and a
-    /// corner value within `value(px, py)` hundredths, where `(px, py)` is the corner's offset
-    /// from oriented vertex 0 (sub-pixels). Exact values by `i128` cross-multiplication.
-    fn assert_near_exact(
-        p: &Stepped,
-        setup: &TriangleSetup,
-        region: &Region,
-        values: [u16; 3],
-        gradient: i128,
-        value: impl Fn(i64, i64) -> i128,
-    ) {
-        let (c0, nx, ny) = super::gradient(setup, values);
-        let a = setup.area2;
-        // |got − exact| ≤ bound/100 units, as 100·|got·area2 − exact·area2| ≤ bound·area2.
-        let within = |got: i64, exact_times_area: i128, bound: i128| {
-            100 * (i128::from(got) * a - exact_times_area).abs() <= bound * a
-        };
-        let context = (setup.vertices, values);
-        assert!(
-            within(p.dx, i128::from(nx) << 40, gradient),
-            "dx {context:?}"
-        );
-        assert!(
-            within(p.dy, i128::from(ny) << 40, gradient),
-            "dy {context:?}"
-        );
-        let (vx, vy) = setup.vertices[setup.order[0]];
-        let px = (i64::from(region.x0) << 8) + 128 - vx;
-        let py = (i64::from(region.y0) << 8) + 128 - vy;
-        let offset = i128::from(nx) * i128::from(px) + i128::from(ny) * i128::from(py);
-        let base = (c0 << 32) + (1 << 31);
-        assert!(
-            within(p.value - base, offset << 32, value(px, py)),
-            "value {context:?}"
-        );
-    }
-
-    /// The stepped accumulator against exact rational values (`i128` cross-multiplication).
-    #[test]
-    fn stepped_planes_are_within_the_documented_error() {
-        let mut next = crate::random(0x9e37_79b9_7f4a_7c15_u64);
-        let mut rnd = move |n: u64| next() % n;
-        let clip = Rectangle::new(Point::new(-40, -30), Size::new(400, 300));
-        let mut checked = 0;
-        for i in 0..20_000 {
-            // Sizes from a fraction of a pixel to the whole clip, sub-pixel positions.
-            let scale = 1 << rnd(17);
-            let v = [(); 3].map(|_| {
-                let mut r = |n: u64| (rnd(2 * n + 1) as i64 - n as i64) as i32;
-                (r(scale) + 100 * 256, r(scale) + 80 * 256)
-            });
-            let max = [1, 31, 63, 255, 65535][i % 5];
-            let values = [(); 3].map(|_| rnd(max + 1) as u16);
-            let Some(setup) =
-                TriangleSetup::new(v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y))))
-            else {
-                continue;
-            };
-            let Some(region) = Region::new(&setup, &clip) else {
-                continue;
-            };
-            let inverse = InverseArea::new(setup.area2);
-            let ctx = StepContext::new(&setup, &region);
-            if !ctx.steppable() {
-                continue;
-            }
-            let (c0, nx, ny) = gradient(&setup, values);
-            let Some(p) = Stepped::new(&inverse, &ctx, (c0, nx, ny), ROW_BITS, 1 << (ROW_BITS - 1))
-            else {
-                continue;
-            };
-            checked += 1;
-            // Rounded once: within 0.51 units.
-            assert_near_exact(&p, &setup, &region, values, 51, |_, _| 51);
-        }
-        assert!(checked > 5_000, "{checked}");
     }
 
     /// The reciprocal gradients are within their bound of the exact quotient, over areas,
@@ -1075,20 +907,5 @@ mod tests {
             }
         }
         assert!(refined > 20_000, "{refined}");
-    }
-
-    #[test]
-    fn huge_gradients_take_the_exact_path() {
-        let clip = Rectangle::new(Point::zero(), Size::new(64, 64));
-        // A needle 2/256 px wide and 60 px tall with full-range colour across it: gradients of
-        // 2^15 LSB per pixel still fit the stepped path.
-        let needle = [(128, 0), (129, 60 * 256), (127, 60 * 256)];
-        let (p, _) = plane(needle, [0, 255, 0], clip, false).unwrap();
-        assert!(is_stepped(&p));
-        // A sliver of area 1/2^17 px² along a row: 2^30 LSB per pixel vertically does not.
-        let l = 60 * 256;
-        let sliver = [(128, 128), (128 + l, 129), (129 + l, 129)];
-        let (p, _) = plane(sliver, [0, 0, 255], clip, false).unwrap();
-        assert!(!is_stepped(&p));
     }
 }

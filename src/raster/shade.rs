@@ -235,7 +235,8 @@ pub(super) fn shade_general<T, const N: usize>(
     };
     // The planes are those of the whole region, the walk only the band's rows, with its row
     // offsets from the region's first row: each pixel gets the whole walk's values.
-    let planes = GeneralPlanes::new(setup, &region, attributes);
+    let exact = ExactPlanes::new(setup, &region, attributes);
+    let planes = GeneralPlanes::new(&exact, &region);
     let walk = general_walk(setup, &region, &rows);
     fold_general(walk, &planes, shader);
 }
