@@ -23,13 +23,12 @@
 //! `draw_into` a row of eight lanes at a time (the same pixels). For larger ones setup
 //! is done in `i64` for vertices within ±2²¹ pixels and
 //! in `i128` beyond. Spans are stepped in `i32` (one
-//! start and one end edge per row) over the triangle's pixel bounding box clipped to the target,
-//! or in `i64` when an edge's boundary column leaves ±2³⁰ over the region (far off-screen
-//! slivers); regions of a few pixels test each pixel's edge values instead. The target's bounding
-//! box may be anywhere in `i32`. Gouraud colours are stepped from
-//! 32-bit row accumulators (24 fractional bits) for regions up to 2¹⁶ pixels (`width + height`)
-//! and computed exactly per row beyond that or for extreme slivers, so the 1-LSB bound holds
-//! everywhere.
+//! start and one end edge per row, each read only in the rows of its edge's height) over the
+//! triangle's pixel bounding box clipped to the target; regions of a few pixels test each
+//! pixel's edge values instead. The target's bounding box may be anywhere in `i32`. Gouraud
+//! colours are stepped in 32 bits (24 fractional bits, wrapping, so slivers' steep gradients
+//! are exact on their pixels) for regions up to 2¹⁶ pixels (`width + height`) and restarted
+//! from exact values every 4096 pixels beyond that, so the 1-LSB bound holds everywhere.
 //!
 //! # Example
 //!

@@ -505,7 +505,7 @@ enum Shading {
         planes: Planes<3>,
         origin: (i32, i32),
     },
-    /// Exact planes (huge regions or gradients).
+    /// Exact planes (regions over 2¹⁶ pixels across).
     Exact(ExactPlanes<3>),
 }
 

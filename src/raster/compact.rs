@@ -10,7 +10,7 @@
 //!
 //! [`GouraudTriangle::draw`](crate::GouraudTriangle) and
 //! [`draw_into`](crate::GouraudTriangle::draw_into) take this path for compact triangles and the
-//! wide one (`i64`/`i128` set-up, exact fallbacks) for the rest; on x86-64 `draw_into` draws
+//! general one (`i64`/`i128` set-up, the same walk) for the rest; on x86-64 `draw_into` draws
 //! the smallest (under 8 × 8 px) from the same set-up a row of lanes at a time
 //! (`tiny`). The `*_compact` methods take
 //! only this path and reject larger triangles, which keeps a firmware that uses only them small:

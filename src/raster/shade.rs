@@ -234,8 +234,8 @@ pub(super) fn fold_planes<const N: usize, S: SpanShader<N> + ?Sized>(
 }
 
 /// The general set-up (any [`Coord`]): `i64`/`i128` edge functions, stepped planes where their
-/// error bound holds, exact ones (a division per span chunk) for huge regions and extreme
-/// slivers.
+/// error bound holds (regions up to 2¹⁶ px across), exact ones (a division per span chunk)
+/// beyond.
 ///
 /// Only triangles 2048 px or more across come here, whose spans are long: the shader is called
 /// through a vtable, so one copy of this path serves every shader (flash on Cortex-M).
@@ -320,9 +320,9 @@ fn general_span<T, const N: usize>(
     }
 }
 
-/// A span of exact planes (regions over 2¹⁶ pixels across, extreme slivers): in chunks of at
-/// most [`MAX_CHUNK`] pixels, every chunk started from the exact value, so the per-pixel steps
-/// add at most 2⁻⁵ LSB.
+/// A span of exact planes (regions over 2¹⁶ pixels across): in chunks of at most
+/// [`MAX_CHUNK`] pixels, every chunk started from the exact value, so the per-pixel steps add at
+/// most 2⁻¹³ LSB.
 #[cold]
 #[inline(never)]
 fn shade_exact<T, const N: usize>(
