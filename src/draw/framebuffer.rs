@@ -42,7 +42,9 @@ pub(crate) fn skip_colors<I: Iterator>(colors: &mut I, mut n: u64) -> bool {
 /// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
 /// pixel on Cortex-M4 against 3 for `slice::fill`, which LLVM leaves as one store per iteration
 /// for 16-bit colours on Thumb.
-#[inline]
+// One copy for every fill on Cortex-M0 (flash; a call a span).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline)]
 pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
     let mut quads = row.chunks_exact_mut(4);
     for quad in &mut quads {

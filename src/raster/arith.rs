@@ -379,6 +379,45 @@ fn div_rem_u64_shifting(n: u64, d: u64) -> (u64, u64) {
     (q, r)
 }
 
+/// `(⌊n / d⌋, n mod d)` in 32 bits: the instruction where there is a divider,
+/// [`div_rem_u32_aligned`] on ARMv6-M (the library's routine is 400 bytes of flash).
+#[inline]
+pub(crate) fn div_rem_u32(n: u32, d: NonZeroU32) -> (u32, u32) {
+    if HAS_DIVIDER {
+        (n / d, n % d)
+    } else {
+        div_rem_u32_aligned(n, d)
+    }
+}
+
+/// [`div_rem_u32`] by shifting and subtracting, one quotient bit an iteration: the divisor is
+/// first doubled up to the dividend's magnitude, so a quotient of `q` bits takes `q` steps (the
+/// walk's set-up divides for columns and slopes, mostly of a few bits).
+#[cfg_attr(not(armv6m), allow(dead_code))]
+#[inline(never)]
+fn div_rem_u32_aligned(n: u32, d: NonZeroU32) -> (u32, u32) {
+    let (mut shifted, mut bits) = (d.get(), 0);
+    // shifted ≤ n / 2 before each doubling: no overflow, and at most 31 doublings of d ≥ 1.
+    while shifted <= n >> 1 {
+        shifted <<= 1;
+        bits += 1;
+    }
+    let (mut q, mut r) = (0u32, n);
+    loop {
+        q <<= 1;
+        if r >= shifted {
+            r -= shifted;
+            q |= 1;
+        }
+        if bits == 0 {
+            break;
+        }
+        shifted >>= 1;
+        bits -= 1;
+    }
+    (q, r)
+}
+
 /// Leading zero bits of `v > 0`: by halving steps on ARMv6-M (Cortex-M0 has no `clz`
 /// instruction; the library routine is a call of about the same length), the instruction
 /// elsewhere.
@@ -407,6 +446,29 @@ fn leading_zeros_by_halving(mut v: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The aligned 32-bit division against the instruction, at the ends of the range and at
+    /// random.
+    #[test]
+    fn aligned_division_matches_the_instruction() {
+        let mut next = crate::random(0x5eed_d1f1_u64);
+        let edges = [0, 1, 2, 3, 255, 256, 1 << 31, u32::MAX - 1, u32::MAX];
+        let check = |n: u32, d: u32| {
+            if let Some(nz) = NonZeroU32::new(d) {
+                assert_eq!(div_rem_u32_aligned(n, nz), (n / d, n % d), "{n} / {d}");
+            }
+        };
+        for n in edges {
+            for d in edges {
+                check(n, d);
+            }
+        }
+        for i in 0..200_000 {
+            let n = next() as u32;
+            let d = (next() as u32) >> (i % 32);
+            check(n, d);
+        }
+    }
 
     #[test]
     fn halving_counts_leading_zeros() {

@@ -40,7 +40,7 @@ use core::num::{NonZeroU32, NonZeroU64};
 use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
-use crate::raster::arith::mul_i32_wide;
+use crate::raster::arith::{div_rem_u32, mul_i32_wide};
 use crate::raster::edge::{first_centre_from, last_centre_before, last_centre_to, owns_centres_on};
 use crate::raster::walk::{Boundary, Walk};
 
@@ -56,7 +56,7 @@ pub struct TooLarge;
 /// `(⌊n / d⌋, n mod d)` for `d > 0`, in 32 bits.
 #[inline]
 fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
-    let (q, r) = (n.unsigned_abs() / d, n.unsigned_abs() % d);
+    let (q, r) = div_rem_u32(n.unsigned_abs(), d);
     // |n| ≤ 2³¹, so the quotient's negation fits.
     match (n < 0, r) {
         (false, _) => (q as i32, r),

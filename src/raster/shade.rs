@@ -134,6 +134,11 @@ fn shade_walked<const N: usize>(
         shade_general(v, attributes, clip, None, shader);
         return;
     }
+    #[cfg(armv6m)]
+    {
+        shade_dyn(v, attributes, clip, shader);
+    }
+    #[cfg(not(armv6m))]
     match compact_set_up(v, attributes, clip) {
         Ok(None) => {}
         Ok(Some((walk, planes))) => fold_planes(walk, &planes, shader),
@@ -141,15 +146,36 @@ fn shade_walked<const N: usize>(
     }
 }
 
+/// [`shade_walked`] on Cortex-M0, where flash is scarcest: every triangle, compact or not, goes
+/// through one set-up and one walk per kind of span steps, the shader called through a vtable
+/// (a call a span, 3–8 % more instructions a pixel on large triangles). A firmware drawing
+/// through `draw` and `draw_into` then links the walk once, not once per shader and set-up.
+#[cfg(armv6m)]
+#[inline(never)]
+fn shade_dyn<T, const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    shader: &mut dyn SpanShader<N, Steps = T>,
+) {
+    let exact;
+    let (walk, planes) = match compact_set_up(v, attributes, clip) {
+        Ok(None) => return,
+        Ok(Some((walk, planes))) => (walk, GeneralPlanes::Stepped(planes)),
+        Err(TooLarge) => {
+            let Some((walk, planes, region)) = general_set_up(v, attributes, clip, None) else {
+                return;
+            };
+            exact = planes;
+            (walk, GeneralPlanes::new(&exact, &region))
+        }
+    };
+    fold_general(walk, &planes, shader);
+}
+
 /// The compact set-up's walk and planes of the triangle `v` over `clip`: `Ok(None)` if nothing
 /// is covered, `Err(TooLarge)` if it is not compact.
-///
-/// One copy for every shader on Cortex-M0, where flash is scarcest: a firmware drawing through
-/// `draw` and `draw_into` links the set-up once (about 1.6 KB less), for 1–4 % more
-/// instructions on tiny triangles. Inlined into each shader's walk elsewhere (out of line, the
-/// Cortex-M4 takes 9–15 % more on tiny triangles).
-#[cfg_attr(armv6m, inline(never))]
-#[cfg_attr(not(armv6m), inline(always))]
+#[inline(always)]
 fn compact_set_up<const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
@@ -251,33 +277,40 @@ pub(super) fn shade_general<T, const N: usize>(
     band: Option<Band>,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
+    if let Some((walk, exact, region)) = general_set_up(v, attributes, clip, band) {
+        fold_general(walk, &GeneralPlanes::new(&exact, &region), shader);
+    }
+}
+
+/// The general set-up of the triangle `v` over `clip`: its walk over the rows of `band` (all
+/// rows without one), its exact planes and the region they are over (the whole region, whatever
+/// the band: the walk counts its rows from the region's first, so each pixel gets the whole
+/// walk's values). `None` if nothing is covered.
+#[inline(always)]
+fn general_set_up<const N: usize>(
+    v: [(Coord, Coord); 3],
+    attributes: &Attributes<N>,
+    clip: &Rectangle,
+    band: Option<Band>,
+) -> Option<(Walk, ExactPlanes<N>, Region)> {
     // By reference: moving the setup out of the `Option` would copy it.
     let setup = TriangleSetup::new(v);
-    let Some(setup) = setup.as_ref() else {
-        return;
-    };
-    let Some(region) = Region::new(setup, clip) else {
-        return;
-    };
+    let setup = setup.as_ref()?;
+    let region = Region::new(setup, clip)?;
     let rows = match band {
         None => region,
-        Some(band) => match band.restrict(region.y0, region.y1) {
-            Some((y0, y1, _)) => Region { y0, y1, ..region },
-            None => return,
-        },
+        Some(band) => {
+            let (y0, y1, _) = band.restrict(region.y0, region.y1)?;
+            Region { y0, y1, ..region }
+        }
     };
-    // The planes are those of the whole region, the walk only the band's rows, with its row
-    // offsets from the region's first row: each pixel gets the whole walk's values.
     let exact = ExactPlanes::new(setup, &region, attributes);
-    let planes = GeneralPlanes::new(&exact, &region);
-    let walk = general_walk(setup, &region, &rows);
-    fold_general(walk, &planes, shader);
+    Some((general_walk(setup, &region, &rows), exact, region))
 }
 
 /// [`fold_planes`] for the general planes: spans of stepped planes as there, those of exact
 /// ones in chunks ([`shade_exact`]). Hosts get a walk for each kind of planes; on Cortex-M one
-/// walk serves both, the span's planes chosen out of line ([`general_span`]: flash; the general
-/// set-up's spans are long).
+/// walk serves both, the span's planes chosen a span (flash).
 #[inline(always)]
 fn fold_general<T, const N: usize>(
     walk: Walk,
@@ -290,8 +323,9 @@ fn fold_general<T, const N: usize>(
             GeneralPlanes::Exact(p) => p.step(),
         });
         let steps = &steps;
-        walk.fold((), |(), span, column, row| {
-            general_span(planes, steps, span, (column, row), shader);
+        walk.fold((), |(), span, column, row| match planes {
+            GeneralPlanes::Stepped(p) => shader.span(steps, span, p.at(column, row)),
+            GeneralPlanes::Exact(p) => shade_exact(p, steps, span, shader),
         });
     } else {
         match planes {
@@ -302,21 +336,6 @@ fn fold_general<T, const N: usize>(
                 walk.fold((), |(), span, _, _| shade_exact(p, steps, span, shader));
             }
         }
-    }
-}
-
-/// One span of the general set-up with its planes' values at `(column, row)` of the region.
-#[inline(never)]
-fn general_span<T, const N: usize>(
-    planes: &GeneralPlanes<N>,
-    steps: &T,
-    span: Span,
-    (column, row): (u32, u32),
-    shader: &mut dyn SpanShader<N, Steps = T>,
-) {
-    match planes {
-        GeneralPlanes::Stepped(p) => shader.span(steps, span, p.at(column, row)),
-        GeneralPlanes::Exact(p) => shade_exact(p, steps, span, shader),
     }
 }
 
