@@ -41,7 +41,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::raster::arith::{div_rem_u32, mul_i32_wide};
-use crate::raster::edge::{first_centre_from, last_centre_before, last_centre_to, owns_centres_on};
+use crate::raster::edge::{first_centre_from, last_centre_to, last_row, owns_centres_on};
 use crate::raster::walk::{Boundary, Walk};
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -182,31 +182,18 @@ impl CompactTriangle {
         let order = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
         let o = order.map(|k| rel.get(k).copied().unwrap_or_default());
 
-        // Pixels whose centres lie in the bounding box, clipped. With m = 256·q + r, the first
-        // centre at or after m, the last at or before it and the last strictly before it:
+        // Pixels whose centres lie in the bounding box, clipped (the first centre at or after a
+        // position, the last at or before it), but for the centres on a horizontal bottom edge.
         let (lo, hi, last) = (first_centre_from, last_centre_to, last_of);
-        let hi_before = last_centre_before;
         let (cx, cy) = (clip.top_left.x, clip.top_left.y);
         let x0 = lo(min_x).max(cx);
         let x1 = hi(max_x).min(last(cx, clip.size.width));
-        let mut y0 = lo(min_y).max(cy);
-        let mut y1 = hi(max_y).min(last(cy, clip.size.height));
+        let y0 = lo(min_y).max(cy);
+        let y1 = last_row([p[0].1, p[1].1, p[2].1]).min(last(cy, clip.size.height));
 
         // Edges opposite oriented vertices 0, 1, 2: from o[1] to o[2], o[2] to o[0], o[0] to o[1].
         let ends = [(o[1], o[2]), (o[2], o[0]), (o[0], o[1])];
         let coef = ends.map(|(s, e)| (s.1 - e.1, e.0 - s.0));
-        // A horizontal edge only limits the rows: a top edge (b > 0) owns the centres on it, a
-        // bottom edge does not.
-        for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
-            if a == 0 {
-                let edge_y = s.1.wrapping_add(p[0].1);
-                if owns_centres_on(0, b.into()) {
-                    y0 = y0.max(lo(edge_y));
-                } else {
-                    y1 = y1.min(hi_before(edge_y));
-                }
-            }
-        }
         if x0 > x1 || y0 > y1 {
             return Ok(None);
         }

@@ -68,6 +68,23 @@ pub(crate) fn last_centre_before(m: i32) -> i32 {
     (m >> SUBPIXEL_BITS) - i32::from(m & 0xFF <= 0x80)
 }
 
+/// The last pixel row a triangle with vertex heights `ys` (sub-pixels) can cover: the last
+/// whose centre is at or above its lowest vertex, or strictly above it if two vertices share
+/// that height. A horizontal edge only limits the rows, and only a bottom one needs this: it does
+/// not own the centres on it, while a top one does (its row is the first whose centre is at or
+/// below the top vertex, where every walk starts anyway).
+#[inline(always)]
+pub(crate) fn last_row(ys: [i32; 3]) -> i32 {
+    let [a, b, c] = ys;
+    let lowest = a.max(b).max(c);
+    let shared = u32::from(a == lowest) + u32::from(b == lowest) + u32::from(c == lowest);
+    if shared > 1 {
+        last_centre_before(lowest)
+    } else {
+        last_centre_to(lowest)
+    }
+}
+
 /// One edge function: its coefficients and the vertex it starts from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct EdgeFunction {

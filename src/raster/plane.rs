@@ -536,10 +536,7 @@ impl<const N: usize> ExactPlanes<N> {
         let centre = |p: i32, v: i64| (i64::from(p) << SUBPIXEL_BITS) + (1 << 7) - v;
         let (px, py) = (centre(region.x0, vx), centre(region.y0, vy));
         for k in 0..N {
-            let (c0, nx, ny) = gradient(setup, attributes.vertex_values(k));
-            // c₀·area2 + nx·px + ny·py < 2⁸¹ + 2⁸²: Σ cₖ·Eₖ at the first pixel centre (the
-            // edges through vertex 0 vanish at it).
-            let n = i128::from(c0) * setup.area2 + dot2(nx, px, ny, py, false);
+            let (n, nx, ny) = exact_numerators(setup, (px, py), attributes.vertex_values(k));
             let step = planes.quotient(per_pixel(nx));
             if let (Some(slot), Some(x), Some(y), Some(s)) = (
                 planes.n.get_mut(k),
@@ -602,6 +599,26 @@ impl<const N: usize> ExactPlanes<N> {
                 .wrapping_add(self.half.get(k).copied().unwrap_or(0))
         })
     }
+}
+
+/// `Σ cₖ·Eₖ` at the pixel centre `(px, py)` from oriented vertex 0 and the numerator gradients
+/// (see [`gradient`]) of the plane through `values`.
+// One copy for every attribute on Cortex-M0 (flash: its `i128` products are long there).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
+fn exact_numerators(
+    setup: &TriangleSetup,
+    (px, py): (i64, i64),
+    values: [u16; 3],
+) -> (i128, i64, i64) {
+    let (c0, nx, ny) = gradient(setup, values);
+    // c₀·area2 + nx·px + ny·py < 2⁸¹ + 2⁸²: Σ cₖ·Eₖ at the first pixel centre (the edges
+    // through vertex 0 vanish at it).
+    (
+        i128::from(c0) * setup.area2 + dot2(nx, px, ny, py, false),
+        nx,
+        ny,
+    )
 }
 
 /// The numerator of a gradient per pixel in the planes' units from its numerator gradient per

@@ -39,7 +39,7 @@ use embedded_graphics::primitives::Rectangle;
 use crate::fixed_point::Coord;
 use crate::raster::arith::div_rem_u64;
 use crate::raster::compact::CompactTriangle;
-use crate::raster::edge::{first_centre_from, last_centre_before, owns_centres_on, TriangleSetup};
+use crate::raster::edge::{first_centre_from, last_row, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -477,24 +477,9 @@ pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region
     });
     let [e0, e1, e2] = &setup.edges;
     let edges = [e0, e1, e2];
-    // Horizontal edges only limit the rows: a top edge (b > 0) owns the centres on it, a
-    // bottom edge does not.
-    let (mut y0, mut y1) = (rows.y0, rows.y1);
-    // Edge k runs from vertex k + 1 (and a horizontal one stays at its height).
-    for k in 0..3 {
-        let (e, edge_y) = match k {
-            0 => (e0, o[1].1),
-            1 => (e1, o[2].1),
-            _ => (e2, o[0].1),
-        };
-        if e.a == 0 {
-            if owns_centres_on(0, e.b) {
-                y0 = y0.max(first_centre_from(edge_y));
-            } else {
-                y1 = y1.min(last_centre_before(edge_y));
-            }
-        }
-    }
+    // A horizontal bottom edge excludes the centres on it; every other limit of the rows is
+    // the region's.
+    let (y0, y1) = (rows.y0, rows.y1.min(last_row(o.map(|v| v.1))));
     // Row offsets from the region's first row (the planes' origin). A walk without rows (the
     // horizontal edges leave none) still comes from `assemble`: `Walk::empty`'s zeroed fields
     // would cost a call to clear memory on Cortex-M.
