@@ -41,7 +41,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::raster::arith::{div_rem_u32, mul_i32_wide};
-use crate::raster::edge::{first_centre_from, last_centre_to, last_row, owns_centres_on};
+use crate::raster::edge::{first_centre_from, last_centre_before, last_centre_to, owns_centres_on};
 use crate::raster::walk::{Boundary, Walk};
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
@@ -189,11 +189,18 @@ impl CompactTriangle {
         let x0 = lo(min_x).max(cx);
         let x1 = hi(max_x).min(last(cx, clip.size.width));
         let y0 = lo(min_y).max(cy);
-        let y1 = last_row([p[0].1, p[1].1, p[2].1]).min(last(cy, clip.size.height));
+        let mut y1 = hi(max_y).min(last(cy, clip.size.height));
 
         // Edges opposite oriented vertices 0, 1, 2: from o[1] to o[2], o[2] to o[0], o[0] to o[1].
         let ends = [(o[1], o[2]), (o[2], o[0]), (o[0], o[1])];
         let coef = ends.map(|(s, e)| (s.1 - e.1, e.0 - s.0));
+        // A horizontal edge only limits the rows, and only a bottom one needs it: it does not
+        // own the centres on it (see `last_row`, the general set-up's form of this).
+        for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
+            if a == 0 && !owns_centres_on(0, b.into()) {
+                y1 = y1.min(last_centre_before(s.1.wrapping_add(p[0].1)));
+            }
+        }
         if x0 > x1 || y0 > y1 {
             return Ok(None);
         }
