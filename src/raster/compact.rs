@@ -14,7 +14,7 @@
 //! the smallest (under 8 × 8 px) from the same set-up a row of lanes at a time
 //! (`tiny`). The `*_compact` methods take
 //! only this path and reject larger triangles, which keeps a firmware that uses only them small:
-//! the Gouraud rasterizer links in about 5.7 KB on a Cortex-M0 (see the README's footprint).
+//! the Gouraud rasterizer links in about 4.7 KB on a Cortex-M0 (see the README's footprint).
 //!
 //! Coverage is the same exact top-left rule as everywhere else. Colours are within 2⁻¹⁰ LSB of
 //! the exact plane before the final truncation (the barycentric gradients carry 32 fractional
