@@ -195,7 +195,9 @@ impl CompactTriangle {
         let ends = [(o[1], o[2]), (o[2], o[0]), (o[0], o[1])];
         let coef = ends.map(|(s, e)| (s.1 - e.1, e.0 - s.0));
         // A horizontal edge only limits the rows, and only a bottom one needs it: it does not
-        // own the centres on it (see `last_row`, the general set-up's form of this).
+        // own the centres on it (`last_row` states this for the general set-up; here it stays a
+        // loop over the edges, which LLVM compiles into the inlined walks of the Cortex-M4
+        // without costing their span loops registers).
         for (&(a, b), &(s, _)) in coef.iter().zip(&ends) {
             if a == 0 && !owns_centres_on(0, b.into()) {
                 y1 = y1.min(last_centre_before(s.1.wrapping_add(p[0].1)));

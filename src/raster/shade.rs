@@ -148,8 +148,9 @@ fn shade_walked<const N: usize>(
 
 /// [`shade_walked`] on Cortex-M0, where flash is scarcest: every triangle, compact or not, goes
 /// through one set-up and one walk per kind of span steps, the shader called through a vtable
-/// (a call a span, 3–8 % more instructions a pixel on large triangles). A firmware drawing
-/// through `draw` and `draw_into` then links the walk once, not once per shader and set-up.
+/// (a call a span: a few per cent more instructions a pixel, see `docs/benchmarks.md`). A
+/// firmware drawing through `draw` and `draw_into` then links the walk once, not once per shader
+/// and set-up.
 #[cfg(armv6m)]
 #[inline(never)]
 fn shade_dyn<T, const N: usize>(
