@@ -111,12 +111,6 @@ pub fn pixel_corner(i: i32) -> Coord {
     Coord::from_bits(raw.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32)
 }
 
-/// Raw sub-pixel value of a coordinate, widened.
-#[inline]
-pub(crate) fn raw(c: Coord) -> i64 {
-    i64::from(c.to_bits())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

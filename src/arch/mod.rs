@@ -34,6 +34,10 @@ pub(crate) const NO_CLZ: bool = cfg!(armv6m);
 /// matters more than a host's branch predictor.
 pub(crate) const CORTEX_M: bool = cfg!(any(armv6m, armv7m));
 
+/// ARMv6-M: the parts with the least flash (16–32 KB on a micro:bit's nRF51), where a loop's
+/// second copy for speed costs more than it saves: code size first where the two conflict.
+pub(crate) const SIZE_OVER_SPEED: bool = cfg!(armv6m);
+
 /// A 32-bit hardware divider (ARMv7-M, and every host): a 32-bit division is one instruction
 /// (on Cortex-M0 it is a library loop).
 pub(crate) const HAS_DIVIDER: bool = !cfg!(armv6m);

@@ -22,7 +22,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::arch::LANES;
+use crate::arch::{LANES, SIZE_OVER_SPEED};
 use crate::rect;
 
 /// Drops the next `n` items of `colors`; `false` if it ran out first. In steps of at most
@@ -84,7 +84,7 @@ pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
 /// Every `DrawTarget` method takes any input: `fill_solid` and `fill_contiguous` accept any
 /// `Rectangle` (corners anywhere in `i32`, sides up to `u32::MAX`, so reaching past `i32::MAX`)
 /// and write exactly its pixels that lie inside the buffer, nothing when none do; the clip is
-/// computed in `i64`, and only the rows inside are visited. `draw_iter` ignores pixels outside.
+/// exact (no overflow), and only the rows inside are visited. `draw_iter` ignores pixels outside.
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
@@ -206,6 +206,40 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
         self.span_mut(y, x, end)
     }
 
+    /// The pixels of the `len` from `start` (one row) inside the buffer, and how many of them
+    /// lie left of it; `None` if none is inside.
+    #[inline(always)]
+    fn row_part(&mut self, start: Point, len: u32) -> Option<(&mut [C], u32)> {
+        let y = u32::try_from(start.y).ok().filter(|&y| y < self.height)?;
+        // In 32 bits: the first column inside, a ≥ start.x, is `skip` (below 2³²) to its right.
+        let a = start.x.max(0) as u32;
+        let skip = a.wrapping_sub(start.x as u32);
+        let b = a.saturating_add(len.checked_sub(skip)?).min(self.width);
+        if a >= b {
+            return None;
+        }
+        // a < b ≤ width and y < height: the range lies inside `width · height ≤ len`.
+        let base = y as usize * self.width as usize;
+        let row = self.pixels.get_mut(base + a as usize..base + b as usize)?;
+        Some((row, skip))
+    }
+
+    /// [`fill_contiguous`](DrawTarget::fill_contiguous) of the `len` pixels from `start` (one
+    /// row, such as a span of the rasterizer's `draw`), with one copy of the colours' loop: the
+    /// form for [`SIZE_OVER_SPEED`] (elsewhere spans wholly inside take a loop of their own,
+    /// which keeps the colours' state in registers).
+    #[inline(always)]
+    fn fill_row_part<I: IntoIterator<Item = C>>(&mut self, start: Point, len: u32, colors: I) {
+        if let Some((row, skip)) = self.row_part(start, len) {
+            let mut colors = colors.into_iter();
+            if skip_colors(&mut colors, skip.into()) {
+                for (dst, c) in row.iter_mut().zip(colors) {
+                    *dst = c;
+                }
+            }
+        }
+    }
+
     /// The `len` pixels of row `y` starting at column `x`, if they are all inside the buffer.
     #[inline]
     pub fn row_mut(&mut self, x: i32, y: i32, len: u32) -> Option<&mut [C]> {
@@ -251,6 +285,10 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     where
         I: IntoIterator<Item = C>,
     {
+        if SIZE_OVER_SPEED && area.size.height == 1 {
+            self.fill_row_part(area.top_left, area.size.width, colors);
+            return Ok(());
+        }
         if let Some(row) = self.one_row(area) {
             for (dst, c) in row.iter_mut().zip(colors) {
                 *dst = c;
@@ -289,6 +327,12 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     /// Fills the pixels of `area` inside the buffer, for any `area` (see [`SliceFramebuffer`]):
     /// only the rows inside are visited.
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        if SIZE_OVER_SPEED && area.size.height == 1 {
+            if let Some((row, _)) = self.row_part(area.top_left, area.size.width) {
+                fill_row(row, color);
+            }
+            return Ok(());
+        }
         if let Some(row) = self.one_row(area) {
             fill_row(row, color);
             return Ok(());

@@ -21,6 +21,34 @@ pub(crate) fn mul_wide(a: u64, b: u64) -> u128 {
     }
 }
 
+/// `a · b` in full; without a long multiply from [`mul_i64_wide_parts`].
+#[inline]
+pub(crate) fn mul_i64_wide(a: i64, b: i64) -> i128 {
+    if NO_LONG_MULTIPLY {
+        mul_i64_wide_parts(a, b)
+    } else {
+        i128::from(a) * i128::from(b)
+    }
+}
+
+/// [`mul_i64_wide`] from four 32 × 32 → 64-bit products of the magnitudes: library calls on
+/// Cortex-M0, where [`mul_wide`]'s limbs are faster but this is smaller, for the general
+/// set-up's rare products. One copy on Cortex-M0 (flash).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline)]
+fn mul_i64_wide_parts(a: i64, b: i64) -> i128 {
+    let (m, n) = (a.unsigned_abs(), b.unsigned_abs());
+    let (m0, m1, n0, n1) = (m & 0xFFFF_FFFF, m >> 32, n & 0xFFFF_FFFF, n >> 32);
+    let middle = u128::from(m0 * n1) + u128::from(m1 * n0);
+    let p = ((u128::from(m1 * n1) << 64) + (middle << 32) + u128::from(m0 * n0)) as i128;
+    // At most 2¹²⁶ in magnitude: the negation cannot overflow.
+    if (a < 0) != (b < 0) {
+        p.wrapping_neg()
+    } else {
+        p
+    }
+}
+
 /// [`mul_wide`] from four 32 × 32 → 64-bit products of [`mul_32_limbs`].
 #[inline]
 fn mul_wide_limbs(a: u64, b: u64) -> u128 {
@@ -467,6 +495,39 @@ mod tests {
             let n = next() as u32;
             let d = (next() as u32) >> (i % 32);
             check(n, d);
+        }
+    }
+
+    /// The full products by parts against the native ones, at the ends of the range and at
+    /// random.
+    #[test]
+    fn products_by_parts_are_exact() {
+        let mut next = crate::random(0x9a27_5c0d_e000_0001);
+        let edges = [
+            0,
+            1,
+            -1,
+            2,
+            i64::MAX,
+            i64::MIN,
+            i64::MIN + 1,
+            1 << 32,
+            -(1 << 32) - 1,
+        ];
+        let check = |a: i64, b: i64| {
+            assert_eq!(
+                mul_i64_wide_parts(a, b),
+                i128::from(a) * i128::from(b),
+                "{a} {b}"
+            );
+        };
+        for a in edges {
+            for b in edges {
+                check(a, b);
+            }
+        }
+        for i in 0..200_000 {
+            check(next() as i64 >> (i % 64), (next() as i64) >> (i / 64 % 64));
         }
     }
 

@@ -22,7 +22,7 @@ use super::compact::{CompactTriangle, TooLarge};
 use super::edge::{first_centre_from, last_centre_to};
 use super::plane::{Attributes, Planes};
 use super::scan::{Kept, KeptWords, SmallScan};
-use super::shade::{fold_planes, shade, shade_general, SpanShader};
+use super::shade::{compact_or_region, fold_planes, shade, shade_general, SpanShader};
 use super::walk::Span;
 use crate::arch::LANES;
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
@@ -187,16 +187,10 @@ fn walked_rows<const N: usize>(
     band: Band,
     shader: &mut impl SpanShader<N>,
 ) {
-    match CompactTriangle::new(v, clip) {
-        Ok(None) => return,
-        Ok(Some(triangle)) => {
-            if compact_rows(&triangle, attributes, &band, shader).is_ok() {
-                return;
-            }
-        }
-        Err(TooLarge) => {}
+    let compact = |triangle: &CompactTriangle| compact_rows(triangle, attributes, &band, shader);
+    if let Some(region) = compact_or_region(v, clip, compact) {
+        shade_general(v, attributes, &region, Some(band), shader);
     }
-    shade_general(v, attributes, clip, Some(band), shader);
 }
 
 impl Band {

@@ -14,7 +14,7 @@
 //! the smallest (under 8 × 8 px) from the same set-up a row of lanes at a time
 //! (`tiny`). The `*_compact` methods take
 //! only this path and reject larger triangles, which keeps a firmware that uses only them small:
-//! the Gouraud rasterizer links in about 4.7 KB on a Cortex-M0 (see the README's footprint).
+//! the Gouraud rasterizer links in about 4.8 KB on a Cortex-M0 (see the README's footprint).
 //!
 //! Coverage is the same exact top-left rule as everywhere else. Colours are within 2⁻¹⁰ LSB of
 //! the exact plane before the final truncation (the barycentric gradients carry 32 fractional
@@ -41,8 +41,8 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::raster::arith::{div_rem_u32, mul_i32_wide};
-use crate::raster::edge::{first_centre_from, last_centre_before, last_centre_to, owns_centres_on};
-use crate::raster::walk::{Boundary, Walk};
+use crate::raster::edge::{last_centre_before, owns_centres_on};
+use crate::raster::walk::{bounds, Boundary, Region, Walk};
 
 /// Width and height of a compact triangle's bounding box stay below this many sub-pixel units
 /// (2¹⁹, that is 2048 pixels).
@@ -91,6 +91,33 @@ fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary> {
     } else {
         // Covered up to ⌊k/|a|⌋.
         Some(Boundary::from_parts(q, rem, qb, rem_step, m.get()))
+    }
+}
+
+/// What the compact set-up makes of a triangle over a clip rectangle.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Classified {
+    /// Nothing inside the clip rectangle is covered (or the vertices are collinear).
+    Empty,
+    Compact(CompactTriangle),
+    /// Not compact, with the pixels of its bounding box inside the clip rectangle (if any).
+    Large(Option<Region>),
+}
+
+impl Classified {
+    /// A compact triangle and its walk, or else the region the general set-up starts from
+    /// (`None` if nothing is covered).
+    #[cfg_attr(not(armv6m), allow(dead_code))]
+    #[inline(always)]
+    pub(crate) fn walk(self) -> Result<(CompactTriangle, Walk), Option<Region>> {
+        match self {
+            Classified::Empty => Err(None),
+            Classified::Compact(triangle) => match triangle.walk() {
+                Ok(walk) => Ok((triangle, walk)),
+                Err(TooLarge) => Err(Some(triangle.region())),
+            },
+            Classified::Large(region) => Err(region),
+        }
     }
 }
 
@@ -157,11 +184,23 @@ impl CompactTriangle {
         v: [(Coord, Coord); 3],
         clip: &Rectangle,
     ) -> Result<Option<CompactTriangle>, TooLarge> {
+        match Self::classify(v, clip) {
+            Classified::Compact(triangle) => Ok(Some(triangle)),
+            Classified::Empty => Ok(None),
+            Classified::Large(_) => Err(TooLarge),
+        }
+    }
+
+    /// [`new`](Self::new), with the region of a triangle that is not compact: the general
+    /// set-up's (one copy of the region's arithmetic for both set-ups).
+    #[inline(always)]
+    pub(crate) fn classify(v: [(Coord, Coord); 3], clip: &Rectangle) -> Classified {
         // In 32 bits throughout (Cortex-M0 forms each 64-bit operation from several).
         let p = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
-        let span = |a: i32, b: i32, c: i32| (a.min(b).min(c), a.max(b).max(c));
-        let (min_x, max_x) = span(p[0].0, p[1].0, p[2].0);
-        let (min_y, max_y) = span(p[0].1, p[1].1, p[2].1);
+        let bounds = bounds(p);
+        let [min_x, min_y, max_x, max_y] = bounds;
+        // Pixels whose centres lie in the bounding box, clipped.
+        let region = Region::within(bounds, clip);
         // The wrapping differences are the true ones (below 2³²).
         let limit = LIMIT as u32;
         let extent = (
@@ -169,27 +208,22 @@ impl CompactTriangle {
             max_y.wrapping_sub(min_y) as u32,
         );
         if extent.0 >= limit || extent.1 >= limit {
-            return Err(TooLarge);
+            return Classified::Large(region);
         }
+        // All but the centres on a horizontal bottom edge (below).
+        let Some(Region { x0, x1, y0, mut y1 }) = region else {
+            return Classified::Empty;
+        };
         // Vertices relative to the first one: every difference is below 2¹⁹.
         let rel = p.map(|q| (q.0.wrapping_sub(p[0].0), q.1.wrapping_sub(p[0].1)));
         // Products of factors below 2¹⁹: no 64 × 64-bit library calls on Cortex-M0.
         let cross = |u: (i32, i32), w: (i32, i32)| mul_i32_wide(u.0, w.1) - mul_i32_wide(u.1, w.0);
         let area2 = cross(rel[1], rel[2]);
         let Some(area) = NonZeroU64::new(area2.unsigned_abs()) else {
-            return Ok(None);
+            return Classified::Empty;
         };
         let order = if area2 > 0 { [0, 1, 2] } else { [0, 2, 1] };
         let o = order.map(|k| rel.get(k).copied().unwrap_or_default());
-
-        // Pixels whose centres lie in the bounding box, clipped (the first centre at or after a
-        // position, the last at or before it), but for the centres on a horizontal bottom edge.
-        let (lo, hi, last) = (first_centre_from, last_centre_to, last_of);
-        let (cx, cy) = (clip.top_left.x, clip.top_left.y);
-        let x0 = lo(min_x).max(cx);
-        let x1 = hi(max_x).min(last(cx, clip.size.width));
-        let y0 = lo(min_y).max(cy);
-        let mut y1 = hi(max_y).min(last(cy, clip.size.height));
 
         // Edges opposite oriented vertices 0, 1, 2: from o[1] to o[2], o[2] to o[0], o[0] to o[1].
         let ends = [(o[1], o[2]), (o[2], o[0]), (o[0], o[1])];
@@ -203,8 +237,8 @@ impl CompactTriangle {
                 y1 = y1.min(last_centre_before(s.1.wrapping_add(p[0].1)));
             }
         }
-        if x0 > x1 || y0 > y1 {
-            return Ok(None);
+        if y0 > y1 {
+            return Classified::Empty;
         }
         // The first pixel centre relative to vertex 0: inside the bounding box (so within i32),
         // below 2¹⁹.
@@ -214,7 +248,7 @@ impl CompactTriangle {
                 .wrapping_sub(v)
         };
         let (px, py) = (centre(x0, p[0].0), centre(y0, p[0].1));
-        Ok(Some(CompactTriangle {
+        Classified::Compact(CompactTriangle {
             setup: CompactSetup {
                 order,
                 a: [coef[1].0, coef[2].0],
@@ -233,11 +267,22 @@ impl CompactTriangle {
             y0,
             y1,
             extent,
-        }))
+        })
     }
 }
 
 impl CompactTriangle {
+    /// The pixels of the walk: the general set-up's region, should this one fail.
+    #[inline(always)]
+    pub(crate) fn region(&self) -> Region {
+        Region {
+            x0: self.x0,
+            y0: self.y0,
+            x1: self.x1,
+            y1: self.y1,
+        }
+    }
+
     /// The walk of the triangle over its pixels; `Err` if an edge value does not fit 32 bits
     /// (never for a compact triangle).
     #[inline(always)]
@@ -262,7 +307,6 @@ impl CompactTriangle {
         Walk::assemble(
             self.o.map(|v| v.1),
             self.origin.1,
-            self.coef.map(|c| c.0),
             (self.x0, self.y0),
             self.x1 - self.x0,
             (0, (self.y1 - self.y0) as u32 + 1),

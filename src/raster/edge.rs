@@ -15,7 +15,8 @@
 //! sign is the exact coverage decision — no rounding anywhere.
 //!
 
-use crate::fixed_point::{raw, Coord, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::raster::arith::mul_i64_wide;
 
 /// Vertices with every raw coordinate below this magnitude (2²⁹ sub-pixels, about two million
 /// pixels) are set up in `i64`: differences stay below 2³⁰, so every `a·x + b·y` formed during
@@ -38,7 +39,7 @@ pub(crate) fn dot2(a: i64, x: i64, b: i64, y: i64, narrow: bool) -> i128 {
 #[inline(never)]
 #[cold]
 fn dot2_wide(a: i64, x: i64, b: i64, y: i64) -> i128 {
-    i128::from(a) * i128::from(x) + i128::from(b) * i128::from(y)
+    mul_i64_wide(a, x) + mul_i64_wide(b, y)
 }
 
 /// The fill rule (Direct3D's top-left rule): whether an edge with coefficients `a = y_a − y_b`,
@@ -97,7 +98,12 @@ pub(crate) struct EdgeFunction {
 }
 
 impl EdgeFunction {
-    fn new(va: (i64, i64), vb: (i64, i64)) -> Self {
+    #[inline(always)]
+    fn new(va: (i32, i32), vb: (i32, i32)) -> Self {
+        let (va, vb) = (
+            (i64::from(va.0), i64::from(va.1)),
+            (i64::from(vb.0), i64::from(vb.1)),
+        );
         EdgeFunction {
             a: va.1 - vb.1,
             b: vb.0 - va.0,
@@ -132,17 +138,16 @@ impl EdgeFunction {
     }
 }
 
-/// Edge functions of a non-degenerate triangle, in positive orientation.
+/// A non-degenerate triangle in positive orientation: its vertices, doubled area and edge
+/// functions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct TriangleSetup {
-    /// `edges[k]` is the edge opposite vertex `order[k]`; it evaluates to `area2` at that vertex.
-    pub(crate) edges: [EdgeFunction; 3],
+    /// Raw sub-pixel positions (the `Coord` bits) of the oriented vertices.
+    pub(crate) oriented: [(i32, i32); 3],
     /// Twice the triangle's area in squared sub-pixel units; always positive.
     pub(crate) area2: i128,
     /// Which input vertex each of the oriented vertices is (`[0, 1, 2]` or `[0, 2, 1]`).
     pub(crate) order: [usize; 3],
-    /// Raw sub-pixel vertex positions, in input order.
-    pub(crate) vertices: [(i64, i64); 3],
     /// All raw coordinates are below 2²⁹ in magnitude, so the edge functions at pixel centres
     /// within the bounding box fit `i64`.
     pub(crate) narrow: bool,
@@ -154,43 +159,59 @@ impl TriangleSetup {
     /// Every `Coord` value is accepted; the area is formed in `i64` for vertices within about
     /// two million pixels of the origin and in `i128` beyond.
     pub(crate) fn new(v: [(Coord, Coord); 3]) -> Option<Self> {
-        let vertices = v.map(|(x, y)| (raw(x), raw(y)));
-        let narrow = vertices
-            .iter()
-            .all(|&(x, y)| x.abs() < NARROW_LIMIT && y.abs() < NARROW_LIMIT);
-        let [p0, p1, p2] = vertices;
+        let vertices = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
+        let narrow = vertices.iter().all(|&(x, y)| {
+            let inside = |c: i32| c.unsigned_abs() < NARROW_LIMIT as u32;
+            inside(x) && inside(y)
+        });
+        let [p0, p1, p2] = vertices.map(|(x, y)| (i64::from(x), i64::from(y)));
         let area2 = dot2(p1.0 - p0.0, p2.1 - p0.1, p0.0 - p2.0, p1.1 - p0.1, narrow);
-        let (order, area2, [o0, o1, o2]) = match area2 {
+        let [v0, v1, v2] = vertices;
+        let (order, area2, oriented) = match area2 {
             0 => return None,
-            a if a > 0 => ([0, 1, 2], a, [p0, p1, p2]),
-            a => ([0, 2, 1], -a, [p0, p2, p1]),
+            a if a > 0 => ([0, 1, 2], a, [v0, v1, v2]),
+            a => ([0, 2, 1], -a, [v0, v2, v1]),
         };
         Some(TriangleSetup {
-            edges: [
-                EdgeFunction::new(o1, o2),
-                EdgeFunction::new(o2, o0),
-                EdgeFunction::new(o0, o1),
-            ],
+            oriented,
             area2,
             order,
-            vertices,
             narrow,
         })
+    }
+
+    /// The edge opposite oriented vertex `k` (0, 1 or 2): from the next vertex to the one after;
+    /// it evaluates to `area2` at vertex `k`.
+    #[inline(always)]
+    pub(crate) fn edge(&self, k: usize) -> EdgeFunction {
+        let [o0, o1, o2] = self.oriented;
+        match k {
+            0 => EdgeFunction::new(o1, o2),
+            1 => EdgeFunction::new(o2, o0),
+            _ => EdgeFunction::new(o0, o1),
+        }
+    }
+
+    #[cfg(test)]
+    /// The three edges, opposite oriented vertices 0, 1 and 2.
+    pub(crate) fn edges(&self) -> [EdgeFunction; 3] {
+        [self.edge(0), self.edge(1), self.edge(2)]
     }
 
     #[cfg(test)]
     /// Whether the centre of pixel `(i, j)` is covered under the top-left rule.
     pub(crate) fn covers(&self, i: i32, j: i32) -> bool {
-        self.edges
+        self.edges()
             .iter()
             .all(|e| e.value_at(i64::from(i), i64::from(j)) >= 0)
     }
 
+    #[cfg(test)]
     /// The inclusive pixel bounding box `(i_min, j_min, i_max, j_max)` of all pixel centres that lie
     /// within the triangle's bounding box (possibly empty: `i_min > i_max`).
     pub(crate) fn pixel_bounds(&self) -> (i64, i64, i64, i64) {
-        let xs = self.vertices.map(|v| v.0);
-        let ys = self.vertices.map(|v| v.1);
+        let xs = self.oriented.map(|v| i64::from(v.0));
+        let ys = self.oriented.map(|v| i64::from(v.1));
         let lo = |v: [i64; 3]| {
             (v[0].min(v[1]).min(v[2]) - HALF_PIXEL + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS
         };
@@ -269,7 +290,7 @@ mod tests {
             assert_eq!(narrow.area2, area2(v));
             let (i0, j0, i1, j1) = narrow.pixel_bounds();
             for (i, j) in [(i0, j0), (i1, j0), (i0, j1), (i1, j1), (0, 0)] {
-                for e in &narrow.edges {
+                for e in &narrow.edges() {
                     assert_eq!(e.exact_at(i, j, true), e.exact_at(i, j, false));
                 }
             }

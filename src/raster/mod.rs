@@ -10,7 +10,8 @@
 //!   stepping one start and one end boundary column a row (exact quotient and remainder, no
 //!   rounding, in 32 bits for any triangle). `compact` sets the same walk up in 32-bit
 //!   arithmetic for triangles under 2048 px, `walk` itself exactly in `i64`/`i128` for the
-//!   others; `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
+//!   others; both share the pixel region and the choice of edges for each side of the rows.
+//!   `tiny` (x86-64) draws triangles under 8 px a row of lanes at a time.
 //! * `scan` — small triangles (under 16 px) for shaders that opt in: each row's run found by
 //!   testing its pixels' edge values, the same spans without the walk's divisions.
 //! * `plane` — attributes (colour channels now) interpolated barycentrically by fixed-point

@@ -527,13 +527,8 @@ impl<const N: usize> ExactPlanes<N> {
         (planes.x0, planes.y0) = (region.x0, region.y0);
         // The region's first pixel centre from oriented vertex 0, sub-pixels: both within
         // 2³¹, so below 2³³.
-        let (vx, vy) = setup
-            .order
-            .first()
-            .and_then(|&k| setup.vertices.get(k))
-            .copied()
-            .unwrap_or((0, 0));
-        let centre = |p: i32, v: i64| (i64::from(p) << SUBPIXEL_BITS) + (1 << 7) - v;
+        let (vx, vy) = setup.oriented[0];
+        let centre = |p: i32, v: i32| (i64::from(p) << SUBPIXEL_BITS) + (1 << 7) - i64::from(v);
         let (px, py) = (centre(region.x0, vx), centre(region.y0, vy));
         for k in 0..N {
             let (n, nx, ny) = exact_numerators(setup, (px, py), attributes.vertex_values(k));
@@ -638,7 +633,7 @@ pub(crate) fn gradient(setup: &TriangleSetup, values: [u16; 3]) -> (i64, i64, i6
     let c = setup
         .order
         .map(|v| i64::from(values.get(v).copied().unwrap_or(0)));
-    let [_, e1, e2] = &setup.edges;
+    let (e1, e2) = (setup.edge(1), setup.edge(2));
     let (d1, d2) = (c[1] - c[0], c[2] - c[0]);
     (c[0], d1 * e1.a + d2 * e2.a, d1 * e1.b + d2 * e2.b)
 }

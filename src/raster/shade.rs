@@ -10,7 +10,7 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::band::Band;
-use super::compact::{CompactTriangle, TooLarge};
+use super::compact::{Classified, CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
 use super::scan::SmallScan;
@@ -119,30 +119,33 @@ fn shade_walked<const N: usize>(
     clip: &Rectangle,
     shader: &mut impl SpanShader<N>,
 ) {
-    #[cfg(sse2_rows)]
-    if shader.row_width().is_some() {
-        // Tiny triangles a row of lanes at a time, from the compact set-up.
-        match CompactTriangle::new(v, clip) {
-            Ok(None) => return,
-            Ok(Some(triangle)) => {
-                if shade_compact_triangle(&triangle, attributes, shader).is_ok() {
-                    return;
-                }
-            }
-            Err(TooLarge) => {}
-        }
-        shade_general(v, attributes, clip, None, shader);
-        return;
-    }
     #[cfg(armv6m)]
     {
         shade_dyn(v, attributes, clip, shader);
     }
     #[cfg(not(armv6m))]
-    match compact_set_up(v, attributes, clip) {
-        Ok(None) => {}
-        Ok(Some((walk, planes))) => fold_planes(walk, &planes, shader),
-        Err(TooLarge) => shade_general(v, attributes, clip, None, shader),
+    {
+        // (On x86-64 with tiny triangles a row of lanes at a time.)
+        let compact =
+            |triangle: &CompactTriangle| shade_compact_triangle(triangle, attributes, shader);
+        if let Some(region) = compact_or_region(v, clip, compact) {
+            shade_general(v, attributes, &region, None, shader);
+        }
+    }
+}
+
+/// Hands the triangle `v` over `clip` to `compact` if it is compact; the region the general
+/// set-up starts from if it is not (or `compact` fails), `None` if done or nothing is covered.
+#[inline(always)]
+pub(super) fn compact_or_region(
+    v: [(Coord, Coord); 3],
+    clip: &Rectangle,
+    compact: impl FnOnce(&CompactTriangle) -> Result<(), TooLarge>,
+) -> Option<Region> {
+    match CompactTriangle::classify(v, clip) {
+        Classified::Empty => None,
+        Classified::Compact(triangle) => compact(&triangle).err().map(|_| triangle.region()),
+        Classified::Large(region) => region,
     }
 }
 
@@ -160,11 +163,14 @@ fn shade_dyn<T, const N: usize>(
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
     let exact;
-    let (walk, planes) = match compact_set_up(v, attributes, clip) {
-        Ok(None) => return,
-        Ok(Some((walk, planes))) => (walk, GeneralPlanes::Stepped(planes)),
-        Err(TooLarge) => {
-            let Some((walk, planes, region)) = general_set_up(v, attributes, clip, None) else {
+    let (walk, planes) = match CompactTriangle::classify(v, clip).walk() {
+        Ok((triangle, walk)) => {
+            let planes = Planes::compact(&triangle.setup, attributes);
+            (walk, GeneralPlanes::Stepped(planes))
+        }
+        Err(None) => return,
+        Err(Some(region)) => {
+            let Some((walk, planes)) = general_set_up(v, attributes, &region, None) else {
                 return;
             };
             exact = planes;
@@ -172,23 +178,6 @@ fn shade_dyn<T, const N: usize>(
         }
     };
     fold_general(walk, &planes, shader);
-}
-
-/// The compact set-up's walk and planes of the triangle `v` over `clip`: `Ok(None)` if nothing
-/// is covered, `Err(TooLarge)` if it is not compact.
-#[inline(always)]
-fn compact_set_up<const N: usize>(
-    v: [(Coord, Coord); 3],
-    attributes: &Attributes<N>,
-    clip: &Rectangle,
-) -> Result<Option<(Walk, Planes<N>)>, TooLarge> {
-    match CompactTriangle::new(v, clip)? {
-        None => Ok(None),
-        Some(triangle) => {
-            let walk = triangle.walk()?;
-            Ok(Some((walk, Planes::compact(&triangle.setup, attributes))))
-        }
-    }
 }
 
 /// [`shade`] for compact triangles only (bounding box under 2048 × 2048 px); `Err(TooLarge)`
@@ -274,39 +263,39 @@ pub(super) fn fold_planes<const N: usize, S: SpanShader<N> + ?Sized>(
 pub(super) fn shade_general<T, const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
-    clip: &Rectangle,
+    region: &Region,
     band: Option<Band>,
     shader: &mut dyn SpanShader<N, Steps = T>,
 ) {
-    if let Some((walk, exact, region)) = general_set_up(v, attributes, clip, band) {
-        fold_general(walk, &GeneralPlanes::new(&exact, &region), shader);
+    if let Some((walk, exact)) = general_set_up(v, attributes, region, band) {
+        fold_general(walk, &GeneralPlanes::new(&exact, region), shader);
     }
 }
 
-/// The general set-up of the triangle `v` over `clip`: its walk over the rows of `band` (all
-/// rows without one), its exact planes and the region they are over (the whole region, whatever
-/// the band: the walk counts its rows from the region's first, so each pixel gets the whole
-/// walk's values). `None` if nothing is covered.
+/// The general set-up of the triangle `v` over `region`, the pixels of its bounding box inside
+/// the clip rectangle (not empty): its walk over the rows of `band` (all rows without one) and
+/// its exact planes over the whole region, whatever the band (the walk counts its rows from the
+/// region's first, so each pixel gets the whole walk's values). `None` if the vertices are
+/// collinear or the band has no rows of the region.
 #[inline(always)]
 fn general_set_up<const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
-    clip: &Rectangle,
+    region: &Region,
     band: Option<Band>,
-) -> Option<(Walk, ExactPlanes<N>, Region)> {
+) -> Option<(Walk, ExactPlanes<N>)> {
     // By reference: moving the setup out of the `Option` would copy it.
     let setup = TriangleSetup::new(v);
     let setup = setup.as_ref()?;
-    let region = Region::new(setup, clip)?;
     let rows = match band {
-        None => region,
+        None => *region,
         Some(band) => {
             let (y0, y1, _) = band.restrict(region.y0, region.y1)?;
-            Region { y0, y1, ..region }
+            Region { y0, y1, ..*region }
         }
     };
-    let exact = ExactPlanes::new(setup, &region, attributes);
-    Some((general_walk(setup, &region, &rows), exact, region))
+    let exact = ExactPlanes::new(setup, region, attributes);
+    Some((general_walk(setup, region, &rows), exact))
 }
 
 /// [`fold_planes`] for the general planes: spans of stepped planes as there, those of exact

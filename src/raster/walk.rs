@@ -38,8 +38,8 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::Coord;
 use crate::raster::arith::div_rem_u64;
-use crate::raster::compact::CompactTriangle;
-use crate::raster::edge::{first_centre_from, last_row, TriangleSetup};
+use crate::raster::compact::{last_of, CompactTriangle};
+use crate::raster::edge::{first_centre_from, last_centre_to, last_row, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -209,9 +209,9 @@ impl Walk {
 
     /// The walk of an oriented triangle over the columns `origin.0 ..= origin.0 + last` and the
     /// row offsets `first .. rows` from `origin.1`. Its vertices are at heights `base + ys[k]`
-    /// (sub-pixels), the edge opposite vertex `k` has an x coefficient of sign `a[k]`, and
-    /// `boundary(k, row)` is that edge's boundary at row offset `row`. The compact and the
-    /// general set-up differ only in `boundary` (32-bit, or exact in `i64`/`i128`).
+    /// (sub-pixels), and `boundary(k, row)` is the boundary of the edge opposite vertex `k` at
+    /// row offset `row`. The compact and the general set-up differ only in `boundary` (32-bit,
+    /// or exact in `i64`/`i128`).
     ///
     /// The vertices by height: top, middle, bottom. The long edge (top to bottom, opposite the
     /// middle vertex) bounds one side of every row; the other side has the upper edge (opposite
@@ -224,56 +224,26 @@ impl Walk {
     pub(crate) fn assemble<E>(
         ys: [i32; 3],
         base: i32,
-        a: [i32; 3],
         origin: (i32, i32),
         last: i32,
         (first, rows): (u32, u32),
         boundary: impl Fn(usize, u32) -> Result<Boundary, E>,
     ) -> Result<Walk, E> {
-        // Without bounds checks: k is always 0, 1 or 2.
-        let pick = |v: [i32; 3], k: usize| match k {
-            0 => v[0],
-            1 => v[1],
-            _ => v[2],
-        };
-        let (mut top, mut middle, mut bottom) = (0, 1, 2);
-        if ys[1] < ys[0] {
-            (top, middle) = (1, 0);
-        }
-        if pick(ys, bottom) < pick(ys, middle) {
-            (middle, bottom) = (bottom, middle);
-            if pick(ys, middle) < pick(ys, top) {
-                (top, middle) = (middle, top);
-            }
-        }
-        let (upper, lower) = (pick(a, bottom), pick(a, top));
-        let (pair, next, switch) = if upper == 0 {
-            let only = boundary(top, first)?;
-            (only, only, rows)
-        } else if lower == 0 {
-            let only = boundary(bottom, first)?;
-            (only, only, rows)
+        let plan = Plan::new(ys, base, origin.1, (first, rows));
+        let (pair_edge, next_edge) = (usize::from(plan.pair), usize::from(plan.next));
+        let pair = boundary(pair_edge, first)?;
+        let next = if next_edge == pair_edge {
+            pair
         } else {
-            let middle_y = pick(ys, middle).wrapping_add(base);
-            // First row whose centre is not above the middle vertex, as an offset from the
-            // origin. (`max` and `min`, not `clamp`: its bounds check is a panic path where it
-            // is not inlined.)
-            let switch = first_centre_from(middle_y)
-                .wrapping_sub(origin.1)
-                .max(first as i32)
-                .min(rows as i32) as u32;
-            (
-                boundary(bottom, first)?,
-                boundary(top, switch.min(rows - 1))?,
-                switch,
-            )
+            boundary(next_edge, plan.switch.min(rows - 1))?
         };
-        let single = boundary(middle, first)?;
-        let (left, right, pair_left) = if pick(a, middle) > 0 {
-            (single, pair, false)
+        let single = boundary(usize::from(plan.single), first)?;
+        let (left, right) = if plan.pair_left {
+            (pair, single)
         } else {
-            (pair, single, true)
+            (single, pair)
         };
+        let (pair_left, switch) = (plan.pair_left, plan.switch);
         Ok(Walk::new(
             (left, right),
             (next, pair_left, switch),
@@ -384,6 +354,78 @@ impl Walk {
     }
 }
 
+/// The bounding box `[min_x, min_y, max_x, max_y]` of the vertices `p`.
+#[inline(always)]
+pub(crate) fn bounds(p: [(i32, i32); 3]) -> [i32; 4] {
+    let span = |a: i32, b: i32, c: i32| (a.min(b).min(c), a.max(b).max(c));
+    let (min_x, max_x) = span(p[0].0, p[1].0, p[2].0);
+    let (min_y, max_y) = span(p[0].1, p[1].1, p[2].1);
+    [min_x, min_y, max_x, max_y]
+}
+
+/// Which edges bound a walk's rows, from the vertices' heights (see [`Walk::assemble`]): all
+/// a set-up needs to ask for the walk's boundaries. One copy for both set-ups on Cortex-M0
+/// (flash).
+#[derive(Debug, Clone, Copy)]
+struct Plan {
+    /// The edge that bounds one side of every row (the long one, opposite the middle vertex).
+    single: u8,
+    /// The other side's edge in the first rows, and the one from row offset `switch` on (the
+    /// same edge where that side has only one).
+    pair: u8,
+    next: u8,
+    /// Whether `pair` and `next` bound the rows' start.
+    pair_left: bool,
+    switch: u32,
+}
+
+impl Plan {
+    /// The plan of the rows `first .. rows` from row `origin_y` of a positively oriented
+    /// triangle whose vertices are at heights `base + ys[k]` (sub-pixels).
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    fn new(ys: [i32; 3], base: i32, origin_y: i32, (first, rows): (u32, u32)) -> Self {
+        // The vertices by height, with their indices.
+        let mut v = [(ys[0], 0), (ys[1], 1), (ys[2], 2)];
+        if v[1].0 < v[0].0 {
+            v.swap(0, 1);
+        }
+        if v[2].0 < v[1].0 {
+            v.swap(1, 2);
+            if v[1].0 < v[0].0 {
+                v.swap(0, 1);
+            }
+        }
+        let [(top_y, top), (middle_y, middle), (bottom_y, bottom)] = v;
+        // The upper edge (opposite the bottom vertex) or the lower one (opposite the top vertex)
+        // may be horizontal.
+        let (pair, next, switch) = if top_y == middle_y {
+            (top, top, rows)
+        } else if middle_y == bottom_y {
+            (bottom, bottom, rows)
+        } else {
+            // First row whose centre is not above the middle vertex, as an offset from the
+            // origin. (`max` and `min`, not `clamp`: its bounds check is a panic path where it
+            // is not inlined.)
+            let switch = first_centre_from(middle_y.wrapping_add(base))
+                .wrapping_sub(origin_y)
+                .max(first as i32)
+                .min(rows as i32) as u32;
+            (bottom, top, switch)
+        };
+        // The long edge, from vertex `middle + 1` to `middle + 2`, bounds the rows' end if it
+        // runs down, from the top vertex (its x coefficient, the first height less the second,
+        // is then negative: the heights differ, the triangle not being degenerate).
+        Plan {
+            single: middle,
+            pair,
+            next,
+            pair_left: matches!((middle, top), (0, 1) | (1, 2) | (2, 0)),
+            switch,
+        }
+    }
+}
+
 /// The pixel rectangle a triangle is traversed over: its pixel bounding box clipped to a target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Region {
@@ -399,21 +441,27 @@ pub(crate) struct Region {
 
 impl Region {
     /// The part of the triangle's pixel bounding box inside `clip`, or `None` if they don't meet.
+    #[inline(always)]
     pub fn new(setup: &TriangleSetup, clip: &Rectangle) -> Option<Region> {
-        let (bx0, by0, bx1, by1) = setup.pixel_bounds();
-        let cx0 = i64::from(clip.top_left.x);
-        let cy0 = i64::from(clip.top_left.y);
-        let cx1 = cx0 + i64::from(clip.size.width) - 1;
-        let cy1 = cy0 + i64::from(clip.size.height) - 1;
-        let (x0, y0) = (bx0.max(cx0), by0.max(cy0));
-        let (x1, y1) = (bx1.min(cx1), by1.min(cy1));
-        // Both bounds are within ±2^23 (the vertex range) and within i32 (the clip): no truncation.
-        (x0 <= x1 && y0 <= y1).then_some(Region {
-            x0: x0 as i32,
-            y0: y0 as i32,
-            x1: x1 as i32,
-            y1: y1 as i32,
-        })
+        Region::within(bounds(setup.oriented), clip)
+    }
+
+    /// The pixels whose centres lie in the box `[min_x, min_y, max_x, max_y]` (raw [`Coord`]
+    /// bits, see [`bounds`]), inside `clip`; `None` if there are none. In 32 bits: pixel
+    /// indices of `Coord` positions and the clip's last pixel (clamped) fit `i32`.
+    #[inline(always)]
+    pub(crate) fn within(
+        [min_x, min_y, max_x, max_y]: [i32; 4],
+        clip: &Rectangle,
+    ) -> Option<Region> {
+        let (cx, cy) = (clip.top_left.x, clip.top_left.y);
+        let region = Region {
+            x0: first_centre_from(min_x).max(cx),
+            x1: last_centre_to(max_x).min(last_of(cx, clip.size.width)),
+            y0: first_centre_from(min_y).max(cy),
+            y1: last_centre_to(max_y).min(last_of(cy, clip.size.height)),
+        };
+        (region.x0 <= region.x1 && region.y0 <= region.y1).then_some(region)
     }
 
     /// Columns in the region.
@@ -469,14 +517,7 @@ const fn open_boundary(end: bool) -> Boundary {
 #[inline(never)]
 pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region) -> Walk {
     // Oriented vertices (raw `Coord` bits, so `i32`).
-    let o = setup.order.map(|k| {
-        setup
-            .vertices
-            .get(k)
-            .map_or((0, 0), |v| (v.0 as i32, v.1 as i32))
-    });
-    let [e0, e1, e2] = &setup.edges;
-    let edges = [e0, e1, e2];
+    let o = setup.oriented;
     // A horizontal bottom edge excludes the centres on it; every other limit of the rows is
     // the region's.
     let (y0, y1) = (rows.y0, rows.y1.min(last_row(o.map(|v| v.1))));
@@ -494,16 +535,11 @@ pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region
     let walk = Walk::assemble(
         o.map(|v| v.1),
         0,
-        edges.map(|e| e.a.signum() as i32),
         (region.x0, region.y0),
         region.x1.wrapping_sub(region.x0),
         (first, end),
         |k, row| {
-            let e = match k {
-                0 => e0,
-                1 => e1,
-                _ => e2,
-            };
+            let e = setup.edge(k);
             let y = i64::from(region.y0) + i64::from(row);
             // Exact at a pixel of the bounding box; far off a used edge's rows the value is
             // clamped (only its sign and size matter there: the boundary is not read).
@@ -719,7 +755,7 @@ mod tests {
             general += 1;
             // An edge whose boundary column reaches 2³⁰ or more from the region, with spans in
             // the clip.
-            let steep = setup.edges.iter().any(|e| {
+            let steep = setup.edges().iter().any(|e| {
                 let k = e.value_at(region.x0.into(), region.y0.into());
                 let reach = k.abs() + i128::from(e.b.abs()) * i128::from(region.height());
                 e.a != 0 && reach / i128::from(e.a.abs()) >= 1 << 30

@@ -248,7 +248,7 @@ impl NormalPlane {
         // dc_k/dx per pixel: the edge opposite input vertex k changes by 256·a per pixel.
         let gradient = |vertex: usize| {
             let j = setup.order.iter().position(|&o| o == vertex).unwrap_or(0);
-            let a = setup.edges.get(j).map_or(0, |e| e.a);
+            let a = setup.edge(j).a;
             inverse.scale(i128::from(a) << 8, STEP_BITS)
         };
         let (gu, gv) = (gradient(0), gradient(1));
