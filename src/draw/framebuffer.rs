@@ -376,6 +376,54 @@ mod tests {
         assert!(SliceFramebuffer::new(&mut [Gray8::BLACK; 5], 2, 3).is_none());
     }
 
+    /// The one-row fills of `SIZE_OVER_SPEED` targets (one clipped row) write what the other
+    /// targets' fills write, for rows anywhere in `i32` and lengths up to `u32::MAX`.
+    #[test]
+    fn clipped_row_fills_match_the_fills() {
+        let mut next = crate::random(0x0f11_0e00_0000_0001);
+        let (width, height) = (7, 3);
+        let starts = [
+            i32::MIN,
+            -9,
+            -7,
+            -1,
+            0,
+            1,
+            5,
+            6,
+            7,
+            8,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        let lens = [0, 1, 2, 6, 7, 8, 16, 1 << 31, u32::MAX];
+        let check = |x: i32, y: i32, len: u32| {
+            let (mut want, mut got) = ([Gray8::BLACK; 21], [Gray8::BLACK; 21]);
+            let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
+            let colors = || (1..=255).map(Gray8::new);
+            let mut fb = SliceFramebuffer::new(&mut want, width, height).unwrap();
+            fb.fill_contiguous(&area, colors()).unwrap();
+            let below = Point::new(x, y.wrapping_add(1));
+            fb.fill_solid(&Rectangle::new(below, area.size), Gray8::WHITE)
+                .unwrap();
+            let mut fb = SliceFramebuffer::new(&mut got, width, height).unwrap();
+            fb.fill_row_part(area.top_left, len, colors());
+            if let Some((row, _)) = fb.row_part(below, len) {
+                fill_row(row, Gray8::WHITE);
+            }
+            assert_eq!(got, want, "({x}, {y}) + {len}");
+        };
+        for x in starts {
+            for len in lens {
+                check(x, (next() % 5) as i32 - 1, len);
+            }
+        }
+        for _ in 0..2_000 {
+            let (x, y, len) = (next() % 24, next() % 5, next() % 24);
+            check(x as i32 - 12, y as i32 - 1, len as u32);
+        }
+    }
+
     /// One-row areas (the fast path): inside, partly outside on either side, empty, past the
     /// last row, and far outside.
     #[test]
