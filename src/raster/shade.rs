@@ -125,7 +125,8 @@ fn shade_walked<const N: usize>(
     }
     #[cfg(not(armv6m))]
     {
-        // (On x86-64 with tiny triangles a row of lanes at a time.)
+        // The compact walk (on x86-64 tiny triangles a row of lanes at a time), else the
+        // general one.
         let compact =
             |triangle: &CompactTriangle| shade_compact_triangle(triangle, attributes, shader);
         if let Some(region) = compact_or_region(v, clip, compact) {
