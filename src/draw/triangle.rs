@@ -35,7 +35,7 @@ use crate::raster::band::RowWindow;
 use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
-use crate::raster::walk::{Region, Span, Spans};
+use crate::raster::walk::{Span, Spans};
 use crate::raster::{shade, shade_compact, SpanShader};
 
 /// A triangle vertex: sub-pixel position and colour.
@@ -512,23 +512,18 @@ enum Shading {
 impl<C: GouraudColor> ShadedSpans<C> {
     fn new(triangle: &GouraudTriangle<C>, clip: &Rectangle) -> Self {
         let (positions, channels) = (triangle.positions(), triangle.channels());
-        match CompactTriangle::new(positions, clip) {
-            Ok(None) => return Self::empty(),
-            Ok(Some(compact)) => {
-                if let Ok(walk) = compact.walk() {
-                    let planes = Planes::compact(&compact.setup, &channels);
-                    let origin = (compact.x0, compact.y0);
-                    return Self::stepped(Spans::compact(walk), planes, origin);
-                }
+        let region = match CompactTriangle::classify(positions, clip).walk() {
+            Ok((compact, walk)) => {
+                let planes = Planes::compact(&compact.setup, &channels);
+                let origin = (compact.x0, compact.y0);
+                return Self::stepped(Spans::compact(walk), planes, origin);
             }
-            Err(TooLarge) => {}
-        }
+            Err(None) => return Self::empty(),
+            Err(Some(region)) => region,
+        };
         let setup = TriangleSetup::new(positions);
         // By reference: moving the setup out of the `Option` would copy it.
         let Some(setup) = setup.as_ref() else {
-            return Self::empty();
-        };
-        let Some(region) = Region::new(setup, clip) else {
             return Self::empty();
         };
         let spans = Spans::new(setup, region);

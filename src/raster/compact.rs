@@ -99,6 +99,7 @@ fn boundary(a: i32, b: i32, offset: (i32, i32)) -> Option<Boundary> {
 pub(crate) enum Classified {
     /// Nothing inside the clip rectangle is covered (or the vertices are collinear).
     Empty,
+    /// Compact, set up over the clip rectangle.
     Compact(CompactTriangle),
     /// Not compact, with the pixels of its bounding box inside the clip rectangle (if any).
     Large(Option<Region>),
@@ -107,7 +108,6 @@ pub(crate) enum Classified {
 impl Classified {
     /// A compact triangle and its walk, or else the region the general set-up starts from
     /// (`None` if nothing is covered).
-    #[cfg_attr(not(armv6m), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn walk(self) -> Result<(CompactTriangle, Walk), Option<Region>> {
         match self {
@@ -161,19 +161,6 @@ pub(crate) struct CompactTriangle {
     /// `tiny` rows check (x86-64 only).
     #[cfg_attr(not(sse2_rows), allow(dead_code))]
     pub(crate) extent: (u32, u32),
-}
-
-/// The last pixel of `len` from `start` (saturating at the ends of `i32`).
-#[inline(always)]
-pub(crate) fn last_of(start: i32, len: u32) -> i32 {
-    // `start + len − 1` clamped to `i32`, in 32 bits: biased by 2³¹, `i32`'s range is `u32`'s,
-    // and the clamp is a saturating addition (or, for an empty length, subtraction).
-    let biased = (start as u32) ^ (1 << 31);
-    let end = match len.checked_sub(1) {
-        Some(rest) => biased.saturating_add(rest),
-        None => biased.saturating_sub(1),
-    };
-    (end ^ (1 << 31)) as i32
 }
 
 impl CompactTriangle {
@@ -323,29 +310,6 @@ mod tests {
     use crate::raster::edge::TriangleSetup;
     use crate::raster::plane::exact::check_channel_planes;
     use crate::raster::plane::{Attributes, Planes};
-
-    /// The last pixel of a length: `start + len − 1` clamped to `i32`, at the ends of both
-    /// ranges and at random.
-    #[test]
-    fn last_of_is_the_clamped_end() {
-        let check = |start: i32, len: u32| {
-            let want = (i64::from(start) + i64::from(len) - 1)
-                .clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
-            assert_eq!(last_of(start, len), want, "{start} {len}");
-        };
-        let starts = [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX - 1, i32::MAX];
-        let lens = [0, 1, 2, 1 << 31, u32::MAX - 1, u32::MAX];
-        for start in starts {
-            for len in lens {
-                check(start, len);
-            }
-        }
-        let mut next = crate::random(0x1a57_0f00_0000_0001);
-        for _ in 0..100_000 {
-            let (start, len) = (next() as i32, next() as u32 >> (next() % 32));
-            check(start, len);
-        }
-    }
 
     /// Random compact triangles anywhere in the `Coord` range: bounding boxes from a sub-pixel to
     /// the limit, slivers included, and a 48 × 40 clip somewhere over the bounding box.

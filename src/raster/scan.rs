@@ -22,12 +22,10 @@ use core::num::{NonZeroU32, NonZeroU64};
 
 use super::arith::{leading_zeros_32, reciprocal_63};
 use super::band::Band;
-use super::compact::last_of;
 use super::edge::owns_centres_on;
-use super::edge::{first_centre_from, last_centre_to};
 use super::plane::{Attributes, Planes};
 use super::shade::SpanShader;
-use super::walk::Span;
+use super::walk::{bounds, Region, Span};
 use crate::arch::{CORTEX_M, HAS_DIVIDER};
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
@@ -85,10 +83,10 @@ impl<const N: usize> SmallTriangle<N> {
         attributes: &Attributes<N>,
         clip: &Rectangle,
     ) -> Result<Self, NotSmall> {
-        let [p0, p1, p2] = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
-        let span = |a: i32, b: i32, c: i32| (a.min(b).min(c), a.max(b).max(c));
-        let (min_x, max_x) = span(p0.0, p1.0, p2.0);
-        let (min_y, max_y) = span(p0.1, p1.1, p2.1);
+        let p = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
+        let [p0, p1, p2] = p;
+        let bounds = bounds(p);
+        let [min_x, min_y, max_x, max_y] = bounds;
         // The wrapping differences are the true ones (below 2³²).
         let limit = SMALL << SUBPIXEL_BITS;
         if max_x.wrapping_sub(min_x) as u32 >= limit || max_y.wrapping_sub(min_y) as u32 >= limit {
@@ -105,14 +103,9 @@ impl<const N: usize> SmallTriangle<N> {
         let swap = area2 < 0;
         let (o1, o2) = if swap { (q2, q1) } else { (q1, q2) };
 
-        let (cx, cy) = (clip.top_left.x, clip.top_left.y);
-        let x0 = first_centre_from(min_x).max(cx);
-        let x1 = last_centre_to(max_x).min(last_of(cx, clip.size.width));
-        let y0 = first_centre_from(min_y).max(cy);
-        let y1 = last_centre_to(max_y).min(last_of(cy, clip.size.height));
-        if x0 > x1 || y0 > y1 {
+        let Some(Region { x0, x1, y0, y1 }) = Region::within(bounds, clip) else {
             return Err(NotSmall::Empty);
-        }
+        };
         // The first pixel centre relative to vertex 0: inside the box.
         let centre = |i: i32, v: i32| {
             (i << SUBPIXEL_BITS)
@@ -757,6 +750,7 @@ mod tests {
 
     use super::*;
     use crate::raster::edge::TriangleSetup;
+    use crate::raster::edge::{first_centre_from, last_centre_to};
     use crate::raster::plane::exact::check_channel_planes;
 
     /// Random small triangles: boxes from a sub-pixel to 16 px (slivers and collinear ones

@@ -38,7 +38,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::fixed_point::Coord;
 use crate::raster::arith::div_rem_u64;
-use crate::raster::compact::{last_of, CompactTriangle};
+use crate::raster::compact::CompactTriangle;
 use crate::raster::edge::{first_centre_from, last_centre_to, last_row, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
@@ -354,6 +354,19 @@ impl Walk {
     }
 }
 
+/// The last pixel of `len` from `start` (saturating at the ends of `i32`).
+#[inline(always)]
+pub(crate) fn last_of(start: i32, len: u32) -> i32 {
+    // `start + len − 1` clamped to `i32`, in 32 bits: biased by 2³¹, `i32`'s range is `u32`'s,
+    // and the clamp is a saturating addition (or, for an empty length, subtraction).
+    let biased = (start as u32) ^ (1 << 31);
+    let end = match len.checked_sub(1) {
+        Some(rest) => biased.saturating_add(rest),
+        None => biased.saturating_sub(1),
+    };
+    (end ^ (1 << 31)) as i32
+}
+
 /// The bounding box `[min_x, min_y, max_x, max_y]` of the vertices `p`.
 #[inline(always)]
 pub(crate) fn bounds(p: [(i32, i32); 3]) -> [i32; 4] {
@@ -440,8 +453,8 @@ pub(crate) struct Region {
 }
 
 impl Region {
+    #[cfg(test)]
     /// The part of the triangle's pixel bounding box inside `clip`, or `None` if they don't meet.
-    #[inline(always)]
     pub fn new(setup: &TriangleSetup, clip: &Rectangle) -> Option<Region> {
         Region::within(bounds(setup.oriented), clip)
     }
@@ -588,28 +601,23 @@ impl Spans {
     /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
     #[inline(always)]
     pub fn of_triangle(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
-        match CompactTriangle::new(v, clip) {
-            Ok(Some(triangle)) => {
-                if let Ok(walk) = triangle.walk() {
-                    return Spans::compact(walk);
-                }
-            }
-            Ok(None) => return Spans::empty(),
-            Err(_) => {}
+        match CompactTriangle::classify(v, clip).walk() {
+            Ok((_, walk)) => Spans::compact(walk),
+            Err(None) => Spans::empty(),
+            Err(Some(region)) => Spans::general(v, &region),
         }
-        Spans::general(v, clip)
     }
 
-    /// [`of_triangle`](Self::of_triangle) through the general set-up, out of line: the
-    /// compact set-up's spans then start in fewer instructions.
+    /// [`of_triangle`](Self::of_triangle) through the general set-up over `region` (the
+    /// triangle's pixels inside the clip), out of line: the compact set-up's spans then start
+    /// in fewer instructions.
     #[inline(never)]
-    fn general(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
+    fn general(v: [(Coord, Coord); 3], region: &Region) -> Spans {
         // By reference: moving the setup out of the `Option` would copy it.
         let setup = TriangleSetup::new(v);
         setup
             .as_ref()
-            .and_then(|s| Region::new(s, clip).map(|r| Spans::new(s, r)))
-            .unwrap_or_else(Spans::empty)
+            .map_or_else(Spans::empty, |s| Spans::new(s, *region))
     }
 
     /// An iterator with no spans.
@@ -646,6 +654,29 @@ pub fn for_each_span(v: [(Coord, Coord); 3], clip: Rectangle, mut f: impl FnMut(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The last pixel of a length: `start + len − 1` clamped to `i32`, at the ends of both
+    /// ranges and at random.
+    #[test]
+    fn last_of_is_the_clamped_end() {
+        let check = |start: i32, len: u32| {
+            let want = (i64::from(start) + i64::from(len) - 1)
+                .clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+            assert_eq!(last_of(start, len), want, "{start} {len}");
+        };
+        let starts = [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX - 1, i32::MAX];
+        let lens = [0, 1, 2, 1 << 31, u32::MAX - 1, u32::MAX];
+        for start in starts {
+            for len in lens {
+                check(start, len);
+            }
+        }
+        let mut next = crate::random(0x1a57_0f00_0000_0001);
+        for _ in 0..100_000 {
+            let (start, len) = (next() as i32, next() as u32 >> (next() % 32));
+            check(start, len);
+        }
+    }
 
     /// A span with its end before its start has no pixels (it used to report the distance).
     #[test]
