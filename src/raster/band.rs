@@ -22,7 +22,7 @@ use super::compact::{CompactTriangle, TooLarge};
 use super::edge::{first_centre_from, last_centre_to};
 use super::plane::{Attributes, Planes};
 use super::scan::{Kept, KeptWords, SmallScan};
-use super::shade::{compact_or_region, fold_planes, shade, shade_general, SpanShader};
+use super::shade::{fold_planes, shade, shade_general, SpanShader};
 use super::walk::Span;
 use crate::arch::LANES;
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
@@ -188,7 +188,7 @@ fn walked_rows<const N: usize>(
     shader: &mut impl SpanShader<N>,
 ) {
     let compact = |triangle: &CompactTriangle| compact_rows(triangle, attributes, &band, shader);
-    if let Some(region) = compact_or_region(v, clip, compact) {
+    if let Err(Some(region)) = CompactTriangle::classify(v, clip).compact_or_region(compact) {
         shade_general(v, attributes, &region, Some(band), shader);
     }
 }

@@ -106,8 +106,27 @@ pub(crate) enum Classified {
 }
 
 impl Classified {
+    /// What `compact` makes of a compact triangle, or else the region the general set-up
+    /// starts from (`None` if nothing is covered): that of a triangle that is not compact, or of
+    /// one that `compact` does not take.
+    #[inline(always)]
+    pub(crate) fn compact_or_region<T>(
+        self,
+        compact: impl FnOnce(&CompactTriangle) -> Result<T, TooLarge>,
+    ) -> Result<T, Option<Region>> {
+        match self {
+            Classified::Empty => Err(None),
+            Classified::Compact(triangle) => {
+                compact(&triangle).map_err(|_| Some(triangle.region()))
+            }
+            Classified::Large(region) => Err(region),
+        }
+    }
+
     /// A compact triangle and its walk, or else the region the general set-up starts from
-    /// (`None` if nothing is covered).
+    /// (`None` if nothing is covered). [`compact_or_region`](Self::compact_or_region) for the
+    /// walk, spelled out: through it the triangle is copied for the closure, which costs the
+    /// Cortex-M0's `shade_dyn` 76–88 bytes of flash.
     #[inline(always)]
     pub(crate) fn walk(self) -> Result<(CompactTriangle, Walk), Option<Region>> {
         match self {

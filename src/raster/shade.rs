@@ -10,7 +10,7 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::band::Band;
-use super::compact::{Classified, CompactTriangle, TooLarge};
+use super::compact::{CompactTriangle, TooLarge};
 use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
 use super::scan::SmallScan;
@@ -129,24 +129,10 @@ fn shade_walked<const N: usize>(
         // general one.
         let compact =
             |triangle: &CompactTriangle| shade_compact_triangle(triangle, attributes, shader);
-        if let Some(region) = compact_or_region(v, clip, compact) {
+        let classified = CompactTriangle::classify(v, clip);
+        if let Err(Some(region)) = classified.compact_or_region(compact) {
             shade_general(v, attributes, &region, None, shader);
         }
-    }
-}
-
-/// Hands the triangle `v` over `clip` to `compact` if it is compact; the region the general
-/// set-up starts from if it is not (or `compact` fails), `None` if done or nothing is covered.
-#[inline(always)]
-pub(super) fn compact_or_region(
-    v: [(Coord, Coord); 3],
-    clip: &Rectangle,
-    compact: impl FnOnce(&CompactTriangle) -> Result<(), TooLarge>,
-) -> Option<Region> {
-    match CompactTriangle::classify(v, clip) {
-        Classified::Empty => None,
-        Classified::Compact(triangle) => compact(&triangle).err().map(|_| triangle.region()),
-        Classified::Large(region) => region,
     }
 }
 

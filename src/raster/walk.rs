@@ -243,10 +243,9 @@ impl Walk {
         } else {
             (single, pair)
         };
-        let (pair_left, switch) = (plan.pair_left, plan.switch);
         Ok(Walk::new(
             (left, right),
-            (next, pair_left, switch),
+            (next, plan.pair_left, plan.switch),
             origin,
             last,
             (first, rows),
