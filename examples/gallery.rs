@@ -18,7 +18,7 @@ use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, Vertex};
 // The f64 reference, compiled in directly so that the example needs no cargo feature
 // (it is `embedded_raster::reference` with the `reference` feature).
 #[allow(dead_code)]
-#[path = "../src/reference.rs"]
+#[path = "../src/reference/mod.rs"]
 mod reference;
 
 fn coord(v: f64) -> Coord {

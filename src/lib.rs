@@ -72,7 +72,7 @@
 extern crate std;
 
 // Layers, each using only those above it: target code, rectangle arithmetic (`rect`), the raster
-// core, colours, drawing into embedded-graphics targets, the 3D pipeline, band rendering.
+// core, colours, textures, drawing into embedded-graphics targets, the 3D pipeline, band rendering.
 // `geometry` and `reference` stand apart.
 mod arch;
 pub mod band;
@@ -81,6 +81,7 @@ pub mod draw;
 pub mod fixed_point;
 pub mod raster;
 mod rect;
+pub mod texture;
 pub mod three_d;
 
 pub mod geometry;
@@ -88,7 +89,10 @@ pub mod geometry;
 pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
-pub use draw::{GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, Vertex};
+pub use draw::{
+    GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle,
+    TexturedVertex, Vertex,
+};
 pub use fixed_point::{Coord, ToCoord};
 pub use three_d::{
     Angle, Bounds, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading,

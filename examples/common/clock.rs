@@ -39,6 +39,7 @@ pub fn start(syst: &mut SYST) {
 }
 
 /// Stops SysTick (so that its exception frames do not count in stack measurements).
+#[allow(dead_code)]
 pub fn stop(syst: &mut SYST) {
     syst.disable_interrupt();
     syst.disable_counter();

@@ -7,9 +7,12 @@ use embedded_graphics::Pixel;
 
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
-use crate::draw::{skip_colors, GouraudTriangle, SliceFramebuffer, SolidTriangle};
+use crate::draw::{
+    skip_colors, GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle,
+};
 use crate::raster::band::Band;
 use crate::rect;
+use crate::texture::TexelSource;
 use crate::three_d::{
     DepthTarget, DrawStats, Frame, Material, Mesh, Pipeline, ProjectedVertex, ScratchTooSmall,
     TargetClip,
@@ -97,6 +100,21 @@ impl<C: PixelColor> BandDrawable<C> for SolidTriangle<C> {
 
     fn rows(&self) -> Option<(i32, i32)> {
         rows_of(self.points.map(|p| p.1))
+    }
+}
+
+impl<S, C> BandDrawable<C> for TexturedTriangle<'_, S, C>
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let clip = band.frame();
+        self.draw_rows(&mut band.pixels, &clip, &band.placement.rows);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        rows_of(self.vertices.map(|v| v.y))
     }
 }
 

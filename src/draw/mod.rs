@@ -10,6 +10,7 @@ mod framebuffer;
 mod image;
 #[cfg(feature = "png")]
 mod png_file;
+mod textured;
 mod triangle;
 
 pub(crate) use framebuffer::skip_colors;
@@ -17,4 +18,5 @@ pub use framebuffer::{fill_row, SliceFramebuffer};
 pub(crate) use image::draw_rows;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
+pub use textured::{TexturedTriangle, TexturedVertex};
 pub use triangle::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};

@@ -16,6 +16,9 @@
 //!   testing its pixels' edge values, the same spans without the walk's divisions.
 //! * `plane` — attributes (colour channels now) interpolated barycentrically by fixed-point
 //!   stepping, with a documented error bound.
+//! * `perspective` — perspective-correct barycentrics from three more planes (`q ∝ 1/w` and
+//!   `bₖ·q`), recovered every few pixels of a span by one reciprocal: what textures and light
+//!   levels in 3D are corrected with.
 //! * `shade` — the one entry: `shade` sets a triangle up in the width it needs, walks it and
 //!   hands each covered span with its attributes to a `SpanShader` (solid fill, a colour
 //!   format's span loop, `fill_contiguous`, …).
@@ -28,6 +31,7 @@ pub(crate) mod arith;
 pub(crate) mod band;
 pub(crate) mod compact;
 pub(crate) mod edge;
+pub(crate) mod perspective;
 pub(crate) mod plane;
 pub(crate) mod scan;
 mod shade;

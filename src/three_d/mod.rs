@@ -11,6 +11,8 @@
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
 //! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
 //!   per-pixel lighting of quadratically interpolated normals).
+//! * `texturing` — [`draw_textured`]: textured, depth-tested fills with perspective-correct texel
+//!   coordinates.
 //! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
 //! * `band` — a band's rows as two clip-space planes: how a band's draw without a bin rejects
 //!   the faces outside it before projecting them (band rendering itself is the `band` module,
@@ -30,6 +32,7 @@ pub mod meshes;
 pub mod obj;
 mod pipeline;
 mod shading;
+mod texturing;
 mod vertex;
 
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
@@ -44,4 +47,5 @@ pub(crate) use shading::TargetClip;
 pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Material, QuadraticNormals, Shading,
 };
+pub use texturing::{draw_textured, TexturedScreenVertex};
 pub use vertex::ProjectedVertex;

@@ -322,15 +322,15 @@ fn bary_from_plane(raw: u32) -> i64 {
 
 /// Fractional bits of a depth read from a plane: 16-bit depths are 8.8 values of the planes'
 /// 8-bit scale, which carries 24 fractional bits.
-const DEPTH_SHIFT: u32 = STEP_BITS_PLANES - 8;
+pub(super) const DEPTH_SHIFT: u32 = STEP_BITS_PLANES - 8;
 
 /// Half a depth unit, the depth plane's rounding offset.
-const DEPTH_HALF: u32 = 1 << (DEPTH_SHIFT - 1);
+pub(super) const DEPTH_HALF: u32 = 1 << (DEPTH_SHIFT - 1);
 
 /// The planes' attributes: the depths first, then `M` more per vertex with their rounding
 /// offsets.
 #[inline(always)]
-fn with_depth<const M: usize, const N: usize>(
+pub(super) fn with_depth<const M: usize, const N: usize>(
     vertices: [&ScreenVertex; 3],
     more: [[u16; M]; 3],
     half: [u32; M],

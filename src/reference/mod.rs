@@ -49,6 +49,9 @@
 
 use core::cmp::Ordering;
 
+/// Texture sampling (nearest, bilinear, wrap modes) and perspective-correct textured triangles.
+pub mod texture;
+
 /// Sub-pixel units per pixel.
 const ONE: i64 = 256;
 /// Offset of a pixel centre from its corner, in sub-pixel units.

@@ -1,0 +1,304 @@
+//! Firmware benchmark of textured triangles: instructions per covered pixel on large triangles,
+//! counted by SysTick under QEMU's `-icount` (see `fw_bench`), for each texturing path.
+//!
+//! ```text
+//! cargo run --release --target thumbv7em-none-eabihf --example fw_texture_bench   # mps2-an386
+//! cargo run --release --target thumbv6m-none-eabi    --example fw_texture_bench   # micro:bit
+//! ```
+//!
+//! The texture is 64 × 64 Rgb565 in flash (a power of two, repeating: the masked loop) or the
+//! same texels as a 4-bit palette texture; the triangles are `fw_bench`'s large set, each
+//! covering the texture a few times. 2D cases draw into a `SliceFramebuffer` (`draw_into`, and
+//! `Drawable::draw` through the generic `DrawTarget` path); 3D cases are the perspective-correct,
+//! depth-tested fill (`draw_textured`) with the far vertices three times as deep as the near
+//! one, every pixel passing the depth test (each pass nearer than the last).
+//!
+//! The host build prints the cases and their pixel counts only.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_raster::texture::{Filter, Indexed4, Rgb565Texels, TexelCoord, TexelSource, Texture};
+use embedded_raster::three_d::TexturedScreenVertex;
+use embedded_raster::three_d::{draw_textured, DepthTarget, Scalar, ScreenVertex};
+use embedded_raster::{Coord, SolidTriangle, TexturedTriangle, TexturedVertex};
+
+#[allow(dead_code)]
+#[path = "common/scene.rs"]
+mod scene;
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+#[cfg(target_os = "none")]
+#[path = "common/report_panic.rs"]
+mod report_panic;
+
+#[cfg(target_os = "none")]
+#[path = "common/clock.rs"]
+mod clock;
+
+/// Texture side.
+const SIDE: usize = 64;
+
+/// A 64 × 64 Rgb565 pattern of 16 colours (so that the palette form holds the same texels).
+const fn palette_index(x: usize, y: usize) -> u8 {
+    (((x / 8) ^ (y / 4) ^ (x * y / 64)) & 15) as u8
+}
+
+const fn palette_color(i: u8) -> u16 {
+    let i = i as u16;
+    ((i * 2) << 11) | ((63 - i * 3) << 5) | (31 - i)
+}
+
+static TEXELS: [u16; SIDE * SIDE] = {
+    let mut t = [0; SIDE * SIDE];
+    let mut i = 0;
+    while i < SIDE * SIDE {
+        t[i] = palette_color(palette_index(i % SIDE, i / SIDE));
+        i += 1;
+    }
+    t
+};
+
+static INDICES: [u8; SIDE * SIDE / 2] = {
+    let mut t = [0; SIDE * SIDE / 2];
+    let mut i = 0;
+    while i < SIDE * SIDE / 2 {
+        let (x, y) = ((2 * i) % SIDE, (2 * i) / SIDE);
+        t[i] = (palette_index(x, y) << 4) | palette_index(x + 1, y);
+        i += 1;
+    }
+    t
+};
+
+static PALETTE: [Rgb565; 16] = {
+    let mut p = [Rgb565::new(0, 0, 0); 16];
+    let mut i = 0;
+    while i < 16 {
+        let c = palette_color(i as u8);
+        p[i] = Rgb565::new((c >> 11) as u8, ((c >> 5) & 63) as u8, (c & 31) as u8);
+        i += 1;
+    }
+    p
+};
+
+/// The texturing paths compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Case {
+    AffineNearestInto,
+    AffineNearestIndexed4Into,
+    AffineBilinearInto,
+    AffineNearestDraw,
+    PerspectiveNearest,
+    PerspectiveBilinear,
+}
+
+const CASES: [Case; 6] = [
+    Case::AffineNearestInto,
+    Case::AffineNearestIndexed4Into,
+    Case::AffineBilinearInto,
+    Case::AffineNearestDraw,
+    Case::PerspectiveNearest,
+    Case::PerspectiveBilinear,
+];
+
+impl Case {
+    fn name(self) -> &'static str {
+        match self {
+            Case::AffineNearestInto => "TexturedTriangle::draw_into nearest",
+            Case::AffineNearestIndexed4Into => "TexturedTriangle::draw_into nearest, 4-bit palette",
+            Case::AffineBilinearInto => "TexturedTriangle::draw_into bilinear",
+            Case::AffineNearestDraw => "TexturedTriangle::draw nearest",
+            Case::PerspectiveNearest => "draw_textured perspective nearest",
+            Case::PerspectiveBilinear => "draw_textured perspective bilinear",
+        }
+    }
+}
+
+/// Texel coordinates of corner `(x, y)` (pixels): the texture about twice across the screen's
+/// width, sheared a little.
+fn texel_at(x: i32, y: i32) -> (TexelCoord, TexelCoord) {
+    (
+        TexelCoord::from_bits((x * 3 + y) << 15),
+        TexelCoord::from_bits((y * 3 - x / 2) << 15),
+    )
+}
+
+/// The large set's triangle `k` as a 2D textured triangle's vertices.
+fn vertices_2d(corners: &[(i32, i32); 3]) -> [TexturedVertex; 3] {
+    corners.map(|(x, y)| {
+        let (u, v) = texel_at(x, y);
+        TexturedVertex {
+            x: Coord::from_bits(x * 256 + 128),
+            y: Coord::from_bits(y * 256 + 128),
+            u,
+            v,
+        }
+    })
+}
+
+/// The same as 3D vertices at `depth`, `w` growing with x (the far side three times as deep).
+fn vertices_3d(corners: &[(i32, i32); 3], width: i32, depth: u16) -> [TexturedScreenVertex; 3] {
+    corners.map(|(x, y)| {
+        let (u, v) = texel_at(x, y);
+        TexturedScreenVertex {
+            screen: ScreenVertex::new(
+                Coord::from_bits(x * 256 + 128),
+                Coord::from_bits(y * 256 + 128),
+                depth,
+            ),
+            w: Scalar::from_bits((1 << 16) + ((x << 17) / width.max(1))),
+            u,
+            v,
+        }
+    })
+}
+
+/// Covered pixels of one pass over the large set on a `w × h` screen (untimed).
+fn count_pixels(w: u32, h: u32) -> u32 {
+    let mut pixels = 0;
+    for corners in scene::large_triangles(w as i32, h as i32) {
+        let c = |i: i32| Coord::from_bits(i * 256 + 128);
+        let t = SolidTriangle::new(corners.map(|(x, y)| (c(x), c(y))), Rgb565::BLACK);
+        for span in t.spans(&Rectangle::new(Point::zero(), Size::new(w, h))) {
+            pixels += span.len();
+        }
+    }
+    pixels
+}
+
+/// One pass of `case` over the large set (`pass` counts down the depth, so each pass is nearer).
+fn run<S: TexelSource>(
+    case: Case,
+    texture: &Texture<S>,
+    fb: &mut DepthTarget<'_, Rgb565>,
+    pass: u16,
+) where
+    Rgb565: From<S::Color>,
+{
+    let size = fb.framebuffer().size();
+    let clip = Rectangle::new(Point::zero(), size);
+    for corners in scene::large_triangles(size.width as i32, size.height as i32) {
+        match case {
+            Case::PerspectiveNearest | Case::PerspectiveBilinear => {
+                let v = vertices_3d(&corners, size.width as i32, 60_000 - pass);
+                draw_textured(fb, &clip, &v, texture);
+            }
+            Case::AffineNearestDraw => {
+                let t = TexturedTriangle::new(vertices_2d(&corners), texture);
+                let _ = t.draw(fb.framebuffer_mut());
+            }
+            _ => {
+                TexturedTriangle::new(vertices_2d(&corners), texture)
+                    .draw_into(fb.framebuffer_mut());
+            }
+        }
+    }
+}
+
+/// Runs `case` once with its texture.
+fn run_case(case: Case, fb: &mut DepthTarget<'_, Rgb565>, pass: u16) {
+    let Ok(rgb) = Texture::new(Rgb565Texels(&TEXELS), SIDE as u32, SIDE as u32) else {
+        return;
+    };
+    match case {
+        Case::AffineNearestIndexed4Into => {
+            let texels = Indexed4 {
+                indices: &INDICES,
+                palette: &PALETTE,
+            };
+            if let Ok(t) = Texture::new(texels, SIDE as u32, SIDE as u32) {
+                run(case, &t, fb, pass);
+            }
+        }
+        Case::AffineBilinearInto | Case::PerspectiveBilinear => {
+            run(case, &rgb.with_filter(Filter::Bilinear), fb, pass)
+        }
+        _ => run(case, &rgb, fb, pass),
+    }
+}
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::hint::black_box;
+
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::hprintln;
+
+    use super::*;
+    use crate::clock::{calibrate, measure, Ratio};
+    use crate::{board, clock};
+
+    /// Passes per measurement.
+    const REPS: u32 = 4;
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        static mut DEPTH: [u16; board::PIXELS] = [0; board::PIXELS];
+        let (width, height) = board::SIZE;
+        let Some(mut fb) = DepthTarget::new(PIXELS, DEPTH, width, height) else {
+            board::exit(false)
+        };
+        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
+        clock::start(&mut cp.SYST);
+        let cal = calibrate();
+        let pixels = u64::from(count_pixels(width, height));
+
+        hprintln!("### {}\n", board::BOARD);
+        hprintln!(
+            "Textured large triangles ({} px a pass) into {}×{} Rgb565; 64×64 texture; QEMU \
+             `-icount shift=0`.\n",
+            pixels,
+            width,
+            height
+        );
+        hprintln!("| texturing | instr/pixel, large |");
+        hprintln!("|---|---:|");
+        let mut pass = 0u16;
+        // TEXTURE_CASE=<index> at build time measures that case alone (for a profile).
+        let only = option_env!("TEXTURE_CASE").and_then(|c| c.parse::<usize>().ok());
+        for (index, case) in CASES.into_iter().enumerate() {
+            if only.is_some_and(|only| only != index) {
+                continue;
+            }
+            fb.clear(Rgb565::new(0, 0, 0));
+            run_case(case, &mut fb, pass); // warm-up, untimed
+            pass += 1;
+            let ticks = measure(REPS, || {
+                run_case(black_box(case), &mut fb, pass);
+                pass += 1;
+            });
+            let instructions = clock::instructions(ticks, cal);
+            hprintln!(
+                "| {} | {} |",
+                case.name(),
+                Ratio(instructions, pixels * u64::from(REPS))
+            );
+        }
+        board::exit(true)
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    for (width, height) in scene::SIZES {
+        println!(
+            "{width}×{height}: {} pixels a pass",
+            count_pixels(width, height)
+        );
+        let (mut px, mut z) = (
+            vec![Rgb565::BLACK; (width * height) as usize],
+            vec![0u16; (width * height) as usize],
+        );
+        let mut fb = DepthTarget::new(&mut px, &mut z, width, height).expect("buffers");
+        for case in CASES {
+            run_case(case, &mut fb, 0);
+            println!("  {}", case.name());
+        }
+    }
+}

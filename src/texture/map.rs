@@ -1,0 +1,232 @@
+//! [`Texture`]: texel storage with its size, wrap modes and filter, sampled at 16.16 fixed-point
+//! texel coordinates.
+
+use super::address::{Axis, Wrap};
+use super::source::TexelSource;
+use crate::color::GouraudColor;
+
+/// Largest width or height of a texture, in texels (2¹⁵: texel coordinates are 16.16 fixed
+/// point, so a texture's coordinates span a few periods of it either way).
+pub const MAX_SIZE: u32 = 1 << 15;
+
+/// How a texture is read between texel centres.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Filter {
+    /// The texel the sample point lies in.
+    #[default]
+    Nearest,
+    /// The four texels around the sample point, weighted by its distance to their centres
+    /// (12-bit weights, channel by channel in the target's depth: within 1 LSB of the exact
+    /// blend).
+    Bilinear,
+}
+
+/// Why a texture could not be made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TextureError {
+    /// Width or height 0 or over [`MAX_SIZE`].
+    Size {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// The storage holds fewer texels than `width × height`.
+    TooFewTexels {
+        /// Texels the size needs.
+        needed: usize,
+        /// Texels the storage holds.
+        held: usize,
+    },
+}
+
+impl core::fmt::Display for TextureError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            TextureError::Size { width, height } => write!(
+                f,
+                "a texture of {width} × {height} texels: each side must be 1 to {MAX_SIZE}"
+            ),
+            TextureError::TooFewTexels { needed, held } => write!(
+                f,
+                "the texel storage holds {held} texels, the texture's size needs {needed}"
+            ),
+        }
+    }
+}
+
+/// A texture: borrowed texels ([`TexelSource`]: Rgb565, Rgb888, Gray8, 4- and 8-bit indexed,
+/// any colour slice) with their size, a [`Wrap`] mode per axis and a [`Filter`].
+///
+/// Any size from 1 × 1 to [`MAX_SIZE`] on a side; power-of-two sizes take a mask where others
+/// take a multiply or a remainder. Texel coordinates are in texels, `(0, 0)` the top-left
+/// corner of texel `(0, 0)` and `(i + ½, j + ½)` the centre of texel `(i, j)`, as 16.16 fixed
+/// point (`i32`, 65536 a texel) on the drawing paths.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use embedded_raster::texture::{Filter, Rgb565Texels, Texture, Wrap};
+///
+/// // A 2 × 2 checker: red, green / blue, white (raw 5-6-5 words, as a flash table holds them).
+/// static CHECKER: [u16; 4] = [0xf800, 0x07e0, 0x001f, 0xffff];
+/// let texture = Texture::new(Rgb565Texels(&CHECKER), 2, 2).unwrap();
+/// let texel = |x: f32, y: f32| texture.nearest((x * 65536.0) as i32, (y * 65536.0) as i32);
+/// assert_eq!(texel(1.5, 0.5), Rgb565::GREEN);
+/// assert_eq!(texel(-0.5, 0.5), Rgb565::GREEN); // repeats
+/// let clamped = texture.with_wrap(Wrap::Clamp, Wrap::Clamp);
+/// assert_eq!(clamped.nearest(-65536, 3 << 16), Rgb565::BLUE);
+/// // Halfway between the red and green centres: half of each, channel by channel.
+/// let mixed: Rgb565 = texture.with_filter(Filter::Bilinear).bilinear(1 << 16, 1 << 15);
+/// assert_eq!(mixed, Rgb565::new(16, 32, 0));
+/// # assert!(Texture::new(Rgb565Texels(&CHECKER), 3, 2).is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Texture<S> {
+    source: S,
+    x: Axis,
+    y: Axis,
+    filter: Filter,
+}
+
+impl<S: TexelSource> Texture<S> {
+    /// A `width × height` texture of `source`'s first texels (row-major), repeating on both
+    /// axes, nearest filtering. An error if a side is 0 or over [`MAX_SIZE`], or if the storage
+    /// holds fewer than `width × height` texels.
+    pub fn new(source: S, width: u32, height: u32) -> Result<Self, TextureError> {
+        if !(1..=MAX_SIZE).contains(&width) || !(1..=MAX_SIZE).contains(&height) {
+            return Err(TextureError::Size { width, height });
+        }
+        // Below 2³⁰: no overflow.
+        let needed = (width * height) as usize;
+        let held = source.texels();
+        if held < needed {
+            return Err(TextureError::TooFewTexels { needed, held });
+        }
+        Ok(Texture {
+            source,
+            x: Axis::new(width, Wrap::Repeat),
+            y: Axis::new(height, Wrap::Repeat),
+            filter: Filter::Nearest,
+        })
+    }
+
+    /// The texture with wrap modes `x` (horizontal) and `y` (vertical).
+    pub fn with_wrap(self, x: Wrap, y: Wrap) -> Self {
+        Texture {
+            x: self.x.with_wrap(x),
+            y: self.y.with_wrap(y),
+            ..self
+        }
+    }
+
+    /// The texture with filter `filter`.
+    pub fn with_filter(self, filter: Filter) -> Self {
+        Texture { filter, ..self }
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.x.size()
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.y.size()
+    }
+
+    /// The wrap modes, horizontal and vertical.
+    pub fn wrap(&self) -> (Wrap, Wrap) {
+        (self.x.wrap(), self.y.wrap())
+    }
+
+    /// The filter.
+    pub fn filter(&self) -> Filter {
+        self.filter
+    }
+
+    /// The texel storage.
+    pub fn source(&self) -> &S {
+        &self.source
+    }
+
+    /// The axes (crate-internal: the span loops' addressing).
+    #[inline(always)]
+    pub(crate) fn axes(&self) -> (&Axis, &Axis) {
+        (&self.x, &self.y)
+    }
+
+    /// Texel `(i, j)` after wrapping both indices (any `i32`s).
+    #[inline(always)]
+    pub fn texel(&self, i: i32, j: i32) -> S::Color {
+        let (x, y) = (self.x.index(i), self.y.index(j));
+        self.source.texel(self.linear(x, y))
+    }
+
+    /// The storage index of texel `(x, y)` (inside the texture).
+    #[inline(always)]
+    pub(crate) fn linear(&self, x: u32, y: u32) -> usize {
+        match self.x.shift() {
+            Some(s) => ((y << s) | x) as usize,
+            // Below 2³⁰.
+            None => (y * self.x.size() + x) as usize,
+        }
+    }
+
+    /// The texel at the 16.16 texel coordinate `(x, y)` (nearest filtering): texel
+    /// `(⌊x⌋, ⌊y⌋)`, wrapped.
+    #[inline(always)]
+    pub fn nearest(&self, x: i32, y: i32) -> S::Color {
+        self.texel(x >> 16, y >> 16)
+    }
+
+    /// The bilinear blend at the 16.16 texel coordinate `(x, y)`, channel by channel in `C`'s
+    /// depth: the four texels around `(x − ½, y − ½)` (each index wrapped on its own), weighted
+    /// by 12-bit fractions, rounded to nearest.
+    #[inline(always)]
+    pub fn bilinear<C>(&self, x: i32, y: i32) -> C
+    where
+        C: GouraudColor + From<S::Color>,
+    {
+        bilinear_by(x, y, |i, j| C::from(self.texel(i, j)))
+    }
+
+    /// The texel at the 16.16 coordinate `(x, y)` by this texture's filter, as `C`.
+    #[inline(always)]
+    pub fn sample<C>(&self, x: i32, y: i32) -> C
+    where
+        C: GouraudColor + From<S::Color>,
+    {
+        match self.filter {
+            Filter::Nearest => C::from(self.nearest(x, y)),
+            Filter::Bilinear => self.bilinear(x, y),
+        }
+    }
+}
+
+/// The bilinear blend at the 16.16 texel coordinate `(x, y)` of the texels `fetch(i, j)` gives
+/// (wrapped by the caller): [`Texture::bilinear`]'s arithmetic, for every addressing.
+#[inline(always)]
+pub(crate) fn bilinear_by<C: GouraudColor>(x: i32, y: i32, fetch: impl Fn(i32, i32) -> C) -> C {
+    // The texels around (x − ½, y − ½): ⌊x − ½⌋ is ⌊x⌋ − 1 in a texel's left half (with no
+    // overflow at the ends of i32, where x − ½ would wrap).
+    let below = |x: i32| (x >> 16) - i32::from((x as u32 & 0xffff) < 1 << 15);
+    let (i, j) = (below(x), below(y));
+    // 12-bit weights of (x − ½, y − ½)'s fractions, rounded (4096 is a whole texel).
+    let fraction = |x: i32| (((x as u32).wrapping_sub(1 << 15) & 0xffff) + 8) >> 4;
+    let (fx, fy) = (fraction(x), fraction(y));
+    let (i1, j1) = (i.wrapping_add(1), j.wrapping_add(1));
+    let c = |i, j| fetch(i, j).channels().map(u32::from);
+    let (t00, t10, t01, t11) = (c(i, j), c(i1, j), c(i, j1), c(i1, j1));
+    let blend = |k: usize| {
+        // Each row's blend below 2²⁰, the sum below 2³²: channels are at most 8 bits.
+        let top = t00[k] * (4096 - fx) + t10[k] * fx;
+        let bottom = t01[k] * (4096 - fx) + t11[k] * fx;
+        ((top * (4096 - fy) + bottom * fy + (1 << 23)) >> 24) as u8
+    };
+    if C::CHANNELS == 1 {
+        return C::from_channels([blend(0), 0, 0]);
+    }
+    C::from_channels([blend(0), blend(1), blend(2)])
+}

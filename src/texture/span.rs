@@ -1,0 +1,339 @@
+//! Textured spans: texel coordinates stepped across a span and the texture sampled at each
+//! pixel, by one loop per addressing kind (power-of-two repeat with nearest filtering, the
+//! common flash texture, takes masks and shifts alone; every other mode the texture's own
+//! [`sample`](Texture::sample)) — the same colours either way.
+//!
+//! Coordinates come from the raster core's attribute planes ([`PlaneMap`]: a texel coordinate
+//! offset and scaled into a plane's 16-bit vertex values) and are stepped in 16.16 texels,
+//! restarted from the plane's exact value every [`RUN`] pixels so that stepping adds at most
+//! `RUN / 2` units of 2⁻¹⁶ texel.
+
+use super::address::Wrap;
+use super::map::{bilinear_by, Filter, Texture};
+use super::source::TexelSource;
+use crate::color::GouraudColor;
+
+/// Longest run of pixels whose texel coordinates are stepped from one start.
+pub(crate) const RUN: u32 = 1024;
+
+/// The largest spread of a triangle's vertex values in a [`PlaneMap`]: 16 bits less the margins.
+const SPREAD: u64 = (1 << 16) - 256;
+
+/// A texel coordinate (16.16 texels) as one of the raster core's attributes: vertex values
+/// `128 + round((c − origin) / 2^shift)`, read back as `origin + (value − 128·2¹⁶)·2^(shift −
+/// 16)` from the planes' 8.24 values (`value = attribute · 2¹⁶`).
+///
+/// The values span at most [`SPREAD`] units, with 128 units of margin each way, so that the
+/// planes' rounding error never wraps them below zero. Across a run of three or more covered
+/// pixels the per-pixel change is then under half the range, below 2³¹, so a plane's step read
+/// as an `i32` is the true one ([`step`](Self::step)); a shader takes a two-pixel run's second
+/// coordinate from its own plane value instead.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PlaneMap {
+    /// The 16.16 coordinate of plane value 0.
+    base: i32,
+    /// A plane value is shifted right by `down`, then left by `up`, to 16.16 texels: `16 −
+    /// shift` and 0 for the vertex values' scale `2^shift` (`shift` 0 to 16), 0 and
+    /// `shift − 16` beyond.
+    down: u32,
+    up: u32,
+}
+
+impl PlaneMap {
+    /// The map for vertex coordinates `c` (16.16 texels) and their plane values.
+    #[inline]
+    pub(crate) fn new(c: [i32; 3]) -> (Self, [u16; 3]) {
+        let lo = c[0].min(c[1]).min(c[2]);
+        let hi = c[0].max(c[1]).max(c[2]);
+        // Below 2³²: the spread fits SPREAD steps of 2^shift for a shift of at most 17.
+        let spread = (i64::from(hi) - i64::from(lo)) as u64;
+        let mut shift = 0;
+        while (spread + (1 << shift >> 1)) >> shift > SPREAD {
+            shift += 1;
+        }
+        let half = (1i64 << shift) >> 1;
+        let values = c.map(|c| (128 + ((i64::from(c) - i64::from(lo) + half) >> shift)) as u16);
+        let base = (i64::from(lo) - (128i64 << shift)) as i32;
+        let (down, up) = if shift <= 16 {
+            (16 - shift, 0)
+        } else {
+            (0, shift - 16)
+        };
+        (PlaneMap { base, down, up }, values)
+    }
+
+    /// The 16.16 coordinate of plane value `value` (8.24 of the 8.8 attribute), truncated.
+    #[inline(always)]
+    pub(crate) fn at(&self, value: u32) -> i32 {
+        // Modulo 2³², as the coordinates themselves (a spread of 2¹⁷ scale steps reaches past
+        // 32 bits only where the coordinates do).
+        self.base
+            .wrapping_add(((value >> self.down) << self.up) as i32)
+    }
+
+    /// The per-pixel step in 16.16 texels of a plane step (rounded to nearest).
+    #[inline(always)]
+    pub(crate) fn step(&self, step: u32) -> i32 {
+        let shift = self.up + 16 - self.down;
+        (((i64::from(step as i32) << shift) + (1 << 15)) >> 16) as i32
+    }
+}
+
+/// A loop over pixels that samples a texture: [`Sampler::run`] hands it the sampling function
+/// of the texture's filter and addressing, so that each kind gets a loop of its own.
+pub(crate) trait SampledLoop<C> {
+    /// What the loop returns.
+    type Output;
+
+    /// Runs the loop with `sample`, the texture's colour at a 16.16 texel coordinate `(x, y)`
+    /// given as `(x, y << y_shift)` (wrapping: the loop steps the shifted `y` by the shifted
+    /// step).
+    fn run(self, sample: impl Fn(i32, i32) -> C, y_shift: u32) -> Self::Output;
+}
+
+/// How a texture is sampled, decided once per triangle: by masks alone into storage cut to the
+/// texture's size (power-of-two sides repeating on both axes), or through the texture's
+/// wrapping; by its filter.
+#[derive(Debug)]
+pub(crate) enum Sampler<'t, S> {
+    /// Nearest, masked.
+    MaskedNearest(PowerOfTwoRepeat, S),
+    /// Bilinear, masked.
+    MaskedBilinear(PowerOfTwoRepeat, S),
+    /// Any other nearest texture.
+    Nearest(&'t Texture<S>),
+    /// Any other bilinear texture.
+    Bilinear(&'t Texture<S>),
+}
+
+impl<'t, S: TexelSource> Sampler<'t, S> {
+    /// The sampler of `texture`.
+    #[inline(always)]
+    pub(crate) fn new(texture: &'t Texture<S>) -> Self {
+        let masked = PowerOfTwoRepeat::of(texture)
+            .and_then(|masks| Some((masks, texture.source().prefix(masks.last())?)));
+        match (texture.filter(), masked) {
+            (Filter::Nearest, Some((masks, texels))) => Sampler::MaskedNearest(masks, texels),
+            (Filter::Bilinear, Some((masks, texels))) => Sampler::MaskedBilinear(masks, texels),
+            (Filter::Nearest, None) => Sampler::Nearest(texture),
+            (Filter::Bilinear, None) => Sampler::Bilinear(texture),
+        }
+    }
+
+    /// Runs `body` with this sampling function: [`Texture::sample`]'s colours.
+    #[inline(always)]
+    pub(crate) fn run<C, L>(&self, body: L) -> L::Output
+    where
+        C: GouraudColor + From<S::Color>,
+        L: SampledLoop<C>,
+    {
+        match self {
+            // Indices masked once more by the cut storage's own size (the same bits: it holds
+            // a power of two texels), which tells the compiler they are inside, however far
+            // from the cut the loop runs.
+            // Textures of up to 2¹⁶ texels take `y` scaled by their width: its whole texels
+            // are then the row's storage offset, and a mask alone finds it.
+            // The closures take copies: values the loop keeps in registers, not loads through a
+            // reference (which the compiler cannot tell from the pixels being written).
+            &Sampler::MaskedNearest(masks, texels) if masks.row_bits() <= 16 => {
+                let rows = masks.y_mask << masks.row_shift;
+                let sample = move |x: i32, y_scaled: i32| {
+                    let last = texels.texels().wrapping_sub(1);
+                    let row = (y_scaled >> 16) as u32 & rows;
+                    let column = (x >> 16) as u32 & masks.x_mask;
+                    C::from(texels.texel((row | column) as usize & last))
+                };
+                body.run(sample, masks.row_shift)
+            }
+            &Sampler::MaskedNearest(masks, texels) => {
+                let sample = move |x, y| {
+                    let last = texels.texels().wrapping_sub(1);
+                    C::from(texels.texel(masks.index(x, y) & last))
+                };
+                body.run(sample, 0)
+            }
+            &Sampler::MaskedBilinear(masks, texels) => {
+                let sample = move |x, y| {
+                    let last = texels.texels().wrapping_sub(1);
+                    bilinear_by(x, y, |i, j| {
+                        C::from(texels.texel(masks.texel_index(i, j) & last))
+                    })
+                };
+                body.run(sample, 0)
+            }
+            Sampler::Nearest(texture) => body.run(|x, y| C::from(texture.nearest(x, y)), 0),
+            Sampler::Bilinear(texture) => body.run(|x, y| texture.bilinear(x, y), 0),
+        }
+    }
+}
+
+/// Fills `dst` with the texture sampled at `(x, y) + i·(dx, dy)` (16.16 texels, wrapping) for
+/// pixel `i`: [`Texture::sample`] at each.
+#[inline(always)]
+pub(crate) fn fill_affine<S, C>(
+    dst: &mut [C],
+    sampler: &Sampler<'_, S>,
+    at: (i32, i32),
+    step: (i32, i32),
+) where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    sampler.run(Affine { dst, at, step });
+}
+
+/// [`fill_affine`]'s loop.
+struct Affine<'d, C> {
+    dst: &'d mut [C],
+    at: (i32, i32),
+    step: (i32, i32),
+}
+
+impl<C> SampledLoop<C> for Affine<'_, C> {
+    type Output = ();
+
+    // Out of line: the walk's values stay out of the loop's registers (a call a span).
+    #[inline(never)]
+    fn run(self, sample: impl Fn(i32, i32) -> C, y_shift: u32) {
+        let (mut x, dx) = (self.at.0, self.step.0);
+        let (mut y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
+        for px in self.dst {
+            *px = sample(x, y);
+            x = x.wrapping_add(dx);
+            y = y.wrapping_add(dy);
+        }
+    }
+}
+
+/// Nearest filtering of a texture repeating on both axes with power-of-two sides: the storage
+/// index of the texel at a 16.16 coordinate from two masks and a shift.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PowerOfTwoRepeat {
+    x_mask: u32,
+    y_mask: u32,
+    row_shift: u32,
+}
+
+impl PowerOfTwoRepeat {
+    /// The masks of `texture`, if it is of that kind.
+    #[inline(always)]
+    pub(crate) fn of<S: TexelSource>(texture: &Texture<S>) -> Option<Self> {
+        let (x, y) = texture.axes();
+        match (x.wrap(), y.wrap(), x.shift(), y.shift()) {
+            (Wrap::Repeat, Wrap::Repeat, Some(row_shift), Some(_)) => Some(PowerOfTwoRepeat {
+                x_mask: x.size() - 1,
+                y_mask: y.size() - 1,
+                row_shift,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Bits of a texel's storage index: `log2(width × height)`.
+    #[inline(always)]
+    fn row_bits(&self) -> u32 {
+        self.row_shift + (32 - self.y_mask.leading_zeros())
+    }
+
+    /// The index of the texture's last texel (its texels less one: a power of two less one).
+    #[inline(always)]
+    fn last(&self) -> usize {
+        ((self.y_mask << self.row_shift) | self.x_mask) as usize
+    }
+
+    /// The storage index of texel `(i, j)` after wrapping (at most [`last`](Self::last)).
+    #[inline(always)]
+    pub(crate) fn texel_index(&self, i: i32, j: i32) -> usize {
+        let column = i as u32 & self.x_mask;
+        let row = j as u32 & self.y_mask;
+        ((row << self.row_shift) | column) as usize
+    }
+
+    /// The storage index of the texel at `(x, y)`: [`Texture::nearest`]'s.
+    #[inline(always)]
+    pub(crate) fn index(&self, x: i32, y: i32) -> usize {
+        self.texel_index(x >> 16, y >> 16)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::texture::{Indexed4, Rgb565Texels};
+    use embedded_graphics::pixelcolor::raw::RawU16;
+    use embedded_graphics::pixelcolor::{Gray8, Rgb565};
+
+    /// The mapped plane values read back as the coordinates, and the margin holds.
+    #[test]
+    fn plane_maps_cover_any_coordinates() {
+        let mut next = crate::random(0x7e47_0002);
+        for n in 0..20_000 {
+            let spread = 1u64 << (n % 33);
+            let lo = next() as i32;
+            let c = [(); 3].map(|_| {
+                (i64::from(lo) + (next() % spread) as i64).clamp(i32::MIN.into(), i32::MAX.into())
+                    as i32
+            });
+            let (map, values) = PlaneMap::new(c);
+            let shift = map.up + 16 - map.down;
+            for k in 0..3 {
+                assert!(
+                    (128..=65_535 - 128).contains(&values[k]),
+                    "{c:?} {values:?}"
+                );
+                let back = map.at(u32::from(values[k]) << 16);
+                // Within half a step of the values' scale, modulo 2³².
+                let err = i64::from(c[k].wrapping_sub(back));
+                assert!(err.abs() <= 1 << shift >> 1, "{c:?} {k}: {back}");
+            }
+        }
+    }
+
+    /// The masked loops give what `Texture::sample` gives, with either filter.
+    #[test]
+    fn masked_spans_are_the_sampled_ones() {
+        let mut next = crate::random(0x7e47_0003);
+        let texels: [u16; 64 * 32] = core::array::from_fn(|_| next() as u16);
+        let indices: [u8; 24 * 8] = core::array::from_fn(|_| next() as u8);
+        let palette: [Gray8; 16] = core::array::from_fn(|i| Gray8::new(i as u8 * 16));
+        for _ in 0..2_000 {
+            let at = (next() as i32, next() as i32);
+            let step = (
+                (next() as i32) >> (next() % 32),
+                (next() as i32) >> (next() % 32),
+            );
+            let len = (next() % 40) as usize;
+            let texture = Texture::new(Rgb565Texels(&texels), 64, 32).unwrap();
+            for filter in [Filter::Nearest, Filter::Bilinear] {
+                let texture = texture.with_filter(filter);
+                let mut got = [Rgb565::from(RawU16::new(0)); 40];
+                fill_affine(&mut got[..len], &Sampler::new(&texture), at, step);
+                for (i, &px) in got[..len].iter().enumerate() {
+                    let (x, y) = (
+                        at.0.wrapping_add(step.0.wrapping_mul(i as i32)),
+                        at.1.wrapping_add(step.1.wrapping_mul(i as i32)),
+                    );
+                    assert_eq!(px, texture.sample::<Rgb565>(x, y), "{filter:?}");
+                }
+            }
+            // Not a power of two: the general loop.
+            let texture = Texture::new(
+                Indexed4 {
+                    indices: &indices,
+                    palette: &palette,
+                },
+                24,
+                16,
+            )
+            .unwrap()
+            .with_wrap(Wrap::MirroredRepeat, Wrap::Clamp);
+            let mut got = [Gray8::new(0); 40];
+            fill_affine(&mut got[..len], &Sampler::new(&texture), at, step);
+            for (i, &px) in got[..len].iter().enumerate() {
+                let x = at.0.wrapping_add(step.0.wrapping_mul(i as i32));
+                let y = at.1.wrapping_add(step.1.wrapping_mul(i as i32));
+                assert_eq!(px, texture.nearest(x, y));
+            }
+        }
+    }
+}
