@@ -28,7 +28,8 @@ use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::edge::{first_centre_from, last_centre_to};
 use crate::raster::scan::{KeptWords, KEPT_WORDS};
 use crate::three_d::{
-    fit_scratch, DrawStats, FaceSink, Frame, Material, Mesh, Pipeline, ProjectedVertex, TargetClip,
+    fit_scratch, DrawStats, FaceSink, FaceTexture, Frame, Material, Mesh, Pipeline,
+    ProjectedVertex, TargetClip,
 };
 use crate::Vec3;
 
@@ -745,9 +746,9 @@ impl Recorder<'_> {
 
 impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
     #[inline(always)]
-    fn face<R: RowWindow>(
+    fn face<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
-        _: &Frame<'_, C, R>,
+        _: &Frame<'_, C, R, T>,
         _: &Mesh<'_>,
         k: usize,
         idx: &[usize; 3],
@@ -759,9 +760,9 @@ impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
         self.record(k, idx, false, heights);
     }
 
-    fn clipped<R: RowWindow>(
+    fn clipped<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
-        frame: &Frame<'_, C, R>,
+        frame: &Frame<'_, C, R, T>,
         _: &Mesh<'_>,
         k: usize,
         idx: &[usize; 3],

@@ -15,7 +15,7 @@ use crate::rect;
 use crate::texture::TexelSource;
 use crate::three_d::{
     DepthTarget, DrawStats, Frame, Material, Mesh, Pipeline, ProjectedVertex, ScratchTooSmall,
-    TargetClip,
+    TargetClip, TexturedMaterial,
 };
 
 /// Which band of which layout a band target holds: its rows in the frame.
@@ -479,6 +479,42 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
     ) -> Result<DrawStats, ScratchTooSmall> {
         let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
         let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
+        frame.project(mesh, scratch);
+        Ok(frame.scratch_faces(mesh, scratch, &mut self.target))
+    }
+
+    /// Draws the band's rows of `mesh` with the textured `material`, as
+    /// [`Pipeline::draw_textured_mesh`] draws the whole frame: the same pixels and depths there.
+    pub fn draw_textured_mesh<S>(
+        &mut self,
+        pipeline: &Pipeline,
+        mesh: &Mesh<'_>,
+        material: &TexturedMaterial<'_, S>,
+    ) -> DrawStats
+    where
+        S: TexelSource,
+        C: From<S::Color>,
+    {
+        let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));
+        frame.each_face(mesh, &mut self.target)
+    }
+
+    /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed once into
+    /// `scratch`, as [`Pipeline::draw_textured_mesh_with`]; `Err` without drawing if `scratch`
+    /// is too short.
+    pub fn draw_textured_mesh_with<S>(
+        &mut self,
+        pipeline: &Pipeline,
+        mesh: &Mesh<'_>,
+        material: &TexturedMaterial<'_, S>,
+        scratch: &mut [ProjectedVertex],
+    ) -> Result<DrawStats, ScratchTooSmall>
+    where
+        S: TexelSource,
+        C: From<S::Color>,
+    {
+        let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
+        let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));
         frame.project(mesh, scratch);
         Ok(frame.scratch_faces(mesh, scratch, &mut self.target))
     }

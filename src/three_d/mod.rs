@@ -47,5 +47,6 @@ pub(crate) use shading::TargetClip;
 pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Material, QuadraticNormals, Shading,
 };
-pub use texturing::{draw_textured, TexturedScreenVertex};
+pub(crate) use texturing::FaceTexture;
+pub use texturing::{draw_textured, TexturedMaterial, TexturedScreenVertex};
 pub use vertex::ProjectedVertex;

@@ -68,12 +68,14 @@ use super::light::Light;
 use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
-use super::vertex::{ProjectedVertex, VertexLight, VertexStage};
+use super::texturing::{FaceTexture, NoTexture, TexelLight, TexturedMaterial};
+use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexStage};
 use crate::arch;
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
 use crate::raster::band::{AllRows, Band, RowWindow};
 use crate::raster::scan::KeptWords;
+use crate::texture::{TexelSource, Texture};
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -262,6 +264,85 @@ impl Pipeline {
         frame.project(mesh, scratch);
         Ok(frame.scratch_faces(mesh, scratch, target))
     }
+
+    /// Draws every triangle of `mesh` with the textured `material` into `target`, as
+    /// [`draw_mesh`](Self::draw_mesh) draws a material: the mesh's texture coordinates
+    /// ([`Mesh::uvs`], normalised, `v` up) read the texture perspective-correct, the texel lit
+    /// by the material's shading. A mesh without texture coordinates reads texel `(0, 0)`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::texture::{Rgb565Texels, Texture};
+    /// use embedded_raster::three_d::{Angle, DepthTarget, Light, Mat4, Mesh, Pipeline, Shading};
+    /// use embedded_raster::three_d::{TexCoord, TexturedMaterial, Vec3};
+    ///
+    /// // A square of two triangles, a 2 × 2 texture over it.
+    /// static POSITIONS: [Vec3; 4] = [
+    ///     Vec3::from_bits(-65536, -65536, 0),
+    ///     Vec3::from_bits(65536, -65536, 0),
+    ///     Vec3::from_bits(65536, 65536, 0),
+    ///     Vec3::from_bits(-65536, 65536, 0),
+    /// ];
+    /// static UVS: [TexCoord; 4] = [
+    ///     TexCoord::from_bits(0, 0),
+    ///     TexCoord::from_bits(65536, 0),
+    ///     TexCoord::from_bits(65536, 65536),
+    ///     TexCoord::from_bits(0, 65536),
+    /// ];
+    /// static INDICES: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+    /// static TEXELS: [u16; 4] = [0xf800, 0x07e0, 0x001f, 0xffff];
+    /// let mesh = Mesh::new(&POSITIONS, &[], &INDICES).with_uvs(&UVS);
+    /// let texture = Texture::new(Rgb565Texels(&TEXELS), 2, 2).unwrap();
+    ///
+    /// let (mut px, mut z) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
+    /// let mut target = DepthTarget::new(&mut px, &mut z, 64, 64).unwrap();
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 10)
+    ///     * Mat4::look_at(Vec3::new(0, 0, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+    /// let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    /// let material = TexturedMaterial::new(&texture, Shading::Unlit);
+    /// let stats = pipeline.draw_textured_mesh(&mesh, &material, &mut target);
+    /// assert_eq!(stats.drawn, 2);
+    /// // The top-left quarter of the screen's square is the texture's top-left texel.
+    /// assert_eq!(target.framebuffer().get(26, 26), Some(Rgb565::RED));
+    /// assert_eq!(target.framebuffer().get(38, 38), Some(Rgb565::WHITE));
+    /// ```
+    pub fn draw_textured_mesh<S, C>(
+        &self,
+        mesh: &Mesh<'_>,
+        material: &TexturedMaterial<'_, S>,
+        target: &mut DepthTarget<'_, C>,
+    ) -> DrawStats
+    where
+        S: TexelSource,
+        C: GouraudColor + From<S::Color>,
+    {
+        let clip = TargetClip::new(&self.viewport, target);
+        Frame::textured(self, mesh, material, clip).each_face(mesh, target)
+    }
+
+    /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed and
+    /// projected once into `scratch`, as [`draw_mesh_with`](Self::draw_mesh_with): the same
+    /// pixels; `Err` without drawing if `scratch` is too short.
+    pub fn draw_textured_mesh_with<S, C>(
+        &self,
+        mesh: &Mesh<'_>,
+        material: &TexturedMaterial<'_, S>,
+        target: &mut DepthTarget<'_, C>,
+        scratch: &mut [ProjectedVertex],
+    ) -> Result<DrawStats, ScratchTooSmall>
+    where
+        S: TexelSource,
+        C: GouraudColor + From<S::Color>,
+    {
+        let scratch = fit_scratch(mesh, scratch)?;
+        let clip = TargetClip::new(&self.viewport, target);
+        let frame = Frame::textured(self, mesh, material, clip);
+        frame.project(mesh, scratch);
+        Ok(frame.scratch_faces(mesh, scratch, target))
+    }
 }
 
 /// The first entry of `scratch` for each vertex of `mesh`, or the error if it is too short.
@@ -296,6 +377,9 @@ enum Fill<C> {
     Gouraud(ShadeTable<C>),
     /// Per-pixel lighting of the quadratic normal field.
     Quadratic(C),
+    /// The frame's texture, lit by one level a face (`Flat`), the vertex levels (`Gouraud`)
+    /// or not at all (`Unlit`).
+    Textured(Shading),
 }
 
 /// Where the face stage hands the faces it keeps: a target to fill them into now (a frame's, or a
@@ -304,9 +388,9 @@ pub(crate) trait FaceSink<C> {
     /// Face `k` of the mesh (vertices `idx` at `model`, projected `v`): inside the view volume,
     /// not culled, of non-zero area.
     #[allow(clippy::too_many_arguments)]
-    fn face<R: RowWindow>(
+    fn face<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
-        frame: &Frame<'_, C, R>,
+        frame: &Frame<'_, C, R, T>,
         mesh: &Mesh<'_>,
         k: usize,
         idx: &[usize; 3],
@@ -317,9 +401,9 @@ pub(crate) trait FaceSink<C> {
     /// Face `k`, crossing the view volume's boundary (to be clipped; it may still be dropped:
     /// `stats` counts it).
     #[allow(clippy::too_many_arguments)]
-    fn clipped<R: RowWindow>(
+    fn clipped<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
-        frame: &Frame<'_, C, R>,
+        frame: &Frame<'_, C, R, T>,
         mesh: &Mesh<'_>,
         k: usize,
         idx: &[usize; 3],
@@ -331,9 +415,9 @@ pub(crate) trait FaceSink<C> {
 
 impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
     #[inline(always)]
-    fn face<R: RowWindow>(
+    fn face<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
-        frame: &Frame<'_, C, R>,
+        frame: &Frame<'_, C, R, T>,
         mesh: &Mesh<'_>,
         _: usize,
         idx: &[usize; 3],
@@ -344,9 +428,9 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
     }
 
     #[inline(always)]
-    fn clipped<R: RowWindow>(
+    fn clipped<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
-        frame: &Frame<'_, C, R>,
+        frame: &Frame<'_, C, R, T>,
         mesh: &Mesh<'_>,
         _: usize,
         idx: &[usize; 3],
@@ -383,7 +467,7 @@ impl Dropped {
 /// A face clipped to the view volume and projected: the fan's vertices with their barycentric
 /// coordinates in the face, and the face's vertex light levels.
 pub(crate) struct ClippedFace {
-    screen: heapless::Vec<(ScreenVertex, Bary), 12>,
+    screen: heapless::Vec<(ScreenVertex, Bary, Inverse), 12>,
     levels: [u16; 3],
 }
 
@@ -396,8 +480,9 @@ impl ClippedFace {
     }
 }
 
-/// The state of one draw: the vertex stage, the clip rectangle and its rows, and the fill.
-pub(crate) struct Frame<'p, C, R = AllRows> {
+/// The state of one draw: the vertex stage, the clip rectangle and its rows, the fill and its
+/// texture (none for a material).
+pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     pipeline: &'p Pipeline,
     stage: VertexStage,
     light: VertexLight,
@@ -405,6 +490,34 @@ pub(crate) struct Frame<'p, C, R = AllRows> {
     /// The band's rows as planes in clip space, for a band's draw.
     band: Option<BandPlanes>,
     fill: Fill<C>,
+    texture: T,
+}
+
+impl<'p, 't, C, R, S> Frame<'p, C, R, &'t Texture<S>>
+where
+    C: GouraudColor + From<S::Color>,
+    R: RowWindow,
+    S: TexelSource,
+{
+    /// The draw of `mesh` with the textured `material` by `pipeline` inside `clip`.
+    pub(crate) fn textured(
+        pipeline: &'p Pipeline,
+        mesh: &Mesh<'_>,
+        material: &TexturedMaterial<'t, S>,
+        clip: TargetClip<R>,
+    ) -> Self {
+        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
+        let stage = pipeline.stage(bound(mesh.vertices), None);
+        Frame {
+            pipeline,
+            band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
+            stage,
+            light,
+            clip,
+            fill: Fill::Textured(material.shading),
+            texture: material.texture,
+        }
+    }
 }
 
 impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
@@ -431,11 +544,14 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             light,
             clip,
             fill,
+            texture: NoTexture,
         }
     }
+}
 
+impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
     /// The same draw inside `clip`: a band's rows of it.
-    pub(crate) fn with_clip<Q: RowWindow>(&self, clip: TargetClip<Q>) -> Frame<'p, C, Q> {
+    pub(crate) fn with_clip<Q: RowWindow>(&self, clip: TargetClip<Q>) -> Frame<'p, C, Q, T> {
         Frame {
             pipeline: self.pipeline,
             stage: self.stage,
@@ -443,12 +559,16 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
             clip,
             fill: self.fill.clone(),
+            texture: self.texture,
         }
     }
 
     /// Vertex `k` of `mesh`, at `p`.
     #[inline(always)]
     fn vertex(&self, mesh: &Mesh<'_>, k: usize, p: Vec3) -> ProjectedVertex {
+        if T::TEXTURED {
+            return self.stage.textured_vertex(p);
+        }
         self.stage.vertex(p, mesh.normals.get(k))
     }
 
@@ -493,6 +613,12 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     /// Every vertex of `mesh` transformed, projected and lit into `scratch` (one entry each).
     #[inline(never)]
     pub(crate) fn project(&self, mesh: &Mesh<'_>, scratch: &mut [ProjectedVertex]) {
+        if T::TEXTURED {
+            for (out, p) in scratch.iter_mut().zip(mesh.vertices) {
+                *out = self.stage.textured_vertex(*p);
+            }
+            return;
+        }
         self.stage.vertices(mesh.vertices, mesh.normals, scratch);
     }
 
@@ -708,7 +834,7 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
     }
 }
 
-impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
+impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
         let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
@@ -821,6 +947,66 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
                 let light = &self.pipeline.light;
                 shading::fill_quadratic(target, clip, tri, &normals, light, *color);
             }
+            Fill::Textured(shading) => {
+                self.fill_textured(mesh, idx, model, v, bary, *shading, target)
+            }
+        }
+    }
+
+    /// [`fill`](Self::fill) of a textured draw (out of line: the untextured fills keep their
+    /// registers).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn fill_textured(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3],
+        v: [&ProjectedVertex; 3],
+        bary: Option<[Bary; 3]>,
+        shading: Shading,
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let light = match shading {
+            Shading::Unlit => TexelLight::Full,
+            Shading::Flat => TexelLight::Level(self.face_level(&model())),
+            Shading::Gouraud | Shading::Quadratic => {
+                let levels = self.texel_levels(mesh, idx, &model());
+                let levels = at_bary(bary, levels.map(|l| [i64::from(l)]));
+                TexelLight::Levels(levels.map(|[l]| l.clamp(0, u16::MAX.into()) as u16))
+            }
+        };
+        let texels = self.texels(mesh, idx);
+        let texels = at_bary(bary, texels.map(|t| t.map(i64::from)));
+        let texels = texels.map(|t| t.map(|c| c as i32));
+        let q = v.map(|v| v.q());
+        let tri = v.map(|v| v.screen());
+        self.texture.fill(target, &self.clip, tri, q, texels, light);
+    }
+
+    /// The 16.16 texel coordinates of the face's vertices `idx` from the mesh's normalised
+    /// texture coordinates (`v` up: the texture's row 0 is at `v = 1`); 0 without them.
+    #[inline(always)]
+    fn texels(&self, mesh: &Mesh<'_>, idx: &[usize; 3]) -> [[i32; 2]; 3] {
+        let (w, h) = self.texture.size();
+        let scale =
+            |c: i64, n: u32| (c * i64::from(n)).clamp(i32::MIN.into(), i32::MAX.into()) as i32;
+        match at_face(mesh.uvs, idx) {
+            Some(t) => t.map(|t| {
+                let [u, v] = t.to_bits();
+                [scale(u.into(), w), scale((1 << 16) - i64::from(v), h)]
+            }),
+            None => [[0; 2]; 3],
+        }
+    }
+
+    /// The light levels of the face's vertices `idx` (at `model`) in a textured draw, from the
+    /// mesh's normals (the face's normal for a mesh without them).
+    #[inline(always)]
+    fn texel_levels(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [u16; 3] {
+        match at_face(mesh.normals, idx) {
+            Some(n) => n.map(|n| self.light.level(*n)),
+            None => [self.face_level(model); 3],
         }
     }
 
@@ -864,9 +1050,10 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
         if !self.stage.volume.clip(&mut poly) {
             return Err(Dropped::Rejected);
         }
-        let mut screen: heapless::Vec<(ScreenVertex, Bary), 12> = heapless::Vec::new();
+        let mut screen: heapless::Vec<(ScreenVertex, Bary, Inverse), 12> = heapless::Vec::new();
         for c in &poly {
-            let _ = screen.push((self.stage.project(&c.p), c.bary));
+            let (vertex, q) = self.stage.project_inverse(&c.p);
+            let _ = screen.push((vertex, c.bary, q));
         }
         // Orientation of the whole (convex) polygon: the sum of its fan's areas.
         let area: i128 = (1..screen.len().saturating_sub(1))
@@ -912,10 +1099,29 @@ impl<C: GouraudColor, R: RowWindow> Frame<'_, C, R> {
                     .sum();
                 ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
             };
-            let v = [s0, s1, s2].map(|s| ProjectedVertex::lit(s.0, level(&s.1)));
+            let textured = matches!(self.fill, Fill::Textured(_));
+            let v = [s0, s1, s2].map(|s| match textured {
+                true => ProjectedVertex::with_q(s.0, s.2),
+                false => ProjectedVertex::lit(s.0, level(&s.1)),
+            });
             self.fill(mesh, idx, model, v.each_ref(), Some(bary), target);
         }
     }
+}
+
+/// Per-vertex values of a face at the vertices of its clipped fan, whose barycentric coordinates
+/// in the face are `bary` (30 fractional bits); the values themselves for a whole face.
+#[inline(always)]
+fn at_bary<const N: usize>(bary: Option<[Bary; 3]>, values: [[i64; N]; 3]) -> [[i64; N]; 3] {
+    let Some(bary) = bary else {
+        return values;
+    };
+    bary.map(|b| {
+        core::array::from_fn(|k| {
+            let sum: i64 = (0..3).map(|v| i64::from(b[v]) * values[v][k]).sum();
+            (sum + (1 << 29)) >> 30
+        })
+    })
 }
 
 /// The entries of `items` at a face's three indices, if all are there.

@@ -102,7 +102,7 @@ pub fn shade<C: GouraudColor>(color: C, level: Scalar) -> C {
 }
 
 #[inline(always)]
-fn scale_channels<C: GouraudColor>(base: [u8; 3], level: u32) -> C {
+pub(super) fn scale_channels<C: GouraudColor>(base: [u8; 3], level: u32) -> C {
     let s = |c: u8| ((u32::from(c) * level + (1 << 15)) >> 16) as u8;
     C::from_channels([s(base[0]), s(base[1]), s(base[2])])
 }

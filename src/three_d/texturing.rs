@@ -22,10 +22,10 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::Scalar;
-use super::shading::{with_depth, TargetClip, DEPTH_SHIFT};
+use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
 use crate::color::GouraudColor;
 use crate::raster::band::RowWindow;
-use crate::raster::perspective::{self, step_over, Chunks, Corrected};
+use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
 use crate::raster::{Span, SpanShader};
 use crate::texture::span::{SampledLoop, Sampler};
 use crate::texture::{TexelCoord, TexelSource, Texture};
@@ -86,7 +86,9 @@ pub fn draw_textured<S, C>(
 {
     let clip = TargetClip::new(clip, target);
     let q = vertices.map(|v| inverse_w(v.w));
-    fill_textured(target, &clip, vertices, q, texture);
+    let texels = vertices.map(|v| [v.u.to_bits(), v.v.to_bits()]);
+    let screen = vertices.each_ref().map(|v| &v.screen);
+    fill_textured(target, &clip, screen, q, texels, texture, TexelLight::Full);
 }
 
 /// `2⁴⁷ / w` (of the raw `I16F16` bits, at least 1): a `q` for the perspective planes.
@@ -95,44 +97,249 @@ fn inverse_w(w: Scalar) -> u64 {
     (1u64 << 47) / w
 }
 
-/// [`draw_textured`] inside a clip already within the target, with the vertices' `q ∝ 1/w`.
+/// How the light modulates a textured face's texels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum TexelLight {
+    /// Not at all: the texels as they are.
+    Full,
+    /// By one level for the face (8.8 of the 0–255 scale).
+    Level(u16),
+    /// By the vertices' levels (8.8 of the 0–255 scale), interpolated perspective-correct.
+    Levels([u16; 3]),
+}
+
+/// A texture a frame draws its faces with: none (a material's colour), or a texture of some
+/// texel source (a textured material's).
+pub(crate) trait FaceTexture<C>: Copy {
+    /// Whether there is a texture: its draws' vertices keep their reciprocal `w`.
+    const TEXTURED: bool = true;
+
+    /// The texture's width and height (a mesh's normalised texture coordinates are scaled by
+    /// them).
+    fn size(&self) -> (u32, u32);
+
+    /// Fills the face of `vertices` with their `q ∝ 1/w` and 16.16 texel coordinates, lit by
+    /// `light`.
+    fn fill<R: RowWindow>(
+        &self,
+        target: &mut DepthTarget<'_, C>,
+        clip: &TargetClip<R>,
+        vertices: [&ScreenVertex; 3],
+        q: [u64; 3],
+        texels: [[i32; 2]; 3],
+        light: TexelLight,
+    );
+}
+
+/// No texture: the draws of a [`Material`](super::Material).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct NoTexture;
+
+impl<C> FaceTexture<C> for NoTexture {
+    const TEXTURED: bool = false;
+
+    fn size(&self) -> (u32, u32) {
+        (0, 0)
+    }
+
+    fn fill<R: RowWindow>(
+        &self,
+        _: &mut DepthTarget<'_, C>,
+        _: &TargetClip<R>,
+        _: [&ScreenVertex; 3],
+        _: [u64; 3],
+        _: [[i32; 2]; 3],
+        _: TexelLight,
+    ) {
+    }
+}
+
+impl<S, C> FaceTexture<C> for &Texture<S>
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    #[inline(always)]
+    fn size(&self) -> (u32, u32) {
+        (self.width(), self.height())
+    }
+
+    #[inline(always)]
+    fn fill<R: RowWindow>(
+        &self,
+        target: &mut DepthTarget<'_, C>,
+        clip: &TargetClip<R>,
+        vertices: [&ScreenVertex; 3],
+        q: [u64; 3],
+        texels: [[i32; 2]; 3],
+        light: TexelLight,
+    ) {
+        fill_textured(target, clip, vertices, q, texels, self, light);
+    }
+}
+
+/// A textured material: the texture a mesh's texture coordinates read and how the light
+/// modulates its texels ([`Shading::Unlit`](super::Shading): not at all; `Flat`: one level a
+/// face; `Gouraud`: the vertex levels interpolated perspective-correct; `Quadratic` is taken
+/// as `Gouraud`).
+#[derive(Debug)]
+pub struct TexturedMaterial<'t, S> {
+    /// The texture.
+    pub texture: &'t Texture<S>,
+    /// How the texels are lit.
+    pub shading: super::Shading,
+}
+
+impl<S> Clone for TexturedMaterial<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S> Copy for TexturedMaterial<'_, S> {}
+
+impl<'t, S> TexturedMaterial<'t, S> {
+    /// The material of `texture` lit with `shading`.
+    pub const fn new(texture: &'t Texture<S>, shading: super::Shading) -> Self {
+        TexturedMaterial { texture, shading }
+    }
+}
+
+/// [`draw_textured`] inside a clip already within the target, with the vertices' `q ∝ 1/w`
+/// and 16.16 texel coordinates, lit by `light`.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn fill_textured<S, C, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
-    vertices: &[TexturedScreenVertex; 3],
+    screen: [&ScreenVertex; 3],
     q: [u64; 3],
+    texels: [[i32; 2]; 3],
     texture: &Texture<S>,
+    light: TexelLight,
 ) where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
     let perspective = perspective::attributes(q);
-    let screen = vertices.each_ref().map(|v| &v.screen);
     let attributes = with_depth(screen, perspective.values, perspective.half);
-    let fill = TexturedFill {
-        target,
-        sampler: Sampler::new(texture),
-        u: Corrected::new(vertices.map(|v| v.u.to_bits())),
-        v: Corrected::new(vertices.map(|v| v.v.to_bits())),
-    };
+    let coordinates = (
+        Corrected::new(texels.map(|t| t[0])),
+        Corrected::new(texels.map(|t| t[1])),
+    );
     let rect = clip.rect();
-    clip.rows()
-        .shade(screen.map(|v| v.position()), &attributes, &rect, fill);
+    let position = screen.map(|v| v.position());
+    let sampler = Sampler::new(texture);
+    // One span loop for each kind of light.
+    match light {
+        TexelLight::Full => {
+            let fill = TexturedFill {
+                target,
+                sampler,
+                coordinates,
+                light: Unlit,
+            };
+            clip.rows().shade(position, &attributes, &rect, fill);
+        }
+        TexelLight::Level(level) => {
+            let fill = TexturedFill {
+                target,
+                sampler,
+                coordinates,
+                light: Constant(level_fraction(level)),
+            };
+            clip.rows().shade(position, &attributes, &rect, fill);
+        }
+        TexelLight::Levels(levels) => {
+            let fill = TexturedFill {
+                target,
+                sampler,
+                coordinates,
+                light: Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
+            };
+            clip.rows().shade(position, &attributes, &rect, fill);
+        }
+    }
 }
 
-/// The span shader of the textured fills: depth test, texel coordinates from the perspective
-/// planes every [`CHUNK`](perspective::CHUNK) pixels, the texture sampled between.
-struct TexturedFill<'t, 'a, 'x, C, S> {
+/// A light level (8.8 of the 0–255 scale) as a fraction with 16 bits (`65535` for 255).
+#[inline(always)]
+fn level_fraction(level: u16) -> u32 {
+    (u32::from(level) * 257 + 128) >> 8
+}
+
+/// How the span loop lights a texel: the level's 16-bit fraction at each pixel.
+trait SpanLight: Copy {
+    /// The per-pixel state of a chunk from `start` to `end` (perspective barycentrics) over
+    /// `over` pixels.
+    fn chunk(&self, start: (Lambda, Lambda), end: (Lambda, Lambda), over: u32) -> (i32, i32);
+    /// The texel lit at the state's level.
+    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C;
+}
+
+/// No light.
+#[derive(Clone, Copy)]
+struct Unlit;
+
+impl SpanLight for Unlit {
+    #[inline(always)]
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
+        (0, 0)
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, _: i32) -> C {
+        texel
+    }
+}
+
+/// One level for the face.
+#[derive(Clone, Copy)]
+struct Constant(u32);
+
+impl SpanLight for Constant {
+    #[inline(always)]
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
+        (self.0 as i32, 0)
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
+        scale_channels::<C>(texel.channels(), level as u32)
+    }
+}
+
+/// The vertices' levels, perspective-correct at the chunks' ends and stepped between.
+#[derive(Clone, Copy)]
+struct Varying(Corrected);
+
+impl SpanLight for Varying {
+    #[inline(always)]
+    fn chunk(&self, start: (Lambda, Lambda), end: (Lambda, Lambda), over: u32) -> (i32, i32) {
+        let (a, b) = (self.0.at(start), self.0.at(end));
+        (a, step_over(a, b, over))
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
+        scale_channels::<C>(texel.channels(), level.clamp(0, 1 << 16) as u32)
+    }
+}
+
+/// The span shader of the textured fills: depth test, texel coordinates (and light level) from
+/// the perspective planes every [`CHUNK`](perspective::CHUNK) pixels, the texture sampled
+/// between.
+struct TexturedFill<'t, 'a, 'x, C, S, L> {
     target: &'t mut DepthTarget<'a, C>,
     sampler: Sampler<'x, S>,
-    u: Corrected,
-    v: Corrected,
+    coordinates: (Corrected, Corrected),
+    light: L,
 }
 
-impl<C, S> SpanShader<4> for TexturedFill<'_, '_, '_, C, S>
+impl<C, S, L> SpanShader<4> for TexturedFill<'_, '_, '_, C, S, L>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
+    L: SpanLight,
 {
     type Steps = [u32; 4];
 
@@ -151,28 +358,30 @@ where
             depths,
             steps: *steps,
             start,
-            coordinates: (self.u, self.v),
+            coordinates: self.coordinates,
+            light: self.light,
         };
         self.sampler.run(run);
     }
 }
 
 /// One span of [`TexturedFill`]: its pixels and depths, the planes' steps and first values.
-struct PerspectiveSpan<'p, C> {
+struct PerspectiveSpan<'p, C, L> {
     colors: &'p mut [C],
     depths: &'p mut [u16],
     steps: [u32; 4],
     start: [u32; 4],
     coordinates: (Corrected, Corrected),
+    light: L,
 }
 
-impl<C> SampledLoop<C> for PerspectiveSpan<'_, C> {
+impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L> {
     type Output = ();
 
     /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate.
     #[inline(always)]
     fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
-        let (colors, depths) = (self.colors, self.depths);
+        let (colors, depths, light) = (self.colors, self.depths, self.light);
         let [dz, dq, dp1, dp2] = self.steps;
         let [mut z, q, p1, p2] = self.start;
         let (u, v) = self.coordinates;
@@ -188,15 +397,17 @@ impl<C> SampledLoop<C> for PerspectiveSpan<'_, C> {
                 step_over(y, end.1, chunk.over) << y_shift,
             );
             y <<= y_shift;
+            let (mut level, dl) = light.chunk(chunk.start, chunk.end, chunk.over);
             for (px, d) in pixels.by_ref().take(chunk.len as usize) {
                 let depth = (z >> DEPTH_SHIFT) as u16;
                 if depth < *d {
                     *d = depth;
-                    *px = texel(x, y);
+                    *px = light.apply(texel(x, y), level);
                 }
                 z = z.wrapping_add(dz);
                 x = x.wrapping_add(dx);
                 y = y.wrapping_add(dy);
+                level = level.wrapping_add(dl);
             }
             at = Some(end);
         }

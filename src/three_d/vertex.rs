@@ -40,10 +40,13 @@ pub struct ProjectedVertex {
     /// in the form the fills take by reference: a face's vertices are drawn from the scratch
     /// where they are, not copied.
     screen: ScreenVertex,
-    /// Light level, 8.8 fixed point of the 0–255 scale (Gouraud only).
+    /// Light level, 8.8 fixed point of the 0–255 scale (Gouraud only); in a textured draw the
+    /// high 16 bits of `q`, the reciprocal of `w` ([`q`](Self::q)).
     level: u16,
     /// Outside which clip planes (bit `k` for plane `k`), and [`NO_NORMAL`].
     code: u8,
+    /// In a textured draw, `q`'s shift (in the byte the others leave free).
+    q_shift: u8,
 }
 
 impl ProjectedVertex {
@@ -52,6 +55,7 @@ impl ProjectedVertex {
         screen: ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0),
         level: 0,
         code: 0,
+        q_shift: 0,
     };
 
     /// A vertex inside the view volume at `screen`, lit at `level` (a clipped face's fan).
@@ -60,7 +64,29 @@ impl ProjectedVertex {
             screen,
             level,
             code: 0,
+            q_shift: 0,
         }
+    }
+
+    /// A vertex inside the view volume at `screen` with `q` (a textured face's fan).
+    pub(crate) fn with_q(screen: ScreenVertex, q: Inverse) -> Self {
+        ProjectedVertex {
+            screen,
+            level: q.mantissa,
+            code: 0,
+            q_shift: q.shift,
+        }
+    }
+
+    /// In a textured draw, `q = 2⁶³ / w` within 2⁻¹⁵ of itself (`w` the raw clip-space `w`):
+    /// what the perspective planes need, proportional to `1/w`.
+    #[inline(always)]
+    pub(crate) fn q(&self) -> u64 {
+        Inverse {
+            mantissa: self.level,
+            shift: self.q_shift,
+        }
+        .value()
     }
 
     /// The clip planes the vertex is outside of (0: inside the view volume).
@@ -91,6 +117,22 @@ impl ProjectedVertex {
     #[inline(always)]
     pub(crate) fn level(&self) -> u16 {
         self.level
+    }
+}
+
+/// The reciprocal of a vertex's `w` in 24 bits, `mantissa · 2^(16 + shift)` (the high half of
+/// the projection's reciprocal and its normalising shift): the `q` of a textured draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Inverse {
+    mantissa: u16,
+    shift: u8,
+}
+
+impl Inverse {
+    /// `mantissa · 2^(16 + shift)`: about 2⁶³ / w.
+    #[inline(always)]
+    pub(crate) fn value(self) -> u64 {
+        u64::from(self.mantissa) << (16 + u32::from(self.shift))
     }
 }
 
@@ -305,6 +347,12 @@ impl VertexStage {
     /// `z·2^(s−1)` and `32767·r/2¹⁶`.
     #[inline(always)]
     pub(crate) fn project(&self, p: &[i32; 4]) -> ScreenVertex {
+        self.project_inverse(p).0
+    }
+
+    /// [`project`](Self::project), and the reciprocal of `w` it used (a textured draw's `q`).
+    #[inline(always)]
+    pub(crate) fn project_inverse(&self, p: &[i32; 4]) -> (ScreenVertex, Inverse) {
         let w = p[3].max(W_MIN as i32) as u32;
         // w in [2⁸, 2³¹): s in [1, 23].
         let s = leading_zeros_32(w);
@@ -328,11 +376,17 @@ impl VertexStage {
         // 32767·z/w: |z| ≤ w < 2^(32−s), so z·2^(s−1) fits and the depth is in [0, 65534].
         let kz = ((32767 * u64::from(r)) >> 16) as i32;
         let dz = ((i64::from(p[2] << (s - 1)) * i64::from(kz) + (1 << 45)) >> 32) as i32 >> 14;
-        ScreenVertex {
+        let screen = ScreenVertex {
             x: Coord::from_bits(x),
             y: Coord::from_bits(y),
             depth: (32767 + dz).clamp(0, i32::from(DEPTH_FAR)) as u16,
-        }
+        };
+        // r·2ˢ = 2⁶³ / w; r ≥ 2³¹, so its high half keeps 15 bits below its first.
+        let inverse = Inverse {
+            mantissa: (r >> 16) as u16,
+            shift: s as u8,
+        };
+        (screen, inverse)
     }
 
     /// The light level of a model-space normal (0 without a light).
@@ -391,7 +445,24 @@ impl VertexStage {
             screen,
             level: 0,
             code,
+            q_shift: 0,
         }
+    }
+
+    /// The vertex at `p` of a textured draw: transformed, classified and projected (if inside),
+    /// with its reciprocal `w` in the level's place (its level is found when it is drawn).
+    #[inline(always)]
+    pub(crate) fn textured_vertex(&self, p: Vec3) -> ProjectedVertex {
+        let clip = self.clip_position(p);
+        let code = self.volume.outcode(&clip);
+        if code != 0 {
+            return ProjectedVertex {
+                code,
+                ..ProjectedVertex::EMPTY
+            };
+        }
+        let (screen, q) = self.project_inverse(&clip);
+        ProjectedVertex::with_q(screen, q)
     }
 }
 
