@@ -18,6 +18,7 @@
 
 use super::arith::div_rem_u32;
 use super::plane::Attributes;
+use crate::arch::NO_LONG_MULTIPLY;
 use core::num::NonZeroU32;
 
 /// Margin added to every vertex value, so that the planes' rounding error (under one unit)
@@ -100,14 +101,20 @@ impl Corrected {
     /// `a₀ + ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ / 2¹⁶⌋` modulo 2³² (`λ` at most 2¹⁷).
     #[inline(always)]
     pub(crate) fn at(&self, (l1, l2): (Lambda, Lambda)) -> i32 {
-        // λ·d / 2¹⁶ = λ·high + λ·low / 2¹⁶, floored exactly; λ·low < 2³³ is split once more
-        // (λ's high part is at most 2), so every product fits 32 bits.
         let part = |l: u32, k: usize| {
-            let low = self.low[k];
-            let low = (l >> 16) * low + (((l & 0xffff) * low) >> 16);
-            (l as i32)
-                .wrapping_mul(self.high[k])
-                .wrapping_add(low as i32)
+            if NO_LONG_MULTIPLY {
+                // λ·d / 2¹⁶ = λ·high + λ·low / 2¹⁶, floored exactly; λ·low < 2³³ is split once
+                // more (λ's high part is at most 2), so every product fits 32 bits.
+                let low = self.low[k];
+                let low = (l >> 16) * low + (((l & 0xffff) * low) >> 16);
+                (l as i32)
+                    .wrapping_mul(self.high[k])
+                    .wrapping_add(low as i32)
+            } else {
+                // The same integer from one long product: d = high·2¹⁶ + low.
+                let d = (i64::from(self.high[k]) << 16) | i64::from(self.low[k]);
+                ((i64::from(l) * d) >> 16) as i32
+            }
         };
         self.base
             .wrapping_add(part(l1, 0))

@@ -30,6 +30,18 @@ pub trait TexelSource: Copy {
     /// The texel at `index`, for `index < self.texels()`; any colour beyond (never panics).
     fn texel(&self, index: usize) -> Self::Color;
 
+    /// [`texel`](Self::texel) without the bounds check: the masked loops' fetch, whose indices
+    /// are below the texture's size by construction. By default `texel` itself.
+    ///
+    /// # Safety
+    ///
+    /// `index < self.texels()`.
+    #[allow(unsafe_code)]
+    #[inline(always)]
+    unsafe fn texel_unchecked(&self, index: usize) -> Self::Color {
+        self.texel(index)
+    }
+
     /// The same storage cut after texel `last`, if it holds that one: the masked loops of
     /// power-of-two textures read it at indices masked to at most `last`, which the compiler
     /// then needs no bounds check for. `None` (the default): those loops read `self`.
@@ -66,6 +78,13 @@ impl TexelSource for Rgb565Texels<'_> {
     #[inline(always)]
     fn texel(&self, index: usize) -> Rgb565 {
         Rgb565::from(RawU16::new(self.0.get(index).copied().unwrap_or(0)))
+    }
+
+    #[allow(unsafe_code)]
+    #[inline(always)]
+    unsafe fn texel_unchecked(&self, index: usize) -> Rgb565 {
+        // SAFETY: `index < self.texels()`, the slice's length (the caller's contract).
+        Rgb565::from(RawU16::new(unsafe { *self.0.get_unchecked(index) }))
     }
 
     #[inline(always)]
@@ -118,6 +137,13 @@ impl TexelSource for Gray8Texels<'_> {
     #[inline(always)]
     fn texel(&self, index: usize) -> Gray8 {
         Gray8::new(self.0.get(index).copied().unwrap_or(0))
+    }
+
+    #[allow(unsafe_code)]
+    #[inline(always)]
+    unsafe fn texel_unchecked(&self, index: usize) -> Gray8 {
+        // SAFETY: `index < self.texels()`, the slice's length (the caller's contract).
+        Gray8::new(unsafe { *self.0.get_unchecked(index) })
     }
 
     #[inline(always)]
@@ -219,6 +245,13 @@ impl<C: PixelColor + Default> TexelSource for Direct<'_, C> {
     #[inline(always)]
     fn texel(&self, index: usize) -> C {
         self.0.get(index).copied().unwrap_or_default()
+    }
+
+    #[allow(unsafe_code)]
+    #[inline(always)]
+    unsafe fn texel_unchecked(&self, index: usize) -> C {
+        // SAFETY: `index < self.texels()`, the slice's length (the caller's contract).
+        unsafe { *self.0.get_unchecked(index) }
     }
 
     #[inline(always)]

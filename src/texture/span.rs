@@ -121,6 +121,8 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
     }
 
     /// Runs `body` with this sampling function: [`Texture::sample`]'s colours.
+    // The masked samplers' fetch skips the bounds check their masks make redundant.
+    #[allow(unsafe_code)]
     #[inline(always)]
     pub(crate) fn run<C, L>(&self, body: L) -> L::Output
     where
@@ -128,9 +130,8 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
         L: SampledLoop<C>,
     {
         match self {
-            // Indices masked once more by the cut storage's own size (the same bits: it holds
-            // a power of two texels), which tells the compiler they are inside, however far
-            // from the cut the loop runs.
+            // Indices masked to the texture's texels, read from storage cut to exactly those
+            // (`prefix`): inside by construction, fetched without a bounds check.
             // Textures of up to 2¹⁶ texels take `y` scaled by their width: its whole texels
             // are then the row's storage offset, and a mask alone finds it.
             // The closures take copies: values the loop keeps in registers, not loads through a
@@ -138,25 +139,26 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
             &Sampler::MaskedNearest(masks, texels) if masks.row_bits() <= 16 => {
                 let rows = masks.y_mask << masks.row_shift;
                 let sample = move |x: i32, y_scaled: i32| {
-                    let last = texels.texels().wrapping_sub(1);
                     let row = (y_scaled >> 16) as u32 & rows;
                     let column = (x >> 16) as u32 & masks.x_mask;
-                    C::from(texels.texel((row | column) as usize & last))
+                    // SAFETY: at most `rows | x_mask`, the index of the texture's last texel,
+                    // and `texels` holds exactly its texels (`prefix`).
+                    C::from(unsafe { texels.texel_unchecked((row | column) as usize) })
                 };
                 body.run(sample, masks.row_shift)
             }
             &Sampler::MaskedNearest(masks, texels) => {
                 let sample = move |x, y| {
-                    let last = texels.texels().wrapping_sub(1);
-                    C::from(texels.texel(masks.index(x, y) & last))
+                    // SAFETY: as above.
+                    C::from(unsafe { texels.texel_unchecked(masks.index(x, y)) })
                 };
                 body.run(sample, 0)
             }
             &Sampler::MaskedBilinear(masks, texels) => {
                 let sample = move |x, y| {
-                    let last = texels.texels().wrapping_sub(1);
                     bilinear_by(x, y, |i, j| {
-                        C::from(texels.texel(masks.texel_index(i, j) & last))
+                        // SAFETY: as above.
+                        C::from(unsafe { texels.texel_unchecked(masks.texel_index(i, j)) })
                     })
                 };
                 body.run(sample, 0)

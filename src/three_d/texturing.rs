@@ -378,18 +378,17 @@ struct PerspectiveSpan<'p, C, L> {
 impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L> {
     type Output = ();
 
-    /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate.
-    #[inline(always)]
+    /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate. Out of
+    /// line: the walk's values stay out of the loop's registers (a call a span).
+    #[inline(never)]
     fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
-        let (colors, depths, light) = (self.colors, self.depths, self.light);
+        let (mut colors, mut depths, light) = (self.colors, self.depths, self.light);
         let [dz, dq, dp1, dp2] = self.steps;
         let [mut z, q, p1, p2] = self.start;
         let (u, v) = self.coordinates;
         let len = colors.len().min(depths.len()) as u32;
-        let chunks = Chunks::new([q, p1, p2], [dq, dp1, dp2], len);
-        let mut pixels = colors.iter_mut().zip(depths.iter_mut());
         let mut at = None;
-        for chunk in chunks {
+        for chunk in Chunks::new([q, p1, p2], [dq, dp1, dp2], len) {
             let (mut x, mut y) = at.unwrap_or_else(|| (u.at(chunk.start), v.at(chunk.start)));
             let end = (u.at(chunk.end), v.at(chunk.end));
             let (dx, dy) = (
@@ -398,10 +397,16 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
             );
             y <<= y_shift;
             let (mut level, dl) = light.chunk(chunk.start, chunk.end, chunk.over);
-            for (px, d) in pixels.by_ref().take(chunk.len as usize) {
-                let depth = (z >> DEPTH_SHIFT) as u16;
-                if depth < *d {
-                    *d = depth;
+            // The chunk's pixels as slices of their own: one counter for the loop.
+            let n = chunk.len as usize;
+            let (Some((c, rest_c)), Some((d, rest_d))) = (split(colors, n), split(depths, n))
+            else {
+                return;
+            };
+            for (px, depth) in c.iter_mut().zip(d.iter_mut()) {
+                let z16 = (z >> DEPTH_SHIFT) as u16;
+                if z16 < *depth {
+                    *depth = z16;
                     *px = light.apply(texel(x, y), level);
                 }
                 z = z.wrapping_add(dz);
@@ -409,7 +414,14 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
                 y = y.wrapping_add(dy);
                 level = level.wrapping_add(dl);
             }
+            (colors, depths) = (rest_c, rest_d);
             at = Some(end);
         }
     }
+}
+
+/// The first `n` items of `items` and the rest, if it has `n`.
+#[inline(always)]
+fn split<T>(items: &mut [T], n: usize) -> Option<(&mut [T], &mut [T])> {
+    (n <= items.len()).then(|| items.split_at_mut(n))
 }
