@@ -22,6 +22,9 @@
 #[path = "common/scene3d.rs"]
 mod scene3d;
 
+#[path = "common/textured3d.rs"]
+mod textured3d;
+
 #[cfg(target_os = "none")]
 #[allow(dead_code)]
 #[path = "common/board.rs"]
@@ -48,6 +51,7 @@ mod firmware {
     use crate::clock::Ratio;
     use crate::scene3d::{self, FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
     use crate::scene3d::{TORUS_FACES, TORUS_VERTICES, TURNTABLE_POSES};
+    use crate::textured3d::{self, Textured, TexturedLine, TEXELS};
     use crate::{board, clock};
 
     /// The instruction set this build runs.
@@ -67,6 +71,7 @@ mod firmware {
         static mut TORUS_I: [[u16; 3]; TORUS_FACES] = [[0; 3]; TORUS_FACES];
         static mut SCRATCH: [ProjectedVertex; MAX_VERTICES] =
             [ProjectedVertex::EMPTY; MAX_VERTICES];
+        static mut TEXTURE: [u16; TEXELS] = [0; TEXELS];
 
         let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
         clock::start(&mut cp.SYST);
@@ -75,6 +80,20 @@ mod firmware {
         let (width, height) = SIZE;
         let mut target = DepthTarget::new(COLORS, DEPTH, width, height).expect("buffers fit");
 
+        if option_env!("MESH_PROFILE") == Some("textured") {
+            // Profiling build: the textured nearest frame alone, a few times.
+            textured3d::expand(TEXTURE);
+            for _ in 0..4 {
+                let scratch = Some(&mut SCRATCH[..]);
+                black_box(textured3d::render(
+                    Textured::Nearest,
+                    TEXTURE,
+                    &mut target,
+                    scratch,
+                ));
+            }
+            board::exit(true)
+        }
         if let Some(profile) = option_env!("MESH_PROFILE") {
             // Profiling build (.ci/profile.sh): only this frame, a few times.
             let model = if profile.starts_with("torus") {
@@ -138,10 +157,39 @@ mod firmware {
             poses[pose] = clock::instructions(clock::measure(1, || frame()), calibration);
             pose += 1;
         });
+        // The textured frames: counts and checksums untimed, then timed with the scratch.
+        textured3d::expand(TEXTURE);
+        let mut textured = [None, None, None];
+        for (k, frame) in Textured::ALL.into_iter().enumerate() {
+            let stats = textured3d::render(frame, TEXTURE, &mut target, Some(&mut SCRATCH[..]));
+            let covered = scene3d::covered(target.depth());
+            let checksum = scene3d::checksum(target.framebuffer().pixels(), target.depth());
+            textured3d::render(frame, TEXTURE, &mut target, None);
+            same &= checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
+            let ticks = clock::measure(1, || {
+                let scratch = Some(&mut SCRATCH[..]);
+                black_box(textured3d::render(
+                    black_box(frame),
+                    TEXTURE,
+                    &mut target,
+                    scratch,
+                ));
+            });
+            let line = TexturedLine {
+                frame,
+                stats,
+                covered,
+                checksum,
+            };
+            textured[k] = Some((line, clock::instructions(ticks, calibration)));
+        }
         for line in lines.iter().flatten() {
             hprintln!("{}", line);
         }
         hprintln!("{}", TurntableLine(turntable));
+        for (line, _) in textured.iter().flatten() {
+            hprintln!("{}", line);
+        }
         hprintln!("\n### 3D frame, {}\n", CODE);
         hprintln!(
             "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px | without scratch |"
@@ -159,6 +207,19 @@ mod firmware {
                 Ratio(instructions, u64::from(line.stats.drawn)),
                 Ratio(instructions, u64::from(line.covered)),
                 without
+            );
+        }
+        hprintln!(
+            "\n| spot textured (256×256 texture, Gouraud, perspective-correct) | drawn | covered px | instructions a frame |"
+        );
+        hprintln!("|---|---:|---:|---:|");
+        for (line, instructions) in textured.iter().flatten() {
+            hprintln!(
+                "| {} | {} | {} | {} |",
+                line.frame.name(),
+                line.stats.drawn,
+                line.covered,
+                instructions
             );
         }
         let (min, max) = (poses.iter().min(), poses.iter().max());
@@ -223,4 +284,22 @@ fn main() {
     }
     let turntable = scene3d::turntable_checksum(&scene3d::SPOT, &mut target, &mut scratch, |f| f());
     println!("{}", TurntableLine(turntable));
+    let mut texels = vec![0u16; textured3d::TEXELS];
+    textured3d::expand(&mut texels);
+    for frame in textured3d::Textured::ALL {
+        textured3d::render(frame, &texels, &mut target, None);
+        let without = scene3d::checksum(target.framebuffer().pixels(), target.depth());
+        let stats = textured3d::render(frame, &texels, &mut target, Some(&mut scratch));
+        let line = textured3d::TexturedLine {
+            frame,
+            stats,
+            covered: scene3d::covered(target.depth()),
+            checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
+        };
+        assert_eq!(
+            line.checksum, without,
+            "the textured frames with and without scratch differ"
+        );
+        println!("{line}");
+    }
 }

@@ -110,6 +110,50 @@ fn bench_spot_matches_its_obj() {
     );
 }
 
+/// Spot with its texture coordinates, for the textured frames (`examples/common/scene3d.rs`):
+/// the same OBJ welded with them kept, so the vertices on the texture's seams stay split (a
+/// vertex for each distinct position and texture coordinate), scaled as `bench_spot`.
+fn bench_spot_textured() -> MeshData {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/common/meshes/spot/spot_triangulated.obj"
+    );
+    let mut spot = obj::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+    spot.weld();
+    spot.scale_to_fit(1.0);
+    spot
+}
+
+#[test]
+fn textured_spot_matches_its_obj() {
+    let spot = bench_spot_textured();
+    let plain = bench_spot();
+    assert_eq!(spot.indices.len(), 5856);
+    assert_eq!(spot.uvs.len(), spot.vertices.len());
+    // The seams split vertices: more than the welded 2,930, each position still one of them.
+    assert!(
+        spot.vertices.len() > plain.vertices.len(),
+        "{}",
+        spot.vertices.len()
+    );
+    for p in &spot.vertices {
+        assert!(plain.vertices.contains(p));
+    }
+    // The unit square, but for a few coordinates of its OBJ a little outside (u to -0.053).
+    let near = -(1 << 16) / 16..=(1 << 16) + (1 << 16) / 16;
+    for t in &spot.uvs {
+        let [u, v] = t.to_bits();
+        assert!(near.contains(&u) && near.contains(&v), "{t:?}");
+    }
+    check_normals_agree(&spot);
+    check_source(
+        &spot,
+        "SPOT_TEXTURED",
+        "embedded_raster",
+        "examples/common/meshes/spot_textured.rs",
+    );
+}
+
 /// Every face is counter-clockwise seen from outside: its geometric normal agrees with its
 /// vertex normals; every normal is unit length; every edge is shared by exactly two faces in
 /// opposite directions (a closed, consistently oriented surface).

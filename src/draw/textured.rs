@@ -222,18 +222,8 @@ impl<'t, S: TexelSource> Texels<'t, S> {
         }
     }
 
-    /// The 16.16 texel coordinate `offset` pixels into a span whose plane values start at
-    /// `start`.
-    #[inline(always)]
-    fn at(&self, steps: &Steps, start: [u32; 2], offset: u32) -> (i32, i32) {
-        let value = |k: usize| start[k].wrapping_add(steps.plane[k].wrapping_mul(offset));
-        (self.maps[0].at(value(0)), self.maps[1].at(value(1)))
-    }
-
     /// The first texel coordinate and the per-pixel step of the run of `len` pixels `offset`
-    /// pixels into a span. A two-pixel run takes its second pixel's own coordinate: across
-    /// three or more covered pixels a plane's step is under half its range, so the step read as
-    /// an `i32` is the true one ([`PlaneMap::step`]), but across two it may not be.
+    /// pixels into a span whose plane values start at `start` ([`PlaneMap::run`]).
     #[inline(always)]
     fn run(
         &self,
@@ -242,12 +232,11 @@ impl<'t, S: TexelSource> Texels<'t, S> {
         offset: u32,
         len: u32,
     ) -> ((i32, i32), (i32, i32)) {
-        let at = self.at(steps, start, offset);
-        if len != 2 {
-            return (at, steps.texel);
-        }
-        let next = self.at(steps, start, offset + 1);
-        (at, (next.0.wrapping_sub(at.0), next.1.wrapping_sub(at.1)))
+        let value = |k: usize| start[k].wrapping_add(steps.plane[k].wrapping_mul(offset));
+        let (maps, plane) = (&self.maps, &steps.plane);
+        let (x, dx) = maps[0].run(value(0), plane[0], steps.texel.0, len);
+        let (y, dy) = maps[1].run(value(1), plane[1], steps.texel.1, len);
+        ((x, y), (dx, dy))
     }
 }
 

@@ -38,14 +38,19 @@ pub(crate) fn attributes(q: [u64; 3]) -> Attributes<3> {
     // A q of 0 (w beyond any range) is taken as the smallest positive one.
     let q = q.map(|q| q.max(1));
     let top = q[0].max(q[1]).max(q[2]);
-    // The common shift that brings the largest into [Q_MAX/2, Q_MAX] (or leaves it there).
-    let mut shift = 0;
-    while top >> shift > u64::from(Q_MAX) {
+    // The common shift that brings the largest into (Q_MAX/2, Q_MAX]: from its bit length
+    // (17 bits down to 16), one step more if that is still above Q_MAX.
+    let bits = 64 - top.leading_zeros();
+    let (mut shift, mut up) = if bits > 16 {
+        (bits - 16, 0)
+    } else {
+        (0, 16 - bits)
+    };
+    if top >> shift > u64::from(Q_MAX) {
         shift += 1;
     }
-    let mut up = 0;
-    while top << up <= u64::from(Q_MAX / 2) {
-        up += 1;
+    if up > 0 && top << up > u64::from(Q_MAX) {
+        up -= 1;
     }
     let n = q.map(|q| {
         let v = if shift > 0 { q >> shift } else { q << up };

@@ -8,12 +8,16 @@
 //! * `map` — [`Texture`]: a source with its size, wrap modes and [`Filter`] (nearest or
 //!   bilinear), sampled at 16.16 texel coordinates.
 //! * `span` — the span loops: texel coordinates stepped along a span from the attribute planes.
+//! * `convert` (feature `png`, host) — PNG decoding, resizing, palette reduction and the
+//!   flash emitter: a PNG as Rust source of `static` texel arrays.
 //!
 //! Texel coordinates are in texels: `(0, 0)` is the top-left corner of texel `(0, 0)`, `(i + ½,
 //! j + ½)` the centre of texel `(i, j)`, `y` down (the image's rows), as [`TexelCoord`]s
 //! (`I16F16`) on the way in and 16.16 `i32`s on the drawing paths.
 
 mod address;
+#[cfg(feature = "png")]
+pub mod convert;
 mod map;
 mod source;
 pub(crate) mod span;

@@ -71,6 +71,19 @@ impl PlaneMap {
             .wrapping_add(((value >> self.down) << self.up) as i32)
     }
 
+    /// The coordinate at the first pixel of a run of `len` pixels whose plane values start at
+    /// `value` and step by `step` a pixel, and its per-pixel step (`texel_step`, the
+    /// [`step`](Self::step) of `step`): a two-pixel run takes its second pixel's own
+    /// coordinate, as a step read as an `i32` is the true one only across three or more.
+    #[inline(always)]
+    pub(crate) fn run(&self, value: u32, step: u32, texel_step: i32, len: u32) -> (i32, i32) {
+        let at = self.at(value);
+        if len != 2 {
+            return (at, texel_step);
+        }
+        (at, self.at(value.wrapping_add(step)).wrapping_sub(at))
+    }
+
     /// The per-pixel step in 16.16 texels of a plane step (rounded to nearest).
     #[inline(always)]
     pub(crate) fn step(&self, step: u32) -> i32 {

@@ -27,7 +27,7 @@ use crate::color::GouraudColor;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
 use crate::raster::{Span, SpanShader};
-use crate::texture::span::{SampledLoop, Sampler};
+use crate::texture::span::{PlaneMap, SampledLoop, Sampler};
 use crate::texture::{TexelCoord, TexelSource, Texture};
 
 /// A vertex of a perspective-correct textured fill: its screen position and depth, its
@@ -221,14 +221,35 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     C: GouraudColor + From<S::Color>,
 {
     let perspective = perspective::attributes(q);
+    let rect = clip.rect();
+    let position = screen.map(|v| v.position());
+    let sampler = Sampler::new(texture);
+    let normalised = perspective.values.map(|v| v[0]);
+    if nearly_affine(normalised, texels, &light) {
+        // Screen-space interpolation is within the bound here: the 2D textured fill's planes.
+        let (mu, u) = PlaneMap::new(texels.map(|t| t[0]));
+        let (mv, v) = PlaneMap::new(texels.map(|t| t[1]));
+        let levels = match light {
+            TexelLight::Levels(l) => l,
+            TexelLight::Level(l) => [l; 3],
+            TexelLight::Full => [0; 3],
+        };
+        let more = [0, 1, 2].map(|k| [u[k], v[k], levels[k]]);
+        let attributes = with_depth(screen, more, [0; 3]);
+        let fill = AffineFill {
+            target,
+            sampler,
+            maps: [mu, mv],
+            lit: !matches!(light, TexelLight::Full),
+        };
+        clip.rows().shade(position, &attributes, &rect, fill);
+        return;
+    }
     let attributes = with_depth(screen, perspective.values, perspective.half);
     let coordinates = (
         Corrected::new(texels.map(|t| t[0])),
         Corrected::new(texels.map(|t| t[1])),
     );
-    let rect = clip.rect();
-    let position = screen.map(|v| v.position());
-    let sampler = Sampler::new(texture);
     // One span loop for each kind of light.
     match light {
         TexelLight::Full => {
@@ -257,6 +278,141 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 light: Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
+        }
+    }
+}
+
+/// The largest departure from the perspective-correct values that screen-space interpolation
+/// may make where a face takes it: 1/16 texel, and 1/4 of a light level.
+const AFFINE_TEXELS: i64 = 1 << 12;
+const AFFINE_LEVEL: i64 = 1 << 6;
+
+/// Whether a face whose vertices have the normalised `q` (perspective planes' values, each
+/// `q + 128`), texel coordinates (16.16) and light may be interpolated in screen space: an
+/// attribute of spread `s` (its largest difference between vertices) departs from its
+/// perspective-correct value by at most `s·(q_max − q_min) / (2·q_min)`, as the
+/// perspective-correct value is the average of the vertex values weighted by `bₖ·qₖ / Σ bⱼ·qⱼ`.
+/// Small faces (most of a mesh's) take the cheaper screen-space fill.
+#[inline(always)]
+fn nearly_affine(q: [u16; 3], texels: [[i32; 2]; 3], light: &TexelLight) -> bool {
+    let q = q.map(|q| i64::from(q) - 128);
+    let (lo, hi) = (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]));
+    let spread = |a: [i64; 3]| a[0].max(a[1]).max(a[2]) - a[0].min(a[1]).min(a[2]);
+    let texel_spread = spread(texels.map(|t| t[0].into())).max(spread(texels.map(|t| t[1].into())));
+    // Below 2³³ · 2¹⁶ and 2¹⁶ · 2¹⁶ · 2²: no overflow.
+    let (ratio, twice) = (hi - lo, 2 * lo);
+    if texel_spread * ratio > AFFINE_TEXELS * twice {
+        return false;
+    }
+    match light {
+        TexelLight::Levels(l) => {
+            let levels = spread(l.map(i64::from));
+            levels * ratio <= AFFINE_LEVEL * twice
+        }
+        _ => true,
+    }
+}
+
+/// The span shader of a textured face interpolated in screen space: the depth, the texel
+/// coordinates (16-bit planes as [`PlaneMap`] maps them) and the light level (8.8) as planes.
+struct AffineFill<'t, 'a, 'x, C, S> {
+    target: &'t mut DepthTarget<'a, C>,
+    sampler: Sampler<'x, S>,
+    maps: [PlaneMap; 2],
+    /// Whether the level plane lights the texels.
+    lit: bool,
+}
+
+impl<C, S> SpanShader<4> for AffineFill<'_, '_, '_, C, S>
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    type Steps = ([u32; 4], (i32, i32));
+
+    /// Small faces (most of a mesh's) are scanned: the same spans without the walk's
+    /// divisions.
+    #[inline(always)]
+    fn scans_small(&self) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    fn prepare(&mut self, step: [u32; 4]) -> Self::Steps {
+        (
+            step,
+            (self.maps[0].step(step[1]), self.maps[1].step(step[2])),
+        )
+    }
+
+    #[inline(always)]
+    fn span(&mut self, (step, texel): &Self::Steps, span: Span, start: [u32; 4]) {
+        let Some((colors, depths)) = self.target.clipped_spans_mut(span) else {
+            return;
+        };
+        let len = span.len();
+        let (x, dx) = self.maps[0].run(start[1], step[1], texel.0, len);
+        let (y, dy) = self.maps[1].run(start[2], step[2], texel.1, len);
+        let run = AffineSpan {
+            colors,
+            depths,
+            depth: (start[0], step[0]),
+            at: (x, y),
+            step: (dx, dy),
+            level: self.lit.then_some((start[3], step[3])),
+        };
+        self.sampler.run(run);
+    }
+}
+
+/// One span of [`AffineFill`].
+struct AffineSpan<'p, C> {
+    colors: &'p mut [C],
+    depths: &'p mut [u16],
+    depth: (u32, u32),
+    at: (i32, i32),
+    step: (i32, i32),
+    /// The level plane's value and step, if the texels are lit.
+    level: Option<(u32, u32)>,
+}
+
+impl<C: GouraudColor> SampledLoop<C> for AffineSpan<'_, C> {
+    type Output = ();
+
+    // Out of line: the walk's values stay out of the loop's registers (a call a span).
+    #[inline(never)]
+    fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
+        let ((mut z, dz), (mut x, dx)) = (self.depth, (self.at.0, self.step.0));
+        let (mut y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
+        let pixels = self.colors.iter_mut().zip(self.depths.iter_mut());
+        match self.level {
+            None => {
+                for (px, d) in pixels {
+                    let depth = (z >> DEPTH_SHIFT) as u16;
+                    if depth < *d {
+                        *d = depth;
+                        *px = texel(x, y);
+                    }
+                    z = z.wrapping_add(dz);
+                    x = x.wrapping_add(dx);
+                    y = y.wrapping_add(dy);
+                }
+            }
+            Some((mut l, dl)) => {
+                for (px, d) in pixels {
+                    let depth = (z >> DEPTH_SHIFT) as u16;
+                    if depth < *d {
+                        *d = depth;
+                        // 8.24 of the 0–255 scale to a 16-bit fraction (255 is 65535).
+                        let level = ((l >> 12) * 257) >> 12;
+                        *px = scale_channels::<C>(texel(x, y).channels(), level);
+                    }
+                    z = z.wrapping_add(dz);
+                    x = x.wrapping_add(dx);
+                    y = y.wrapping_add(dy);
+                    l = l.wrapping_add(dl);
+                }
+            }
         }
     }
 }
@@ -342,6 +498,13 @@ where
     L: SpanLight,
 {
     type Steps = [u32; 4];
+
+    /// Small faces (most of a mesh's) are scanned: the same spans without the walk's
+    /// divisions.
+    #[inline(always)]
+    fn scans_small(&self) -> bool {
+        true
+    }
 
     #[inline(always)]
     fn prepare(&mut self, step: [u32; 4]) -> [u32; 4] {

@@ -1,0 +1,149 @@
+//! The textured 3D benchmark frames (`fw_mesh_bench`, included with `#[path]` next to
+//! `scene3d.rs`): Keenan Crane's spot with its own texture (released by its author into the
+//! public domain with the mesh, `textures/spot_README.txt`) in the bench scene's frame — the
+//! same camera, light, pose and 320×240 Rgb565 target with a 16-bit z-buffer — Gouraud-lit,
+//! perspective-correct.
+//!
+//! * [`SPOT_TEXTURED`]: the mesh with its texture coordinates (3,225 vertices: the texture's
+//!   seams split some), stored in flash (`meshes/spot_textured.rs`, converted from the OBJ by
+//!   `tests/meshes.rs`, which checks it).
+//! * [`SPOT_TEXTURE`]: the texture box-filtered to 256 × 256 and reduced to 16 colours, 4 bits a
+//!   texel in flash (32 KB; `textures/spot_texture.rs`, generated from `textures/spot_texture.png`
+//!   by `texture::convert` and checked by `tests/texture_convert.rs`), drawn as it is or expanded
+//!   once into 256 × 256 Rgb565 texels in RAM ([`expand`], 128 KB) as TGX's frame draws it.
+
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
+use embedded_raster::three_d::{DepthTarget, DrawStats, ProjectedVertex, Shading};
+use embedded_raster::three_d::{Mesh, TexturedMaterial};
+
+use crate::scene3d::{pipeline, Model, BACKGROUND, SIZE};
+
+#[allow(clippy::all)]
+#[rustfmt::skip]
+#[path = "meshes/spot_textured.rs"]
+mod spot_textured;
+
+#[allow(clippy::all)]
+#[rustfmt::skip]
+#[path = "textures/spot_texture.rs"]
+mod spot_texture;
+
+pub use spot_texture::{SPOT_TEXTURE, SPOT_TEXTURE_HEIGHT, SPOT_TEXTURE_WIDTH};
+pub use spot_textured::SPOT_TEXTURED;
+
+/// Texels of the texture.
+pub const TEXELS: usize = (SPOT_TEXTURE_WIDTH * SPOT_TEXTURE_HEIGHT) as usize;
+
+/// The textured frames: the texture's storage and filter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Textured {
+    /// Rgb565 texels in RAM, nearest.
+    Nearest,
+    /// Rgb565 texels in RAM, bilinear.
+    Bilinear,
+    /// The 4-bit palette texels in flash, nearest.
+    Palette,
+}
+
+impl Textured {
+    /// All, in report order.
+    pub const ALL: [Textured; 3] = [Textured::Nearest, Textured::Bilinear, Textured::Palette];
+
+    /// The name in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Textured::Nearest => "spot-textured-nearest",
+            Textured::Bilinear => "spot-textured-bilinear",
+            Textured::Palette => "spot-textured-palette",
+        }
+    }
+}
+
+/// [`SPOT_TEXTURE`]'s texels as raw Rgb565 words into `out`.
+pub fn expand(out: &mut [u16]) {
+    for (k, texel) in out.iter_mut().enumerate().take(TEXELS) {
+        *texel = embedded_graphics::prelude::IntoStorage::into_storage(SPOT_TEXTURE.texel(k));
+    }
+}
+
+/// One textured frame of spot (`texels`: [`expand`]ed, for the Rgb565 frames): clears colour
+/// and depth, draws — each vertex transformed once into `scratch` if given (it must hold a
+/// vertex per mesh vertex), or once per face without.
+pub fn render(
+    frame: Textured,
+    texels: &[u16],
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: Option<&mut [ProjectedVertex]>,
+) -> DrawStats {
+    let (w, h) = (SPOT_TEXTURE_WIDTH, SPOT_TEXTURE_HEIGHT);
+    target.clear(BACKGROUND);
+    match frame {
+        Textured::Palette => match Texture::new(SPOT_TEXTURE, w, h) {
+            Ok(texture) => draw(&texture, target, scratch),
+            Err(_) => DrawStats::default(),
+        },
+        _ => {
+            let filter = match frame {
+                Textured::Bilinear => Filter::Bilinear,
+                _ => Filter::Nearest,
+            };
+            match Texture::new(Rgb565Texels(texels), w, h) {
+                Ok(texture) => draw(&texture.with_filter(filter), target, scratch),
+                Err(_) => DrawStats::default(),
+            }
+        }
+    }
+}
+
+/// Spot in the bench frame with `texture`, Gouraud-lit.
+fn draw<S>(
+    texture: &Texture<S>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: Option<&mut [ProjectedVertex]>,
+) -> DrawStats
+where
+    S: TexelSource,
+    Rgb565: From<S::Color>,
+{
+    let pipeline = pipeline(Model::Spot);
+    let material = TexturedMaterial::new(texture, Shading::Gouraud);
+    let mesh: &Mesh<'_> = &SPOT_TEXTURED;
+    match scratch {
+        Some(scratch) => pipeline
+            .draw_textured_mesh_with(mesh, &material, target, scratch)
+            .unwrap_or_default(),
+        None => pipeline.draw_textured_mesh(mesh, &material, target),
+    }
+}
+
+/// The line the host and the firmware print for a textured frame, compared by
+/// `.ci/firmware.sh` like the other frame lines.
+pub struct TexturedLine {
+    /// The frame.
+    pub frame: Textured,
+    /// The pipeline's counts.
+    pub stats: DrawStats,
+    /// Pixels covered.
+    pub covered: u32,
+    /// FNV-1a of colours and depths.
+    pub checksum: u32,
+}
+
+impl core::fmt::Display for TexturedLine {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let s = &self.stats;
+        write!(
+            f,
+            "frame {} {}x{} drawn={} culled={} clipped={} covered={} fnv1a={:#010x}",
+            self.frame.name(),
+            SIZE.0,
+            SIZE.1,
+            s.drawn,
+            s.culled,
+            s.clipped,
+            self.covered,
+            self.checksum
+        )
+    }
+}
