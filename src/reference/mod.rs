@@ -49,7 +49,6 @@
 
 use core::cmp::Ordering;
 
-/// Texture sampling (nearest, bilinear, wrap modes) and perspective-correct textured triangles.
 pub mod texture;
 
 /// Sub-pixel units per pixel.

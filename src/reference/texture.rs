@@ -3,8 +3,7 @@
 //! Like the rest of [`reference`](super), it is written from the conventions below alone and
 //! shares no code with the fixed-point texture mapping, so the test suites can compare that
 //! implementation against it. Coverage and screen barycentrics come from the parent module's
-//! [`covers`](super::covers), [`barycentric`](super::barycentric) and
-//! [`for_each_covered`](super::for_each_covered).
+//! [`super::covers`], [`super::barycentric`] and [`super::for_each_covered`].
 //!
 //! # Conventions
 //!
@@ -178,7 +177,7 @@ pub fn bilinear(t: &RefTexture, wrap: [RefWrap; 2], x: f64, y: f64) -> [f64; 3] 
 /// The perspective-correct interpolation of `N` attributes at the centre of pixel `(px, py)`:
 /// `values[k]` holds the attributes at vertex `k` (raw sub-pixel position `v[k]`), `w[k]` its
 /// clip-space `w`; the result is `Σ b_k·values_k/w_k / Σ b_k/w_k` for the screen barycentrics
-/// `b_k` of [`barycentric`](super::barycentric).
+/// `b_k` of [`super::barycentric`].
 ///
 /// `None` if the triangle is not valid: zero area, or a `w` that is not positive and finite. Outside
 /// the triangle the value is extrapolated, and `None` where `Σ b_k/w_k ≤ 0` (behind the eye).

@@ -67,7 +67,8 @@ impl Axis {
                 let odd = ((i >> s) & 1).wrapping_neg();
                 (i ^ odd) as u32 & (n - 1)
             }
-            (Wrap::Clamp, _) => i.clamp(0, n as i32 - 1) as u32,
+            // `max` and `min`, not `clamp`: its bounds check would be a panic path.
+            (Wrap::Clamp, _) => i.max(0).min(n as i32 - 1) as u32,
             (Wrap::Repeat, None) if (i as u32) < n => i as u32,
             (Wrap::Repeat, None) => rem_euclid(i, n),
             (Wrap::MirroredRepeat, None) => {
