@@ -45,9 +45,10 @@ impl PlaneMap {
     pub(crate) fn new(c: [i32; 3]) -> (Self, [u16; 3]) {
         let lo = c[0].min(c[1]).min(c[2]);
         let hi = c[0].max(c[1]).max(c[2]);
-        // Below 2³²: the spread fits SPREAD steps of 2^shift for a shift of at most 17.
+        // Below 2³²: the spread fits SPREAD steps of 2^shift for a shift of at most 17 (the
+        // least such shift: from the spread's bit length, one more where rounding needs it).
         let spread = (i64::from(hi) - i64::from(lo)) as u64;
-        let mut shift = 0;
+        let mut shift = (64 - spread.leading_zeros()).saturating_sub(16);
         while (spread + (1 << shift >> 1)) >> shift > SPREAD {
             shift += 1;
         }
@@ -107,7 +108,7 @@ pub(crate) trait SampledLoop<C> {
 /// How a texture is sampled, decided once per triangle: by masks alone into storage cut to the
 /// texture's size (power-of-two sides repeating on both axes), or through the texture's
 /// wrapping; by its filter.
-#[derive(Debug)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) enum Sampler<'t, S> {
     /// Nearest, masked.
     MaskedNearest(PowerOfTwoRepeat, S),

@@ -68,14 +68,14 @@ use super::light::Light;
 use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
-use super::texturing::{FaceTexture, NoTexture, TexelLight, TexturedMaterial};
+use super::texturing::{FaceTexture, FrameTexture, NoTexture, TexelLight, TexturedMaterial};
 use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexStage};
 use crate::arch;
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
 use crate::raster::band::{AllRows, Band, RowWindow};
 use crate::raster::scan::KeptWords;
-use crate::texture::{TexelSource, Texture};
+use crate::texture::TexelSource;
 
 /// Which faces are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -493,7 +493,7 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     texture: T,
 }
 
-impl<'p, 't, C, R, S> Frame<'p, C, R, &'t Texture<S>>
+impl<'p, 't, C, R, S> Frame<'p, C, R, FrameTexture<'t, S>>
 where
     C: GouraudColor + From<S::Color>,
     R: RowWindow,
@@ -515,7 +515,7 @@ where
             light,
             clip,
             fill: Fill::Textured(material.shading),
-            texture: material.texture,
+            texture: FrameTexture::new(material.texture),
         }
     }
 }

@@ -14,9 +14,17 @@
 //! barycentrics, is about `1/q_min + 2⁻¹⁵` (see [`perspective`](crate::raster::perspective):
 //! `6·10⁻⁴` for vertex depths in a ratio of 1:20). Between them the coordinates follow the chord,
 //! off the true curve by at most `L²/4 · |X′| · |q′|/q` for chunks of `L` pixels (`X′` the
-//! coordinate's rate and `q′/q` the relative change of `1/w` a pixel): below 1/16 texel unless
-//! `w` changes by more than 1/64 of itself a pixel at a texel a pixel (a floor seen at a very
-//! grazing angle).
+//! coordinate's rate and `q′/q` the relative change of `1/w` a pixel): with `L = 16`, below
+//! 1/16 texel where `|X′|·|q′/q|` is under 1/1024 (a texel a pixel where `w` changes by under a
+//! thousandth of itself a pixel); more on a floor seen at a grazing angle (measured: 0.4 texel
+//! at most on the tests' grazing floors, several texels where a face reaches the near plane,
+//! whose chords are long in texels).
+//!
+//! A face whose `1/w` varies so little across it that screen-space interpolation departs from
+//! the perspective-correct values by at most 1/16 texel and 1/4 of a light level (its spread
+//! times `(q_max − q_min) / 2q_min`: most faces of a mesh) takes the 2D textured fill's planes
+//! instead, with their own rounding (`s + 1/128` texel, see
+//! [`TexturedTriangle`](crate::TexturedTriangle)) on top: no division in its spans.
 
 use embedded_graphics::primitives::Rectangle;
 
@@ -88,7 +96,15 @@ pub fn draw_textured<S, C>(
     let q = vertices.map(|v| inverse_w(v.w));
     let texels = vertices.map(|v| [v.u.to_bits(), v.v.to_bits()]);
     let screen = vertices.each_ref().map(|v| &v.screen);
-    fill_textured(target, &clip, screen, q, texels, texture, TexelLight::Full);
+    fill_textured(
+        target,
+        &clip,
+        screen,
+        q,
+        texels,
+        Sampler::new(texture),
+        TexelLight::Full,
+    );
 }
 
 /// `2⁴⁷ / w` (of the raw `I16F16` bits, at least 1): a `q` for the perspective planes.
@@ -154,14 +170,31 @@ impl<C> FaceTexture<C> for NoTexture {
     }
 }
 
-impl<S, C> FaceTexture<C> for &Texture<S>
+/// A textured draw's texture and its sampler, decided once a draw.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FrameTexture<'t, S> {
+    size: (u32, u32),
+    sampler: Sampler<'t, S>,
+}
+
+impl<'t, S: TexelSource> FrameTexture<'t, S> {
+    /// The texture of a draw.
+    pub(crate) fn new(texture: &'t Texture<S>) -> Self {
+        FrameTexture {
+            size: (texture.width(), texture.height()),
+            sampler: Sampler::new(texture),
+        }
+    }
+}
+
+impl<S, C> FaceTexture<C> for FrameTexture<'_, S>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
     #[inline(always)]
     fn size(&self) -> (u32, u32) {
-        (self.width(), self.height())
+        self.size
     }
 
     #[inline(always)]
@@ -174,7 +207,7 @@ where
         texels: [[i32; 2]; 3],
         light: TexelLight,
     ) {
-        fill_textured(target, clip, vertices, q, texels, self, light);
+        fill_textured(target, clip, vertices, q, texels, self.sampler, light);
     }
 }
 
@@ -214,7 +247,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     screen: [&ScreenVertex; 3],
     q: [u64; 3],
     texels: [[i32; 2]; 3],
-    texture: &Texture<S>,
+    sampler: Sampler<'_, S>,
     light: TexelLight,
 ) where
     S: TexelSource,
@@ -223,7 +256,6 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     let perspective = perspective::attributes(q);
     let rect = clip.rect();
     let position = screen.map(|v| v.position());
-    let sampler = Sampler::new(texture);
     let normalised = perspective.values.map(|v| v[0]);
     if nearly_affine(normalised, texels, &light) {
         // Screen-space interpolation is within the bound here: the 2D textured fill's planes.
@@ -379,8 +411,7 @@ struct AffineSpan<'p, C> {
 impl<C: GouraudColor> SampledLoop<C> for AffineSpan<'_, C> {
     type Output = ();
 
-    // Out of line: the walk's values stay out of the loop's registers (a call a span).
-    #[inline(never)]
+    #[inline(always)]
     fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
         let ((mut z, dz), (mut x, dx)) = (self.depth, (self.at.0, self.step.0));
         let (mut y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);

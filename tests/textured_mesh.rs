@@ -1,0 +1,1815 @@
+//! Textured meshes in the fixed-point 3D pipeline (`Pipeline::draw_textured_mesh`, its scratch
+//! form and the band renderer's) against an independent f64 reference.
+//!
+//! The reference is the ray caster of tests/pipeline.rs (copied here): for every pixel it casts
+//! the ray through the pixel centre in eye space (f64 model-view from the same angles and
+//! positions) and intersects it with every face. It decides which face a pixel shows — or that
+//! rounding may decide it (a boundary within `MARGIN` px, near-equal depths: those pixels are
+//! left out) — and the hit point's exact 3D barycentrics in that face give the exact
+//! perspective-correct texture coordinate and light level at the pixel centre, independent of
+//! the pipeline's perspective planes.
+//!
+//! Texel coordinates are observed through a *coordinate texture* (256 × 256 Rgb888, texel
+//! `(i, j)` = `(i, j, K)`), so that a pixel tells which texel it took; `probe` reads them to
+//! 1/512 texel by redrawing with every texture coordinate moved by `j/256` texel (the idea of
+//! tests/perspective.rs).
+//!
+//! The tolerance on an interpolated attribute (`tolerance`) is the larger of what the two fills
+//! of src/three_d/texturing.rs may make of it:
+//!
+//! * the perspective fill: its documented accuracy ("Accuracy": `δ·spread + 2⁻¹⁶` at the pixels
+//!   where the values are computed, `δ = ρ/32 640 + 2⁻¹⁵`, `ρ` the face's vertex-`w` ratio),
+//!   another 2⁻¹⁵ for the vertices' 16-bit `q` mantissa and the `w`s' own error, plus between
+//!   those pixels the chord's deviation from the true curve, computed here from the exact plane
+//!   of the face over the span the reference gives it (`exact`), and the steps' rounding;
+//! * the screen-space fill, which faces whose interpolation departs from the perspective-correct
+//!   values by at most 1/16 texel (1/4 light level) take (`nearly_affine`): that departure,
+//!   bounded here from the f64 `w`s (`affine_ratio`), plus the 2D planes' rounding;
+//!
+//! each plus the vertices' screen-position error (from `CLIP_ERROR`, see
+//! `Scene::position_error`) times the attribute's gradient. `vertices_match_f64` checks the
+//! input bounds.
+//!
+//! Run with `cargo test --features reference --test textured_mesh -- --nocapture` to see the
+//! statistics.
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
+use embedded_raster::reference::texture::{nearest_texel, RefTexture, RefWrap};
+use embedded_raster::texture::{Filter, Rgb565Texels, Rgb888Texels, TexelSource, Texture, Wrap};
+use embedded_raster::three_d::meshes::{icosphere, MeshData};
+use embedded_raster::three_d::{Angle, Mat4, Scalar, TexCoord, Vec3};
+use embedded_raster::three_d::{Cull, DepthTarget, DrawStats, Mesh, Pipeline, DEPTH_CLEAR};
+use embedded_raster::three_d::{
+    Light, Material, ProjectedVertex, ScratchTooSmall, Shading, TexturedMaterial,
+};
+
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
+const W: u32 = 128;
+const H: u32 = 96;
+const N: usize = (W * H) as usize;
+/// Pixel centres closer than this to a face's boundary may go either way (tests/pipeline.rs).
+const MARGIN: f64 = 0.02;
+/// Bound on the error of the fixed-point clip-space coordinates (`I16F16` matrices and
+/// positions) against the f64 ones, in clip units (checked by `vertices_match_f64`).
+const CLIP_ERROR: f64 = 4.0e-4;
+/// The guard band, in normalised device coordinates: no drawn vertex lies farther out
+/// (src/three_d/clip.rs: about 1000 px from the viewport's centre).
+const GUARD: f64 = 24.0;
+/// Side of the coordinate texture.
+const TEX: u32 = 256;
+/// The coordinate texture's blue channel.
+const K: u8 = 0x5a;
+/// 16.16 units a texel.
+const UNIT: f64 = 65_536.0;
+
+impl Rng {
+    fn angle(&mut self) -> Angle {
+        Angle(self.next() as u16)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// f64 geometry (from tests/pipeline.rs)
+// ---------------------------------------------------------------------------------------------
+
+type V = [f64; 3];
+type M = [[f64; 4]; 4];
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: V, b: V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn normalize(v: V) -> V {
+    let l = dot(v, v).sqrt();
+    if l > 0.0 {
+        v.map(|c| c / l)
+    } else {
+        v
+    }
+}
+fn fl(s: Scalar) -> f64 {
+    s.to_num::<f64>()
+}
+fn fx(v: f64) -> Scalar {
+    Scalar::from_bits((v * 65536.0).round() as i32)
+}
+fn radians(a: Angle) -> f64 {
+    f64::from(a.0) / 65536.0 * std::f64::consts::TAU
+}
+fn bits3(v: Vec3) -> V {
+    v.to_bits().map(|c| f64::from(c) / 65536.0)
+}
+
+fn mul(a: &M, b: &M) -> M {
+    let mut m = [[0.0; 4]; 4];
+    for (r, row) in m.iter_mut().enumerate() {
+        for (c, v) in row.iter_mut().enumerate() {
+            *v = (0..4).map(|k| a[r][k] * b[k][c]).sum();
+        }
+    }
+    m
+}
+fn identity() -> M {
+    let mut m = [[0.0; 4]; 4];
+    for (k, row) in m.iter_mut().enumerate() {
+        row[k] = 1.0;
+    }
+    m
+}
+fn translate(t: V) -> M {
+    let mut m = identity();
+    for k in 0..3 {
+        m[k][3] = t[k];
+    }
+    m
+}
+fn rot_x(a: f64) -> M {
+    let (s, c) = a.sin_cos();
+    let mut m = identity();
+    m[1][1] = c;
+    m[1][2] = -s;
+    m[2][1] = s;
+    m[2][2] = c;
+    m
+}
+fn rot_y(a: f64) -> M {
+    let (s, c) = a.sin_cos();
+    let mut m = identity();
+    m[0][0] = c;
+    m[0][2] = s;
+    m[2][0] = -s;
+    m[2][2] = c;
+    m
+}
+fn apply(m: &M, p: V) -> V {
+    [0, 1, 2].map(|r| m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3])
+}
+fn rotate(m: &M, v: V) -> V {
+    [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+}
+
+/// One camera, object placement and light, in both arithmetics.
+struct Scene {
+    pipeline: Pipeline,
+    /// f64 model-view (the view is the identity: eye space is world space, the light's).
+    model_view: M,
+    /// `f / aspect`, `f` of the f64 projection.
+    p00: f64,
+    p11: f64,
+    /// `z_ndc = −a − b / z_eye`.
+    a: f64,
+    b: f64,
+    near: f64,
+    far: f64,
+    viewport: Rectangle,
+    /// Unit direction towards the light and the ambient level (f64).
+    light: V,
+    ambient: f64,
+}
+
+/// A pose: field of view, near and far planes, the object's yaw and pitch about its origin and
+/// its eye-space position, culling.
+#[derive(Clone, Copy, Debug)]
+struct Pose {
+    fov: i32,
+    near: f64,
+    far: f64,
+    yaw: Angle,
+    pitch: Angle,
+    position: V,
+    cull: Cull,
+}
+
+impl Scene {
+    /// Camera at the origin looking down −z; the object rotated by `yaw`, `pitch` about its
+    /// origin and moved to `position` (eye space); the light from `light` (eye space) with
+    /// `ambient`.
+    fn new(pose: &Pose, light: V, ambient: f64) -> Scene {
+        let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
+        let aspect = f64::from(viewport.size.width) / f64::from(viewport.size.height);
+        let (n, f) = (fl(fx(pose.near)), fl(fx(pose.far)));
+        let fov = Angle::from_degrees(pose.fov);
+        let projection = Mat4::perspective(fov, fx(aspect), fx(pose.near), fx(pose.far));
+        let position = pose.position;
+        let model = Mat4::translation(Vec3::new(fx(position[0]), fx(position[1]), fx(position[2])))
+            * Mat4::rotation_y(pose.yaw)
+            * Mat4::rotation_x(pose.pitch);
+        let light_bits = Vec3::new(fx(light[0]), fx(light[1]), fx(light[2]));
+        let fixed_light = Light::new(light_bits, fx(ambient));
+        let mut pipeline = Pipeline::new(model, projection, viewport, fixed_light);
+        pipeline.cull = pose.cull;
+        let pos = [0, 1, 2].map(|k| fl(fx(position[k])));
+        let model_view = mul(
+            &mul(&translate(pos), &rot_y(radians(pose.yaw))),
+            &rot_x(radians(pose.pitch)),
+        );
+        let focal = 1.0 / (radians(fov) / 2.0).tan();
+        Scene {
+            pipeline,
+            model_view,
+            p00: focal / aspect,
+            p11: focal,
+            a: (f + n) / (n - f),
+            b: 2.0 * f * n / (n - f),
+            near: n,
+            far: f,
+            viewport,
+            light: normalize(bits3(light_bits)),
+            ambient: fl(fx(ambient)).clamp(0.0, 1.0),
+        }
+    }
+
+    /// The f64 light level of a unit world-space normal: `ambient + (1 − ambient)·max(0, n·l)`.
+    fn level(&self, n: V) -> f64 {
+        self.ambient + (1.0 - self.ambient) * dot(n, self.light).max(0.0)
+    }
+
+    /// The f64 clip-space coordinates of an eye-space point.
+    fn clip(&self, e: V) -> [f64; 4] {
+        [
+            self.p00 * e[0],
+            self.p11 * e[1],
+            self.a * e[2] + self.b,
+            -e[2],
+        ]
+    }
+
+    /// A bound on the screen position error of the fixed-point vertices of a face with
+    /// eye-space vertices `eye` (drawn parts: `w ≥ near`, within the guard band), pixels: clip
+    /// coordinates off by `CLIP_ERROR` move `x/w` by `CLIP_ERROR·(1 + |x/w|)/w`; the projection
+    /// itself rounds to ½ sub-pixel (1/512 px) and a little more.
+    fn position_error(&self, eye: &[V]) -> f64 {
+        let w = eye
+            .iter()
+            .map(|e| -e[2])
+            .fold(f64::MAX, f64::min)
+            .max(self.near);
+        let reach = eye
+            .iter()
+            .map(|e| (self.p00 * e[0].abs()).max(self.p11 * e[1].abs()))
+            .fold(0.0, f64::max);
+        let ndc = (reach / w).min(GUARD);
+        let half = f64::from(self.viewport.size.width.max(self.viewport.size.height)) / 2.0;
+        CLIP_ERROR * (1.0 + ndc) / w * half + 1.0 / 256.0
+    }
+
+    /// Screen position of an eye-space point (in front of the eye).
+    fn screen(&self, e: V) -> (f64, f64) {
+        let (xn, yn) = (self.p00 * e[0] / -e[2], self.p11 * e[1] / -e[2]);
+        let (w, h) = (
+            f64::from(self.viewport.size.width),
+            f64::from(self.viewport.size.height),
+        );
+        (
+            f64::from(self.viewport.top_left.x) + w / 2.0 * (1.0 + xn),
+            f64::from(self.viewport.top_left.y) + h / 2.0 * (1.0 - yn),
+        )
+    }
+
+    /// Eye-space direction through screen point `(sx, sy)` and its derivatives per pixel.
+    fn ray(&self, sx: f64, sy: f64) -> (V, f64, f64) {
+        let (w, h) = (
+            f64::from(self.viewport.size.width),
+            f64::from(self.viewport.size.height),
+        );
+        let xn = 2.0 * (sx - f64::from(self.viewport.top_left.x)) / w - 1.0;
+        let yn = 1.0 - 2.0 * (sy - f64::from(self.viewport.top_left.y)) / h;
+        let dx = 2.0 / (w * self.p00);
+        let dy = -2.0 / (h * self.p11);
+        ([xn / self.p00, yn / self.p11, -1.0], dx, dy)
+    }
+
+    /// The reference's verdict on the triangle `poly` (eye space) at the centre of pixel
+    /// `(i, j)`: `None` if it surely does not cover it, else the signed distance of the centre
+    /// to its visible boundary (positive inside, pixels), its depth there and the depth change
+    /// per pixel (16-bit units). As in tests/pipeline.rs.
+    fn hit(&self, poly: &[V], i: i32, j: i32) -> Option<(f64, f64, f64)> {
+        let (d, dx, dy) = self.ray(f64::from(i) + 0.5, f64::from(j) + 0.5);
+        let det = dot(poly[0], cross(poly[1], poly[2]));
+        if det == 0.0 {
+            return None;
+        }
+        let mut margin = f64::INFINITY;
+        for a in 0..poly.len() {
+            let c = cross(poly[a], poly[(a + 1) % poly.len()]);
+            let g = (c[0] * dx).hypot(c[1] * dy);
+            margin = margin.min(det.signum() * dot(c, d) / g);
+        }
+        if margin < -MARGIN {
+            return None;
+        }
+        let n = cross(sub(poly[1], poly[0]), sub(poly[2], poly[0]));
+        let nv = dot(n, poly[0]);
+        let inv_z = -dot(n, d) / nv;
+        if inv_z >= 0.0 {
+            return None;
+        }
+        let depth = (1.0 - self.a - self.b * inv_z) / 2.0;
+        let grad = (self.b / 2.0 * n[0] * dx / nv).hypot(self.b / 2.0 * n[1] * dy / nv);
+        margin = margin.min(depth / grad).min((1.0 - depth) / grad);
+        (margin >= -MARGIN).then_some((margin, depth * 65534.0, grad * 65534.0))
+    }
+
+    /// Where the ray through screen point `(sx, sy)` meets the plane of `tri` (eye space): the
+    /// point's barycentrics in the triangle (exact 3D ones: the perspective-correct weights) and
+    /// `Q = −1/z_eye` there (affine in the screen position).
+    fn plane_point(&self, tri: &[V; 3], sx: f64, sy: f64) -> ([f64; 3], f64) {
+        let (d, _, _) = self.ray(sx, sy);
+        let n = cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]));
+        let q = dot(n, d) / dot(n, tri[0]);
+        let x = d.map(|c| c / q);
+        let nn = dot(n, n);
+        let b0 = dot(n, cross(sub(tri[1], x), sub(tri[2], x))) / nn;
+        let b1 = dot(n, cross(sub(tri[2], x), sub(tri[0], x))) / nn;
+        ([b0, b1, 1.0 - b0 - b1], q)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The reference's faces and pixels
+// ---------------------------------------------------------------------------------------------
+
+/// A face of the mesh in one scene, as the reference sees it (from the mesh's fixed-point bits).
+struct RefFace {
+    eye: [V; 3],
+    /// The vertices' texel coordinates for the texture's size (texels, `y` down).
+    texel: [[f64; 2]; 3],
+    /// The vertices' Gouraud light levels (from the mesh's normals), `[0, 1]`.
+    levels: [f64; 3],
+    /// The face's flat light level (from its geometric normal).
+    flat: f64,
+    /// The smallest and largest vertex `w` (view depth).
+    w: (f64, f64),
+    /// Whether culling keeps it.
+    kept: bool,
+    /// Pixel rows and columns it may cover (inclusive), all of the screen if a vertex is near or
+    /// behind the eye.
+    bbox: (i32, i32, i32, i32),
+}
+
+impl RefFace {
+    /// The documented error of the perspective barycentrics (`δ`) for this face, with the
+    /// inputs' rounding: `ρ/32 640 + 2⁻¹⁵` (src/raster/perspective.rs), another 2⁻¹⁵ for the
+    /// vertices' 16-bit `q` mantissa, and twice the relative `w` error. `ρ` is the `w` ratio of what is
+    /// drawn: clipping keeps `w` within `[near, far]`.
+    fn delta(&self, scene: &Scene) -> f64 {
+        let lo = self.w.0.max(scene.near);
+        let hi = self.w.1.min(scene.far);
+        (hi / lo) / 32_640.0 + 2.0 / 32_768.0 + 2.0 * CLIP_ERROR / lo
+    }
+
+    /// The spread of the vertices' texel coordinates (largest difference on either axis).
+    fn spread(&self) -> f64 {
+        let axis = |a: usize| spread_of(self.texel.map(|t| t[a]));
+        axis(0).max(axis(1))
+    }
+}
+
+/// The reference's faces of `mesh` in `scene`, for a texture of `size` texels.
+fn ref_faces(scene: &Scene, mesh: &MeshData, size: (u32, u32)) -> Vec<RefFace> {
+    let world_normal = |n: V| normalize(rotate(&scene.model_view, normalize(n)));
+    mesh.indices
+        .iter()
+        .map(|f| {
+            let idx = f.map(usize::from);
+            let model = idx.map(|i| bits3(mesh.vertices[i]));
+            let eye = model.map(|p| apply(&scene.model_view, p));
+            let texel = idx.map(|i| {
+                let t = mesh.uvs.get(i).copied().unwrap_or_default().to_bits();
+                [
+                    f64::from(t[0]) * f64::from(size.0) / UNIT,
+                    (UNIT - f64::from(t[1])) * f64::from(size.1) / UNIT,
+                ]
+            });
+            let geometric = world_normal(cross(sub(model[1], model[0]), sub(model[2], model[0])));
+            let flat = scene.level(geometric);
+            let levels = match mesh.normals.is_empty() {
+                true => [flat; 3],
+                false => idx.map(|i| scene.level(world_normal(bits3(mesh.normals[i])))),
+            };
+            let ws = eye.map(|e| -e[2]);
+            let w = (ws[0].min(ws[1]).min(ws[2]), ws[0].max(ws[1]).max(ws[2]));
+            // Front faces are counter-clockwise seen by the camera.
+            let front = dot(cross(sub(eye[1], eye[0]), sub(eye[2], eye[0])), eye[0]) < 0.0;
+            let kept = match scene.pipeline.cull {
+                Cull::None => true,
+                Cull::Back => front,
+                Cull::Front => !front,
+            };
+            let bbox = if w.0 > scene.near * 0.5 {
+                let s = eye.map(|e| scene.screen(e));
+                let lo = |c: fn(&(f64, f64)) -> f64| s.iter().map(c).fold(f64::MAX, f64::min);
+                let hi = |c: fn(&(f64, f64)) -> f64| s.iter().map(c).fold(f64::MIN, f64::max);
+                (
+                    (lo(|p| p.0).floor() as i32 - 1).max(0),
+                    (lo(|p| p.1).floor() as i32 - 1).max(0),
+                    (hi(|p| p.0).ceil() as i32 + 1).min(W as i32 - 1),
+                    (hi(|p| p.1).ceil() as i32 + 1).min(H as i32 - 1),
+                )
+            } else {
+                (0, 0, W as i32 - 1, H as i32 - 1)
+            };
+            RefFace {
+                eye,
+                texel,
+                levels,
+                flat,
+                w,
+                kept,
+                bbox,
+            }
+        })
+        .collect()
+}
+
+/// What a pixel must show.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Verdict {
+    /// Nothing: no face comes within `MARGIN` of its centre.
+    Empty,
+    /// Rounding decides (a boundary within `MARGIN`, near-equal depths).
+    Either,
+    /// This face, at this depth (within the tolerance).
+    Face {
+        face: usize,
+        depth: f64,
+        tolerance: f64,
+    },
+}
+
+/// The verdict on every pixel of the screen (row-major), as tests/pipeline.rs decides it, and
+/// where each face's spans may lie.
+fn verdicts(scene: &Scene, faces: &[RefFace]) -> (Vec<Verdict>, Spans) {
+    // (face, margin, depth, depth tolerance) of every face that may cover each pixel.
+    let mut hits: Vec<Vec<(usize, f64, f64, f64)>> = vec![Vec::new(); N];
+    let mut spans = vec![vec![(i32::MAX, i32::MIN); H as usize]; faces.len()];
+    for (k, f) in faces.iter().enumerate().filter(|(_, f)| f.kept) {
+        let (x0, y0, x1, y1) = f.bbox;
+        for j in y0..=y1 {
+            for i in x0..=x1 {
+                if let Some((m, d, g)) = scene.hit(&f.eye, i, j) {
+                    let span = &mut spans[k][j as usize];
+                    *span = (span.0.min(i), span.1.max(i));
+                    hits[(j as u32 * W + i as u32) as usize].push((
+                        k,
+                        m,
+                        d,
+                        2.0 + 2.0 * MARGIN * g,
+                    ));
+                }
+            }
+        }
+    }
+    let verdicts = hits
+        .iter()
+        .map(|hits| {
+            let front = hits
+                .iter()
+                .filter(|h| h.1 > MARGIN)
+                .map(|h| h.2 + h.3)
+                .fold(f64::INFINITY, f64::min);
+            if hits.is_empty() {
+                return Verdict::Empty;
+            }
+            let mut acceptable = hits.iter().filter(|h| h.2 - h.3 <= front);
+            match (front.is_finite(), acceptable.next(), acceptable.next()) {
+                (true, Some(h), None) => Verdict::Face {
+                    face: h.0,
+                    depth: h.2,
+                    tolerance: h.3,
+                },
+                _ => Verdict::Either,
+            }
+        })
+        .collect();
+    (verdicts, Spans(spans))
+}
+
+/// For each face and row, the first and last pixel the face may cover there: its spans lie
+/// inside.
+struct Spans(Vec<Vec<(i32, i32)>>);
+
+impl Spans {
+    fn of(&self, face: usize, row: i32) -> (i32, i32) {
+        self.0[face][row as usize]
+    }
+}
+
+/// The exact value of a vertex attribute at a pixel centre and what may move the
+/// implementation's value from it besides the computed values' own error (`δ·spread`).
+#[derive(Clone, Copy, Debug)]
+struct Exact {
+    value: f64,
+    /// Chord deviation + steps' rounding + the vertices' position error times the gradient.
+    wiggle: f64,
+    /// The vertices' position error times the gradient alone.
+    position: f64,
+}
+
+/// The attribute with vertex values `a` of face `f` at the centre of pixel `(i, j)`, exactly
+/// (perspective-correct: the ray's hit barycentrics), for a face whose span in row `j` lies in
+/// `span` (first and last pixel).
+///
+/// Along a span the perspective fill computes the attribute at every 16th pixel from the span's
+/// first and at its last, and steps it linearly between (src/raster/perspective.rs, `Chunks`),
+/// so it may be off the exact curve by the chord's deviation: at most `½·max|f''|·(x − a)(b −
+/// x)` in a chunk from `a` to `b` (`b − a ≤ 16`, both in the span). Along a row the attribute is
+/// `f = P/Q` with `P` and `Q = 1/w` affine in `x`, so `f'' = 2·Q'·K/Q³` with the constant
+/// `K = Q'·P − P'·Q`; `|f''|` grows as `Q` falls, so its largest value in the chunk is at the end
+/// with the smaller `Q`. The steps round by up to 2⁻¹⁶ (of the attribute's 16.16 unit) a pixel,
+/// plus `|b − a|·2⁻¹⁶` for a short chunk.
+fn exact(
+    scene: &Scene,
+    f: &RefFace,
+    span: (i32, i32),
+    a: [f64; 3],
+    (i, j): (i32, i32),
+    unit: f64,
+) -> Exact {
+    let position_error = scene.position_error(&f.eye);
+    let at = |x: f64, dy: f64| {
+        let (b, q) = scene.plane_point(&f.eye, x + 0.5, f64::from(j) + 0.5 + dy);
+        (b[0] * a[0] + b[1] * a[1] + b[2] * a[2], q)
+    };
+    let x = f64::from(i);
+    let (v, q) = at(x, 0.0);
+    let (right, q_right) = at(x + 1.0, 0.0);
+    let (left, _) = at(x - 1.0, 0.0);
+    let (down, _) = at(x, 1.0);
+    let (up, _) = at(x, -1.0);
+    let gradient = ((right - left).abs() + (down - up).abs()) / 2.0;
+    let dq = q_right - q;
+    let dp = right * q_right - v * q;
+    let k = dq * v * q - dp * q;
+    // The chunk [i − p, i + r]: p ≤ i − first, r ≤ last − i, p + r ≤ 16; the largest p·r.
+    let (before, after) = (f64::from(i - span.0), f64::from(span.1 - i));
+    let p = 8f64.max(16.0 - after).min(before).max(0.0);
+    let r = (16.0 - p).min(after).max(0.0);
+    let (lo, hi) = (
+        (x - p).max(f64::from(span.0)),
+        (x + r).min(f64::from(span.1)),
+    );
+    let q_min = at(lo, 0.0).1.min(at(hi, 0.0).1);
+    let chord = (dq * k).abs() / q_min.powi(3) * p * r;
+    let slope = k.abs() / (q_min * q_min);
+    let steps = p / unit * (1.0 + 16.0 * slope);
+    Exact {
+        value: v,
+        wiggle: chord + steps + position_error * gradient,
+        position: position_error * gradient,
+    }
+}
+
+/// Faces whose screen-space interpolation departs from the perspective-correct values by at
+/// most 1/16 texel (and, lit by vertex levels, 1/4 of a level of the 0–255 scale) may be filled
+/// in screen space (src/three_d/texturing.rs, `nearly_affine`).
+const AFFINE_TEXELS: f64 = 1.0 / 16.0;
+const AFFINE_LEVEL: f64 = 0.25 / 255.0;
+
+/// How far the fill's value of a vertex attribute of face `f` may lie from the exact one at a
+/// pixel where the exact attribute is `e`: the perspective fill's documented error (`δ·spread
+/// + 1 unit`, `spread` the documented one: `documented`), the chord and the inputs' rounding
+/// (`e.wiggle`); or, if the face may be filled in screen space (`affine`: its departure bound
+/// for this attribute), that departure plus the screen-space fill's own rounding (`rounding`).
+fn tolerance(
+    scene: &Scene,
+    f: &RefFace,
+    e: &Exact,
+    documented: f64,
+    affine: Option<f64>,
+    rounding: f64,
+) -> f64 {
+    let perspective = f.delta(scene) * documented + 1.0 / UNIT + e.wiggle;
+    match affine {
+        Some(departure) => perspective.max(departure + rounding + e.position),
+        None => perspective,
+    }
+}
+
+/// The fill decides from its 16-bit `q` (within a unit of 32 640 or more) and the fixed-point
+/// `w`: a limit with 5 % slack.
+fn slack(limit: f64) -> f64 {
+    limit * 1.05 + 2.0 / 32_640.0
+}
+
+/// Whether face `f` may be filled in screen space: `None` if not, else the bound on the
+/// departure of screen-space values from perspective-correct ones per unit of spread,
+/// `(q_max − q_min)/(2·q_min)`. `spreads` are the attributes' spreads the fill decides by, each
+/// with its limit. A face crossing the near or far plane is drawn as a fan of smaller triangles,
+/// any of which may qualify: it may (its departure on each attribute at most that attribute's
+/// limit, see `departure`).
+fn affine_ratio(scene: &Scene, f: &RefFace, spreads: &[(f64, f64)]) -> Option<f64> {
+    let lo = f.w.0.max(scene.near);
+    let hi = f.w.1.min(scene.far);
+    let ratio = (hi / lo - 1.0) / 2.0;
+    let clipped = f.w.0 < scene.near || f.w.1 > scene.far;
+    let qualifies = spreads
+        .iter()
+        .all(|&(spread, limit)| spread * ratio <= slack(limit));
+    // The fixed-point `w`s' own ratio may be a little larger.
+    (clipped || qualifies).then_some(ratio + 2.0 * CLIP_ERROR / lo)
+}
+
+/// The departure bound of an attribute of spread `own` and limit `limit` on a face of ratio
+/// `ratio` filled in screen space (at most the limit: the triangle qualified).
+fn departure(ratio: f64, own: f64, limit: f64) -> f64 {
+    (ratio * own).min(slack(limit))
+}
+
+/// The exact texel coordinate of face `f` at pixel `(i, j)` and its tolerance on each axis, for
+/// an unlit or flat-lit draw (the fill decides by the texel spread alone), the face's span in
+/// row `j` within `span`.
+fn texel_at(
+    scene: &Scene,
+    f: &RefFace,
+    span: (i32, i32),
+    (i, j): (i32, i32),
+) -> ([f64; 2], [f64; 2]) {
+    let spread = f.spread();
+    let affine = affine_ratio(scene, f, &[(spread, AFFINE_TEXELS)]);
+    let axis = |a: usize| {
+        let values = f.texel.map(|t| t[a]);
+        let e = exact(scene, f, span, values, (i, j), UNIT);
+        let own = spread_of(values);
+        // The 2D textured fill's planes: within `s + 1/128` texel, `s` the spread over 32 639
+        // (tests/textured.rs).
+        let rounding = own / 32_639.0 + 1.0 / 128.0;
+        let d = affine.map(|r| departure(r, own, AFFINE_TEXELS));
+        (e.value, tolerance(scene, f, &e, spread, d, rounding))
+    };
+    let (x, y) = (axis(0), axis(1));
+    ([x.0, y.0], [x.1, y.1])
+}
+
+/// The largest difference of three values.
+fn spread_of(v: [f64; 3]) -> f64 {
+    v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2])
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes with texture coordinates
+// ---------------------------------------------------------------------------------------------
+
+/// Normalised texture coordinate from floats (rounded to `I16F16`).
+fn uv(u: f64, v: f64) -> TexCoord {
+    TexCoord::from_bits((u * UNIT).round() as i32, (v * UNIT).round() as i32)
+}
+
+/// A floor: the square `[−half, half]²` at `z = 0` in `n × n` cells (two faces each), normal
+/// `+z`, the texture `repeat` times across it.
+fn floor(half: f64, n: usize, repeat: f64) -> MeshData {
+    let mut positions = Vec::new();
+    let mut uvs = Vec::new();
+    for r in 0..=n {
+        for c in 0..=n {
+            let (s, t) = (c as f64 / n as f64, r as f64 / n as f64);
+            positions.push([-half + 2.0 * half * s, -half + 2.0 * half * t, 0.0]);
+            uvs.push(uv(s * repeat, t * repeat));
+        }
+    }
+    let at = |r: usize, c: usize| r * (n + 1) + c;
+    let mut faces = Vec::new();
+    for r in 0..n {
+        for c in 0..n {
+            faces.push([at(r, c), at(r, c + 1), at(r + 1, c + 1)]);
+            faces.push([at(r, c), at(r + 1, c + 1), at(r + 1, c)]);
+        }
+    }
+    let normals = vec![[0.0, 0.0, 1.0]; positions.len()];
+    let mut mesh = MeshData::from_f64(&positions, &normals, &faces);
+    mesh.uvs = uvs;
+    mesh
+}
+
+/// A torus around `z` (radii `major`, `minor`) with its seams' vertices duplicated so that the
+/// texture coordinates run on across them: `u` from 0.9 to 1.15 around the ring (64 texels of
+/// the coordinate texture, across its wrap), `v` from 0 to 1/8 around the tube (32 texels).
+fn textured_torus(major: f64, minor: f64, rings: usize, sides: usize) -> MeshData {
+    let tau = std::f64::consts::TAU;
+    let (mut positions, mut normals, mut uvs) = (Vec::new(), Vec::new(), Vec::new());
+    for i in 0..=rings {
+        for j in 0..=sides {
+            let (s, t) = (i as f64 / rings as f64, j as f64 / sides as f64);
+            let (st, ct) = (tau * s).sin_cos();
+            let (sp, cp) = (tau * t).sin_cos();
+            positions.push([
+                (major + minor * cp) * ct,
+                (major + minor * cp) * st,
+                minor * sp,
+            ]);
+            normals.push([cp * ct, cp * st, sp]);
+            uvs.push(uv(0.9 + 0.25 * s, 0.125 * t));
+        }
+    }
+    let at = |i: usize, j: usize| i * (sides + 1) + j;
+    let mut faces = Vec::new();
+    for i in 0..rings {
+        for j in 0..sides {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            faces.push([a, b, c]);
+            faces.push([a, c, d]);
+        }
+    }
+    let mut mesh = MeshData::from_f64(&positions, &normals, &faces);
+    mesh.uvs = uvs;
+    mesh
+}
+
+/// An icosphere whose every face has vertices of its own, each face mapped onto a random
+/// triangle of the texture (0.01 to 0.06 of it from its centre, any orientation, some outside
+/// `[0, 1]²`: the texture repeats); smooth normals.
+fn patched_icosphere(rng: &mut Rng, subdivisions: u32) -> MeshData {
+    let sphere = icosphere(1.0, subdivisions);
+    let mut mesh = MeshData::default();
+    for f in &sphere.indices {
+        let (cu, cv) = (rng.range_f64(-0.2, 1.2), rng.range_f64(-0.2, 1.2));
+        let size = rng.range_f64(0.01, 0.06);
+        let turn = rng.range_f64(0.0, std::f64::consts::TAU);
+        let base = mesh.vertices.len() as u16;
+        for (k, &i) in f.iter().enumerate() {
+            mesh.vertices.push(sphere.vertices[usize::from(i)]);
+            mesh.normals.push(sphere.normals[usize::from(i)]);
+            let a = turn + k as f64 * std::f64::consts::TAU / 3.0 + rng.range_f64(-0.4, 0.4);
+            mesh.uvs.push(uv(cu + size * a.cos(), cv + size * a.sin()));
+        }
+        mesh.indices.push([base, base + 1, base + 2]);
+    }
+    mesh
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drawing
+// ---------------------------------------------------------------------------------------------
+
+/// A colour and depth buffer of the screen's size.
+#[derive(Clone, PartialEq)]
+struct Frame {
+    px: Vec<Rgb888>,
+    z: Vec<u16>,
+}
+
+impl Frame {
+    fn new() -> Frame {
+        Frame {
+            px: vec![Rgb888::BLACK; N],
+            z: vec![DEPTH_CLEAR; N],
+        }
+    }
+
+    fn target(&mut self) -> DepthTarget<'_, Rgb888> {
+        let mut t = DepthTarget::new(&mut self.px, &mut self.z, W, H).unwrap();
+        t.clear(Rgb888::BLACK);
+        t
+    }
+
+    fn written(&self, i: usize) -> bool {
+        self.z[i] != DEPTH_CLEAR
+    }
+
+    fn written_set(&self) -> Vec<bool> {
+        (0..N).map(|i| self.written(i)).collect()
+    }
+}
+
+fn textured<S: TexelSource>(
+    pipeline: &Pipeline,
+    mesh: &Mesh<'_>,
+    texture: &Texture<S>,
+    shading: Shading,
+) -> (Frame, DrawStats)
+where
+    Rgb888: From<S::Color>,
+{
+    let mut frame = Frame::new();
+    let material = TexturedMaterial::new(texture, shading);
+    let stats = pipeline.draw_textured_mesh(mesh, &material, &mut frame.target());
+    (frame, stats)
+}
+
+fn untextured(pipeline: &Pipeline, mesh: &Mesh<'_>, color: Rgb888, shading: Shading) -> Frame {
+    let mut frame = Frame::new();
+    pipeline.draw_mesh(mesh, &Material::new(color, shading), &mut frame.target());
+    frame
+}
+
+/// The coordinate texture's texels: `(i, j, K)`.
+fn coordinate_texels() -> Vec<u8> {
+    (0..TEX)
+        .flat_map(|j| (0..TEX).map(move |i| [i as u8, j as u8, K]))
+        .flatten()
+        .collect()
+}
+
+/// The texel index each written pixel of an Unlit draw with the coordinate texture took.
+fn decode(frame: &Frame) -> Vec<Option<(u32, u32)>> {
+    (0..N)
+        .map(|i| {
+            frame.written(i).then(|| {
+                let c = frame.px[i];
+                assert_eq!(c.b(), K, "pixel {i}: not a texel of the coordinate texture");
+                (u32::from(c.r()), u32::from(c.g()))
+            })
+        })
+        .collect()
+}
+
+/// The implementation's texel coordinates at each written pixel, modulo 256 texels and to
+/// within `1/(2·steps)` texel: the mesh drawn with the coordinate texture, then again with
+/// every texture coordinate moved by `j/steps` texel (`u` up, `v` down: texel `x` and `y` both
+/// grow) for `j = 1, 2, …`. An offset common to the vertices adds to each computed coordinate
+/// and leaves their differences, so the steps too, unchanged; the first `j` at which a pixel's
+/// texel changes tells the fraction of its coordinate (tests/perspective.rs, `probe`).
+fn probe(
+    pipeline: &Pipeline,
+    mesh: &MeshData,
+    texture: &Texture<Rgb888Texels<'_>>,
+) -> Vec<Option<[f64; 2]>> {
+    const STEPS: u32 = 256;
+    // One raw unit of a normalised coordinate is 256/65536 texel of a 256-texel side.
+    assert_eq!(TEX, STEPS);
+    let base = decode(&textured(pipeline, &mesh.as_mesh(), texture, Shading::Unlit).0);
+    let mut first = vec![[STEPS; 2]; N];
+    let mut moved = mesh.clone();
+    for j in 1..STEPS {
+        for (m, o) in moved.uvs.iter_mut().zip(&mesh.uvs) {
+            let [u, v] = o.to_bits();
+            *m = TexCoord::from_bits(u + j as i32, v - j as i32);
+        }
+        let got = decode(&textured(pipeline, &moved.as_mesh(), texture, Shading::Unlit).0);
+        for i in 0..N {
+            if let (Some(b), Some(g)) = (base[i], got[i]) {
+                for (a, changed) in [g.0 != b.0, g.1 != b.1].into_iter().enumerate() {
+                    if changed && first[i][a] == STEPS {
+                        first[i][a] = j;
+                    }
+                }
+            }
+        }
+    }
+    let s = f64::from(STEPS);
+    base.iter()
+        .zip(first)
+        .map(|(b, f)| {
+            b.map(|(x, y)| {
+                [
+                    f64::from(x) + 1.0 - (f64::from(f[0]) - 0.5) / s,
+                    f64::from(y) + 1.0 - (f64::from(f[1]) - 0.5) / s,
+                ]
+            })
+        })
+        .collect()
+}
+
+/// `v` (known modulo 256) brought within 128 of `near`.
+fn unwrap_near(v: f64, near: f64) -> f64 {
+    v + 256.0 * ((near - v) / 256.0).round()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+// ---------------------------------------------------------------------------------------------
+
+/// A named mesh in a pose.
+struct Case {
+    name: String,
+    mesh: MeshData,
+    pose: Pose,
+}
+
+/// `degrees` as an angle (any sign).
+fn degrees(d: f64) -> Angle {
+    Angle((d / 360.0 * 65536.0).round().rem_euclid(65536.0) as u16)
+}
+
+/// Floors seen at grazing angles (the camera 0.15 to 0.8 above a floor reaching 17 units
+/// away, tilted up to 3° towards it), tessellated finely and coarsely; tori and patched
+/// icospheres at random poses, all three cullings.
+fn unclipped_cases(rng: &mut Rng) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for n in 0..12 {
+        let (cells, repeat) = [(8, 0.5), (2, 0.25), (1, 0.25)][n % 3];
+        let pose = Pose {
+            fov: 60,
+            near: 0.5,
+            far: 30.0,
+            yaw: degrees(rng.range_f64(-30.0, 30.0)),
+            pitch: degrees(-90.0 + rng.range_f64(0.0, 3.0)),
+            position: [
+                rng.range_f64(-1.0, 1.0),
+                rng.range_f64(-0.8, -0.15),
+                rng.range_f64(-11.0, -9.5),
+            ],
+            cull: Cull::Back,
+        };
+        cases.push(Case {
+            name: format!("floor {cells}×{cells} #{n}"),
+            mesh: floor(6.0, cells, repeat),
+            pose,
+        });
+    }
+    for n in 0..12 {
+        let torus = n % 2 == 0;
+        let mesh = if torus {
+            textured_torus(1.0, 0.4, 24, 12)
+        } else {
+            patched_icosphere(rng, 2)
+        };
+        let pose = Pose {
+            fov: 60,
+            near: 0.5,
+            far: 20.0,
+            yaw: rng.angle(),
+            pitch: rng.angle(),
+            position: [
+                rng.range_f64(-1.0, 1.0),
+                rng.range_f64(-0.7, 0.7),
+                rng.range_f64(-5.0, -2.6),
+            ],
+            cull: [Cull::Back, Cull::None, Cull::Front][n % 3],
+        };
+        let what = if torus { "torus" } else { "patched icosphere" };
+        cases.push(Case {
+            name: format!("{what} #{n}"),
+            mesh,
+            pose,
+        });
+    }
+    cases
+}
+
+/// Meshes the near plane cuts: a floor running from behind the camera to far ahead, the camera
+/// inside a torus's tube, a large patched icosphere brushing the eye, the camera inside an
+/// icosphere near its surface.
+fn clipped_cases(rng: &mut Rng) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for n in 0..16 {
+        let (yaw, pitch) = (rng.angle(), rng.angle());
+        let (name, mesh, pose) = match n % 4 {
+            0 => (
+                "floor",
+                floor(8.0, 12, 0.5),
+                Pose {
+                    fov: 70,
+                    near: 0.2,
+                    far: 40.0,
+                    yaw,
+                    pitch: degrees(rng.range_f64(-120.0, -60.0)),
+                    position: [
+                        rng.range_f64(-2.0, 2.0),
+                        rng.range_f64(-1.5, -0.3),
+                        rng.range_f64(-3.0, -1.0),
+                    ],
+                    cull: Cull::Back,
+                },
+            ),
+            1 => {
+                // The eye near the centre line of the tube: a point of the ring, turned.
+                let t = rng.range_f64(0.0, std::f64::consts::TAU);
+                let turn = mul(&rot_y(radians(yaw)), &rot_x(radians(pitch)));
+                let ring = rotate(&turn, [t.cos(), t.sin(), 0.0]);
+                let position = [0, 1, 2].map(|k| -ring[k] + rng.range_f64(-0.12, 0.12));
+                (
+                    "inside a torus",
+                    textured_torus(1.0, 0.4, 24, 12),
+                    Pose {
+                        fov: 70,
+                        near: 0.15,
+                        far: 10.0,
+                        yaw,
+                        pitch,
+                        position,
+                        cull: Cull::None,
+                    },
+                )
+            }
+            2 => (
+                "large patched icosphere",
+                {
+                    let mut m = patched_icosphere(rng, 2);
+                    m.scale_to_fit(3.0);
+                    m
+                },
+                Pose {
+                    fov: 70,
+                    near: 0.3,
+                    far: 10.0,
+                    yaw,
+                    pitch,
+                    // Outside the sphere (radius 3), 60° off the view axis, its nearest point
+                    // nearer than the near plane: its surface runs from the cut away to the side.
+                    position: {
+                        let turn = rng.range_f64(0.0, std::f64::consts::TAU);
+                        let (d, off) = (3.0 + rng.range_f64(0.1, 0.25), 60f64.to_radians());
+                        [
+                            d * off.sin() * turn.cos(),
+                            d * off.sin() * turn.sin(),
+                            -d * off.cos(),
+                        ]
+                    },
+                    cull: Cull::Back,
+                },
+            ),
+            _ => (
+                "inside an icosphere",
+                patched_icosphere(rng, 2),
+                Pose {
+                    fov: 70,
+                    near: 0.3,
+                    far: 10.0,
+                    yaw,
+                    pitch,
+                    position: [
+                        rng.range_f64(-0.3, 0.3),
+                        rng.range_f64(-0.3, 0.3),
+                        -rng.range_f64(0.75, 0.9),
+                    ],
+                    cull: Cull::None,
+                },
+            ),
+        };
+        cases.push(Case {
+            name: format!("{name} #{n}"),
+            mesh,
+            pose,
+        });
+    }
+    cases
+}
+
+/// Every case of the suite: the unclipped ones, then the clipped ones.
+fn all_cases() -> (Vec<Case>, Vec<Case>) {
+    let mut rng = Rng(0x7e47_3d01);
+    let unclipped = unclipped_cases(&mut rng);
+    let clipped = clipped_cases(&mut rng);
+    (unclipped, clipped)
+}
+
+/// The light of the texel tests (the lit tests choose their own).
+const LIGHT: V = [0.3, 0.5, 1.0];
+
+// ---------------------------------------------------------------------------------------------
+// Texel coordinates against the reference
+// ---------------------------------------------------------------------------------------------
+
+/// Counts of a nearest-texel comparison.
+#[derive(Debug, Default)]
+struct Tally {
+    pixels: u64,
+    /// Pixels the reference gives one face at (and so one exact coordinate).
+    faces: u64,
+    /// Of those, pixels whose both axes were checked (the coordinate farther than its tolerance
+    /// from a texel boundary).
+    checked: u64,
+    /// Pixels left out on an axis: the coordinate within its tolerance of a texel boundary.
+    near_boundary: u64,
+    /// Pixels rounding decides (boundaries, near-equal depths).
+    ambiguous: u64,
+    worst_depth: f64,
+    /// The median tolerance (filled in at the end).
+    median_tolerance: f64,
+    clipped: u32,
+    drawn: u32,
+}
+
+/// Draws `case` Unlit with the coordinate texture and checks every pixel against the
+/// reference: empty where it must be, written where a face surely covers it, at its depth, and
+/// the texel of the exact coordinate wherever that is farther than its tolerance from a texel
+/// boundary. Returns the tolerances met.
+fn check_nearest(case: &Case, tally: &mut Tally) -> Vec<f64> {
+    let scene = Scene::new(&case.pose, LIGHT, 0.2);
+    let texels = coordinate_texels();
+    let texture = Texture::new(Rgb888Texels(&texels), TEX, TEX).unwrap();
+    let reference = RefTexture::new(TEX, TEX, vec![[0.0; 3]; (TEX * TEX) as usize]);
+    let mesh = case.mesh.as_mesh();
+    let (frame, stats) = textured(&scene.pipeline, &mesh, &texture, Shading::Unlit);
+    tally.clipped += stats.clipped;
+    tally.drawn += stats.drawn;
+    let got = decode(&frame);
+    let faces = ref_faces(&scene, &case.mesh, (TEX, TEX));
+    let (verdicts, spans) = verdicts(&scene, &faces);
+    let mut tolerances = Vec::new();
+    for (p, verdict) in verdicts.into_iter().enumerate() {
+        let (i, j) = ((p as u32 % W) as i32, (p as u32 / W) as i32);
+        tally.pixels += 1;
+        match verdict {
+            Verdict::Empty => assert!(!frame.written(p), "{}: pixel {i},{j} written", case.name),
+            Verdict::Either => tally.ambiguous += 1,
+            Verdict::Face {
+                face,
+                depth,
+                tolerance,
+            } => {
+                let (x, y) = got[p].unwrap_or_else(|| {
+                    panic!("{}: pixel {i},{j} empty, covered by face {face}", case.name)
+                });
+                let err = (f64::from(frame.z[p]) - depth).abs();
+                assert!(
+                    err <= tolerance,
+                    "{}: pixel {i},{j}: depth {} vs {depth}",
+                    case.name,
+                    frame.z[p]
+                );
+                tally.worst_depth = tally.worst_depth.max(err);
+                tally.faces += 1;
+                let f = &faces[face];
+                let (c, tol) = texel_at(&scene, f, spans.of(face, j), (i, j));
+                let want = nearest_texel(&reference, [RefWrap::Repeat; 2], c[0], c[1]);
+                let mut both = true;
+                for (a, (g, w)) in [(x, want.0), (y, want.1)].into_iter().enumerate() {
+                    tolerances.push(tol[a]);
+                    if (c[a] - c[a].round()).abs() <= tol[a] {
+                        both = false;
+                        continue;
+                    }
+                    assert_eq!(
+                        g, w,
+                        "{}: pixel {i},{j} face {face} axis {a}: texel {g}, exact coordinate {:.4} \
+                         (tolerance {:.4}), face texels {:?}, pose {:?}",
+                        case.name, c[a], tol[a], f.texel, case.pose
+                    );
+                }
+                if both {
+                    tally.checked += 1;
+                } else {
+                    tally.near_boundary += 1;
+                }
+            }
+        }
+    }
+    tolerances
+}
+
+/// The median of `v`.
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(0.0)
+}
+
+/// The fixed-point vertices of every scene of the suite against the f64 ones: clip-space
+/// coordinates within `CLIP_ERROR`, and so screen positions within `position_error`'s bound —
+/// the input error the tolerances allow for.
+#[test]
+fn vertices_match_f64() {
+    let (unclipped, clipped) = all_cases();
+    let (mut worst_clip, mut worst_xy, mut worst_ratio) = (0.0f64, 0.0f64, 0.0f64);
+    for case in unclipped.iter().chain(&clipped) {
+        let scene = Scene::new(&case.pose, LIGHT, 0.0);
+        for v in &case.mesh.vertices {
+            let clip = scene.pipeline.clip_position(*v);
+            let e = apply(&scene.model_view, bits3(*v));
+            let want = scene.clip(e);
+            let got = [clip.x, clip.y, clip.z, clip.w].map(fl);
+            for k in 0..4 {
+                worst_clip = worst_clip.max((got[k] - want[k]).abs());
+            }
+            if let Some(got) = scene.pipeline.project(clip) {
+                let (x, y) = scene.screen(e);
+                let d = (got.x.to_num::<f64>() - x)
+                    .abs()
+                    .max((got.y.to_num::<f64>() - y).abs());
+                let bound = scene.position_error(&[e]);
+                assert!(d <= bound, "{}: vertex {e:?} off by {d} px", case.name);
+                worst_xy = worst_xy.max(d);
+                worst_ratio = worst_ratio.max(d / bound);
+            }
+        }
+    }
+    println!(
+        "worst clip-space error {worst_clip:.2e}, vertex {worst_xy:.4} px ({worst_ratio:.2} of \
+         its bound)"
+    );
+    assert!(worst_clip <= CLIP_ERROR, "{worst_clip}");
+}
+
+/// Unlit textured floors at grazing angles, tori and patched icospheres at random poses (all
+/// three cullings): every pixel the reference gives one face shows the texel of the exact
+/// perspective-correct coordinate there, unless that coordinate is within its tolerance
+/// (module docs; about 1/16 texel where a face may be filled in screen space, less elsewhere)
+/// of a texel boundary on that axis; the coverage and depths are the reference's (depth within
+/// 2 LSB plus what `MARGIN` px moves it). With tolerances of about 1/16 texel, about a quarter
+/// of the pixels have an axis within one of a boundary: at least 60 % must be checked on both
+/// axes, and rounding may decide at most 10 % of the covered pixels.
+#[test]
+fn unlit_nearest_texels_match_the_ray_cast() {
+    let (cases, _) = all_cases();
+    let mut tally = Tally::default();
+    let mut tolerances = Vec::new();
+    for case in &cases {
+        tolerances.extend(check_nearest(case, &mut tally));
+    }
+    tally.median_tolerance = median(tolerances);
+    println!("{tally:?}");
+    assert!(tally.checked > 25_000, "{tally:?}");
+    assert!(
+        tally.checked as f64 >= 0.6 * tally.faces as f64,
+        "{tally:?}"
+    );
+    assert!(tally.ambiguous as f64 <= 0.1 * (tally.faces + tally.ambiguous) as f64);
+}
+
+/// Faces crossing the near plane (a floor from behind the camera to far ahead, the camera inside
+/// a torus's tube, a large icosphere brushing the eye, the camera inside an icosphere): the clipped
+/// fans are textured as the whole faces are — the same check and bounds as the unclipped
+/// meshes', and every case clips.
+#[test]
+fn clipped_faces_keep_their_texels() {
+    let (_, cases) = all_cases();
+    let mut tally = Tally::default();
+    let mut tolerances = Vec::new();
+    for case in &cases {
+        let before = tally.clipped;
+        tolerances.extend(check_nearest(case, &mut tally));
+        assert!(tally.clipped > before, "{}: nothing clipped", case.name);
+    }
+    tally.median_tolerance = median(tolerances);
+    println!("{tally:?}");
+    assert!(tally.checked > 25_000, "{tally:?}");
+    assert!(
+        tally.checked as f64 >= 0.6 * tally.faces as f64,
+        "{tally:?}"
+    );
+    assert!(tally.ambiguous as f64 <= 0.1 * (tally.faces + tally.ambiguous) as f64);
+}
+
+/// The probed coordinates' errors, in texels.
+#[derive(Debug, Default)]
+struct Probed {
+    pixels: u64,
+    /// The largest error anywhere, and on faces that must take the perspective fill.
+    worst: f64,
+    worst_perspective: f64,
+    /// The largest error over its tolerance (less the probe's resolution).
+    worst_ratio: f64,
+}
+
+/// The coordinates themselves, probed to 1/512 texel (`probe`), on every case of the suite
+/// (clipped and not): at every pixel the reference gives one face, within the tolerance of the
+/// texel tests plus the probe's resolution. Stronger than the nearest-texel tests, which see an
+/// error only where it takes a pixel across a texel boundary; the measured errors are printed.
+#[test]
+fn probed_coordinates_are_within_the_tolerance() {
+    let resolution = 0.5 / 256.0;
+    let (unclipped, clipped) = all_cases();
+    let texels = coordinate_texels();
+    let texture = Texture::new(Rgb888Texels(&texels), TEX, TEX).unwrap();
+    let mut all = Probed::default();
+    let mut lines = String::new();
+    for case in unclipped.iter().chain(&clipped) {
+        let scene = Scene::new(&case.pose, LIGHT, 0.2);
+        let got = probe(&scene.pipeline, &case.mesh, &texture);
+        let faces = ref_faces(&scene, &case.mesh, (TEX, TEX));
+        let (verdicts, spans) = verdicts(&scene, &faces);
+        let mut this = Probed::default();
+        for (p, verdict) in verdicts.into_iter().enumerate() {
+            let Verdict::Face { face, .. } = verdict else {
+                continue;
+            };
+            let (i, j) = ((p as u32 % W) as i32, (p as u32 / W) as i32);
+            let f = &faces[face];
+            let (c, tol) = texel_at(&scene, f, spans.of(face, j), (i, j));
+            let perspective = affine_ratio(&scene, f, &[(f.spread(), AFFINE_TEXELS)]).is_none();
+            let g = got[p].unwrap_or_else(|| panic!("{}: pixel {i},{j} empty", case.name));
+            for a in 0..2 {
+                let v = unwrap_near(g[a], c[a]);
+                let d = (v - c[a]).abs();
+                assert!(
+                    d <= tol[a] + resolution + 1e-9,
+                    "{}: pixel {i},{j} face {face} axis {a}: coordinate {v:.4}, exact {:.4}, \
+                     tolerance {:.4}; face texels {:?}, w {:?}, pose {:?}",
+                    case.name,
+                    c[a],
+                    tol[a],
+                    f.texel,
+                    f.w,
+                    case.pose
+                );
+                this.worst = this.worst.max(d);
+                if perspective {
+                    this.worst_perspective = this.worst_perspective.max(d);
+                }
+                this.worst_ratio = this.worst_ratio.max((d - resolution).max(0.0) / tol[a]);
+            }
+            this.pixels += 1;
+        }
+        lines += &format!(
+            "  {}: {} pixels, error ≤ {:.4} texel ({:.4} on perspective-only faces), ≤ {:.2} of \
+             the tolerance\n",
+            case.name, this.pixels, this.worst, this.worst_perspective, this.worst_ratio
+        );
+        all.pixels += this.pixels;
+        all.worst = all.worst.max(this.worst);
+        all.worst_perspective = all.worst_perspective.max(this.worst_perspective);
+        all.worst_ratio = all.worst_ratio.max(this.worst_ratio);
+    }
+    println!("probed coordinates: {all:?}\n{lines}");
+    assert!(all.pixels > 60_000, "{all:?}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lit texels
+// ---------------------------------------------------------------------------------------------
+
+/// The constant texel of the lit tests.
+const TEXEL: [u8; 3] = [240, 180, 100];
+
+/// The largest channel errors of a lit comparison (LSB).
+#[derive(Debug, Default)]
+struct Lit {
+    pixels: u64,
+    flat: f64,
+    gouraud: f64,
+    /// The Gouraud error less its interpolation allowance.
+    gouraud_beyond: f64,
+    /// The untextured (screen-space) Gouraud draw against the textured one, and against the
+    /// exact perspective-correct level.
+    untextured_vs_textured: f64,
+    untextured_vs_exact: f64,
+    /// Pixels written, and of all pixels those whose depth the untextured draw gives too.
+    written: u64,
+    same_depth: u64,
+}
+
+/// Draws `case` with a constant texture lit Flat and Gouraud by a random light, and the
+/// untextured Gouraud material of the same colour; checks the lit colours against the f64
+/// Lambert levels at every pixel the reference gives one face.
+fn check_lit(case: &Case, rng: &mut Rng, lit: &mut Lit) {
+    let light = normalize([
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(0.2, 1.0),
+    ]);
+    let ambient = rng.range_f64(0.0, 0.4);
+    let scene = Scene::new(&case.pose, light, ambient);
+    let bytes: Vec<u8> = (0..16).flat_map(|_| TEXEL).collect();
+    let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
+    let mesh = case.mesh.as_mesh();
+    let (flat, _) = textured(&scene.pipeline, &mesh, &texture, Shading::Flat);
+    let (gouraud, _) = textured(&scene.pipeline, &mesh, &texture, Shading::Gouraud);
+    let color = Rgb888::new(TEXEL[0], TEXEL[1], TEXEL[2]);
+    let plain = untextured(&scene.pipeline, &mesh, color, Shading::Gouraud);
+    // The textured draws cover the untextured draw's pixels (documented); the depths are
+    // counted.
+    let coverage = plain.written_set();
+    assert!(
+        flat.written_set() == coverage && gouraud.written_set() == coverage,
+        "{}: coverage differs",
+        case.name
+    );
+    lit.same_depth += (0..N).filter(|&i| plain.z[i] == gouraud.z[i]).count() as u64;
+    lit.written += coverage.iter().filter(|&&c| c).count() as u64;
+    let faces = ref_faces(&scene, &case.mesh, (4, 4));
+    let (verdicts, spans) = verdicts(&scene, &faces);
+    let channels = |c: Rgb888| [c.r(), c.g(), c.b()].map(f64::from);
+    for (p, verdict) in verdicts.into_iter().enumerate() {
+        let Verdict::Face { face, .. } = verdict else {
+            continue;
+        };
+        let (i, j) = ((p as u32 % W) as i32, (p as u32 / W) as i32);
+        let f = &faces[face];
+        let texel = TEXEL.map(f64::from);
+        // Flat: the face's level, within 1 LSB (½ for the rounding, the level's 2⁻¹² and its
+        // 8.8 and 16-bit fractions).
+        for (k, g) in channels(flat.px[p]).into_iter().enumerate() {
+            let d = (g - texel[k] * f.flat).abs();
+            assert!(
+                d <= 1.0,
+                "{}: pixel {i},{j} face {face} channel {k}: flat {g}, exact {:.3} (level {:.5}), \
+                 pose {:?}",
+                case.name,
+                texel[k] * f.flat,
+                f.flat,
+                case.pose
+            );
+            lit.flat = lit.flat.max(d);
+        }
+        // Gouraud: the vertex levels interpolated perspective-correct, within 1 LSB plus the
+        // interpolation's tolerance (as the texel coordinates', with the level's spread; the
+        // fill may take screen space if both the texels and the levels allow).
+        let e = exact(&scene, f, spans.of(face, j), f.levels, (i, j), UNIT);
+        let spread = spread_of(f.levels);
+        let affine = affine_ratio(
+            &scene,
+            f,
+            &[(f.spread(), AFFINE_TEXELS), (spread, AFFINE_LEVEL)],
+        )
+        .map(|r| departure(r, spread, AFFINE_LEVEL));
+        // The screen-space fill's level plane: 8.8 vertex values, truncated, and its 16-bit
+        // fraction.
+        let rounding = 2.0 / (256.0 * 255.0);
+        let tol = tolerance(&scene, f, &e, spread, affine, rounding);
+        for (k, g) in channels(gouraud.px[p]).into_iter().enumerate() {
+            let want = texel[k] * e.value.clamp(0.0, 1.0);
+            let d = (g - want).abs();
+            assert!(
+                d <= 1.0 + texel[k] * tol,
+                "{}: pixel {i},{j} face {face} channel {k}: Gouraud {g}, exact {want:.3} (levels \
+                 {:?}, tolerance {:.5}), pose {:?}",
+                case.name,
+                f.levels,
+                tol,
+                case.pose
+            );
+            lit.gouraud = lit.gouraud.max(d);
+            lit.gouraud_beyond = lit.gouraud_beyond.max(d - texel[k] * tol);
+            let u = channels(plain.px[p])[k];
+            lit.untextured_vs_textured = lit.untextured_vs_textured.max((u - g).abs());
+            lit.untextured_vs_exact = lit.untextured_vs_exact.max((u - want).abs());
+        }
+        lit.pixels += 1;
+    }
+}
+
+/// Flat and Gouraud lighting of textured meshes (a constant texture, so the colour is the
+/// light's alone) under random lights, clipped and not: Flat texels are the texel times the
+/// face's f64 Lambert level (geometric normal) within 1 LSB; Gouraud texels the texel times the
+/// vertex levels (from the mesh's normals) interpolated at the ray's hit barycentrics, within
+/// 1 LSB plus the texel's share of the interpolation tolerance. The textured draws cover the
+/// pixels of the untextured Gouraud draw of the same mesh; its depths and colours (screen-space
+/// levels, 256-entry table) are only reported.
+#[test]
+fn lit_texels_follow_lambert() {
+    let (unclipped, clipped) = all_cases();
+    let mut rng = Rng(0x7e47_3d02);
+    let mut lit = Lit::default();
+    for case in unclipped.iter().chain(&clipped) {
+        check_lit(case, &mut rng, &mut lit);
+    }
+    println!("{lit:?}");
+    assert!(lit.pixels > 60_000, "{lit:?}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every path the same pixels
+// ---------------------------------------------------------------------------------------------
+
+/// `mesh` drawn with `material` in bands of `rows` rows (with a vertex scratch or not), the
+/// bands' colours and depths put together into one frame.
+fn banded<S: TexelSource>(
+    pipeline: &Pipeline,
+    mesh: &Mesh<'_>,
+    material: &TexturedMaterial<'_, S>,
+    rows: u32,
+    scratch: Option<&mut [ProjectedVertex]>,
+) -> Frame
+where
+    Rgb888: From<S::Color>,
+{
+    let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
+    let mut colors = vec![Rgb888::BLACK; layout.buffer_len()];
+    let mut depth = vec![0u16; layout.buffer_len()];
+    let mut frame = Frame::new();
+    let mut depths = vec![DEPTH_CLEAR; N];
+    let mut bands =
+        DepthBands::new(ColorBands::new(layout, &mut colors).unwrap(), &mut depth).unwrap();
+    let mut scratch = scratch;
+    let mut sent = Callback(|area: &Rectangle, pixels: &[Rgb888]| {
+        let start = (area.top_left.y as u32 * W) as usize;
+        frame.px[start..start + pixels.len()].copy_from_slice(pixels);
+        Ok::<(), ()>(())
+    });
+    bands
+        .render(&mut sent, |band| {
+            band.clear(Rgb888::BLACK);
+            match scratch.as_deref_mut() {
+                Some(s) => {
+                    band.draw_textured_mesh_with(pipeline, mesh, material, s)
+                        .unwrap();
+                }
+                None => {
+                    band.draw_textured_mesh(pipeline, mesh, material);
+                }
+            }
+            let start = (band.rect().top_left.y as u32 * W) as usize;
+            depths[start..start + band.depth().len()].copy_from_slice(band.depth());
+        })
+        .unwrap();
+    frame.z = depths;
+    frame
+}
+
+/// One draw of the paths test: a pose, a texture and a shading.
+fn paths_round<S: TexelSource>(
+    case: &Case,
+    scene: &Scene,
+    texture: &Texture<S>,
+    shading: Shading,
+    round: usize,
+) -> DrawStats
+where
+    Rgb888: From<S::Color>,
+{
+    let mesh = case.mesh.as_mesh();
+    let material = TexturedMaterial::new(texture, shading);
+    let (whole, stats) = textured(&scene.pipeline, &mesh, texture, shading);
+    let mut once = Frame::new();
+    let mut scratch = vec![ProjectedVertex::EMPTY; case.mesh.vertices.len()];
+    let with = scene
+        .pipeline
+        .draw_textured_mesh_with(&mesh, &material, &mut once.target(), &mut scratch)
+        .unwrap();
+    assert_eq!(stats, with, "{} round {round}: stats", case.name);
+    assert!(
+        whole == once,
+        "{} round {round} ({shading:?}): the scratch draw differs",
+        case.name
+    );
+    for rows in [1, 8, 16, 240] {
+        for with_scratch in [false, true] {
+            let s = with_scratch.then_some(&mut scratch[..]);
+            let bands = banded(&scene.pipeline, &mesh, &material, rows, s);
+            let at = (0..N).find(|&i| bands.px[i] != whole.px[i] || bands.z[i] != whole.z[i]);
+            assert!(
+                at.is_none(),
+                "{} round {round} ({shading:?}): {rows}-row bands (scratch {with_scratch}) differ \
+                 at pixel {:?}",
+                case.name,
+                at.map(|i| (i as u32 % W, i as u32 / W))
+            );
+        }
+    }
+    stats
+}
+
+/// Every way of drawing a textured mesh gives the same frame, bit for bit: `draw_textured_mesh`
+/// and `draw_textured_mesh_with` (a vertex scratch: the same stats too), and band rendering
+/// (`DepthBands` of 1, 8, 16 and 240 rows, each band drawn with and without a scratch) against
+/// the frame drawn whole — colours and depths, over the suite's poses (clipped and not), every
+/// shading, power-of-two and other textures, nearest and bilinear, a viewport partly off the
+/// target; and a scratch too short is an error that draws nothing.
+#[test]
+fn every_path_draws_the_same_pixels() {
+    let (unclipped, clipped) = all_cases();
+    let coordinates = coordinate_texels();
+    let pow2 = Texture::new(Rgb888Texels(&coordinates), TEX, TEX).unwrap();
+    let odd_bytes: Vec<u8> = (0..3 * 5 * 3).map(|k| (k * 37 % 251) as u8).collect();
+    let odd = Texture::new(Rgb888Texels(&odd_bytes), 3, 5)
+        .unwrap()
+        .with_wrap(Wrap::MirroredRepeat, Wrap::Clamp);
+    let words: Vec<u16> = (0..64 * 32)
+        .map(|k| (k as u16).wrapping_mul(40_503))
+        .collect();
+    let rgb565 = Texture::new(Rgb565Texels(&words), 64, 32)
+        .unwrap()
+        .with_filter(Filter::Bilinear);
+    let shadings = [
+        Shading::Unlit,
+        Shading::Flat,
+        Shading::Gouraud,
+        Shading::Quadratic,
+    ];
+    let (mut drawn, mut clipped_faces) = (0, 0);
+    for (round, case) in unclipped.iter().chain(&clipped).enumerate() {
+        let mut scene = Scene::new(&case.pose, LIGHT, 0.15);
+        if round % 4 == 3 {
+            scene.pipeline.viewport = Rectangle::new(Point::new(-7, 3), Size::new(W + 20, H - 10));
+        }
+        let shading = shadings[round % 4];
+        let stats = match round % 3 {
+            0 => paths_round(case, &scene, &pow2, shading, round),
+            1 => paths_round(case, &scene, &odd, shading, round),
+            _ => paths_round(case, &scene, &rgb565, shading, round),
+        };
+        drawn += stats.drawn;
+        clipped_faces += stats.clipped;
+    }
+    println!("{drawn} faces drawn, {clipped_faces} clipped");
+    assert!(
+        drawn > 5_000 && clipped_faces > 300,
+        "{drawn} {clipped_faces}"
+    );
+
+    let case = &unclipped[12];
+    let scene = Scene::new(&case.pose, LIGHT, 0.15);
+    let mut frame = Frame::new();
+    let mut short = vec![ProjectedVertex::EMPTY; case.mesh.vertices.len() - 1];
+    let material = TexturedMaterial::new(&pow2, Shading::Gouraud);
+    let got = scene.pipeline.draw_textured_mesh_with(
+        &case.mesh.as_mesh(),
+        &material,
+        &mut frame.target(),
+        &mut short,
+    );
+    assert_eq!(
+        got,
+        Err(ScratchTooSmall {
+            needed: case.mesh.vertices.len(),
+            given: case.mesh.vertices.len() - 1
+        })
+    );
+    assert!(frame.z.iter().all(|&d| d == DEPTH_CLEAR), "nothing drawn");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Robustness
+// ---------------------------------------------------------------------------------------------
+
+/// A raw coordinate: the `I16F16` extremes, zero, small and random values.
+fn pick(rng: &mut Rng) -> i32 {
+    match rng.next() % 7 {
+        0 => i32::MIN,
+        1 => i32::MAX,
+        2 => 0,
+        3 => (rng.next() as i32) >> (rng.next() % 31),
+        4 => ((rng.next() % 200_000) as i32) - 100_000,
+        5 => 65_536 * ((rng.next() % 5) as i32 - 2),
+        _ => rng.next() as i32,
+    }
+}
+
+/// A texture whose every texel has its own colour (`(a, b, c)` from the index), `width ×
+/// height`.
+fn distinct_texels(width: u32, height: u32) -> Vec<u8> {
+    (0..width * height)
+        .flat_map(|k| {
+            [
+                (k % 251) as u8,
+                (k / 251 % 251) as u8,
+                (k / 63_001 % 251) as u8 | 1,
+            ]
+        })
+        .collect()
+}
+
+/// Odd inputs (run in the test profile, whose overflow checks are on): meshes without texture
+/// coordinates, with degenerate faces (repeated and collinear vertices, indices out of range),
+/// texture coordinates at the `I16F16` extremes, garbage normals; textures of 1 × 1, 1 × n,
+/// n × 1 and other sizes that are not powers of two, every wrap mode and filter; poses around
+/// and inside the meshes, extreme vertices: no panic, and the textured draw writes exactly the
+/// pixels the untextured draw of the same mesh writes (`draw_mesh`, unlit), each — unlit and
+/// nearest — a texel of the texture, and texel `(0, 0)` for a mesh without texture
+/// coordinates (documented).
+#[test]
+fn odd_inputs_stay_inside_the_untextured_coverage() {
+    let mut rng = Rng(0x7e47_3d03);
+    let sizes = [
+        (1, 1),
+        (1, 9),
+        (7, 1),
+        (3, 5),
+        (33, 17),
+        (256, 256),
+        (1000, 2),
+    ];
+    let wraps = [Wrap::Repeat, Wrap::MirroredRepeat, Wrap::Clamp];
+    let textures: Vec<(u32, u32, Vec<u8>)> = sizes
+        .iter()
+        .map(|&(w, h)| (w, h, distinct_texels(w, h)))
+        .collect();
+    let sphere = icosphere(1.0, 1);
+    let (mut written, mut rounds_drawn, mut no_uv_pixels) = (0u64, 0u32, 0u64);
+    for round in 0..600 {
+        // The mesh: a small icosphere or random garbage.
+        let mut mesh = if round % 2 == 0 {
+            let mut m = sphere.clone();
+            // Degenerate faces: a repeated vertex, a collinear triple, indices out of range.
+            let n = m.vertices.len() as u16;
+            m.indices.push([0, 0, 1]);
+            m.indices.push([n, 1, 2]);
+            m.indices.push([3, u16::MAX, 4]);
+            let (a, b) = (m.vertices[5], m.vertices[6]);
+            m.vertices.push(Vec3::from_bits(
+                a.to_bits()[0] / 2 + b.to_bits()[0] / 2,
+                a.to_bits()[1] / 2 + b.to_bits()[1] / 2,
+                a.to_bits()[2] / 2 + b.to_bits()[2] / 2,
+            ));
+            m.normals.push(Vec3::ZERO);
+            m.indices.push([5, n, 6]);
+            m
+        } else {
+            let count = 3 + rng.below(8) as usize;
+            let mut m = MeshData {
+                vertices: (0..count)
+                    .map(|_| match rng.below(3) {
+                        0 => Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng)),
+                        _ => Vec3::new(
+                            fx(rng.range_f64(-2.0, 2.0)),
+                            fx(rng.range_f64(-2.0, 2.0)),
+                            fx(rng.range_f64(-2.0, 2.0)),
+                        ),
+                    })
+                    .collect(),
+                ..MeshData::default()
+            };
+            m.indices = (0..6)
+                .map(|_| [0; 3].map(|_| rng.below(count as u64 + 2) as u16))
+                .collect();
+            if rng.chance(2) {
+                m.normals = (0..count)
+                    .map(|_| Vec3::from_bits(pick(&mut rng), pick(&mut rng), pick(&mut rng)))
+                    .collect();
+            }
+            m
+        };
+        // Texture coordinates: none, ordinary, or anything at all.
+        let uv_kind = round / 2 % 3;
+        mesh.uvs = match uv_kind {
+            0 => Vec::new(),
+            1 => (0..mesh.vertices.len())
+                .map(|_| uv(rng.range_f64(-3.0, 3.0), rng.range_f64(-3.0, 3.0)))
+                .collect(),
+            _ => (0..mesh.vertices.len())
+                .map(|_| TexCoord::from_bits(pick(&mut rng), pick(&mut rng)))
+                .collect(),
+        };
+        let pose = Pose {
+            fov: [40, 70, 100][round % 3],
+            near: [0.1, 0.3, 1.0][round / 3 % 3],
+            far: 20.0,
+            yaw: rng.angle(),
+            pitch: rng.angle(),
+            position: [
+                rng.range_f64(-2.0, 2.0),
+                rng.range_f64(-2.0, 2.0),
+                rng.range_f64(-5.0, 1.0),
+            ],
+            cull: [Cull::None, Cull::Back, Cull::Front][round / 9 % 3],
+        };
+        let light = [
+            rng.range_f64(-1.0, 1.0),
+            rng.range_f64(-1.0, 1.0),
+            rng.range_f64(-1.0, 1.0),
+        ];
+        let mut scene = Scene::new(&pose, light, rng.range_f64(-0.5, 1.5));
+        if round % 5 == 4 {
+            scene.pipeline.viewport = Rectangle::new(
+                Point::new(rng.range(-100, 100) as i32, rng.range(-100, 100) as i32),
+                Size::new(rng.below(300) as u32, rng.below(300) as u32),
+            );
+        }
+        let (w, h, bytes) = &textures[round % textures.len()];
+        let filter = if round % 4 == 1 {
+            Filter::Bilinear
+        } else {
+            Filter::Nearest
+        };
+        let texture = Texture::new(Rgb888Texels(bytes), *w, *h)
+            .unwrap()
+            .with_wrap(wraps[round % 3], wraps[round / 3 % 3])
+            .with_filter(filter);
+        let texel_set: std::collections::HashSet<[u8; 3]> =
+            bytes.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let first = Rgb888::new(bytes[0], bytes[1], bytes[2]);
+        let m = mesh.as_mesh();
+        let coverage = untextured(&scene.pipeline, &m, Rgb888::WHITE, Shading::Unlit).written_set();
+        for shading in [
+            Shading::Unlit,
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Quadratic,
+        ] {
+            let (frame, stats) = textured(&scene.pipeline, &m, &texture, shading);
+            let mut scratch = vec![ProjectedVertex::EMPTY; mesh.vertices.len()];
+            let mut again = Frame::new();
+            let material = TexturedMaterial::new(&texture, shading);
+            let with = scene
+                .pipeline
+                .draw_textured_mesh_with(&m, &material, &mut again.target(), &mut scratch)
+                .unwrap();
+            assert!(
+                stats == with && frame == again,
+                "round {round}: scratch draw differs"
+            );
+            let at = (0..N).find(|&i| frame.written(i) != coverage[i]);
+            assert!(
+                at.is_none(),
+                "round {round} ({shading:?}): pixel {:?} written {} by the textured draw, {} by \
+                 the untextured one; mesh {mesh:?}, pose {pose:?}",
+                at.map(|i| (i as u32 % W, i as u32 / W)),
+                at.is_some_and(|i| frame.written(i)),
+                at.is_some_and(|i| coverage[i]),
+            );
+            if shading == Shading::Unlit && filter == Filter::Nearest {
+                for i in (0..N).filter(|&i| frame.written(i)) {
+                    let c = frame.px[i];
+                    assert!(
+                        texel_set.contains(&[c.r(), c.g(), c.b()]),
+                        "round {round}: {c:?}"
+                    );
+                    if mesh.uvs.is_empty() {
+                        assert_eq!(c, first, "round {round}: no texture coordinates");
+                        no_uv_pixels += 1;
+                    }
+                }
+            }
+            written += coverage.iter().filter(|&&c| c).count() as u64;
+            rounds_drawn += u32::from(stats.drawn > 0);
+        }
+    }
+    println!("{rounds_drawn} draws with faces, {written} pixels, {no_uv_pixels} without uvs");
+    assert!(rounds_drawn > 800 && written > 1_000_000 && no_uv_pixels > 20_000);
+}
