@@ -458,6 +458,18 @@ pub(crate) fn leading_zeros_32(v: u32) -> u32 {
     }
 }
 
+/// The leading zeros of a 64-bit value, from [`leading_zeros_32`] of its halves (no library
+/// call where there is no `clz`).
+#[inline]
+pub(crate) fn leading_zeros_64(v: u64) -> u32 {
+    let high = (v >> 32) as u32;
+    if high != 0 {
+        leading_zeros_32(high)
+    } else {
+        32 + leading_zeros_32(v as u32)
+    }
+}
+
 /// [`leading_zeros_32`] by halving steps.
 #[inline]
 fn leading_zeros_by_halving(mut v: u32) -> u32 {

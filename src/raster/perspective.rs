@@ -16,7 +16,7 @@
 //! of its 16-bit scale, so `λ` is within about `1/q` of the exact ratio: `3·10⁻⁵` for `ρ = 1`,
 //! `6·10⁻⁴` for `ρ = 20`, plus the 2⁻¹⁵ of its fixed-point reciprocal.
 
-use super::arith::div_rem_u32;
+use super::arith::{div_rem_u32, leading_zeros_64};
 use super::plane::Attributes;
 use crate::arch::NO_LONG_MULTIPLY;
 use core::num::NonZeroU32;
@@ -40,7 +40,7 @@ pub(crate) fn attributes(q: [u64; 3]) -> Attributes<3> {
     let top = q[0].max(q[1]).max(q[2]);
     // The common shift that brings the largest into (Q_MAX/2, Q_MAX]: from its bit length
     // (17 bits down to 16), one step more if that is still above Q_MAX.
-    let bits = 64 - top.leading_zeros();
+    let bits = 64 - leading_zeros_64(top);
     let (mut shift, mut up) = if bits > 16 {
         (bits - 16, 0)
     } else {

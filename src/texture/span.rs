@@ -12,6 +12,7 @@ use super::address::Wrap;
 use super::map::{bilinear_by, Filter, Texture};
 use super::source::TexelSource;
 use crate::color::GouraudColor;
+use crate::raster::arith::leading_zeros_64;
 
 /// Longest run of pixels whose texel coordinates are stepped from one start.
 pub(crate) const RUN: u32 = 1024;
@@ -48,7 +49,7 @@ impl PlaneMap {
         // Below 2³²: the spread fits SPREAD steps of 2^shift for a shift of at most 17 (the
         // least such shift: from the spread's bit length, one more where rounding needs it).
         let spread = (i64::from(hi) - i64::from(lo)) as u64;
-        let mut shift = (64 - spread.leading_zeros()).saturating_sub(16);
+        let mut shift = (64 - leading_zeros_64(spread)).saturating_sub(16);
         while (spread + (1 << shift >> 1)) >> shift > SPREAD {
             shift += 1;
         }
