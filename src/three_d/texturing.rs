@@ -572,9 +572,8 @@ struct PerspectiveSpan<'p, C, L> {
 impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L> {
     type Output = ();
 
-    /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate. Out of
-    /// line: the walk's values stay out of the loop's registers (a call a span).
-    #[inline(never)]
+    /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate.
+    #[inline(always)]
     fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
         let (mut colors, mut depths, light) = (self.colors, self.depths, self.light);
         let [dz, dq, dp1, dp2] = self.steps;
@@ -583,35 +582,55 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
         let len = colors.len().min(depths.len()) as u32;
         let mut at = None;
         for chunk in Chunks::new([q, p1, p2], [dq, dp1, dp2], len) {
-            let (mut x, mut y) = at.unwrap_or_else(|| (u.at(chunk.start), v.at(chunk.start)));
+            let (x, mut y) = at.unwrap_or_else(|| (u.at(chunk.start), v.at(chunk.start)));
             let end = (u.at(chunk.end), v.at(chunk.end));
             let (dx, dy) = (
                 step_over(x, end.0, chunk.over),
                 step_over(y, end.1, chunk.over) << y_shift,
             );
             y <<= y_shift;
-            let (mut level, dl) = light.chunk(chunk.start, chunk.end, chunk.over);
+            let (level, dl) = light.chunk(chunk.start, chunk.end, chunk.over);
             // The chunk's pixels as slices of their own: one counter for the loop.
             let n = chunk.len as usize;
             let (Some((c, rest_c)), Some((d, rest_d))) = (split(colors, n), split(depths, n))
             else {
                 return;
             };
-            for (px, depth) in c.iter_mut().zip(d.iter_mut()) {
-                let z16 = (z >> DEPTH_SHIFT) as u16;
-                if z16 < *depth {
-                    *depth = z16;
-                    *px = light.apply(texel(x, y), level);
-                }
-                z = z.wrapping_add(dz);
-                x = x.wrapping_add(dx);
-                y = y.wrapping_add(dy);
-                level = level.wrapping_add(dl);
-            }
+            let steps = (dz, dx, dy, dl);
+            z = chunk_pixels(c, d, (z, x, y, level), steps, &texel, light);
             (colors, depths) = (rest_c, rest_d);
             at = Some(end);
         }
     }
+}
+
+/// The pixels of one chunk: depth-tested, each the texel at its coordinate lit at its level,
+/// from the values `(z, x, y, level)` at the first stepped by `steps`; the depth plane's value
+/// after the last. Out of line: the loop has the registers to itself (a call a chunk).
+#[inline(never)]
+fn chunk_pixels<C, L: SpanLight>(
+    colors: &mut [C],
+    depths: &mut [u16],
+    (mut z, mut x, mut y, mut level): (u32, i32, i32, i32),
+    (dz, dx, dy, dl): (u32, i32, i32, i32),
+    texel: &impl Fn(i32, i32) -> C,
+    light: L,
+) -> u32
+where
+    C: GouraudColor,
+{
+    for (px, depth) in colors.iter_mut().zip(depths.iter_mut()) {
+        let z16 = (z >> DEPTH_SHIFT) as u16;
+        if z16 < *depth {
+            *depth = z16;
+            *px = light.apply(texel(x, y), level);
+        }
+        z = z.wrapping_add(dz);
+        x = x.wrapping_add(dx);
+        y = y.wrapping_add(dy);
+        level = level.wrapping_add(dl);
+    }
+    z
 }
 
 /// The first `n` items of `items` and the rest, if it has `n`.
