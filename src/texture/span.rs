@@ -12,7 +12,7 @@ use super::address::Wrap;
 use super::map::{bilinear_by, Filter, Texture};
 use super::source::TexelSource;
 use crate::color::GouraudColor;
-use crate::raster::arith::leading_zeros_64;
+use crate::raster::arith::leading_zeros_32;
 
 /// Longest run of pixels whose texel coordinates are stepped from one start.
 pub(crate) const RUN: u32 = 1024;
@@ -46,16 +46,26 @@ impl PlaneMap {
     pub(crate) fn new(c: [i32; 3]) -> (Self, [u16; 3]) {
         let lo = c[0].min(c[1]).min(c[2]);
         let hi = c[0].max(c[1]).max(c[2]);
-        // Below 2³²: the spread fits SPREAD steps of 2^shift for a shift of at most 17 (the
-        // least such shift: from the spread's bit length, one more where rounding needs it).
-        let spread = (i64::from(hi) - i64::from(lo)) as u64;
-        let mut shift = (64 - leading_zeros_64(spread)).saturating_sub(16);
-        while (spread + (1 << shift >> 1)) >> shift > SPREAD {
+        // Below 2³² (in 32 bits: the difference modulo 2³² is the true one). The least shift
+        // whose rounded spread fits SPREAD steps of 2^shift: from the spread's bit length, one
+        // more where rounding needs it; at most 17.
+        let spread = hi.wrapping_sub(lo) as u32;
+        let mut shift = (32 - leading_zeros_32(spread)).saturating_sub(16);
+        while (u64::from(spread) + (1 << shift >> 1)) >> shift > SPREAD {
             shift += 1;
         }
-        let half = (1i64 << shift) >> 1;
-        let values = c.map(|c| (128 + ((i64::from(c) - i64::from(lo) + half) >> shift)) as u16);
-        let base = (i64::from(lo) - (128i64 << shift)) as i32;
+        let half = (1u32 << shift) >> 1;
+        let value = |c: i32| {
+            let d = c.wrapping_sub(lo) as u32;
+            // Rounded to the nearest step; only a shift of 17 can carry out of 32 bits.
+            let step = match d.checked_add(half) {
+                Some(sum) => sum >> shift,
+                None => ((u64::from(d) + u64::from(half)) >> shift) as u32,
+            };
+            (128 + step) as u16
+        };
+        let values = c.map(value);
+        let base = (lo as u32).wrapping_sub(128 << shift) as i32;
         let (down, up) = if shift <= 16 {
             (16 - shift, 0)
         } else {

@@ -989,12 +989,15 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     #[inline(always)]
     fn texels(&self, mesh: &Mesh<'_>, idx: &[usize; 3]) -> [[i32; 2]; 3] {
         let (w, h) = self.texture.size();
-        let scale =
-            |c: i64, n: u32| (c * i64::from(n)).clamp(i32::MIN.into(), i32::MAX.into()) as i32;
+        // Sides up to 2¹⁵: 32-bit products, saturated (the exact products clamped to i32).
+        let (w, h) = (w as i32, h as i32);
         match at_face(mesh.uvs, idx) {
             Some(t) => t.map(|t| {
                 let [u, v] = t.to_bits();
-                [scale(u.into(), w), scale((1 << 16) - i64::from(v), h)]
+                [
+                    u.saturating_mul(w),
+                    (1i32 << 16).saturating_sub(v).saturating_mul(h),
+                ]
             }),
             None => [[0; 2]; 3],
         }

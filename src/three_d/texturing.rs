@@ -32,6 +32,7 @@ use super::depth::{DepthTarget, ScreenVertex};
 use super::math::Scalar;
 use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
 use crate::color::GouraudColor;
+use crate::raster::arith::leading_zeros_64;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
 use crate::raster::{Span, SpanShader};
@@ -253,11 +254,9 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
-    let perspective = perspective::attributes(q);
     let rect = clip.rect();
     let position = screen.map(|v| v.position());
-    let normalised = perspective.values.map(|v| v[0]);
-    if nearly_affine(normalised, texels, &light) {
+    if nearly_affine(q, texels, &light) {
         // Screen-space interpolation is within the bound here: the 2D textured fill's planes.
         let (mu, u) = PlaneMap::new(texels.map(|t| t[0]));
         let (mv, v) = PlaneMap::new(texels.map(|t| t[1]));
@@ -277,6 +276,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
         clip.rows().shade(position, &attributes, &rect, fill);
         return;
     }
+    let perspective = perspective::attributes(q);
     let attributes = with_depth(screen, perspective.values, perspective.half);
     let coordinates = (
         Corrected::new(texels.map(|t| t[0])),
@@ -316,30 +316,38 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
 
 /// The largest departure from the perspective-correct values that screen-space interpolation
 /// may make where a face takes it: 1/16 texel, and 1/4 of a light level.
-const AFFINE_TEXELS: i64 = 1 << 12;
-const AFFINE_LEVEL: i64 = 1 << 6;
+const AFFINE_TEXELS: u64 = 1 << 12;
+const AFFINE_LEVEL: u64 = 1 << 6;
 
-/// Whether a face whose vertices have the normalised `q` (perspective planes' values, each
-/// `q + 128`), texel coordinates (16.16) and light may be interpolated in screen space: an
-/// attribute of spread `s` (its largest difference between vertices) departs from its
-/// perspective-correct value by at most `s·(q_max − q_min) / (2·q_min)`, as the
-/// perspective-correct value is the average of the vertex values weighted by `bₖ·qₖ / Σ bⱼ·qⱼ`.
-/// Small faces (most of a mesh's) take the cheaper screen-space fill.
+/// Whether a face whose vertices have `q ∝ 1/w`, texel coordinates (16.16) and light may be
+/// interpolated in screen space: an attribute of spread `s` (its largest difference between
+/// vertices) departs from its perspective-correct value by at most `s·(q_max − q_min) /
+/// (2·q_min)`, as the perspective-correct value is the average of the vertex values weighted by
+/// `bₖ·qₖ / Σ bⱼ·qⱼ`. Small faces (most of a mesh's) take the cheaper screen-space fill.
 #[inline(always)]
-fn nearly_affine(q: [u16; 3], texels: [[i32; 2]; 3], light: &TexelLight) -> bool {
-    let q = q.map(|q| i64::from(q) - 128);
+fn nearly_affine(q: [u64; 3], texels: [[i32; 2]; 3], light: &TexelLight) -> bool {
     let (lo, hi) = (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]));
-    let spread = |a: [i64; 3]| a[0].max(a[1]).max(a[2]) - a[0].min(a[1]).min(a[2]);
-    let texel_spread = spread(texels.map(|t| t[0].into())).max(spread(texels.map(|t| t[1].into())));
-    // Below 2³³ · 2¹⁶ and 2¹⁶ · 2¹⁶ · 2²: no overflow.
-    let (ratio, twice) = (hi - lo, 2 * lo);
-    if texel_spread * ratio > AFFINE_TEXELS * twice {
+    // Both to 16 bits by one shift, `q_min` rounded down and `q_max` up: a larger ratio, never
+    // a smaller one.
+    let shift = (64 - leading_zeros_64(hi)).saturating_sub(16);
+    let lo = (lo >> shift) as u32;
+    let hi = (hi.saturating_add((1 << shift) - 1) >> shift).min(1 << 16) as u32;
+    let spread = |a: [i32; 3]| {
+        a[0].max(a[1])
+            .max(a[2])
+            .wrapping_sub(a[0].min(a[1]).min(a[2]))
+    };
+    let texel_spread =
+        (spread(texels.map(|t| t[0])) as u32).max(spread(texels.map(|t| t[1])) as u32);
+    // Below 2³² · 2¹⁶ and 2¹² · 2¹⁷: no overflow.
+    let (ratio, twice) = (u64::from(hi - lo.min(hi)), u64::from(2 * lo));
+    if u64::from(texel_spread) * ratio > AFFINE_TEXELS * twice {
         return false;
     }
     match light {
         TexelLight::Levels(l) => {
-            let levels = spread(l.map(i64::from));
-            levels * ratio <= AFFINE_LEVEL * twice
+            let levels = spread(l.map(i32::from)) as u32;
+            u64::from(levels) * ratio <= AFFINE_LEVEL * twice
         }
         _ => true,
     }
