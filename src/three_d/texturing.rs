@@ -421,36 +421,18 @@ impl<C: GouraudColor> SampledLoop<C> for AffineSpan<'_, C> {
 
     #[inline(always)]
     fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
-        let ((mut z, dz), (mut x, dx)) = (self.depth, (self.at.0, self.step.0));
-        let (mut y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
-        let pixels = self.colors.iter_mut().zip(self.depths.iter_mut());
+        let (y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
+        let (z, dz) = self.depth;
+        let (x, dx) = (self.at.0, self.step.0);
+        let (colors, depths) = (self.colors, self.depths);
         match self.level {
             None => {
-                for (px, d) in pixels {
-                    let depth = (z >> DEPTH_SHIFT) as u16;
-                    if depth < *d {
-                        *d = depth;
-                        *px = texel(x, y);
-                    }
-                    z = z.wrapping_add(dz);
-                    x = x.wrapping_add(dx);
-                    y = y.wrapping_add(dy);
-                }
+                let values = (z, x, y, 0);
+                pixels(colors, depths, values, (dz, dx, dy, 0), &texel, Unlit);
             }
-            Some((mut l, dl)) => {
-                for (px, d) in pixels {
-                    let depth = (z >> DEPTH_SHIFT) as u16;
-                    if depth < *d {
-                        *d = depth;
-                        // 8.24 of the 0–255 scale to a 16-bit fraction (255 is 65535).
-                        let level = ((l >> 12) * 257) >> 12;
-                        *px = scale_channels::<C>(texel(x, y).channels(), level);
-                    }
-                    z = z.wrapping_add(dz);
-                    x = x.wrapping_add(dx);
-                    y = y.wrapping_add(dy);
-                    l = l.wrapping_add(dl);
-                }
+            Some((l, dl)) => {
+                let (values, steps) = ((z, x, y, l as i32), (dz, dx, dy, dl as i32));
+                pixels(colors, depths, values, steps, &texel, PlaneLevel);
             }
         }
     }
@@ -500,6 +482,24 @@ impl SpanLight for Constant {
     #[inline(always)]
     fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
         scale_channels::<C>(texel.channels(), level as u32)
+    }
+}
+
+/// The screen-space fill's level plane (8.24 of the 0–255 scale, stepped as it is).
+#[derive(Clone, Copy)]
+struct PlaneLevel;
+
+impl SpanLight for PlaneLevel {
+    #[inline(always)]
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
+        (0, 0)
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
+        // To a 16-bit fraction (255 is 65535).
+        let level = ((level as u32 >> 12) * 257) >> 12;
+        scale_channels::<C>(texel.channels(), level)
     }
 }
 
@@ -612,21 +612,32 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
     }
 }
 
-/// The pixels of one chunk: depth-tested, each the texel at its coordinate lit at its level,
-/// from the values `(z, x, y, level)` at the first stepped by `steps`; the depth plane's value
-/// after the last. Out of line: the loop has the registers to itself (a call a chunk).
+/// The pixels of one chunk of a perspective span: [`pixels`] out of line, so that the loop has
+/// the registers to itself (a call a chunk).
 #[inline(never)]
-fn chunk_pixels<C, L: SpanLight>(
+fn chunk_pixels<C: GouraudColor, L: SpanLight>(
+    colors: &mut [C],
+    depths: &mut [u16],
+    values: (u32, i32, i32, i32),
+    steps: (u32, i32, i32, i32),
+    texel: &impl Fn(i32, i32) -> C,
+    light: L,
+) -> u32 {
+    pixels(colors, depths, values, steps, texel, light)
+}
+
+/// Depth-tested pixels, each the texel at its coordinate lit at its level, from the values
+/// `(z, x, y, level)` at the first stepped by `steps`: the span loop of both textured fills.
+/// The depth plane's value after the last.
+#[inline(always)]
+fn pixels<C: GouraudColor, L: SpanLight>(
     colors: &mut [C],
     depths: &mut [u16],
     (mut z, mut x, mut y, mut level): (u32, i32, i32, i32),
     (dz, dx, dy, dl): (u32, i32, i32, i32),
     texel: &impl Fn(i32, i32) -> C,
     light: L,
-) -> u32
-where
-    C: GouraudColor,
-{
+) -> u32 {
     for (px, depth) in colors.iter_mut().zip(depths.iter_mut()) {
         let z16 = (z >> DEPTH_SHIFT) as u16;
         if z16 < *depth {
