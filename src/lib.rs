@@ -59,7 +59,7 @@
 //! | feature | what it adds |
 //! |---|---|
 //! | `std` | host-only helpers: `three_d::meshes::MeshData` (generators, welding, the flash emitter), `three_d::obj` (OBJ files) |
-//! | `png` | `save_png` / `write_png` of a [`SliceFramebuffer`] and a [`DepthTarget`] (implies `std`) |
+//! | `png` | `save_png` / `write_png` of a [`SliceFramebuffer`] and a [`DepthTarget`]; `texture::convert`, PNG files to flash textures (implies `std`) |
 //! | `reference` | the module `reference`: the f64 reference rasterizer the tests compare against (implies `std`) |
 //! | `sdl` | only the interactive `spin` example (needs SDL2) |
 //!
@@ -94,19 +94,20 @@ pub use draw::{
     TexturedVertex, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
+pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
     Angle, Bounds, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading,
-    TexCoord, ToScalar, Vec3,
+    TexCoord, TexturedMaterial, ToScalar, Vec3,
 };
 
 /// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
 /// (next to `embedded_graphics::prelude::*`, which brings `Drawable`, `Point`, `Size` and the
 /// colour traits).
 ///
-/// 2D: the triangles, their [`Vertex`], [`SliceFramebuffer`],
-/// [`Coord`] with [`ToCoord`] and the pixel placements, and the
-/// [`GouraudColor`] bound. 3D: the pipeline, its mesh, target, light and
-/// material types, the maths types with [`ToScalar`] and
+/// 2D: the triangles, their [`Vertex`] and [`TexturedVertex`], [`SliceFramebuffer`],
+/// [`Coord`] with [`ToCoord`] and the pixel placements, [`Texture`] with its [`Wrap`] and
+/// [`Filter`], and the [`GouraudColor`] bound. 3D: the pipeline, its mesh, target, light and
+/// material types (textured too), the maths types with [`ToScalar`] and
 /// [`Degrees`](three_d::Degrees). [`Angle`] is not in it, because embedded-graphics' prelude has
 /// an `Angle` of its own: import `embedded_raster::Angle`.
 ///
@@ -124,11 +125,14 @@ pub use three_d::{
 /// ```
 pub mod prelude {
     pub use crate::color::GouraudColor;
-    pub use crate::draw::{GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+    pub use crate::draw::{
+        GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle, TexturedVertex, Vertex,
+    };
     pub use crate::fixed_point::{pixel_centre, pixel_corner, Coord, ToCoord};
+    pub use crate::texture::{Filter, Texture, Wrap};
     pub use crate::three_d::{
         Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline,
-        Scalar, ScreenVertex, Shading, TexCoord, ToScalar, Vec3, Vec4,
+        Scalar, ScreenVertex, Shading, TexCoord, TexturedMaterial, ToScalar, Vec3, Vec4,
     };
 }
 
