@@ -22,8 +22,6 @@ use embedded_raster::{
 const W: i32 = 64;
 const H: i32 = 48;
 const N: usize = (W * H) as usize;
-const MIN: i64 = i32::MIN as i64;
-const MAX: i64 = i32::MAX as i64;
 /// Allowed deviation from the exact interpolated channel value, in LSB.
 const TOLERANCE: f64 = 1.0 + 1e-9;
 
@@ -31,35 +29,14 @@ const TOLERANCE: f64 = 1.0 + 1e-9;
 mod rng;
 use rng::Rng;
 
-impl Rng {
-    /// An `i32` of random magnitude (2^0 .. 2^31), either sign.
-    fn any_scale(&mut self) -> i64 {
-        i64::from((self.next() as i32) >> self.below(32))
-    }
-}
+#[path = "support/raw_points.rs"]
+mod raw_points;
+use raw_points::{sliver, Screen, MAX, MIN};
+
+const RAW: Screen = Screen::new(W as i64, H as i64);
 
 fn clamp(v: (i64, i64)) -> (i32, i32) {
     (v.0.clamp(MIN, MAX) as i32, v.1.clamp(MIN, MAX) as i32)
-}
-
-/// A random raw point over the screen extended by `margin` pixels.
-fn screen_point(rng: &mut Rng, margin: i64) -> (i64, i64) {
-    (
-        rng.range(-margin * 256, (i64::from(W) + margin) * 256),
-        rng.range(-margin * 256, (i64::from(H) + margin) * 256),
-    )
-}
-
-/// A raw coordinate on pixel `i`'s corner, centre, a quarter, or one unit off the corner.
-fn snap(rng: &mut Rng, i: i64) -> i64 {
-    const OFFSETS: [i64; 7] = [0, 128, 128, 64, 192, 1, 255];
-    256 * i + OFFSETS[rng.below(OFFSETS.len() as u64) as usize]
-}
-
-fn snapped_point(rng: &mut Rng, margin: i64) -> (i64, i64) {
-    let x = rng.range(-margin, i64::from(W) + margin);
-    let y = rng.range(-margin, i64::from(H) + margin);
-    (snap(rng, x), snap(rng, y))
 }
 
 fn extreme(rng: &mut Rng) -> i64 {
@@ -88,26 +65,18 @@ const KINDS: usize = 13;
 fn triangle(rng: &mut Rng, kind: usize) -> [(i32, i32); 3] {
     let v: [(i64, i64); 3] = match kind {
         // Sub-pixel.
-        0 => {
-            let c = screen_point(rng, 2);
-            let r = rng.range(1, 300);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
+        0 => RAW.cluster(rng, 2, (1, 300)),
         // A few pixels.
-        1 => {
-            let c = screen_point(rng, 4);
-            let r = rng.range(256, 256 * 12);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
+        1 => RAW.cluster(rng, 4, (256, 256 * 12)),
         // Screen-sized, partly off-screen.
-        2 => [(); 3].map(|_| screen_point(rng, 32)),
+        2 => [(); 3].map(|_| RAW.point(rng, 32)),
         // Ten times the screen.
-        3 => [(); 3].map(|_| screen_point(rng, i64::from(W) * 10)),
+        3 => [(); 3].map(|_| RAW.point(rng, i64::from(W) * 10)),
         // Any magnitude up to the full raw range.
         4 => [(); 3].map(|_| (rng.any_scale(), rng.any_scale())),
         // One vertex on screen, the others far away.
         5 => {
-            let a = screen_point(rng, 1);
+            let a = RAW.point(rng, 1);
             let mut far = || {
                 if rng.chance(2) {
                     (extreme(rng), extreme(rng))
@@ -119,24 +88,15 @@ fn triangle(rng: &mut Rng, kind: usize) -> [(i32, i32); 3] {
         }
         // Slivers: c near the line through a and b.
         6 => {
-            let a = screen_point(rng, 8);
-            let s = rng.below(28) as u32;
-            let d = (rng.range(-(1 << s), 1 << s), rng.range(-(1 << s), 1 << s));
-            let b = (a.0 + d.0, a.1 + d.1);
-            let (num, den) = (rng.range(-64, 128), 64);
-            let e = rng.range(0, 3);
-            let c = (
-                a.0 + d.0 * num / den + rng.range(-e, e),
-                a.1 + d.1 * num / den + rng.range(-e, e),
-            );
-            [a, b, c]
+            let a = RAW.point(rng, 8);
+            sliver(rng, a, 28)
         }
         // Exactly collinear, or one unit off: a + s·dir, a + t·dir.
         7 => {
             let a = if rng.chance(2) {
-                screen_point(rng, 8)
+                RAW.point(rng, 8)
             } else {
-                snapped_point(rng, 8)
+                RAW.snapped_point(rng, 8)
             };
             let m = 1 << rng.below(10);
             let dir = (rng.range(-m, m), rng.range(-m, m));
@@ -152,34 +112,34 @@ fn triangle(rng: &mut Rng, kind: usize) -> [(i32, i32); 3] {
         // Snapped to pixel corners/centres: edges through centres.
         8 => {
             let margin = if rng.chance(4) { 40 } else { 4 };
-            [(); 3].map(|_| snapped_point(rng, margin))
+            [(); 3].map(|_| RAW.snapped_point(rng, margin))
         }
         // Axis-aligned edges.
         9 => {
             let (p, q) = if rng.chance(2) {
-                (snapped_point(rng, 6), snapped_point(rng, 6))
+                (RAW.snapped_point(rng, 6), RAW.snapped_point(rng, 6))
             } else {
-                (screen_point(rng, 6), screen_point(rng, 6))
+                (RAW.point(rng, 6), RAW.point(rng, 6))
             };
             match rng.below(3) {
                 0 => [p, (q.0, p.1), (p.0, q.1)],
                 1 => [p, (q.0, p.1), q],
-                _ => [p, (p.0, q.1), screen_point(rng, 6)],
+                _ => [p, (p.0, q.1), RAW.point(rng, 6)],
             }
         }
         // Extreme values of the raw range.
         10 => [(); 3].map(|_| {
             if rng.chance(4) {
-                snapped_point(rng, 2)
+                RAW.snapped_point(rng, 2)
             } else {
                 (extreme(rng), extreme(rng))
             }
         }),
         // Repeated vertices.
         11 => {
-            let a = screen_point(rng, 4);
+            let a = RAW.point(rng, 4);
             let b = if rng.chance(2) {
-                screen_point(rng, 4)
+                RAW.point(rng, 4)
             } else {
                 (extreme(rng), extreme(rng))
             };
@@ -191,11 +151,11 @@ fn triangle(rng: &mut Rng, kind: usize) -> [(i32, i32); 3] {
         }
         // Long thin slivers across the screen with snapped ends, one raw unit wide.
         _ => {
-            let a = snapped_point(rng, 20);
+            let a = RAW.snapped_point(rng, 20);
             let b = if rng.chance(3) {
                 (extreme(rng), extreme(rng))
             } else {
-                snapped_point(rng, 20)
+                RAW.snapped_point(rng, 20)
             };
             let c = (b.0 + rng.range(-2, 2), b.1 + rng.range(-2, 2));
             [a, b, c]

@@ -36,9 +36,17 @@ use embedded_raster::three_d::{
 };
 use embedded_raster::{Coord, GouraudColor};
 
+#[path = "support/probe.rs"]
+mod probe;
+use probe::unwrap_near;
+
 #[path = "support/rng.rs"]
 mod rng;
 use rng::Rng;
+
+#[path = "support/raw_points.rs"]
+mod raw_points;
+use raw_points::{sliver, Screen, MAX, MIN};
 
 const W: i32 = 160;
 const H: i32 = 120;
@@ -908,33 +916,7 @@ fn random_triangles_nearest_match_the_reference() {
 // Coverage
 // ---------------------------------------------------------------------------------------------
 
-const MIN: i64 = i32::MIN as i64;
-const MAX: i64 = i32::MAX as i64;
-
-/// A raw point over the screen extended by `margin` pixels.
-fn screen_point(rng: &mut Rng, margin: i64) -> (i64, i64) {
-    (
-        rng.range(-margin * 256, (i64::from(W) + margin) * 256),
-        rng.range(-margin * 256, (i64::from(H) + margin) * 256),
-    )
-}
-
-/// A raw coordinate on pixel `i`'s corner, centre, a quarter, or one unit off the corner.
-fn snap(rng: &mut Rng, i: i64) -> i64 {
-    const OFFSETS: [i64; 7] = [0, 128, 128, 64, 192, 1, 255];
-    256 * i + OFFSETS[rng.below(OFFSETS.len() as u64) as usize]
-}
-
-fn snapped_point(rng: &mut Rng, margin: i64) -> (i64, i64) {
-    let x = rng.range(-margin, i64::from(W) + margin);
-    let y = rng.range(-margin, i64::from(H) + margin);
-    (snap(rng, x), snap(rng, y))
-}
-
-/// An `i32` of random magnitude (2⁰ to 2³¹), either sign.
-fn any_scale(rng: &mut Rng) -> i64 {
-    i64::from((rng.next() as i32) >> rng.below(32))
-}
+const RAW: Screen = Screen::new(W as i64, H as i64);
 
 const KINDS: u64 = 10;
 
@@ -942,42 +924,27 @@ const KINDS: u64 = 10;
 /// magnitude, far off-screen, slivers, collinear, snapped, axis-aligned.
 fn positions(rng: &mut Rng, kind: u64) -> [(i32, i32); 3] {
     let v: [(i64, i64); 3] = match kind {
-        0 => {
-            let c = screen_point(rng, 2);
-            let r = rng.range(1, 300);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
-        1 => {
-            let c = screen_point(rng, 4);
-            let r = rng.range(256, 256 * 24);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
-        2 => [(); 3].map(|_| screen_point(rng, 40)),
-        3 => [(); 3].map(|_| screen_point(rng, i64::from(W) * 10)),
-        4 => [(); 3].map(|_| (any_scale(rng), any_scale(rng))),
+        0 => RAW.cluster(rng, 2, (1, 300)),
+        1 => RAW.cluster(rng, 4, (256, 256 * 24)),
+        2 => [(); 3].map(|_| RAW.point(rng, 40)),
+        3 => [(); 3].map(|_| RAW.point(rng, i64::from(W) * 10)),
+        4 => [(); 3].map(|_| (rng.any_scale(), rng.any_scale())),
         // Far off-screen: a triangle of any size a million pixels away, either direction.
         5 => {
             let d = (rng.range(-1, 1) << 28, rng.range(-1, 1) << 28);
             [(); 3].map(|_| {
-                let p = screen_point(rng, 100);
+                let p = RAW.point(rng, 100);
                 (p.0 + d.0, p.1 + d.1)
             })
         }
         // Slivers: c near the line through a and b.
         6 => {
-            let a = screen_point(rng, 8);
-            let s = rng.below(24) as u32;
-            let d = (rng.range(-(1 << s), 1 << s), rng.range(-(1 << s), 1 << s));
-            let (num, e) = (rng.range(-64, 128), rng.range(0, 3));
-            let c = (
-                a.0 + d.0 * num / 64 + rng.range(-e, e),
-                a.1 + d.1 * num / 64 + rng.range(-e, e),
-            );
-            [a, (a.0 + d.0, a.1 + d.1), c]
+            let a = RAW.point(rng, 8);
+            sliver(rng, a, 24)
         }
         // Exactly collinear, or repeated vertices.
         7 => {
-            let a = screen_point(rng, 8);
+            let a = RAW.point(rng, 8);
             let dir = (rng.range(-64, 64), rng.range(-64, 64));
             let (s, t) = (rng.range(-4096, 4096), rng.range(-4096, 4096));
             if rng.chance(3) {
@@ -990,9 +957,9 @@ fn positions(rng: &mut Rng, kind: u64) -> [(i32, i32); 3] {
                 ]
             }
         }
-        8 => [(); 3].map(|_| snapped_point(rng, 6)),
+        8 => [(); 3].map(|_| RAW.snapped_point(rng, 6)),
         _ => {
-            let (p, q) = (snapped_point(rng, 6), snapped_point(rng, 6));
+            let (p, q) = (RAW.snapped_point(rng, 6), RAW.snapped_point(rng, 6));
             [p, (q.0, p.1), (p.0, q.1)]
         }
     };
@@ -1459,17 +1426,14 @@ fn extreme_inputs_write_only_the_coverage() {
 
 /// The implementation's texel coordinates at each written pixel, modulo 256 texels and to within
 /// `1/(2·steps)` texel: the scene drawn with the 256 × 256 coordinate texture, then again with
-/// every vertex's texel coordinates moved by `j/steps` texel for `j = 1, 2, …`. The computed
-/// coordinates move by exactly that (an offset common to the vertices adds to the base value
-/// and leaves the differences, so the steps too, unchanged), so the first `j` at which a pixel's
-/// texel changes tells the fraction of its coordinate.
+/// every vertex's texel coordinates moved by `j/steps` texel for `j = 1, 2, …`
+/// (`probe::coordinates`).
 fn probe(tris: &[Tri], clip: &Clip, steps: u32) -> Vec<Option<[f64; 2]>> {
     let texture = CoordTexture::new(CoordKind::Rgb888, 256, 256);
     let wraps = [RefWrap::Repeat; 2];
     let rect = clip.rectangle();
     let base = texture.render(tris, &rect, wraps);
-    let mut first = vec![[steps; 2]; N];
-    for j in 1..steps {
+    probe::coordinates(&base, steps, |j| {
         let o = (65_536 / steps * j) as i32;
         let moved: Vec<Tri> = tris
             .iter()
@@ -1478,35 +1442,8 @@ fn probe(tris: &[Tri], clip: &Clip, steps: u32) -> Vec<Option<[f64; 2]>> {
                 ..*t
             })
             .collect();
-        let got = texture.render(&moved, &rect, wraps);
-        for i in 0..N {
-            if let (Some(b), Some(g)) = (base[i], got[i]) {
-                for (a, changed) in [g.0 != b.0, g.1 != b.1].into_iter().enumerate() {
-                    if changed && first[i][a] == steps {
-                        first[i][a] = j;
-                    }
-                }
-            }
-        }
-    }
-    // floor(c + j/steps) > floor(c) first at j: the fraction is in [1 − j/steps, 1 − (j−1)/steps).
-    let s = f64::from(steps);
-    base.iter()
-        .zip(first)
-        .map(|(b, f)| {
-            b.map(|(x, y)| {
-                [
-                    f64::from(x) + 1.0 - (f64::from(f[0]) - 0.5) / s,
-                    f64::from(y) + 1.0 - (f64::from(f[1]) - 0.5) / s,
-                ]
-            })
-        })
-        .collect()
-}
-
-/// `v` (known modulo 256) brought within 128 of `near`.
-fn unwrap_near(v: f64, near: f64) -> f64 {
-    v + 256.0 * ((near - v) / 256.0).round()
+        texture.render(&moved, &rect, wraps)
+    })
 }
 
 /// The coordinates themselves (probed to 1/512 texel, see `probe`) on the floors and on random

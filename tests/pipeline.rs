@@ -30,8 +30,10 @@ use embedded_raster::three_d::{Light, Material, Shading};
 
 const W: u32 = 128;
 const H: u32 = 96;
-/// Pixel centres closer than this to a triangle's boundary may go either way.
-const MARGIN: f64 = 0.02;
+
+#[path = "support/raycast.rs"]
+mod raycast;
+use raycast::{apply, bits3, cross, dot, fl, flat_grid, fx, sub, View, MARGIN, V};
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -43,194 +45,42 @@ impl Rng {
     }
 }
 
-type V = [f64; 3];
-type M = [[f64; 4]; 4];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn fl(s: Scalar) -> f64 {
-    s.to_num::<f64>()
-}
-fn fx(v: f64) -> Scalar {
-    Scalar::from_bits((v * 65536.0).round() as i32)
-}
-fn radians(a: Angle) -> f64 {
-    f64::from(a.0) / 65536.0 * std::f64::consts::TAU
-}
-
-fn mul(a: &M, b: &M) -> M {
-    let mut m = [[0.0; 4]; 4];
-    for (r, row) in m.iter_mut().enumerate() {
-        for (c, v) in row.iter_mut().enumerate() {
-            *v = (0..4).map(|k| a[r][k] * b[k][c]).sum();
-        }
-    }
-    m
-}
-fn identity() -> M {
-    let mut m = [[0.0; 4]; 4];
-    for (k, row) in m.iter_mut().enumerate() {
-        row[k] = 1.0;
-    }
-    m
-}
-fn translate(t: V) -> M {
-    let mut m = identity();
-    for k in 0..3 {
-        m[k][3] = t[k];
-    }
-    m
-}
-fn rot_x(a: f64) -> M {
-    let (s, c) = a.sin_cos();
-    let mut m = identity();
-    m[1][1] = c;
-    m[1][2] = -s;
-    m[2][1] = s;
-    m[2][2] = c;
-    m
-}
-fn rot_y(a: f64) -> M {
-    let (s, c) = a.sin_cos();
-    let mut m = identity();
-    m[0][0] = c;
-    m[0][2] = s;
-    m[2][0] = -s;
-    m[2][2] = c;
-    m
-}
-fn apply(m: &M, p: V) -> V {
-    [0, 1, 2].map(|r| m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3])
-}
-
 /// One camera and object placement, in both arithmetics.
 struct Scene {
     pipeline: Pipeline,
-    /// f64 model-view.
-    model_view: M,
-    /// `f / aspect`, `f` of the f64 projection.
-    p00: f64,
-    p11: f64,
-    /// `z_ndc = −a − b / z_eye`.
-    a: f64,
-    b: f64,
-    viewport: Rectangle,
+    view: View,
 }
 
 impl Scene {
-    /// Camera at the origin looking down −z; the object rotated by `yaw`, `pitch` about its
-    /// origin and moved to `position` (eye space).
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        fov: Angle,
-        near: f64,
-        far: f64,
-        yaw: Angle,
-        pitch: Angle,
-        position: V,
-        viewport: Rectangle,
-        cull: Cull,
-    ) -> Scene {
-        let aspect = f64::from(viewport.size.width) / f64::from(viewport.size.height);
-        let (n, f) = (fl(fx(near)), fl(fx(far)));
-        let projection = Mat4::perspective(fov, fx(aspect), fx(near), fx(far));
-        let model = Mat4::translation(Vec3::new(fx(position[0]), fx(position[1]), fx(position[2])))
-            * Mat4::rotation_y(yaw)
-            * Mat4::rotation_x(pitch);
-        let mut pipeline = Pipeline::new(model, projection, viewport, Light::default());
+    /// The pipeline of `view` (default light), culling `cull`.
+    fn new(view: View, cull: Cull) -> Scene {
+        let mut pipeline =
+            Pipeline::new(view.model, view.projection, view.viewport, Light::default());
         pipeline.cull = cull;
-        let pos = [0, 1, 2].map(|k| fl(fx(position[k])));
-        let model_view = mul(
-            &mul(&translate(pos), &rot_y(radians(yaw))),
-            &rot_x(radians(pitch)),
-        );
-        let focal = 1.0 / (radians(fov) / 2.0).tan();
-        Scene {
-            pipeline,
-            model_view,
-            p00: focal / aspect,
-            p11: focal,
-            a: (f + n) / (n - f),
-            b: 2.0 * f * n / (n - f),
-            viewport,
-        }
+        Scene { pipeline, view }
     }
 
     /// Screen position and 16-bit depth of a model-space point (f64).
     fn project(&self, p: Vec3) -> (f64, f64, f64) {
-        let e = apply(
-            &self.model_view,
-            p.to_bits().map(|c| f64::from(c) / 65536.0),
-        );
-        let (xn, yn) = (self.p00 * e[0] / -e[2], self.p11 * e[1] / -e[2]);
-        let zn = -self.a - self.b / e[2];
-        let (w, h) = (
-            f64::from(self.viewport.size.width),
-            f64::from(self.viewport.size.height),
-        );
-        (
-            f64::from(self.viewport.top_left.x) + w / 2.0 * (1.0 + xn),
-            f64::from(self.viewport.top_left.y) + h / 2.0 * (1.0 - yn),
-            (1.0 + zn) / 2.0 * 65534.0,
-        )
+        let e = apply(&self.view.model_view, bits3(p));
+        let (x, y) = self.view.screen(e);
+        let zn = -self.view.a - self.view.b / e[2];
+        (x, y, (1.0 + zn) / 2.0 * 65534.0)
     }
+}
 
-    /// Eye-space direction through screen point `(sx, sy)` and its derivatives per pixel.
-    fn ray(&self, sx: f64, sy: f64) -> (V, f64, f64) {
-        let (w, h) = (
-            f64::from(self.viewport.size.width),
-            f64::from(self.viewport.size.height),
-        );
-        let xn = 2.0 * (sx - f64::from(self.viewport.top_left.x)) / w - 1.0;
-        let yn = 1.0 - 2.0 * (sy - f64::from(self.viewport.top_left.y)) / h;
-        let dx = 2.0 / (w * self.p00);
-        let dy = -2.0 / (h * self.p11);
-        ([xn / self.p00, yn / self.p11, -1.0], dx, dy)
-    }
-
-    /// The reference's verdict on the convex planar polygon `poly` (eye space; a triangle, say) at
-    /// the centre of pixel `(i, j)`: `None` if it surely does not cover it, else the signed
-    /// distance of the centre to the polygon's visible boundary (positive inside, pixels), its
-    /// depth there and the depth change per pixel (16-bit units).
-    fn hit(&self, poly: &[V], i: i32, j: i32) -> Option<(f64, f64, f64)> {
-        let (d, dx, dy) = self.ray(f64::from(i) + 0.5, f64::from(j) + 0.5);
-        let det = dot(poly[0], cross(poly[1], poly[2]));
-        if det == 0.0 {
-            return None;
-        }
-        let mut margin = f64::INFINITY;
-        for a in 0..poly.len() {
-            // The plane through the eye and the edge: affine in the screen position.
-            let c = cross(poly[a], poly[(a + 1) % poly.len()]);
-            let g = (c[0] * dx).hypot(c[1] * dy);
-            margin = margin.min(det.signum() * dot(c, d) / g);
-        }
-        if margin < -MARGIN {
-            return None;
-        }
-        // 1/z_eye of the hit is affine in the screen position too; it must be negative.
-        let n = cross(sub(poly[1], poly[0]), sub(poly[2], poly[0]));
-        let nv = dot(n, poly[0]);
-        let inv_z = -dot(n, d) / nv;
-        if inv_z >= 0.0 {
-            return None;
-        }
-        let depth = (1.0 - self.a - self.b * inv_z) / 2.0;
-        let grad = (self.b / 2.0 * n[0] * dx / nv).hypot(self.b / 2.0 * n[1] * dy / nv);
-        margin = margin.min(depth / grad).min((1.0 - depth) / grad);
-        (margin >= -MARGIN).then_some((margin, depth * 65534.0, grad * 65534.0))
-    }
+/// The 60° camera (near plane 0.5, far 20) on the object turned by `yaw`, `pitch` and moved to
+/// `position`.
+fn view_60(yaw: Angle, pitch: Angle, position: V, viewport: Rectangle) -> View {
+    View::new(
+        Angle::from_degrees(60),
+        0.5,
+        20.0,
+        yaw,
+        pitch,
+        position,
+        viewport,
+    )
 }
 
 fn id_color(k: usize) -> Rgb888 {
@@ -265,12 +115,7 @@ fn check_scene(scene: &Scene, mesh: &MeshData, tally: &mut Tally) {
     let eye: Vec<[V; 3]> = mesh
         .indices
         .iter()
-        .map(|f| {
-            f.map(|i| {
-                let v = mesh.vertices[usize::from(i)].to_bits();
-                apply(&scene.model_view, v.map(|c| f64::from(c) / 65536.0))
-            })
-        })
+        .map(|f| f.map(|i| apply(&scene.view.model_view, bits3(mesh.vertices[usize::from(i)]))))
         .collect();
     // Front faces are counter-clockwise seen by the camera: (v1 − v0) × (v2 − v0) points at it.
     let facing = |t: &[V; 3]| dot(cross(sub(t[1], t[0]), sub(t[2], t[0])), t[0]) < 0.0;
@@ -280,7 +125,7 @@ fn check_scene(scene: &Scene, mesh: &MeshData, tally: &mut Tally) {
             let got = id_of(target.framebuffer().get(i, j).unwrap());
             let depth = target.depth_at(i, j).unwrap();
             assert_eq!(got.is_some(), depth != DEPTH_CLEAR);
-            if !scene.viewport.contains(Point::new(i, j)) {
+            if !scene.view.viewport.contains(Point::new(i, j)) {
                 assert_eq!(got, None, "drawn outside the viewport at {i},{j}");
                 tally.exact += 1;
                 continue;
@@ -296,6 +141,7 @@ fn check_scene(scene: &Scene, mesh: &MeshData, tally: &mut Tally) {
                 })
                 .filter_map(|(k, t)| {
                     scene
+                        .view
                         .hit(t, i, j)
                         .map(|(m, d, g)| (k, m, d, 2.0 + 2.0 * MARGIN * g))
                 })
@@ -341,16 +187,7 @@ fn vertices_project_like_f64() {
             rng.range_f64(-1.0, 1.0),
             rng.range_f64(-6.0, -2.5),
         ];
-        let scene = Scene::new(
-            Angle::from_degrees(60),
-            0.5,
-            20.0,
-            rng.angle(),
-            rng.angle(),
-            pos,
-            viewport,
-            Cull::None,
-        );
+        let scene = Scene::new(view_60(rng.angle(), rng.angle(), pos, viewport), Cull::None);
         for v in &sphere.vertices {
             let got = scene
                 .pipeline
@@ -388,16 +225,7 @@ fn icosphere_matches_f64_reference() {
             rng.range_f64(-5.0, -2.0),
         ];
         let cull = [Cull::None, Cull::Back, Cull::Front][round % 3];
-        let scene = Scene::new(
-            Angle::from_degrees(60),
-            0.5,
-            20.0,
-            rng.angle(),
-            rng.angle(),
-            pos,
-            viewport,
-            cull,
-        );
+        let scene = Scene::new(view_60(rng.angle(), rng.angle(), pos, viewport), cull);
         check_scene(&scene, &sphere, &mut tally);
     }
     println!("{tally:?}");
@@ -452,13 +280,15 @@ fn layered_triangles_match_f64_reference() {
             ]
         };
         let scene = Scene::new(
-            Angle::from_degrees(70),
-            0.25,
-            12.0,
-            Angle((rng.next() as u16) / 6),
-            Angle((rng.next() as u16) / 6),
-            pos,
-            viewport,
+            View::new(
+                Angle::from_degrees(70),
+                0.25,
+                12.0,
+                Angle((rng.next() as u16) / 6),
+                Angle((rng.next() as u16) / 6),
+                pos,
+                viewport,
+            ),
             Cull::None,
         );
         check_scene(&scene, &mesh, &mut tally);
@@ -490,16 +320,8 @@ fn clipped_grid_is_watertight() {
             positions.push([x + rng.range_f64(-j, j), y + rng.range_f64(-j, j), 0.0]);
         }
     }
+    let grid = flat_grid(&positions, n);
     let at = |r: usize, c: usize| r * (n + 1) + c;
-    let mut faces = Vec::new();
-    for r in 0..n {
-        for c in 0..n {
-            faces.push([at(r, c), at(r, c + 1), at(r + 1, c + 1)]);
-            faces.push([at(r, c), at(r + 1, c + 1), at(r + 1, c)]);
-        }
-    }
-    let normals = vec![[0.0, 0.0, 1.0]; positions.len()];
-    let grid = MeshData::from_f64(&positions, &normals, &faces);
     let corners = [
         positions[at(0, 0)],
         positions[at(0, n)],
@@ -519,23 +341,22 @@ fn clipped_grid_is_watertight() {
             rng.range_f64(-3.0, -1.0),
         ];
         let scene = Scene::new(
-            Angle::from_degrees(70),
-            0.2,
-            40.0,
-            rng.angle(),
-            pitch,
-            pos,
-            viewport,
+            View::new(
+                Angle::from_degrees(70),
+                0.2,
+                40.0,
+                rng.angle(),
+                pitch,
+                pos,
+                viewport,
+            ),
             Cull::None,
         );
         let behind = grid
             .vertices
             .iter()
             .filter(|v| {
-                let e = apply(
-                    &scene.model_view,
-                    v.to_bits().map(|c| f64::from(c) / 65536.0),
-                );
+                let e = apply(&scene.view.model_view, bits3(**v));
                 e[2] > -0.2
             })
             .count();
@@ -558,13 +379,13 @@ fn clipped_grid_is_watertight() {
         // The outline: the square through the grid's corners, cut by the near and far planes.
         let outline = corners.map(|p| {
             let v = [0, 1, 2].map(|k| fl(fx(p[k])));
-            apply(&scene.model_view, v)
+            apply(&scene.view.model_view, v)
         });
         for j in 0..H as i32 {
             for i in 0..W as i32 {
                 let c = count[(j as u32 * W + i as u32) as usize];
                 assert!(c <= 1, "pixel {i},{j} drawn {c} times");
-                match scene.hit(&outline, i, j) {
+                match scene.view.hit(&outline, i, j) {
                     Some((m, _, _)) if m > MARGIN => {
                         assert_eq!(c, 1, "hole at {i},{j}");
                         inside += 1;
@@ -695,13 +516,15 @@ fn vertex_scratch_gives_the_same_frame() {
         ];
         let cull = [Cull::None, Cull::Back, Cull::Front][round % 3];
         let scene = Scene::new(
-            Angle::from_degrees(70),
-            0.3,
-            9.0,
-            rng.angle(),
-            rng.angle(),
-            pos,
-            viewport,
+            View::new(
+                Angle::from_degrees(70),
+                0.3,
+                9.0,
+                rng.angle(),
+                rng.angle(),
+                pos,
+                viewport,
+            ),
             cull,
         );
         let shading = [
@@ -740,13 +563,7 @@ fn vertex_scratch_gives_the_same_frame() {
     let mut b = DepthTarget::new(&mut px_b, &mut z_b, W, H).unwrap();
     b.clear(Rgb888::BLACK);
     let pipeline = Scene::new(
-        Angle::from_degrees(60),
-        0.5,
-        20.0,
-        Angle::ZERO,
-        Angle::ZERO,
-        [0.0, 0.0, -3.0],
-        viewport,
+        view_60(Angle::ZERO, Angle::ZERO, [0.0, 0.0, -3.0], viewport),
         Cull::Back,
     )
     .pipeline;

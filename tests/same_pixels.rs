@@ -36,8 +36,9 @@ use embedded_raster::{
 mod rng;
 use rng::Rng;
 
-const MIN: i64 = i32::MIN as i64;
-const MAX: i64 = i32::MAX as i64;
+#[path = "support/raw_points.rs"]
+mod raw_points;
+use raw_points::{extreme, sliver, Screen, MAX, MIN};
 
 /// The targets (width, height) and how many triangles each gets per colour format. The 320-pixel
 /// rows hold spans beyond the 5-6-5 loop's restart period (128 pixels); the last target's rows
@@ -50,72 +51,24 @@ const TARGETS: [(u32, u32, usize); 5] = [
     (65_600, 2, 120),
 ];
 
-impl Rng {
-    /// An `i32` of random magnitude (2⁰ … 2³¹), either sign.
-    fn any_scale(&mut self) -> i64 {
-        i64::from((self.next() as i32) >> self.below(32))
-    }
-}
-
-/// A raw (sub-pixel) point over a `w × h` target extended by `margin` pixels on every side.
-fn point(rng: &mut Rng, w: u32, h: u32, margin: i64) -> (i64, i64) {
-    point_xy(rng, w, h, (margin, margin))
-}
-
-/// A raw point over a `w × h` target extended by `mx` pixels left and right, `my` above and
-/// below.
-fn point_xy(rng: &mut Rng, w: u32, h: u32, (mx, my): (i64, i64)) -> (i64, i64) {
-    (
-        rng.range(-mx * 256, (i64::from(w) + mx) * 256),
-        rng.range(-my * 256, (i64::from(h) + my) * 256),
-    )
-}
-
-/// A raw point on a pixel corner, centre or quarter, or one unit off a corner.
-fn snapped(rng: &mut Rng, w: u32, h: u32, margin: i64) -> (i64, i64) {
-    const OFFSETS: [i64; 6] = [0, 128, 64, 192, 1, 255];
-    let mut snap = |n: u32| {
-        256 * rng.range(-margin, i64::from(n) + margin)
-            + OFFSETS[rng.below(OFFSETS.len() as u64) as usize]
-    };
-    (snap(w), snap(h))
-}
-
-/// A raw value at or near the ends of the `Coord` range, or of any magnitude.
-fn extreme(rng: &mut Rng) -> i64 {
-    const VALUES: [i64; 6] = [MIN, MAX, MIN + 1, MAX - 1, 0, -1];
-    if rng.chance(2) {
-        rng.any_scale()
-    } else {
-        VALUES[rng.below(VALUES.len() as u64) as usize]
-    }
-}
-
 /// A random triangle for a `w × h` target, raw sub-pixel coordinates.
 fn triangle(rng: &mut Rng, w: u32, h: u32) -> [(Coord, Coord); 3] {
     let (wi, hi) = (i64::from(w), i64::from(h));
+    let screen = Screen::new(wi, hi);
     let v: [(i64, i64); 3] = match rng.below(11) {
         // Sub-pixel.
-        0 => {
-            let c = point(rng, w, h, 2);
-            let r = rng.range(1, 300);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
+        0 => screen.cluster(rng, 2, (1, 300)),
         // Up to a dozen pixels (the tiny rows on x86-64 take those under 8 × 8).
-        1 | 2 => {
-            let c = point(rng, w, h, 4);
-            let r = rng.range(128, 256 * 12);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
+        1 | 2 => screen.cluster(rng, 4, (128, 256 * 12)),
         // About the target's size, partly off it.
-        3 => [(); 3].map(|_| point_xy(rng, w, h, (wi / 2 + 2, hi / 2 + 2))),
+        3 => [(); 3].map(|_| screen.point_xy(rng, (wi / 2 + 2, hi / 2 + 2))),
         // Ten times the target.
-        4 => [(); 3].map(|_| point_xy(rng, w, h, (10 * wi, 10 * hi))),
+        4 => [(); 3].map(|_| screen.point_xy(rng, (10 * wi, 10 * hi))),
         // Any magnitude, far off-screen and huge.
         5 => [(); 3].map(|_| (rng.any_scale(), rng.any_scale())),
         // One vertex on the target, the others anywhere up to the ends of the range.
         6 => {
-            let a = point(rng, w, h, 1);
+            let a = screen.point(rng, 1);
             [
                 a,
                 (extreme(rng), extreme(rng)),
@@ -124,23 +77,16 @@ fn triangle(rng: &mut Rng, w: u32, h: u32) -> [(Coord, Coord); 3] {
         }
         // Slivers: the third vertex near the line through the first two.
         7 => {
-            let a = point(rng, w, h, 8);
-            let s = rng.below(28) as u32;
-            let d = (rng.range(-(1 << s), 1 << s), rng.range(-(1 << s), 1 << s));
-            let (num, e) = (rng.range(-64, 128), rng.range(0, 3));
-            let c = (
-                a.0 + d.0 * num / 64 + rng.range(-e, e),
-                a.1 + d.1 * num / 64 + rng.range(-e, e),
-            );
-            [a, (a.0 + d.0, a.1 + d.1), c]
+            let a = screen.point(rng, 8);
+            sliver(rng, a, 28)
         }
         // Long slivers a raw unit or two wide, across the target or out to the range's ends.
         8 => {
-            let a = snapped(rng, w, h, 20);
+            let a = screen.snapped_per_axis(rng, 20);
             let b = if rng.chance(3) {
                 (extreme(rng), extreme(rng))
             } else {
-                snapped(rng, w, h, 20)
+                screen.snapped_per_axis(rng, 20)
             };
             [a, b, (b.0 + rng.range(-2, 2), b.1 + rng.range(-2, 2))]
         }
@@ -150,10 +96,10 @@ fn triangle(rng: &mut Rng, w: u32, h: u32) -> [(Coord, Coord); 3] {
             let near = |rng: &mut Rng, y: i64| y + rng.range(-4 * hi * 256, 4 * hi * 256);
             let a = (rng.range(-wi * 64, 0), near(rng, hi * 128));
             let b = (rng.range(wi * 256, wi * 320), near(rng, hi * 128));
-            [a, b, point_xy(rng, w, h, (wi / 4, 2 * hi))]
+            [a, b, screen.point_xy(rng, (wi / 4, 2 * hi))]
         }
         // Snapped to corners and centres: edges through pixel centres.
-        _ => [(); 3].map(|_| snapped(rng, w, h, 6)),
+        _ => [(); 3].map(|_| screen.snapped_per_axis(rng, 6)),
     };
     v.map(|(x, y)| {
         (

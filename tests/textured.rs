@@ -46,12 +46,15 @@ use embedded_raster::{Coord, GouraudColor, SliceFramebuffer, TexturedTriangle, T
 mod rng;
 use rng::Rng;
 
+#[path = "support/raw_points.rs"]
+mod raw_points;
+use raw_points::{extreme, sliver, Screen, MAX, MIN};
+
 /// The screen: wider than tall, small enough for thousands of triangles a second.
 const W: u32 = 64;
 const H: u32 = 48;
 const PIXELS: usize = (W * H) as usize;
-const MIN: i64 = i32::MIN as i64;
-const MAX: i64 = i32::MAX as i64;
+const RAW: Screen = Screen::new(W as i64, H as i64);
 /// 16.16 units a texel.
 const UNIT: f64 = 65_536.0;
 /// The documented interpolation accuracy: a coordinate is within `s + 1/128` texel of the exact
@@ -76,39 +79,6 @@ const WRAPS: [(Wrap, RefWrap); 3] = [
 ];
 
 impl Rng {
-    /// An `i32` of random magnitude (2⁰ … 2³¹), either sign.
-    fn any_scale(&mut self) -> i64 {
-        i64::from((self.next() as i32) >> self.below(32))
-    }
-
-    /// A raw value at or near the ends of the `i32` range, or of any magnitude.
-    fn extreme(&mut self) -> i64 {
-        const VALUES: [i64; 6] = [MIN, MAX, MIN + 1, MAX - 1, 0, -1];
-        if self.chance(2) {
-            self.any_scale()
-        } else {
-            VALUES[self.below(VALUES.len() as u64) as usize]
-        }
-    }
-
-    /// A raw (sub-pixel) point over the screen extended by `margin` pixels on every side.
-    fn point(&mut self, margin: i64) -> (i64, i64) {
-        (
-            self.range(-margin * 256, (i64::from(W) + margin) * 256),
-            self.range(-margin * 256, (i64::from(H) + margin) * 256),
-        )
-    }
-
-    /// A raw point on a pixel corner, centre or quarter, or one unit off a corner.
-    fn snapped(&mut self, margin: i64) -> (i64, i64) {
-        const OFFSETS: [i64; 6] = [0, 128, 64, 192, 1, 255];
-        let mut snap = |n: u32| {
-            256 * self.range(-margin, i64::from(n) + margin)
-                + OFFSETS[self.below(OFFSETS.len() as u64) as usize]
-        };
-        (snap(W), snap(H))
-    }
-
     /// A colour with random channels.
     fn color<C: GouraudColor>(&mut self) -> C {
         C::from_channels(core::array::from_fn(|k| {
@@ -351,7 +321,7 @@ fn sample_coordinate(rng: &mut Rng, n: u32) -> i32 {
         // Texel boundaries and centres: where nearest changes texel and bilinear is one texel.
         2 => rng.range(-3 * n, 3 * n) * 65_536 + [0, 32_768, 1, -1][rng.below(4) as usize],
         3 => rng.any_scale(),
-        _ => rng.extreme(),
+        _ => extreme(rng),
     };
     v.clamp(MIN, MAX) as i32
 }
@@ -486,20 +456,12 @@ const LARGE_KINDS: &[u64] = &[4, 5, 6, 7];
 fn positions(rng: &mut Rng, kind: u64) -> [(i32, i32); 3] {
     let v: [(i64, i64); 3] = match kind {
         // Sub-pixel.
-        0 => {
-            let c = rng.point(2);
-            let r = rng.range(1, 300);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
+        0 => RAW.cluster(rng, 2, (1, 300)),
         // Up to a dozen pixels.
-        1 | 2 => {
-            let c = rng.point(4);
-            let r = rng.range(128, 256 * 12);
-            [(); 3].map(|_| (c.0 + rng.range(-r, r), c.1 + rng.range(-r, r)))
-        }
+        1 | 2 => RAW.cluster(rng, 4, (128, 256 * 12)),
         // Narrow: 1 to 2 pixels wide, up to a dozen tall (spans of one or two pixels).
         3 => {
-            let a = rng.point(2);
+            let a = RAW.point(rng, 2);
             let w = rng.range(256, 512);
             let mut y = || a.1 + rng.range(-256 * 12, 256 * 12);
             let (y1, y2) = (y(), y());
@@ -507,9 +469,9 @@ fn positions(rng: &mut Rng, kind: u64) -> [(i32, i32); 3] {
             [a, (a.0 + w, y1), (x, y2)]
         }
         // About the screen's size, partly off it.
-        4 | 5 => [(); 3].map(|_| rng.point(i64::from(W) / 2)),
+        4 | 5 => [(); 3].map(|_| RAW.point(rng, i64::from(W) / 2)),
         // Ten times the screen.
-        6 => [(); 3].map(|_| rng.point(10 * i64::from(W))),
+        6 => [(); 3].map(|_| RAW.point(rng, 10 * i64::from(W))),
         // Up to ±2²² pixels (raw ±2³⁰) around the screen.
         7 => [(); 3].map(|_| {
             let r = 1i64 << rng.range(8, 30);
@@ -517,27 +479,20 @@ fn positions(rng: &mut Rng, kind: u64) -> [(i32, i32); 3] {
         }),
         // One vertex on the screen, the others anywhere up to the ends of the range.
         8 => [
-            rng.point(1),
-            (rng.extreme(), rng.extreme()),
-            (rng.extreme(), rng.extreme()),
+            RAW.point(rng, 1),
+            (extreme(rng), extreme(rng)),
+            (extreme(rng), extreme(rng)),
         ],
         // Slivers: the third vertex near the line through the first two.
         9 => {
-            let a = rng.point(8);
-            let s = rng.below(28) as u32;
-            let d = (rng.range(-(1 << s), 1 << s), rng.range(-(1 << s), 1 << s));
-            let (num, e) = (rng.range(-64, 128), rng.range(0, 3));
-            let c = (
-                a.0 + d.0 * num / 64 + rng.range(-e, e),
-                a.1 + d.1 * num / 64 + rng.range(-e, e),
-            );
-            [a, (a.0 + d.0, a.1 + d.1), c]
+            let a = RAW.point(rng, 8);
+            sliver(rng, a, 28)
         }
         // Edges through pixel centres and corners.
-        10 => [(); 3].map(|_| rng.snapped(6)),
+        10 => [(); 3].map(|_| RAW.snapped_per_axis(rng, 6)),
         // Exactly collinear: a + s·d and a + t·d (any of them may coincide).
         11 => {
-            let a = rng.point(8);
+            let a = RAW.point(rng, 8);
             let m = 1i64 << rng.range(0, 20);
             let d = (rng.range(-m, m), rng.range(-m, m));
             let (s, t) = (rng.range(-40, 40), rng.range(-40, 40));
@@ -549,7 +504,7 @@ fn positions(rng: &mut Rng, kind: u64) -> [(i32, i32); 3] {
         }
         // Two vertices the same, the third anywhere.
         _ => {
-            let a = rng.point(8);
+            let a = RAW.point(rng, 8);
             [a, a, (rng.any_scale(), rng.any_scale())]
         }
     };
@@ -618,7 +573,7 @@ fn moderate_texels(rng: &mut Rng, p: [(i32, i32); 3]) -> [[i32; 2]; 3] {
 fn extreme_texels(rng: &mut Rng, p: [(i32, i32); 3]) -> [[i32; 2]; 3] {
     match rng.below(3) {
         0 => moderate_texels(rng, p),
-        1 => [(); 3].map(|_| [0; 2].map(|_| rng.extreme().clamp(MIN, MAX) as i32)),
+        1 => [(); 3].map(|_| [0; 2].map(|_| extreme(rng).clamp(MIN, MAX) as i32)),
         _ => {
             // Spread over the whole range on one axis, moderate on the other.
             let mut t = moderate_texels(rng, p);

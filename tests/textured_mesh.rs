@@ -1,13 +1,13 @@
 //! Textured meshes in the fixed-point 3D pipeline (`Pipeline::draw_textured_mesh`, its scratch
 //! form and the band renderer's) against an independent f64 reference.
 //!
-//! The reference is the ray caster of tests/pipeline.rs (copied here): for every pixel it casts
-//! the ray through the pixel centre in eye space (f64 model-view from the same angles and
+//! The reference is the ray caster of tests/pipeline.rs (tests/support/raycast.rs): for every pixel
+//! it casts the ray through the pixel centre in eye space (f64 model-view from the same angles and
 //! positions) and intersects it with every face. It decides which face a pixel shows — or that
-//! rounding may decide it (a boundary within `MARGIN` px, near-equal depths: those pixels are
-//! left out) — and the hit point's exact 3D barycentrics in that face give the exact
-//! perspective-correct texture coordinate and light level at the pixel centre, independent of
-//! the pipeline's perspective planes.
+//! rounding may decide it (a boundary within `MARGIN` px, near-equal depths: those pixels are left
+//! out) — and the hit point's exact 3D barycentrics in that face give the exact perspective-correct
+//! texture coordinate and light level at the pixel centre, independent of the pipeline's
+//! perspective planes.
 //!
 //! Texel coordinates are observed through a *coordinate texture* (256 × 256 Rgb888, texel
 //! `(i, j)` = `(i, j, K)`), so that a pixel tells which texel it took; `probe` reads them to
@@ -40,11 +40,22 @@ use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
 use embedded_raster::reference::texture::{nearest_texel, RefTexture, RefWrap};
 use embedded_raster::texture::{Filter, Rgb565Texels, Rgb888Texels, TexelSource, Texture, Wrap};
 use embedded_raster::three_d::meshes::{icosphere, MeshData};
-use embedded_raster::three_d::{Angle, Mat4, Scalar, TexCoord, Vec3};
+use embedded_raster::three_d::{Angle, TexCoord, Vec3};
 use embedded_raster::three_d::{Cull, DepthTarget, DrawStats, Mesh, Pipeline, DEPTH_CLEAR};
 use embedded_raster::three_d::{
     Light, Material, ProjectedVertex, ScratchTooSmall, Shading, TexturedMaterial,
 };
+
+#[path = "support/raycast.rs"]
+mod raycast;
+use raycast::{
+    apply, bits3, cross, dot, fl, flat_grid, fx, mul, radians, rot_x, rot_y, sub, View, M, MARGIN,
+    V,
+};
+
+#[path = "support/probe.rs"]
+mod probe;
+use probe::unwrap_near;
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -53,8 +64,6 @@ use rng::Rng;
 const W: u32 = 128;
 const H: u32 = 96;
 const N: usize = (W * H) as usize;
-/// Pixel centres closer than this to a face's boundary may go either way (tests/pipeline.rs).
-const MARGIN: f64 = 0.02;
 /// Bound on the error of the fixed-point clip-space coordinates (`I16F16` matrices and
 /// positions) against the f64 ones, in clip units (checked by `vertices_match_f64`).
 const CLIP_ERROR: f64 = 4.0e-4;
@@ -75,25 +84,9 @@ impl Rng {
 }
 
 // ---------------------------------------------------------------------------------------------
-// f64 geometry (from tests/pipeline.rs)
+// f64 geometry (the ray caster of tests/pipeline.rs: tests/support/raycast.rs)
 // ---------------------------------------------------------------------------------------------
 
-type V = [f64; 3];
-type M = [[f64; 4]; 4];
-
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 fn normalize(v: V) -> V {
     let l = dot(v, v).sqrt();
     if l > 0.0 {
@@ -102,63 +95,6 @@ fn normalize(v: V) -> V {
         v
     }
 }
-fn fl(s: Scalar) -> f64 {
-    s.to_num::<f64>()
-}
-fn fx(v: f64) -> Scalar {
-    Scalar::from_bits((v * 65536.0).round() as i32)
-}
-fn radians(a: Angle) -> f64 {
-    f64::from(a.0) / 65536.0 * std::f64::consts::TAU
-}
-fn bits3(v: Vec3) -> V {
-    v.to_bits().map(|c| f64::from(c) / 65536.0)
-}
-
-fn mul(a: &M, b: &M) -> M {
-    let mut m = [[0.0; 4]; 4];
-    for (r, row) in m.iter_mut().enumerate() {
-        for (c, v) in row.iter_mut().enumerate() {
-            *v = (0..4).map(|k| a[r][k] * b[k][c]).sum();
-        }
-    }
-    m
-}
-fn identity() -> M {
-    let mut m = [[0.0; 4]; 4];
-    for (k, row) in m.iter_mut().enumerate() {
-        row[k] = 1.0;
-    }
-    m
-}
-fn translate(t: V) -> M {
-    let mut m = identity();
-    for k in 0..3 {
-        m[k][3] = t[k];
-    }
-    m
-}
-fn rot_x(a: f64) -> M {
-    let (s, c) = a.sin_cos();
-    let mut m = identity();
-    m[1][1] = c;
-    m[1][2] = -s;
-    m[2][1] = s;
-    m[2][2] = c;
-    m
-}
-fn rot_y(a: f64) -> M {
-    let (s, c) = a.sin_cos();
-    let mut m = identity();
-    m[0][0] = c;
-    m[0][2] = s;
-    m[2][0] = -s;
-    m[2][2] = c;
-    m
-}
-fn apply(m: &M, p: V) -> V {
-    [0, 1, 2].map(|r| m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] + m[r][3])
-}
 fn rotate(m: &M, v: V) -> V {
     [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
 }
@@ -166,17 +102,8 @@ fn rotate(m: &M, v: V) -> V {
 /// One camera, object placement and light, in both arithmetics.
 struct Scene {
     pipeline: Pipeline,
-    /// f64 model-view (the view is the identity: eye space is world space, the light's).
-    model_view: M,
-    /// `f / aspect`, `f` of the f64 projection.
-    p00: f64,
-    p11: f64,
-    /// `z_ndc = −a − b / z_eye`.
-    a: f64,
-    b: f64,
-    near: f64,
-    far: f64,
-    viewport: Rectangle,
+    /// The f64 view (eye space is world space, the light's).
+    view: View,
     /// Unit direction towards the light and the ambient level (f64).
     light: V,
     ambient: f64,
@@ -201,34 +128,23 @@ impl Scene {
     /// `ambient`.
     fn new(pose: &Pose, light: V, ambient: f64) -> Scene {
         let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
-        let aspect = f64::from(viewport.size.width) / f64::from(viewport.size.height);
-        let (n, f) = (fl(fx(pose.near)), fl(fx(pose.far)));
         let fov = Angle::from_degrees(pose.fov);
-        let projection = Mat4::perspective(fov, fx(aspect), fx(pose.near), fx(pose.far));
-        let position = pose.position;
-        let model = Mat4::translation(Vec3::new(fx(position[0]), fx(position[1]), fx(position[2])))
-            * Mat4::rotation_y(pose.yaw)
-            * Mat4::rotation_x(pose.pitch);
+        let view = View::new(
+            fov,
+            pose.near,
+            pose.far,
+            pose.yaw,
+            pose.pitch,
+            pose.position,
+            viewport,
+        );
         let light_bits = Vec3::new(fx(light[0]), fx(light[1]), fx(light[2]));
         let fixed_light = Light::new(light_bits, fx(ambient));
-        let mut pipeline = Pipeline::new(model, projection, viewport, fixed_light);
+        let mut pipeline = Pipeline::new(view.model, view.projection, viewport, fixed_light);
         pipeline.cull = pose.cull;
-        let pos = [0, 1, 2].map(|k| fl(fx(position[k])));
-        let model_view = mul(
-            &mul(&translate(pos), &rot_y(radians(pose.yaw))),
-            &rot_x(radians(pose.pitch)),
-        );
-        let focal = 1.0 / (radians(fov) / 2.0).tan();
         Scene {
             pipeline,
-            model_view,
-            p00: focal / aspect,
-            p11: focal,
-            a: (f + n) / (n - f),
-            b: 2.0 * f * n / (n - f),
-            near: n,
-            far: f,
-            viewport,
+            view,
             light: normalize(bits3(light_bits)),
             ambient: fl(fx(ambient)).clamp(0.0, 1.0),
         }
@@ -242,9 +158,9 @@ impl Scene {
     /// The f64 clip-space coordinates of an eye-space point.
     fn clip(&self, e: V) -> [f64; 4] {
         [
-            self.p00 * e[0],
-            self.p11 * e[1],
-            self.a * e[2] + self.b,
+            self.view.p00 * e[0],
+            self.view.p11 * e[1],
+            self.view.a * e[2] + self.view.b,
             -e[2],
         ]
     }
@@ -258,78 +174,27 @@ impl Scene {
             .iter()
             .map(|e| -e[2])
             .fold(f64::MAX, f64::min)
-            .max(self.near);
+            .max(self.view.near);
         let reach = eye
             .iter()
-            .map(|e| (self.p00 * e[0].abs()).max(self.p11 * e[1].abs()))
+            .map(|e| (self.view.p00 * e[0].abs()).max(self.view.p11 * e[1].abs()))
             .fold(0.0, f64::max);
         let ndc = (reach / w).min(GUARD);
-        let half = f64::from(self.viewport.size.width.max(self.viewport.size.height)) / 2.0;
+        let half = f64::from(
+            self.view
+                .viewport
+                .size
+                .width
+                .max(self.view.viewport.size.height),
+        ) / 2.0;
         CLIP_ERROR * (1.0 + ndc) / w * half + 1.0 / 256.0
-    }
-
-    /// Screen position of an eye-space point (in front of the eye).
-    fn screen(&self, e: V) -> (f64, f64) {
-        let (xn, yn) = (self.p00 * e[0] / -e[2], self.p11 * e[1] / -e[2]);
-        let (w, h) = (
-            f64::from(self.viewport.size.width),
-            f64::from(self.viewport.size.height),
-        );
-        (
-            f64::from(self.viewport.top_left.x) + w / 2.0 * (1.0 + xn),
-            f64::from(self.viewport.top_left.y) + h / 2.0 * (1.0 - yn),
-        )
-    }
-
-    /// Eye-space direction through screen point `(sx, sy)` and its derivatives per pixel.
-    fn ray(&self, sx: f64, sy: f64) -> (V, f64, f64) {
-        let (w, h) = (
-            f64::from(self.viewport.size.width),
-            f64::from(self.viewport.size.height),
-        );
-        let xn = 2.0 * (sx - f64::from(self.viewport.top_left.x)) / w - 1.0;
-        let yn = 1.0 - 2.0 * (sy - f64::from(self.viewport.top_left.y)) / h;
-        let dx = 2.0 / (w * self.p00);
-        let dy = -2.0 / (h * self.p11);
-        ([xn / self.p00, yn / self.p11, -1.0], dx, dy)
-    }
-
-    /// The reference's verdict on the triangle `poly` (eye space) at the centre of pixel
-    /// `(i, j)`: `None` if it surely does not cover it, else the signed distance of the centre
-    /// to its visible boundary (positive inside, pixels), its depth there and the depth change
-    /// per pixel (16-bit units). As in tests/pipeline.rs.
-    fn hit(&self, poly: &[V], i: i32, j: i32) -> Option<(f64, f64, f64)> {
-        let (d, dx, dy) = self.ray(f64::from(i) + 0.5, f64::from(j) + 0.5);
-        let det = dot(poly[0], cross(poly[1], poly[2]));
-        if det == 0.0 {
-            return None;
-        }
-        let mut margin = f64::INFINITY;
-        for a in 0..poly.len() {
-            let c = cross(poly[a], poly[(a + 1) % poly.len()]);
-            let g = (c[0] * dx).hypot(c[1] * dy);
-            margin = margin.min(det.signum() * dot(c, d) / g);
-        }
-        if margin < -MARGIN {
-            return None;
-        }
-        let n = cross(sub(poly[1], poly[0]), sub(poly[2], poly[0]));
-        let nv = dot(n, poly[0]);
-        let inv_z = -dot(n, d) / nv;
-        if inv_z >= 0.0 {
-            return None;
-        }
-        let depth = (1.0 - self.a - self.b * inv_z) / 2.0;
-        let grad = (self.b / 2.0 * n[0] * dx / nv).hypot(self.b / 2.0 * n[1] * dy / nv);
-        margin = margin.min(depth / grad).min((1.0 - depth) / grad);
-        (margin >= -MARGIN).then_some((margin, depth * 65534.0, grad * 65534.0))
     }
 
     /// Where the ray through screen point `(sx, sy)` meets the plane of `tri` (eye space): the
     /// point's barycentrics in the triangle (exact 3D ones: the perspective-correct weights) and
     /// `Q = −1/z_eye` there (affine in the screen position).
     fn plane_point(&self, tri: &[V; 3], sx: f64, sy: f64) -> ([f64; 3], f64) {
-        let (d, _, _) = self.ray(sx, sy);
+        let (d, _, _) = self.view.ray(sx, sy);
         let n = cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]));
         let q = dot(n, d) / dot(n, tri[0]);
         let x = d.map(|c| c / q);
@@ -368,8 +233,8 @@ impl RefFace {
     /// vertices' 16-bit `q` mantissa, and twice the relative `w` error. `ρ` is the `w` ratio of what is
     /// drawn: clipping keeps `w` within `[near, far]`.
     fn delta(&self, scene: &Scene) -> f64 {
-        let lo = self.w.0.max(scene.near);
-        let hi = self.w.1.min(scene.far);
+        let lo = self.w.0.max(scene.view.near);
+        let hi = self.w.1.min(scene.view.far);
         (hi / lo) / 32_640.0 + 2.0 / 32_768.0 + 2.0 * CLIP_ERROR / lo
     }
 
@@ -382,13 +247,13 @@ impl RefFace {
 
 /// The reference's faces of `mesh` in `scene`, for a texture of `size` texels.
 fn ref_faces(scene: &Scene, mesh: &MeshData, size: (u32, u32)) -> Vec<RefFace> {
-    let world_normal = |n: V| normalize(rotate(&scene.model_view, normalize(n)));
+    let world_normal = |n: V| normalize(rotate(&scene.view.model_view, normalize(n)));
     mesh.indices
         .iter()
         .map(|f| {
             let idx = f.map(usize::from);
             let model = idx.map(|i| bits3(mesh.vertices[i]));
-            let eye = model.map(|p| apply(&scene.model_view, p));
+            let eye = model.map(|p| apply(&scene.view.model_view, p));
             let texel = idx.map(|i| {
                 let t = mesh.uvs.get(i).copied().unwrap_or_default().to_bits();
                 [
@@ -411,8 +276,8 @@ fn ref_faces(scene: &Scene, mesh: &MeshData, size: (u32, u32)) -> Vec<RefFace> {
                 Cull::Back => front,
                 Cull::Front => !front,
             };
-            let bbox = if w.0 > scene.near * 0.5 {
-                let s = eye.map(|e| scene.screen(e));
+            let bbox = if w.0 > scene.view.near * 0.5 {
+                let s = eye.map(|e| scene.view.screen(e));
                 let lo = |c: fn(&(f64, f64)) -> f64| s.iter().map(c).fold(f64::MAX, f64::min);
                 let hi = |c: fn(&(f64, f64)) -> f64| s.iter().map(c).fold(f64::MIN, f64::max);
                 (
@@ -462,7 +327,7 @@ fn verdicts(scene: &Scene, faces: &[RefFace]) -> (Vec<Verdict>, Spans) {
         let (x0, y0, x1, y1) = f.bbox;
         for j in y0..=y1 {
             for i in x0..=x1 {
-                if let Some((m, d, g)) = scene.hit(&f.eye, i, j) {
+                if let Some((m, d, g)) = scene.view.hit(&f.eye, i, j) {
                     let span = &mut spans[k][j as usize];
                     *span = (span.0.min(i), span.1.max(i));
                     hits[(j as u32 * W + i as u32) as usize].push((
@@ -614,10 +479,10 @@ fn slack(limit: f64) -> f64 {
 /// any of which may qualify: it may (its departure on each attribute at most that attribute's
 /// limit, see `departure`).
 fn affine_ratio(scene: &Scene, f: &RefFace, spreads: &[(f64, f64)]) -> Option<f64> {
-    let lo = f.w.0.max(scene.near);
-    let hi = f.w.1.min(scene.far);
+    let lo = f.w.0.max(scene.view.near);
+    let hi = f.w.1.min(scene.view.far);
     let ratio = (hi / lo - 1.0) / 2.0;
-    let clipped = f.w.0 < scene.near || f.w.1 > scene.far;
+    let clipped = f.w.0 < scene.view.near || f.w.1 > scene.view.far;
     let qualifies = spreads
         .iter()
         .all(|&(spread, limit)| spread * ratio <= slack(limit));
@@ -682,16 +547,7 @@ fn floor(half: f64, n: usize, repeat: f64) -> MeshData {
             uvs.push(uv(s * repeat, t * repeat));
         }
     }
-    let at = |r: usize, c: usize| r * (n + 1) + c;
-    let mut faces = Vec::new();
-    for r in 0..n {
-        for c in 0..n {
-            faces.push([at(r, c), at(r, c + 1), at(r + 1, c + 1)]);
-            faces.push([at(r, c), at(r + 1, c + 1), at(r + 1, c)]);
-        }
-    }
-    let normals = vec![[0.0, 0.0, 1.0]; positions.len()];
-    let mut mesh = MeshData::from_f64(&positions, &normals, &faces);
+    let mut mesh = flat_grid(&positions, n);
     mesh.uvs = uvs;
     mesh
 }
@@ -831,9 +687,7 @@ fn decode(frame: &Frame) -> Vec<Option<(u32, u32)>> {
 /// The implementation's texel coordinates at each written pixel, modulo 256 texels and to
 /// within `1/(2·steps)` texel: the mesh drawn with the coordinate texture, then again with
 /// every texture coordinate moved by `j/steps` texel (`u` up, `v` down: texel `x` and `y` both
-/// grow) for `j = 1, 2, …`. An offset common to the vertices adds to each computed coordinate
-/// and leaves their differences, so the steps too, unchanged; the first `j` at which a pixel's
-/// texel changes tells the fraction of its coordinate (tests/perspective.rs, `probe`).
+/// grow) for `j = 1, 2, …` (`probe::coordinates`, shared with tests/perspective.rs).
 fn probe(
     pipeline: &Pipeline,
     mesh: &MeshData,
@@ -843,41 +697,14 @@ fn probe(
     // One raw unit of a normalised coordinate is 256/65536 texel of a 256-texel side.
     assert_eq!(TEX, STEPS);
     let base = decode(&textured(pipeline, &mesh.as_mesh(), texture, Shading::Unlit).0);
-    let mut first = vec![[STEPS; 2]; N];
     let mut moved = mesh.clone();
-    for j in 1..STEPS {
+    probe::coordinates(&base, STEPS, |j| {
         for (m, o) in moved.uvs.iter_mut().zip(&mesh.uvs) {
             let [u, v] = o.to_bits();
             *m = TexCoord::from_bits(u + j as i32, v - j as i32);
         }
-        let got = decode(&textured(pipeline, &moved.as_mesh(), texture, Shading::Unlit).0);
-        for i in 0..N {
-            if let (Some(b), Some(g)) = (base[i], got[i]) {
-                for (a, changed) in [g.0 != b.0, g.1 != b.1].into_iter().enumerate() {
-                    if changed && first[i][a] == STEPS {
-                        first[i][a] = j;
-                    }
-                }
-            }
-        }
-    }
-    let s = f64::from(STEPS);
-    base.iter()
-        .zip(first)
-        .map(|(b, f)| {
-            b.map(|(x, y)| {
-                [
-                    f64::from(x) + 1.0 - (f64::from(f[0]) - 0.5) / s,
-                    f64::from(y) + 1.0 - (f64::from(f[1]) - 0.5) / s,
-                ]
-            })
-        })
-        .collect()
-}
-
-/// `v` (known modulo 256) brought within 128 of `near`.
-fn unwrap_near(v: f64, near: f64) -> f64 {
-    v + 256.0 * ((near - v) / 256.0).round()
+        decode(&textured(pipeline, &moved.as_mesh(), texture, Shading::Unlit).0)
+    })
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1171,14 +998,14 @@ fn vertices_match_f64() {
         let scene = Scene::new(&case.pose, LIGHT, 0.0);
         for v in &case.mesh.vertices {
             let clip = scene.pipeline.clip_position(*v);
-            let e = apply(&scene.model_view, bits3(*v));
+            let e = apply(&scene.view.model_view, bits3(*v));
             let want = scene.clip(e);
             let got = [clip.x, clip.y, clip.z, clip.w].map(fl);
             for k in 0..4 {
                 worst_clip = worst_clip.max((got[k] - want[k]).abs());
             }
             if let Some(got) = scene.pipeline.project(clip) {
-                let (x, y) = scene.screen(e);
+                let (x, y) = scene.view.screen(e);
                 let d = (got.x.to_num::<f64>() - x)
                     .abs()
                     .max((got.y.to_num::<f64>() - y).abs());
@@ -1194,6 +1021,21 @@ fn vertices_match_f64() {
          its bound)"
     );
     assert!(worst_clip <= CLIP_ERROR, "{worst_clip}");
+}
+
+/// The totals of `check_nearest` over a suite's cases and the tolerances it met: printed (with
+/// the median tolerance), then the suite's bounds: over 25 000 pixels checked on both axes, at
+/// least 60 % of those the reference gives one face, and rounding deciding at most 10 % of the
+/// covered pixels.
+fn assert_nearest_totals(mut tally: Tally, tolerances: Vec<f64>) {
+    tally.median_tolerance = median(tolerances);
+    println!("{tally:?}");
+    assert!(tally.checked > 25_000, "{tally:?}");
+    assert!(
+        tally.checked as f64 >= 0.6 * tally.faces as f64,
+        "{tally:?}"
+    );
+    assert!(tally.ambiguous as f64 <= 0.1 * (tally.faces + tally.ambiguous) as f64);
 }
 
 /// Unlit textured floors at grazing angles, tori and patched icospheres at random poses (all
@@ -1212,14 +1054,7 @@ fn unlit_nearest_texels_match_the_ray_cast() {
     for case in &cases {
         tolerances.extend(check_nearest(case, &mut tally));
     }
-    tally.median_tolerance = median(tolerances);
-    println!("{tally:?}");
-    assert!(tally.checked > 25_000, "{tally:?}");
-    assert!(
-        tally.checked as f64 >= 0.6 * tally.faces as f64,
-        "{tally:?}"
-    );
-    assert!(tally.ambiguous as f64 <= 0.1 * (tally.faces + tally.ambiguous) as f64);
+    assert_nearest_totals(tally, tolerances);
 }
 
 /// Faces crossing the near plane (a floor from behind the camera to far ahead, the camera inside
@@ -1236,14 +1071,7 @@ fn clipped_faces_keep_their_texels() {
         tolerances.extend(check_nearest(case, &mut tally));
         assert!(tally.clipped > before, "{}: nothing clipped", case.name);
     }
-    tally.median_tolerance = median(tolerances);
-    println!("{tally:?}");
-    assert!(tally.checked > 25_000, "{tally:?}");
-    assert!(
-        tally.checked as f64 >= 0.6 * tally.faces as f64,
-        "{tally:?}"
-    );
-    assert!(tally.ambiguous as f64 <= 0.1 * (tally.faces + tally.ambiguous) as f64);
+    assert_nearest_totals(tally, tolerances);
 }
 
 /// The probed coordinates' errors, in texels.
