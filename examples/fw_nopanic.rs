@@ -12,7 +12,8 @@
 //! same triangles in other colour formats through both `draw` and `draw_into`, their spans
 //! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
 //! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
-//! shading and culling, opaque matrices, viewport and light).
+//! shading and culling, with and without a specular highlight, opaque matrices, viewport and
+//! light).
 //!
 //! ```text
 //! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
@@ -48,7 +49,7 @@ mod firmware {
     use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
     use embedded_raster::three_d::{
         Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, ProjectedVertex, Scalar,
-        Shading, Vec3,
+        Shading, Specular, Vec3,
     };
     use embedded_raster::{
         raster::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
@@ -192,6 +193,11 @@ mod firmware {
                 let mesh = black_box(&ICOSPHERE);
                 black_box(pipeline.draw_mesh(mesh, &material, &mut target));
                 let _ = black_box(pipeline.draw_mesh_with(mesh, &material, &mut target, SCRATCH));
+                // With a highlight.
+                let specular = Specular::new(black_box(Scalar::from_bits(1 << 15)), black_box(24));
+                let shiny = material.with_specular(specular);
+                black_box(pipeline.draw_mesh(mesh, &shiny, &mut target));
+                let _ = black_box(pipeline.draw_mesh_with(mesh, &shiny, &mut target, SCRATCH));
             }
             black_box(target.depth());
         }

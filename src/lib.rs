@@ -97,7 +97,7 @@ pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
     Angle, Bounds, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading,
-    TexCoord, TexturedMaterial, ToScalar, Vec3,
+    Specular, TexCoord, TexturedMaterial, ToScalar, Vec3,
 };
 
 /// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
@@ -132,7 +132,7 @@ pub mod prelude {
     pub use crate::texture::{Filter, Texture, Wrap};
     pub use crate::three_d::{
         Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline,
-        Scalar, ScreenVertex, Shading, TexCoord, TexturedMaterial, ToScalar, Vec3, Vec4,
+        Scalar, ScreenVertex, Shading, Specular, TexCoord, TexturedMaterial, ToScalar, Vec3, Vec4,
     };
 }
 

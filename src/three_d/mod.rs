@@ -9,8 +9,9 @@
 //! * `mesh` — [`Mesh`]: positions, triangles and optional normals, colours and texture
 //!   coordinates ([`TexCoord`]), borrowed (typically from flash); [`Bounds`] to place it.
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
-//! * `shading` — [`Light`], [`Material`], [`Shading`] and the depth-tested fills (flat, Gouraud,
-//!   per-pixel lighting of quadratically interpolated normals).
+//! * `shading` — [`Light`], [`Material`] (with an optional Blinn-Phong [`Specular`] highlight),
+//!   [`Shading`] and the depth-tested fills (flat, Gouraud, per-pixel lighting of quadratically
+//!   interpolated normals).
 //! * `texturing` — [`draw_textured`]: textured, depth-tested fills with perspective-correct texel
 //!   coordinates.
 //! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
@@ -36,7 +37,7 @@ mod texturing;
 mod vertex;
 
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
-pub use light::Light;
+pub use light::{Light, Specular};
 pub use math::{
     inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
 };

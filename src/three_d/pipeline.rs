@@ -15,7 +15,9 @@
 //!    is under 2048 px, so the 32-bit set-up takes it. A face outside one plane is dropped; a face
 //!    crossing one is clipped in clip space ([`clip`](super::clip), watertight) and drawn as a fan.
 //!    Fills: flat, Gouraud (the light level interpolated, the material colour looked up at 256
-//!    levels) or per-pixel quadratic normals ([`shading`](super::shading)), the depth test and
+//!    levels) or per-pixel quadratic normals ([`shading`](super::shading)), each with an
+//!    optional Blinn-Phong highlight ([`Material::specular`]: the half vector of the light and
+//!    the [`view_direction`](Pipeline::view_direction) found once per draw), the depth test and
 //!    write in the span loop (smaller is nearer).
 //!
 //! Front faces are counter-clockwise in normalised device coordinates (y up), as in OpenGL; on
@@ -67,9 +69,11 @@ use super::depth::{DepthTarget, ScreenVertex};
 use super::light::Light;
 use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
-use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
+use super::shading::{
+    self, Highlight, Material, QuadraticNormals, ShadeTable, Shading, TargetClip,
+};
 use super::texturing::{FaceTexture, FrameTexture, NoTexture, TexelLight, TexturedMaterial};
-use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexStage};
+use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, VertexStage};
 use crate::arch;
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
@@ -220,6 +224,55 @@ impl Pipeline {
         let corner = self.viewport.top_left;
         let viewport = ((corner.x, corner.y), (size.width, size.height));
         VertexStage::new(&self.mvp, bound, viewport, light)
+    }
+
+    /// The unit world-space direction towards the viewer that specular highlights
+    /// ([`Material::specular`]) use: the viewer at infinity along the camera's `+z` (view
+    /// space), the infinite-viewer approximation.
+    ///
+    /// It is found once per draw from the view depth's gradient in model space, `mvp`'s `w` row
+    /// negated (a perspective projection's `w` is `−z` in view space) or, where that row has no
+    /// `x`, `y` or `z` part (an orthographic projection), its `z` row negated, and turned into
+    /// world space like a normal, by [`normal_matrix`](Self::normal_matrix): exact (up to
+    /// rounding) for `mvp = projection · view · model` with the crate's projections and a normal
+    /// matrix that is a positive multiple of the model matrix's inverse transpose. The zero
+    /// vector if `mvp` has neither. Rounding: within about 2⁻¹⁴ a component through a
+    /// perspective projection; an orthographic one's `z` row is `2/(far − near)` times smaller,
+    /// and its rounding costs that factor more.
+    ///
+    /// ```
+    /// # use embedded_graphics::{prelude::*, primitives::Rectangle};
+    /// use embedded_raster::three_d::{Angle, Light, Mat4, Pipeline, Vec3};
+    ///
+    /// let view = Mat4::look_at(Vec3::new(3, 0, 0), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20) * view;
+    /// # let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    /// assert_eq!(pipeline.view_direction(), Vec3::new(1, 0, 0)); // towards the eye on +x
+    /// ```
+    pub fn view_direction(&self) -> Vec3 {
+        let m = self.mvp.to_bits();
+        let [w, z] = [m[3], m[2]];
+        let row = if w[..3].iter().any(|&c| c != 0) { w } else { z };
+        let gradient = normalize_wide([row[0], row[1], row[2]].map(|c| -i64::from(c)));
+        // The gradient is a normal of the planes of constant view depth.
+        let n = self.normal_matrix.to_bits();
+        let g = gradient.to_bits().map(i64::from);
+        normalize_wide(core::array::from_fn(|r| {
+            (0..3)
+                .map(|c| i64::from(n[r][c]) * g[c])
+                .fold(0i64, i64::saturating_add)
+        }))
+    }
+
+    /// The world-space half vector `normalize(l + v)` of the light and the
+    /// [`view_direction`](Self::view_direction) (zero if they are opposite).
+    fn half_vector(&self) -> Vec3 {
+        let (l, v) = (
+            self.light.direction.to_bits(),
+            self.view_direction().to_bits(),
+        );
+        normalize_wide(core::array::from_fn(|k| i64::from(l[k]) + i64::from(v[k])))
     }
 
     /// The unit world-space normal of a model-space normal.
@@ -380,6 +433,22 @@ enum Fill<C> {
     /// The frame's texture, lit by one level a face (`Flat`), the vertex levels (`Gouraud`)
     /// or not at all (`Unlit`).
     Textured(Shading),
+    /// A material with a highlight, lit with `Flat`, `Gouraud` or `Quadratic` shading.
+    Specular(Shiny<C>),
+}
+
+/// How a draw fills a material with a highlight.
+#[derive(Clone)]
+struct Shiny<C> {
+    color: C,
+    shading: Shading,
+    /// The highlight per pixel, its half vector in world space (quadratic shading).
+    pixel: Highlight,
+    /// The highlight per vertex or face, its half vector in the normals' space.
+    vertex: VertexSpecular,
+    /// The material colour's levels (flat and Gouraud shading): the faces that the highlight
+    /// does not reach (a specular term of 0 at every vertex) are filled as without it.
+    table: Option<ShadeTable<C>>,
 }
 
 /// Where the face stage hands the faces it keeps: a target to fill them into now (a frame's, or a
@@ -530,11 +599,25 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
     ) -> Self {
         let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         let color = material.color;
-        let (fill, vertex_light) = match material.shading {
-            Shading::Unlit => (Fill::Unlit(color), None),
-            Shading::Flat => (Fill::Flat(ShadeTable::new(color)), None),
-            Shading::Gouraud => (Fill::Gouraud(ShadeTable::new(color)), Some(light)),
-            Shading::Quadratic => (Fill::Quadratic(color), None),
+        // A highlight of strength 0 is none: the same frame as without it.
+        let highlight = material
+            .specular
+            .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0)
+            .map(|specular| Highlight::new(pipeline.half_vector(), specular));
+        let (fill, vertex_light) = match highlight {
+            None => Self::plain_fill(material, light),
+            Some(h) => {
+                let shading = material.shading;
+                let shiny = Shiny {
+                    color,
+                    shading,
+                    pixel: h,
+                    vertex: light.specular(&pipeline.normal_matrix, &h),
+                    table: (shading != Shading::Quadratic).then(|| ShadeTable::new(color)),
+                };
+                let vertex_light = (shading == Shading::Gouraud).then_some(light);
+                (Fill::Specular(shiny), vertex_light)
+            }
         };
         let stage = pipeline.stage(bound(mesh.vertices), vertex_light);
         Frame {
@@ -545,6 +628,17 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             clip,
             fill,
             texture: NoTexture,
+        }
+    }
+
+    /// The fill of a `material` without a highlight, and the light of its vertex stage.
+    fn plain_fill(material: &Material<C>, light: VertexLight) -> (Fill<C>, Option<VertexLight>) {
+        let color = material.color;
+        match material.shading {
+            Shading::Unlit => (Fill::Unlit(color), None),
+            Shading::Flat => (Fill::Flat(ShadeTable::new(color)), None),
+            Shading::Gouraud => (Fill::Gouraud(ShadeTable::new(color)), Some(light)),
+            Shading::Quadratic => (Fill::Quadratic(color), None),
         }
     }
 }
@@ -950,7 +1044,85 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             Fill::Textured(shading) => {
                 self.fill_textured(mesh, idx, model, v, bary, *shading, target)
             }
+            Fill::Specular(shiny) => self.fill_specular(mesh, idx, model, v, bary, shiny, target),
         }
+    }
+
+    /// [`fill`](Self::fill) of a material with a highlight (out of line, as the textured
+    /// fill).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn fill_specular(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+        bary: Option<[Bary; 3]>,
+        shiny: &Shiny<C>,
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        let (clip, color, vertex) = (&self.clip, shiny.color, &shiny.vertex);
+        match shiny.shading {
+            // The vertices' levels as without a highlight (a fan's: interpolated at them), and
+            // their specular terms, found here for both paths (the vertex stage has no room for
+            // them, and its loops stay as they are).
+            Shading::Gouraud => {
+                let mut lit = None;
+                let v = self.lit_vertices(model, v, &mut lit);
+                let speculars = self.vertex_speculars(mesh, idx, model, vertex);
+                let speculars = at_bary(bary, speculars.map(|s| [i64::from(s)]));
+                // 8.8 of the 0–255 scale, as the levels.
+                let speculars =
+                    speculars.map(|[s]| ((s.clamp(0, 1 << 16) * 255 + (1 << 7)) >> 8) as u16);
+                match &shiny.table {
+                    Some(table) if speculars == [0; 3] => {
+                        shading::draw_levels(target, clip, v, table);
+                    }
+                    _ => shading::draw_levels_specular(target, clip, v, speculars, color),
+                }
+            }
+            Shading::Quadratic => {
+                let normals = QuadraticNormals::new(self.world_normals(mesh, idx, &model()));
+                let normals = match bary {
+                    None => normals,
+                    Some(bary) => normals.restricted(bary),
+                };
+                let (light, tri) = (&self.pipeline.light, v.map(|v| v.screen()));
+                let highlight = &shiny.pixel;
+                shading::fill_quadratic_specular(
+                    target, clip, tri, &normals, light, highlight, color,
+                );
+            }
+            // Flat (a material without light has no highlight).
+            _ => {
+                let (level, specular) = self.light.terms(face_normal(&model()), vertex);
+                let color = match &shiny.table {
+                    // The level of `face_level`.
+                    Some(table) if specular == 0 => table.at(((level * 255) >> 8) as u16),
+                    _ => shading::highlighted_channels(color.channels(), level, specular),
+                };
+                shading::fill_flat(target, clip, v.map(|v| v.screen()), color);
+            }
+        }
+    }
+
+    /// The specular terms (16 fractional bits) of the face's vertices `idx` (at `model`) for
+    /// the highlight `s`: from the mesh's normals, the face's normal for vertices without one
+    /// (as their light levels).
+    fn vertex_speculars(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3],
+        s: &VertexSpecular,
+    ) -> [u32; 3] {
+        let face = || self.light.terms(face_normal(&model()), s).1;
+        idx.map(|i| {
+            mesh.normals
+                .get(i)
+                .map_or_else(&face, |n| self.light.terms(*n, s).1)
+        })
     }
 
     /// [`fill`](Self::fill) of a textured draw (out of line: the untextured fills keep their
@@ -1125,6 +1297,12 @@ fn at_bary<const N: usize>(bary: Option<[Bary; 3]>, values: [[i64; N]; 3]) -> [[
             (sum + (1 << 29)) >> 30
         })
     })
+}
+
+/// The unit geometric normal of the face `model` (model space).
+fn face_normal(model: &[Vec3; 3]) -> Vec3 {
+    let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
+    normalize_wide(e1.cross_wide(e2))
 }
 
 /// The entries of `items` at a face's three indices, if all are there.

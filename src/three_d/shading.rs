@@ -27,6 +27,15 @@
 //! vertices and edge midpoints and stays within a fraction of that deviation elsewhere; the
 //! renormalisation then has much less to correct and the highlight moves smoothly across faces.
 //!
+//! A [`Material`] with a Blinn-Phong [`Specular`] highlight is drawn by the pipeline's
+//! highlighted fills: the colour `base · level + specular · max` per channel (`max` the
+//! channel's maximum: white light), rounded once and saturating. Flat: one colour a face from its
+//! normal. Gouraud: the specular term at the vertices (16 bits) as a second plane next to the
+//! light level, added per pixel. Quadratic: the stepped normal rounded to 16 fractional bits and
+//! renormalised once for both `n̂·l` and `n̂·ĥ` (the power magnifies the cosine's error by up to
+//! the shininess, so it needs more than the 14 bits of the plain fill). Flat and Gouraud faces
+//! whose specular terms are all 0 take the plain fills: the same pixels as without a highlight.
+//!
 //! ```
 //! use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
 //! use embedded_raster::three_d::{Scalar, Vec3};
@@ -51,7 +60,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
-use super::light::Light;
+use super::light::{Light, Specular};
 use super::math::{
     inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
 };
@@ -59,6 +68,7 @@ use super::vertex::ProjectedVertex;
 use crate::arch;
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
+use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::{AllRows, Band, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
@@ -86,12 +96,30 @@ pub struct Material<C> {
     pub color: C,
     /// Lighting model.
     pub shading: Shading,
+    /// A Blinn-Phong highlight added to the lit colour (flat: per face, Gouraud: per vertex and
+    /// interpolated, quadratic: per pixel; none unlit), or none.
+    ///
+    /// The colour is `base · (ambient + (1 − ambient)·diffuse) + specular` in every channel,
+    /// the specular term as white light (each channel's maximum times it), saturating.
+    pub specular: Option<Specular>,
 }
 
 impl<C> Material<C> {
-    /// A material of `color` lit with `shading`.
+    /// A material of `color` lit with `shading`, without a highlight.
     pub const fn new(color: C, shading: Shading) -> Self {
-        Material { color, shading }
+        Material {
+            color,
+            shading,
+            specular: None,
+        }
+    }
+
+    /// The material with the highlight `specular` ([`Specular`] has an example).
+    pub fn with_specular(self, specular: Specular) -> Self {
+        Material {
+            specular: Some(specular),
+            ..self
+        }
     }
 }
 
@@ -105,6 +133,43 @@ pub fn shade<C: GouraudColor>(color: C, level: Scalar) -> C {
 pub(super) fn scale_channels<C: GouraudColor>(base: [u8; 3], level: u32) -> C {
     let s = |c: u8| ((u32::from(c) * level + (1 << 15)) >> 16) as u8;
     C::from_channels([s(base[0]), s(base[1]), s(base[2])])
+}
+
+/// The colour of a lit, highlighted surface: `base · level + specular · max` in every channel
+/// (`max` the channel's maximum: a white highlight), rounded once and saturating at `max`;
+/// `level` and `specular` with 16 fractional bits (up to a little above 2¹⁶).
+#[inline(always)]
+pub(super) fn highlighted_channels<C: GouraudColor>(base: [u8; 3], level: u32, specular: u32) -> C {
+    let (level, specular) = (level.min(1 << 17), specular.min(1 << 17));
+    // Below 2²⁶: 255 · 2¹⁷ twice.
+    let s = |c: u8, max: u8| {
+        let v = (u32::from(c) * level + u32::from(max) * specular + (1 << 15)) >> 16;
+        v.min(u32::from(max)) as u8
+    };
+    let [m0, m1, m2] = C::MAX;
+    C::from_channels([s(base[0], m0), s(base[1], m1), s(base[2], m2)])
+}
+
+/// A draw's highlight for per-pixel lighting: the material's [`Specular`] and the half vector
+/// in the light's (world) space.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Highlight {
+    /// `ĥ = normalize(l + v)`, raw `I16F16`, unit or zero.
+    pub(crate) half: Vec3,
+    pub(crate) specular: Specular,
+    /// The specular's [`threshold`](Specular::threshold).
+    pub(crate) threshold: u32,
+}
+
+impl Highlight {
+    /// The highlight `specular` about the half vector `half`.
+    pub(crate) fn new(half: Vec3, specular: Specular) -> Self {
+        Highlight {
+            half,
+            specular,
+            threshold: specular.threshold(),
+        }
+    }
 }
 
 /// The quadratic normal field of a triangle: its values at the three vertices and the three edge
@@ -572,6 +637,67 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
     }
 }
 
+/// [`Lit`] with a Blinn-Phong highlight: the normal renormalised once, with 16 fractional bits,
+/// for both the diffuse term and `n̂·ĥ` (the power amplifies the cosine's error by up to the
+/// shininess, so it needs more than the 14 bits that serve the diffuse term).
+///
+/// With `q` the stepped normal rounded to 16 fractional bits (`|q| ≈ 2¹⁶`, each component
+/// within 2⁻¹⁷), `1/|q|` from [`inv_sqrt`] (relative error below 2⁻¹⁸) and `l`, `ĥ` in raw
+/// `I16F16`, each cosine is within about 2⁻¹⁵ of the exact one of the stepped normal.
+struct Shiny<'l> {
+    lit: Lit<'l>,
+    /// Light direction and half vector, raw `I16F16`.
+    l: [i32; 3],
+    h: [i32; 3],
+    specular: Specular,
+    threshold: u32,
+}
+
+impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
+    #[inline(always)]
+    fn start(&mut self, values: &[u32; 3], len: u32) {
+        DepthPixel::<C, 3>::start(&mut self.lit, values, len);
+    }
+
+    #[inline(always)]
+    fn color(&mut self, _: &[u32; 3]) -> C {
+        // 16 fractional bits, within ±2¹⁷ (the field stays near unit length).
+        let q = self.lit.n.map(|v| {
+            (v.wrapping_add(1 << (STEP_BITS - 17)) >> (STEP_BITS - 16))
+                .clamp(-(1 << 17) + 1, (1 << 17) - 1) as i32
+        });
+        // Below 3·2³³ in magnitude: 32 fractional bits.
+        let dot = |a: &[i32; 3]| {
+            mul_i32_wide(q[0], a[0]) + mul_i32_wide(q[1], a[1]) + mul_i32_wide(q[2], a[2])
+        };
+        let towards = dot(&self.l);
+        let (diffuse, specular) = if towards <= 0 {
+            (0, 0)
+        } else {
+            let nn: u64 = q.iter().map(|v| u64::from(v.unsigned_abs()).pow(2)).sum();
+            let (r, sh) = inv_sqrt(nn);
+            // d/|q| with 16 fractional bits: (d/2⁴)·r/2^(sh−4), below 2³¹·2³¹.
+            let unit = |d: i64| {
+                if d <= 0 {
+                    return 0;
+                }
+                let shift = sh.saturating_sub(4);
+                let p = ((d >> 4) as u64) * u64::from(r) + (1 << shift.saturating_sub(1));
+                (p >> shift).min(1 << 16) as u32
+            };
+            let x = unit(dot(&self.h));
+            (unit(towards), self.specular.term_above(x, self.threshold))
+        };
+        let level = self.lit.light.level_of_diffuse(diffuse);
+        highlighted_channels::<C>(self.lit.base, level, specular)
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        DepthPixel::<C, 3>::advance(&mut self.lit);
+    }
+}
+
 /// `a += b` component by component, wrapping (no index, so no bounds check is left to panic
 /// where the loop is not unrolled).
 #[inline(always)]
@@ -665,6 +791,43 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     let levels = v.map(|v| [v.level()]);
     let attributes = with_depth(vertices, levels, [1 << (STEP_BITS_PLANES - 1)]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
+}
+
+/// The material colour at the interpolated light level (attribute 1) plus the white highlight
+/// of the interpolated specular level (attribute 2), both 8.24 of the 0–255 scale: the
+/// Gouraud fill of a material with a highlight.
+struct Highlighted([u8; 3]);
+
+impl<C: GouraudColor> DepthPixel<C, 3> for Highlighted {
+    #[inline(always)]
+    fn color(&mut self, values: &[u32; 3]) -> C {
+        // 8.8 of the 0–255 scale (the planes' +½ of that unit rounds) to 16 fractional bits of
+        // 1: ·2⁸/255 = ·257/2⁸ (within 2⁻¹⁶ of it).
+        let unit = |v: u32| ((v >> 16) * 257 + (1 << 7)) >> 8;
+        highlighted_channels::<C>(self.0, unit(values[1]), unit(values[2]))
+    }
+}
+
+/// Fills the triangle of the vertices `v` with `color` lit at their light levels and
+/// highlighted by their specular levels `speculars` (8.8 of the 0–255 scale, as the levels),
+/// both interpolated across it, depth-tested: the pipeline's Gouraud fill of a material with a
+/// highlight.
+#[inline(never)]
+pub(crate) fn draw_levels_specular<C: GouraudColor, R: RowWindow>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    v: [&ProjectedVertex; 3],
+    speculars: [u16; 3],
+    color: C,
+) {
+    let vertices = v.map(|v| v.screen());
+    let ([a, b, c], [sa, sb, sc]) = (v, speculars);
+    let levels = [[a.level(), sa], [b.level(), sb], [c.level(), sc]];
+    // +½ of the 8.8 unit the pixel truncates to (and above the planes' error: no wrapping
+    // below 0).
+    let attributes = with_depth(vertices, levels, [1 << (STEP_BITS_PLANES - 9); 2]);
+    let pixel = Highlighted(color.channels());
+    depth_fill(target, clip, vertices, &attributes, pixel);
 }
 
 /// [`draw_levels`] into a band (`clip`'s rows), writing a small triangle's set-up into `keep`
@@ -802,6 +965,45 @@ pub(crate) fn fill_quadratic<C: GouraudColor, R: RowWindow>(
     let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
     let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
     depth_fill(target, clip, vertices, &attributes, lit);
+}
+
+/// [`fill_quadratic`] with the Blinn-Phong highlight `highlight` (its half vector in the space
+/// of `normals` and `light`) added per pixel.
+#[inline(never)]
+pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    vertices: [&ScreenVertex; 3],
+    normals: &QuadraticNormals,
+    light: &Light,
+    highlight: &Highlight,
+    color: C,
+) {
+    let Some(setup) = TriangleSetup::new(vertices.map(|v| v.position())) else {
+        return;
+    };
+    let field = NormalPlane::new(normals, &setup, &InverseArea::new(setup.area2));
+    let lit = Lit {
+        d2: field.c.map(|c| c.wrapping_mul(2)),
+        field,
+        n: [0; 3],
+        d1: [0; 3],
+        l: [0; 3],
+        light,
+        base: color.channels(),
+    };
+    // Unit vectors: within ±2¹⁶ a component.
+    let unit = |v: Vec3| v.to_bits().map(|c| c.clamp(-(1 << 16), 1 << 16));
+    let shiny = Shiny {
+        lit,
+        l: unit(light.direction),
+        h: unit(highlight.half),
+        specular: highlight.specular,
+        threshold: highlight.threshold,
+    };
+    let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
+    let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
+    depth_fill(target, clip, vertices, &attributes, shiny);
 }
 
 #[cfg(test)]

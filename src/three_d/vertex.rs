@@ -19,8 +19,9 @@
 
 use super::clip::{ClipVolume, W_MIN};
 use super::depth::{ScreenVertex, DEPTH_FAR};
-use super::light::Light;
+use super::light::{Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
+use super::shading::Highlight;
 use crate::fixed_point::Coord;
 use crate::raster::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
 
@@ -148,6 +149,18 @@ pub(crate) struct VertexLight {
     ambient: u32,
 }
 
+/// A draw's specular highlight, ready for per-vertex (and per-face) specular terms
+/// ([`VertexLight::terms`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct VertexSpecular {
+    /// The half vector `ĥ = normalize(l + v)` in the space the normals are dotted in (as
+    /// [`VertexLight`]'s direction), raw `I16F16`, unit or zero.
+    half: [i32; 3],
+    specular: Specular,
+    /// The specular's [`threshold`](Specular::threshold).
+    threshold: u32,
+}
+
 impl VertexLight {
     /// The light `light` for normals transformed by `normal_matrix`.
     pub(crate) fn new(light: &Light, normal_matrix: &Mat4) -> Self {
@@ -171,6 +184,76 @@ impl VertexLight {
             normal_matrix: (!rotation).then_some(block),
             ambient: light.ambient.to_bits().clamp(0, 1 << 16) as u32,
         }
+    }
+
+    /// The highlight `h` (its half vector in world space) for this light (of
+    /// `normal_matrix`): the half vector turned into model space like the light when the normal
+    /// matrix is a rotation (`Rᵀĥ`, renormalised), as it is otherwise.
+    pub(crate) fn specular(&self, normal_matrix: &Mat4, h: &Highlight) -> VertexSpecular {
+        let half = h.half;
+        let half = match self.normal_matrix {
+            Some(_) => half,
+            None => {
+                let m = normal_matrix.to_bits();
+                let h = half.to_bits().map(i64::from);
+                normalize_wide(core::array::from_fn(|c| {
+                    (0..3)
+                        .map(|r| i64::from(m[r][c]) * h[r])
+                        .fold(0i64, i64::saturating_add)
+                }))
+            }
+        };
+        VertexSpecular {
+            half: half.to_bits(),
+            specular: h.specular,
+            threshold: h.threshold,
+        }
+    }
+
+    /// A model-space normal in the light's space, of unit length: itself when the normal
+    /// matrix is a rotation (unit normals stay unit), transformed and renormalised otherwise.
+    #[inline]
+    fn in_light_space(&self, n: Vec3) -> Vec3 {
+        match &self.normal_matrix {
+            None => n,
+            Some(m) => {
+                let v = n.to_bits().map(i64::from);
+                normalize_wide(m.map(|row| {
+                    (0..3)
+                        .map(|c| i64::from(row[c]) * v[c])
+                        .fold(0i64, i64::saturating_add)
+                }))
+            }
+        }
+    }
+
+    /// The light level and specular term of a model-space unit normal `n`, 16 fractional bits
+    /// each (in `[0, 2¹⁶]`): `ambient + (1 − ambient)·max(0, n·l)` as [`level`](Self::level)
+    /// (within 2⁻¹⁶ of its level before the 0–255 scale) and
+    /// `strength · max(0, n·ĥ)^shininess` of the highlight `s`, 0 where `n·l` rounds to 0 (no
+    /// highlight facing away from the light).
+    ///
+    /// `n·ĥ` is a dot product of raw `I16F16` components (within `2⁻¹⁶` of the exact one for
+    /// normals of unit length to 2⁻¹⁷ a component) and the power is
+    /// [`Specular::term`]'s.
+    #[inline]
+    pub(crate) fn terms(&self, n: Vec3, s: &VertexSpecular) -> (u32, u32) {
+        let n = self.in_light_space(n);
+        let bits = n.to_bits().map(i64::from);
+        let l = self.direction.map(i64::from);
+        let dot = bits[0] * l[0] + bits[1] * l[1] + bits[2] * l[2];
+        // As in `level_of_unit`: the diffuse term rounds to 0 below half a unit of 2⁻¹⁶.
+        if dot < 1 << 13 {
+            return (self.ambient, 0);
+        }
+        let diffuse = ((dot + (1 << 13)).min((1 << 30) - 1) as u32) >> 14;
+        let lit = (((1 << 16) - self.ambient) * diffuse + (1 << 15)) >> 16;
+        let level = (self.ambient + lit).min(1 << 16);
+        let h = s.half.map(i64::from);
+        // Raw components below 2³¹ times unit ones: below 2⁴⁹.
+        let dot = bits[0] * h[0] + bits[1] * h[1] + bits[2] * h[2];
+        let x = ((dot + (1 << 15)) >> 16).clamp(0, 1 << 16) as u32;
+        (level, s.specular.term_above(x, s.threshold))
     }
 
     /// The light level of a vertex with model-space unit normal `n`: 8.8 fixed point of the
@@ -392,7 +475,7 @@ impl VertexStage {
     /// The light level of a model-space normal (0 without a light).
     #[inline(always)]
     pub(crate) fn level(&self, n: Vec3) -> u16 {
-        self.light.map_or(0, |l| l.level(n))
+        self.light.as_ref().map_or(0, |l| l.level(n))
     }
 
     /// Transforms, classifies, projects (if inside) and lights the vertex at `p` with normal `n`.
