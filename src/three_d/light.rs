@@ -194,6 +194,28 @@ pub(crate) fn specular_power(s: u32, x: u32, n: u8) -> u32 {
     result
 }
 
+/// A draw's highlight for per-pixel lighting: the material's [`Specular`] and the half vector
+/// in the light's (world) space.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Highlight {
+    /// `ĥ = normalize(l + v)`, raw `I16F16`, unit or zero.
+    pub(crate) half: Vec3,
+    pub(crate) specular: Specular,
+    /// The specular's [`threshold`](Specular::threshold).
+    pub(crate) threshold: u32,
+}
+
+impl Highlight {
+    /// The highlight `specular` about the half vector `half`.
+    pub(crate) fn new(half: Vec3, specular: Specular) -> Self {
+        Highlight {
+            half,
+            specular,
+            threshold: specular.threshold(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -66,12 +66,10 @@ use embedded_graphics::primitives::Rectangle;
 use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
-use super::light::Light;
+use super::light::{Highlight, Light};
 use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
-use super::shading::{
-    self, Highlight, Material, QuadraticNormals, ShadeTable, Shading, TargetClip,
-};
+use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::texturing::{FaceTexture, FrameTexture, NoTexture, TexelLight, TexturedMaterial};
 use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, VertexStage};
 use crate::arch;

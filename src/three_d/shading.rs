@@ -60,7 +60,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
-use super::light::{Light, Specular};
+use super::light::{Highlight, Light, Specular};
 use super::math::{
     inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
 };
@@ -148,28 +148,6 @@ pub(super) fn highlighted_channels<C: GouraudColor>(base: [u8; 3], level: u32, s
     };
     let [m0, m1, m2] = C::MAX;
     C::from_channels([s(base[0], m0), s(base[1], m1), s(base[2], m2)])
-}
-
-/// A draw's highlight for per-pixel lighting: the material's [`Specular`] and the half vector
-/// in the light's (world) space.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Highlight {
-    /// `ĥ = normalize(l + v)`, raw `I16F16`, unit or zero.
-    pub(crate) half: Vec3,
-    pub(crate) specular: Specular,
-    /// The specular's [`threshold`](Specular::threshold).
-    pub(crate) threshold: u32,
-}
-
-impl Highlight {
-    /// The highlight `specular` about the half vector `half`.
-    pub(crate) fn new(half: Vec3, specular: Specular) -> Self {
-        Highlight {
-            half,
-            specular,
-            threshold: specular.threshold(),
-        }
-    }
 }
 
 /// The quadratic normal field of a triangle: its values at the three vertices and the three edge

@@ -19,9 +19,8 @@
 
 use super::clip::{ClipVolume, W_MIN};
 use super::depth::{ScreenVertex, DEPTH_FAR};
-use super::light::{Light, Specular};
+use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
-use super::shading::Highlight;
 use crate::fixed_point::Coord;
 use crate::raster::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
 
