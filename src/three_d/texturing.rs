@@ -21,8 +21,10 @@
 //! whose chords are long in texels).
 //!
 //! A face whose `1/w` varies so little across it that screen-space interpolation departs from
-//! the perspective-correct values by at most 1/16 texel and 1/4 of a light level (its spread
-//! times `(q_max − q_min) / 2q_min`: most faces of a mesh) takes the 2D textured fill's planes
+//! the perspective-correct values by at most 1/16 texel and a quarter of the target's finest
+//! channel step in light level (its spread times `(q_max − q_min) / 2q_min`; a quarter of a
+//! level of 255 for 8-bit channels, one level for Rgb565's 6-bit green: most faces of a mesh)
+//! takes the 2D textured fill's planes
 //! instead, with their own rounding (`s + 1/128` texel, see
 //! [`TexturedTriangle`](crate::TexturedTriangle)) on top: no division in its spans.
 
@@ -256,7 +258,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
 {
     let rect = clip.rect();
     let position = screen.map(|v| v.position());
-    if nearly_affine(q, texels, &light) {
+    if nearly_affine(q, texels, &light, affine_level::<C>()) {
         // Screen-space interpolation is within the bound here: the 2D textured fill's planes.
         let (mu, u) = PlaneMap::new(texels.map(|t| t[0]));
         let (mv, v) = PlaneMap::new(texels.map(|t| t[1]));
@@ -314,18 +316,41 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     }
 }
 
-/// The largest departure from the perspective-correct values that screen-space interpolation
-/// may make where a face takes it: 1/16 texel, and 1/4 of a light level.
+/// The largest departure from the perspective-correct texel coordinates that screen-space
+/// interpolation may make where a face takes it: 1/16 texel (16.16).
 const AFFINE_TEXELS: u64 = 1 << 12;
-const AFFINE_LEVEL: u64 = 1 << 6;
+
+/// The largest departure from the perspective-correct light level (8.8 of the 0–255 scale) that
+/// screen-space interpolation may make in a face drawn into `C`: a quarter of its finest
+/// channel's step (¼ level for 8-bit channels, one level for Rgb565's 6-bit green, two for
+/// 5-bit channels), so that the colour moves by at most a quarter of a step of that channel.
+/// A texel times a level is `texel · level / 255`: a level off by `δ` moves a channel by at
+/// most `δ` levels of 255.
+const fn affine_level<C: GouraudColor>() -> u64 {
+    let mut finest = 1;
+    let mut k = 0;
+    while k < 3 {
+        if C::MAX[k] > finest {
+            finest = C::MAX[k];
+        }
+        k += 1;
+    }
+    // 8.8 levels: a quarter step is 256 · 255 / (4 · max), at least a quarter level.
+    64 * 255 / finest as u64
+}
 
 /// Whether a face whose vertices have `q ∝ 1/w`, texel coordinates (16.16) and light may be
-/// interpolated in screen space: an attribute of spread `s` (its largest difference between
+/// interpolated in screen space (the levels within `affine_level`, 8.8): an attribute of spread `s` (its largest difference between
 /// vertices) departs from its perspective-correct value by at most `s·(q_max − q_min) /
 /// (2·q_min)`, as the perspective-correct value is the average of the vertex values weighted by
 /// `bₖ·qₖ / Σ bⱼ·qⱼ`. Small faces (most of a mesh's) take the cheaper screen-space fill.
 #[inline(always)]
-fn nearly_affine(q: [u64; 3], texels: [[i32; 2]; 3], light: &TexelLight) -> bool {
+fn nearly_affine(
+    q: [u64; 3],
+    texels: [[i32; 2]; 3],
+    light: &TexelLight,
+    affine_level: u64,
+) -> bool {
     let (lo, hi) = (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]));
     // Both to 16 bits by one shift, `q_min` rounded down and `q_max` up: a larger ratio, never
     // a smaller one.
@@ -347,7 +372,7 @@ fn nearly_affine(q: [u64; 3], texels: [[i32; 2]; 3], light: &TexelLight) -> bool
     match light {
         TexelLight::Levels(l) => {
             let levels = spread(l.map(i32::from)) as u32;
-            u64::from(levels) * ratio <= AFFINE_LEVEL * twice
+            u64::from(levels) * ratio <= affine_level * twice
         }
         _ => true,
     }
