@@ -51,19 +51,12 @@ impl PlaneMap {
         // more where rounding needs it; at most 17.
         let spread = hi.wrapping_sub(lo) as u32;
         let mut shift = (32 - leading_zeros_32(spread)).saturating_sub(16);
-        while (u64::from(spread) + (1 << shift >> 1)) >> shift > SPREAD {
+        // Below 2¹⁶ after the first shift, below 2¹⁵ (within SPREAD) after one more.
+        if u64::from(round_shift(spread, shift)) > SPREAD {
             shift += 1;
         }
-        let half = (1u32 << shift) >> 1;
-        let value = |c: i32| {
-            let d = c.wrapping_sub(lo) as u32;
-            // Rounded to the nearest step; only a shift of 17 can carry out of 32 bits.
-            let step = match d.checked_add(half) {
-                Some(sum) => sum >> shift,
-                None => ((u64::from(d) + u64::from(half)) >> shift) as u32,
-            };
-            (128 + step) as u16
-        };
+        // Each value rounded to the nearest step.
+        let value = |c: i32| (128 + round_shift(c.wrapping_sub(lo) as u32, shift)) as u16;
         let values = c.map(value);
         let base = (lo as u32).wrapping_sub(128 << shift) as i32;
         let (down, up) = if shift <= 16 {
@@ -96,11 +89,24 @@ impl PlaneMap {
         (at, self.at(value.wrapping_add(step)).wrapping_sub(at))
     }
 
-    /// The per-pixel step in 16.16 texels of a plane step (rounded to nearest).
+    /// The per-pixel step in 16.16 texels of a plane step (rounded to nearest, halves up;
+    /// modulo 2³² where a scale of 2¹⁷ takes it past 32 bits): `step · 2^(up − down)`.
     #[inline(always)]
     pub(crate) fn step(&self, step: u32) -> i32 {
-        let shift = self.up + 16 - self.down;
-        (((i64::from(step as i32) << shift) + (1 << 15)) >> 16) as i32
+        let step = step as i32;
+        match self.down {
+            0 => step.wrapping_shl(self.up),
+            down => (step >> down) + ((step >> (down - 1)) & 1),
+        }
+    }
+}
+
+/// `⌊v / 2^shift + ½⌋` without leaving 32 bits: the bit below the shift rounds.
+#[inline(always)]
+fn round_shift(v: u32, shift: u32) -> u32 {
+    match shift {
+        0 => v,
+        _ => (v >> shift) + ((v >> (shift - 1)) & 1),
     }
 }
 
@@ -289,6 +295,31 @@ mod tests {
     use crate::texture::{Indexed4, Rgb565Texels};
     use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::{Gray8, Rgb565};
+
+    /// The 32-bit roundings are the exact ones (of 64-bit arithmetic).
+    #[test]
+    fn roundings_in_32_bits_are_exact() {
+        let mut next = crate::random(0x7e47_0003);
+        for n in 0..200_000 {
+            let v = match n % 4 {
+                0 => next() as u32,
+                1 => u32::MAX - (next() % 1024) as u32,
+                2 => (next() % 1024) as u32,
+                _ => (next() as u32) >> (next() % 32),
+            };
+            let shift = (n / 4 % 18) as u32;
+            let exact = (u64::from(v) + (1u64 << shift >> 1)) >> shift;
+            assert_eq!(u64::from(round_shift(v, shift)), exact, "{v} {shift}");
+            let (down, up) = if shift <= 16 {
+                (16 - shift, 0)
+            } else {
+                (0, shift - 16)
+            };
+            let map = PlaneMap { base: 0, down, up };
+            let want = (((i64::from(v as i32) << (up + 16 - down)) + (1 << 15)) >> 16) as i32;
+            assert_eq!(map.step(v), want, "{v} {down} {up}");
+        }
+    }
 
     /// The mapped plane values read back as the coordinates, and the margin holds.
     #[test]

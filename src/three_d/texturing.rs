@@ -33,10 +33,11 @@ use embedded_graphics::primitives::Rectangle;
 use super::depth::{DepthTarget, ScreenVertex};
 use super::math::Scalar;
 use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
+use super::vertex::Inverse;
 use crate::color::GouraudColor;
-use crate::raster::arith::leading_zeros_64;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
+use crate::raster::scan::SmallScan;
 use crate::raster::{Span, SpanShader};
 use crate::texture::span::{PlaneMap, SampledLoop, Sampler};
 use crate::texture::{TexelCoord, TexelSource, Texture};
@@ -96,7 +97,7 @@ pub fn draw_textured<S, C>(
     C: GouraudColor + From<S::Color>,
 {
     let clip = TargetClip::new(clip, target);
-    let q = vertices.map(|v| inverse_w(v.w));
+    let q = vertices.map(|v| Inverse::of(inverse_w(v.w)));
     let texels = vertices.map(|v| [v.u.to_bits(), v.v.to_bits()]);
     let screen = vertices.each_ref().map(|v| &v.screen);
     fill_textured(
@@ -144,7 +145,7 @@ pub(crate) trait FaceTexture<C>: Copy {
         target: &mut DepthTarget<'_, C>,
         clip: &TargetClip<R>,
         vertices: [&ScreenVertex; 3],
-        q: [u64; 3],
+        q: [Inverse; 3],
         texels: [[i32; 2]; 3],
         light: TexelLight,
     );
@@ -166,7 +167,7 @@ impl<C> FaceTexture<C> for NoTexture {
         _: &mut DepthTarget<'_, C>,
         _: &TargetClip<R>,
         _: [&ScreenVertex; 3],
-        _: [u64; 3],
+        _: [Inverse; 3],
         _: [[i32; 2]; 3],
         _: TexelLight,
     ) {
@@ -206,7 +207,7 @@ where
         target: &mut DepthTarget<'_, C>,
         clip: &TargetClip<R>,
         vertices: [&ScreenVertex; 3],
-        q: [u64; 3],
+        q: [Inverse; 3],
         texels: [[i32; 2]; 3],
         light: TexelLight,
     ) {
@@ -248,7 +249,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
     screen: [&ScreenVertex; 3],
-    q: [u64; 3],
+    q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
     light: TexelLight,
@@ -278,7 +279,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
         clip.rows().shade(position, &attributes, &rect, fill);
         return;
     }
-    let perspective = perspective::attributes(q);
+    let perspective = perspective::attributes(q.map(Inverse::value));
     let attributes = with_depth(screen, perspective.values, perspective.half);
     let coordinates = (
         Corrected::new(texels.map(|t| t[0])),
@@ -346,17 +347,15 @@ const fn affine_level<C: GouraudColor>() -> u64 {
 /// `bₖ·qₖ / Σ bⱼ·qⱼ`. Small faces (most of a mesh's) take the cheaper screen-space fill.
 #[inline(always)]
 fn nearly_affine(
-    q: [u64; 3],
+    q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     light: &TexelLight,
     affine_level: u64,
 ) -> bool {
+    let Some((q, most)) = Inverse::common_scale(q) else {
+        return false;
+    };
     let (lo, hi) = (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]));
-    // Both to 16 bits by one shift, `q_min` rounded down and `q_max` up: a larger ratio, never
-    // a smaller one.
-    let shift = (64 - leading_zeros_64(hi)).saturating_sub(16);
-    let lo = (lo >> shift) as u32;
-    let hi = (hi.saturating_add((1 << shift) - 1) >> shift).min(1 << 16) as u32;
     let spread = |a: [i32; 3]| {
         a[0].max(a[1])
             .max(a[2])
@@ -364,8 +363,10 @@ fn nearly_affine(
     };
     let texel_spread =
         (spread(texels.map(|t| t[0])) as u32).max(spread(texels.map(|t| t[1])) as u32);
-    // Below 2³² · 2¹⁶ and 2¹² · 2¹⁷: no overflow.
-    let (ratio, twice) = (u64::from(hi - lo.min(hi)), u64::from(2 * lo));
+    // The common scale's values are below 2²⁴; a truncated mantissa is within one unit, so the
+    // difference is widened by two units of the largest shift: a larger ratio, never a smaller
+    // one. Below 2³² · 2²⁵ and 2¹⁴ · 2²⁵: no overflow.
+    let (ratio, twice) = (u64::from(hi - lo + (2 << most)), u64::from(2 * lo));
     if u64::from(texel_spread) * ratio > AFFINE_TEXELS * twice {
         return false;
     }
@@ -408,6 +409,26 @@ where
             step,
             (self.maps[0].step(step[1]), self.maps[1].step(step[2])),
         )
+    }
+
+    /// All rows of a small face in one loop (where there is a divider for the rows' runs): the
+    /// sampler chosen once a face rather than once a span, the buffers indexed directly. The
+    /// same spans, values and pixels as [`span`](Self::span) gives them.
+    #[inline(always)]
+    fn small_rows(&mut self, scan: &SmallScan<'_, 4>) -> bool {
+        let steps = self.prepare(scan.planes().step());
+        let (colors, depths, width) = self.target.buffers_mut();
+        let rows = SmallRows {
+            colors,
+            depths,
+            width,
+            scan,
+            steps,
+            maps: self.maps,
+            lit: self.lit,
+        };
+        self.sampler.run(rows);
+        true
     }
 
     #[inline(always)]
@@ -459,6 +480,74 @@ impl<C: GouraudColor> SampledLoop<C> for AffineSpan<'_, C> {
                 let (values, steps) = ((z, x, y, l as i32), (dz, dx, dy, dl as i32));
                 pixels(colors, depths, values, steps, &texel, PlaneLevel);
             }
+        }
+    }
+}
+
+/// The rows of a small face of [`AffineFill`] (its `small_rows`), in one loop.
+struct SmallRows<'p, 's, C> {
+    colors: &'p mut [C],
+    depths: &'p mut [u16],
+    /// Pixels a row of both buffers.
+    width: usize,
+    scan: &'p SmallScan<'s, 4>,
+    steps: ([u32; 4], (i32, i32)),
+    maps: [PlaneMap; 2],
+    lit: bool,
+}
+
+impl<C: GouraudColor> SampledLoop<C> for SmallRows<'_, '_, C> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
+        match self.lit {
+            false => self.rows(&texel, y_shift, Unlit),
+            true => self.rows(&texel, y_shift, PlaneLevel),
+        }
+    }
+}
+
+impl<C: GouraudColor> SmallRows<'_, '_, C> {
+    /// Each row's run (as the walk gives them) and its pixels, lit by
+    /// `light`: what [`AffineFill::span`] draws for it.
+    #[inline(always)]
+    fn rows<L: SpanLight>(self, texel: &impl Fn(i32, i32) -> C, y_shift: u32, light: L) {
+        let (step, texel_step) = self.steps;
+        let planes = self.scan.planes();
+        let mut row_values = planes.first();
+        let row_step = planes.row_step();
+        let mut runs = *self.scan.runs();
+        let (x0, y0) = self.scan.origin();
+        // The region is inside the clip, inside the buffers: its first pixel's index (the
+        // slices' own checks below stand guard all the same).
+        let mut row_start = (y0 as usize)
+            .wrapping_mul(self.width)
+            .wrapping_add(x0 as usize);
+        let [m_u, m_v] = self.maps;
+        for _ in 0..self.scan.rows() {
+            let (start, end) = runs.run();
+            runs.advance();
+            if end > start {
+                let range =
+                    row_start.wrapping_add(start as usize)..row_start.wrapping_add(end as usize);
+                let len = end - start;
+                let at = |k: usize| row_values[k].wrapping_add(step[k].wrapping_mul(start));
+                if let (Some(colors), Some(depths)) = (
+                    self.colors.get_mut(range.clone()),
+                    self.depths.get_mut(range),
+                ) {
+                    let (x, dx) = m_u.run(at(1), step[1], texel_step.0, len);
+                    let (y, dy) = m_v.run(at(2), step[2], texel_step.1, len);
+                    let values = (at(0), x, y << y_shift, at(3) as i32);
+                    let steps = (step[0], dx, dy << y_shift, step[3] as i32);
+                    pixels(colors, depths, values, steps, texel, light);
+                }
+            }
+            for (value, step) in row_values.iter_mut().zip(row_step) {
+                *value = value.wrapping_add(step);
+            }
+            row_start = row_start.wrapping_add(self.width);
         }
     }
 }

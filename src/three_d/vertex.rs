@@ -22,7 +22,7 @@ use super::depth::{ScreenVertex, DEPTH_FAR};
 use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
 use crate::fixed_point::Coord;
-use crate::raster::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
+use crate::raster::arith::{leading_zeros_32, leading_zeros_64, mul_i32_wide, reciprocal_63};
 
 /// Largest viewport side used for the mapping; larger viewports are treated as this size.
 const MAX_VIEWPORT: i64 = 65_535;
@@ -81,12 +81,11 @@ impl ProjectedVertex {
     /// In a textured draw, `q = 2⁶³ / w` within 2⁻¹⁵ of itself (`w` the raw clip-space `w`):
     /// what the perspective planes need, proportional to `1/w`.
     #[inline(always)]
-    pub(crate) fn q(&self) -> u64 {
+    pub(crate) fn q(&self) -> Inverse {
         Inverse {
             mantissa: self.level,
             shift: self.q_shift,
         }
-        .value()
     }
 
     /// The clip planes the vertex is outside of (0: inside the view volume).
@@ -128,11 +127,41 @@ pub(crate) struct Inverse {
     shift: u8,
 }
 
+/// Shifts of a face's three `q` that may differ for [`Inverse::common_scale`]: beyond, their
+/// ratio is at least 2⁷ (a face seen that much in perspective takes the perspective path).
+const COMMON_SHIFTS: u8 = 8;
+
 impl Inverse {
+    /// The `Inverse` of any positive value proportional to `1/w` (0 is taken as 1): its 16 high
+    /// bits and their shift, so that [`value`](Self::value) is `q · 2¹⁶` within 2⁻¹⁵ of itself.
+    pub(crate) fn of(q: u64) -> Self {
+        let q = q.max(1);
+        let shift = (64 - leading_zeros_64(q)).saturating_sub(16);
+        Inverse {
+            mantissa: (q >> shift) as u16,
+            shift: shift as u8,
+        }
+    }
+
     /// `mantissa · 2^(16 + shift)`: about 2⁶³ / w.
     #[inline(always)]
     pub(crate) fn value(self) -> u64 {
         u64::from(self.mantissa) << (16 + u32::from(self.shift))
+    }
+
+    /// Three values in a common 32-bit scale (`mantissa · 2^(shift − the least shift)`, below
+    /// 2²⁴: exactly proportional to their [`value`](Self::value)s) and the largest of those
+    /// shift differences, or `None` where they differ by more than [`COMMON_SHIFTS`].
+    #[inline(always)]
+    pub(crate) fn common_scale(q: [Inverse; 3]) -> Option<([u32; 3], u32)> {
+        let least = q[0].shift.min(q[1].shift).min(q[2].shift);
+        let d = q.map(|q| q.shift - least);
+        let most = d[0].max(d[1]).max(d[2]);
+        if most > COMMON_SHIFTS {
+            return None;
+        }
+        let scaled = [0, 1, 2].map(|k| u32::from(q[k].mantissa) << d[k]);
+        Some((scaled, u32::from(most)))
     }
 }
 
