@@ -66,7 +66,7 @@ use embedded_graphics::primitives::Rectangle;
 use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
-use super::light::{Highlight, Light};
+use super::light::{Highlight, Light, LightRig, Lights, Specular};
 use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
@@ -147,8 +147,17 @@ pub struct Pipeline {
     pub viewport: Rectangle,
     /// Which faces to skip.
     pub cull: Cull,
-    /// The light, in world space.
+    /// The light, in world space: one directional light and the ambient term.
     pub light: Light,
+    /// More lights besides [`light`](Self::light), in world space: up to [`Lights::MAX`]
+    /// directional and point lights (none by default; [`with_lights`](Self::with_lights)).
+    pub lights: Lights,
+    /// Model space to world space, where point lights are ([`LightSource::point`]): set by
+    /// [`new`](Self::new); keep it in step with [`mvp`](Self::mvp) when setting that by hand
+    /// for a draw with point lights (no other draw reads it).
+    ///
+    /// [`LightSource::point`]: super::LightSource::point
+    pub model: Mat4,
 }
 
 /// [`Pipeline::draw_mesh_with`]'s scratch slice has fewer entries than the mesh has vertices;
@@ -172,7 +181,23 @@ impl Pipeline {
             viewport,
             cull: Cull::Back,
             light,
+            lights: Lights::new(),
+            model,
         }
+    }
+
+    /// The pipeline with the lights `lights` besides its [`light`](Self::light) ([`Lights`]
+    /// has an example).
+    ///
+    /// Every shading but per-pixel lighting lights with them as with the first light (flat: at
+    /// the face's centroid with its normal; Gouraud: per vertex), and a material's
+    /// [`Specular`](super::Specular) highlight shines for each. A
+    /// [`Shading::Quadratic`] material is lit per vertex (as [`Shading::Gouraud`]) while the
+    /// set lights anything: per-pixel lighting takes only the first light so far. A set that
+    /// lights nothing (empty, or every source of intensity 0) draws as without it, at the same
+    /// cost.
+    pub fn with_lights(self, lights: Lights) -> Self {
+        Pipeline { lights, ..self }
     }
 
     /// A pipeline like [`new`](Self::new) whose normals are transformed by the inverse transpose
@@ -261,6 +286,24 @@ impl Pipeline {
                 .map(|c| i64::from(n[r][c]) * g[c])
                 .fold(0i64, i64::saturating_add)
         }))
+    }
+
+    /// The draw's lights when [`lights`](Self::lights) light anything, with the highlight
+    /// `specular`.
+    fn rig(&self, specular: Option<Specular>) -> Option<LightRig> {
+        if !self.lights.lit() {
+            return None;
+        }
+        let (light, lights) = (&self.light, &self.lights);
+        let view = self.view_direction();
+        LightRig::new(
+            light,
+            lights,
+            &self.model,
+            &self.normal_matrix,
+            view,
+            specular,
+        )
     }
 
     /// The world-space half vector `normalize(l + v)` of the light and the
@@ -573,7 +616,8 @@ where
         material: &TexturedMaterial<'t, S>,
         clip: TargetClip<R>,
     ) -> Self {
-        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
+        let light =
+            VertexLight::new(&pipeline.light, &pipeline.normal_matrix).with_rig(pipeline.rig(None));
         let stage = pipeline.stage(bound(mesh.vertices), None);
         Frame {
             pipeline,
@@ -595,13 +639,22 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         material: &Material<C>,
         clip: TargetClip<R>,
     ) -> Self {
-        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         let color = material.color;
         // A highlight of strength 0 is none: the same frame as without it.
-        let highlight = material
+        let specular = material
             .specular
-            .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0)
-            .map(|specular| Highlight::new(pipeline.half_vector(), specular));
+            .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0);
+        let rig = pipeline.rig(specular);
+        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix).with_rig(rig);
+        // Per-pixel lighting takes the first light only: with more, the vertices' levels.
+        let material = &match (rig, material.shading) {
+            (Some(_), Shading::Quadratic) => Material {
+                shading: Shading::Gouraud,
+                ..*material
+            },
+            _ => *material,
+        };
+        let highlight = specular.map(|specular| Highlight::new(pipeline.half_vector(), specular));
         let (fill, vertex_light) = match highlight {
             None => Self::plain_fill(material, light),
             Some(h) => {
@@ -929,8 +982,7 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
 impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
-        let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
-        self.light.level(normalize_wide(e1.cross_wide(e2)))
+        self.light.face_level(model, || face_normal(model))
     }
 
     /// The face's unit world-space normals at its vertices, for the quadratic field.
@@ -1094,7 +1146,9 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             }
             // Flat (a material without light has no highlight).
             _ => {
-                let (level, specular) = self.light.terms(face_normal(&model()), vertex);
+                let model = model();
+                let normal = || face_normal(&model);
+                let (level, specular) = self.light.face_terms(&model, normal, vertex);
                 let color = match &shiny.table {
                     // The level of `face_level`.
                     Some(table) if specular == 0 => table.at(((level * 255) >> 8) as u16),
@@ -1115,12 +1169,24 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         model: impl Fn() -> [Vec3; 3],
         s: &VertexSpecular,
     ) -> [u32; 3] {
-        let face = || self.light.terms(face_normal(&model()), s).1;
-        idx.map(|i| {
-            mesh.normals
-                .get(i)
-                .map_or_else(&face, |n| self.light.terms(*n, s).1)
-        })
+        if !self.light.has_rig() {
+            let face = || self.light.terms(face_normal(&model()), s).1;
+            return idx.map(|i| {
+                mesh.normals
+                    .get(i)
+                    .map_or_else(&face, |n| self.light.terms(*n, s).1)
+            });
+        }
+        // The pipeline's lights: at the vertices' positions.
+        let model = model();
+        let face = || self.light.face_terms(&model, || face_normal(&model), s).1;
+        let at = |k: usize| {
+            let p = model.get(k).copied().unwrap_or_default();
+            idx.get(k)
+                .and_then(|&i| mesh.normals.get(i))
+                .map_or_else(&face, |n| self.light.terms_at(p, *n, s).1)
+        };
+        [at(0), at(1), at(2)]
     }
 
     /// [`fill`](Self::fill) of a textured draw (out of line: the untextured fills keep their
@@ -1178,7 +1244,11 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     #[inline(always)]
     fn texel_levels(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [u16; 3] {
         match at_face(mesh.normals, idx) {
-            Some(n) => n.map(|n| self.light.level(*n)),
+            Some([a, b, c]) => [
+                self.light.level_at(model[0], *a),
+                self.light.level_at(model[1], *b),
+                self.light.level_at(model[2], *c),
+            ],
             None => [self.face_level(model); 3],
         }
     }
