@@ -298,15 +298,16 @@ impl LightSource {
 }
 
 /// A point light's range ready for [`falloff`](Self::falloff): `r²` (32 fractional bits)
-/// normalised to `[2³¹, 2³²)` by a shift, and `⌊2⁶³ / r²⌋` of it, found once per draw.
+/// normalised to `[2³¹, 2³²)` by a shift, and `⌊2⁶³ / r²⌋` of it, found once per draw. (In
+/// 32-bit words: a draw's state keeps the alignment of 4 its hot fields are laid out for.)
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Range {
-    /// `r²`, 32 fractional bits (below 2⁶²).
-    r2: u64,
+    /// `r²`, 32 fractional bits (below 2⁶²): high and low words.
+    r2: [u32; 2],
     /// Left shift (`≥ 0`) or right shift (`< 0`) taking `r²` to `[2³¹, 2³²)`.
     shift: i32,
-    /// `⌊2⁶³ / (r² shifted)⌋`, in `(2³¹, 2³²]`.
-    inverse: u64,
+    /// `⌊2⁶³ / (r² shifted)⌋`, in `(2³¹, 2³²)` (`2³² − 1` for `2³²`, 2⁻³² of it).
+    inverse: u32,
 }
 
 impl Range {
@@ -315,7 +316,7 @@ impl Range {
         let r2 = r * r;
         if r2 == 0 {
             return Range {
-                r2: 0,
+                r2: [0; 2],
                 shift: 0,
                 inverse: 0,
             };
@@ -323,9 +324,9 @@ impl Range {
         let shift = leading_zeros_64(r2) as i32 - 32;
         let n = shifted(r2, shift);
         Range {
-            r2,
+            r2: [(r2 >> 32) as u32, r2 as u32],
             shift,
-            inverse: reciprocal_63(n as u32),
+            inverse: reciprocal_63(n as u32).min(u64::from(u32::MAX)) as u32,
         }
     }
 
@@ -336,12 +337,13 @@ impl Range {
     /// rounded to 16: within 2⁻¹⁶ in all (measured: 2⁻¹⁷ and a little).
     #[inline]
     pub(crate) fn falloff(&self, d2: u64) -> u32 {
-        if d2 >= self.r2 {
+        let r2 = (u64::from(self.r2[0]) << 32) | u64::from(self.r2[1]);
+        if d2 >= r2 {
             return 0;
         }
         let n = shifted(d2, self.shift);
         // Below 2³²·2³² = 2⁶⁴.
-        let t = ((n * self.inverse) >> 32).min(1 << 31);
+        let t = ((n * u64::from(self.inverse)) >> 32).min(1 << 31);
         // 1 − t with 24 fractional bits, squared: 48, rounded to 16.
         let u = ((1u64 << 31) - t) >> 7;
         ((u * u + (1 << 31)) >> 32) as u32
@@ -482,13 +484,14 @@ impl LightRig {
     /// The light level and the specular term at the model-space point `p` with normal `n`,
     /// 16 fractional bits each, in `[0, 2¹⁶]` (the specular term 0 without a highlight): both
     /// saturate at 1, as fixed-function OpenGL clamps a vertex's colour.
-    #[inline]
+    #[inline(never)]
     pub(crate) fn terms(&self, p: Vec3, n: Vec3) -> (u32, u32) {
         self.terms_world(self.world(p), self.world_normal(n))
     }
 
     /// [`terms`](Self::terms) of the face `model` (model space): at its centroid, with its
     /// geometric normal.
+    #[inline(never)]
     pub(crate) fn face_terms(&self, model: &[Vec3; 3]) -> (u32, u32) {
         let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
         let normal = normalize_wide(e1.cross_wide(e2));
@@ -504,12 +507,13 @@ impl LightRig {
 
     /// [`terms`](Self::terms)' level as 8.8 of the 0–255 scale (the plain path's
     /// [`level`](Light::level) form).
-    #[inline]
+    #[inline(never)]
     pub(crate) fn level(&self, p: Vec3, n: Vec3) -> u16 {
         to_255(self.terms(p, n).0)
     }
 
     /// [`face_terms`](Self::face_terms)' level as 8.8 of the 0–255 scale.
+    #[inline(never)]
     pub(crate) fn face_level(&self, model: &[Vec3; 3]) -> u16 {
         to_255(self.face_terms(model).0)
     }

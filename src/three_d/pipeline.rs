@@ -290,6 +290,7 @@ impl Pipeline {
 
     /// The draw's lights when [`lights`](Self::lights) light anything, with the highlight
     /// `specular`.
+    #[inline(never)]
     fn rig(&self, specular: Option<Specular>) -> Option<LightRig> {
         if !self.lights.lit() {
             return None;
@@ -601,6 +602,12 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     band: Option<BandPlanes>,
     fill: Fill<C>,
     texture: T,
+    /// Whether the vertices take their levels from `rig` (Gouraud shading with it): the frame
+    /// lights them after the stage, which then has no light.
+    vertex_rig: bool,
+    /// The pipeline's lights ([`Lights`]) when they light anything: then every level and
+    /// specular term comes from them instead of `light`.
+    rig: Option<LightRig>,
 }
 
 impl<'p, 't, C, R, S> Frame<'p, C, R, FrameTexture<'t, S>>
@@ -616,14 +623,15 @@ where
         material: &TexturedMaterial<'t, S>,
         clip: TargetClip<R>,
     ) -> Self {
-        let light =
-            VertexLight::new(&pipeline.light, &pipeline.normal_matrix).with_rig(pipeline.rig(None));
+        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         let stage = pipeline.stage(bound(mesh.vertices), None);
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
             stage,
             light,
+            rig: pipeline.rig(None),
+            vertex_rig: false,
             clip,
             fill: Fill::Textured(material.shading),
             texture: FrameTexture::new(material.texture),
@@ -645,7 +653,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             .specular
             .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0);
         let rig = pipeline.rig(specular);
-        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix).with_rig(rig);
+        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         // Per-pixel lighting takes the first light only: with more, the vertices' levels.
         let material = &match (rig, material.shading) {
             (Some(_), Shading::Quadratic) => Material {
@@ -670,12 +678,18 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 (Fill::Specular(shiny), vertex_light)
             }
         };
+        // With the pipeline's lights, the frame lights the vertices (`vertex_rig`), not the
+        // stage.
+        let vertex_rig = rig.is_some() && vertex_light.is_some();
+        let vertex_light = vertex_light.filter(|_| rig.is_none());
         let stage = pipeline.stage(bound(mesh.vertices), vertex_light);
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
             stage,
             light,
+            rig,
+            vertex_rig,
             clip,
             fill,
             texture: NoTexture,
@@ -701,6 +715,8 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             pipeline: self.pipeline,
             stage: self.stage,
             light: self.light,
+            rig: self.rig,
+            vertex_rig: self.vertex_rig,
             band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
             clip,
             fill: self.fill.clone(),
@@ -714,7 +730,22 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         if T::TEXTURED {
             return self.stage.textured_vertex(p);
         }
-        self.stage.vertex(p, mesh.normals.get(k))
+        let n = mesh.normals.get(k);
+        let vertex = self.stage.vertex(p, n);
+        match (self.vertex_rig, n) {
+            (true, Some(n)) => self.rig_vertex(vertex, p, n),
+            _ => vertex,
+        }
+    }
+
+    /// `vertex` (at `p`, with normal `n`) lit by the pipeline's lights. Out of line: the plain
+    /// draws' face loop keeps its registers.
+    #[inline(never)]
+    fn rig_vertex(&self, vertex: ProjectedVertex, p: Vec3, n: &Vec3) -> ProjectedVertex {
+        match &self.rig {
+            Some(rig) => vertex.with_level(rig.level(p, *n)),
+            None => vertex,
+        }
     }
 
     /// Hands every face of `mesh` to `sink`, transforming each vertex once per face using it:
@@ -765,6 +796,21 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             return;
         }
         self.stage.vertices(mesh.vertices, mesh.normals, scratch);
+        if self.vertex_rig {
+            self.rig_vertices(mesh, scratch);
+        }
+    }
+
+    /// The levels of the vertices in `scratch` from the pipeline's lights (a second pass: the
+    /// stage's loops stay as they are).
+    #[inline(never)]
+    fn rig_vertices(&self, mesh: &Mesh<'_>, scratch: &mut [ProjectedVertex]) {
+        let Some(rig) = &self.rig else {
+            return;
+        };
+        for ((out, p), n) in scratch.iter_mut().zip(mesh.vertices).zip(mesh.normals) {
+            *out = out.with_level(rig.level(*p, *n));
+        }
     }
 
     /// Hands every face of `mesh` to `sink`, its vertices read from `scratch` (one entry per
@@ -982,7 +1028,10 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
 impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
-        self.light.face_level(model, || face_normal(model))
+        match &self.rig {
+            None => self.light.level(face_normal(model)),
+            Some(rig) => rig.face_level(model),
+        }
     }
 
     /// The face's unit world-space normals at its vertices, for the quadratic field.
@@ -1147,8 +1196,10 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             // Flat (a material without light has no highlight).
             _ => {
                 let model = model();
-                let normal = || face_normal(&model);
-                let (level, specular) = self.light.face_terms(&model, normal, vertex);
+                let (level, specular) = match &self.rig {
+                    None => self.light.terms(face_normal(&model), vertex),
+                    Some(rig) => rig.face_terms(&model),
+                };
                 let color = match &shiny.table {
                     // The level of `face_level`.
                     Some(table) if specular == 0 => table.at(((level * 255) >> 8) as u16),
@@ -1169,22 +1220,22 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         model: impl Fn() -> [Vec3; 3],
         s: &VertexSpecular,
     ) -> [u32; 3] {
-        if !self.light.has_rig() {
+        let Some(rig) = &self.rig else {
             let face = || self.light.terms(face_normal(&model()), s).1;
             return idx.map(|i| {
                 mesh.normals
                     .get(i)
                     .map_or_else(&face, |n| self.light.terms(*n, s).1)
             });
-        }
+        };
         // The pipeline's lights: at the vertices' positions.
         let model = model();
-        let face = || self.light.face_terms(&model, || face_normal(&model), s).1;
+        let face = || rig.face_terms(&model).1;
         let at = |k: usize| {
             let p = model.get(k).copied().unwrap_or_default();
             idx.get(k)
                 .and_then(|&i| mesh.normals.get(i))
-                .map_or_else(&face, |n| self.light.terms_at(p, *n, s).1)
+                .map_or_else(&face, |n| rig.terms(p, *n).1)
         };
         [at(0), at(1), at(2)]
     }
@@ -1244,11 +1295,14 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     #[inline(always)]
     fn texel_levels(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [u16; 3] {
         match at_face(mesh.normals, idx) {
-            Some([a, b, c]) => [
-                self.light.level_at(model[0], *a),
-                self.light.level_at(model[1], *b),
-                self.light.level_at(model[2], *c),
-            ],
+            Some([a, b, c]) => match &self.rig {
+                None => [a, b, c].map(|n| self.light.level(*n)),
+                Some(rig) => [
+                    rig.level(model[0], *a),
+                    rig.level(model[1], *b),
+                    rig.level(model[2], *c),
+                ],
+            },
             None => [self.face_level(model); 3],
         }
     }

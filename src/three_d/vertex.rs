@@ -19,7 +19,7 @@
 
 use super::clip::{ClipVolume, W_MIN};
 use super::depth::{ScreenVertex, DEPTH_FAR};
-use super::light::{Highlight, Light, LightRig, Specular};
+use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
 use crate::fixed_point::Coord;
 use crate::raster::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
@@ -66,6 +66,12 @@ impl ProjectedVertex {
             code: 0,
             q_shift: 0,
         }
+    }
+
+    /// The vertex lit at `level` instead (the pipeline's lights, [`Lights`](super::Lights)).
+    #[inline(always)]
+    pub(crate) fn with_level(self, level: u16) -> Self {
+        ProjectedVertex { level, ..self }
     }
 
     /// A vertex inside the view volume at `screen` with `q` (a textured face's fan).
@@ -146,10 +152,6 @@ pub(crate) struct VertexLight {
     normal_matrix: Option<[[i32; 3]; 3]>,
     /// The ambient level, 16 fractional bits, in `[0, 2¹⁶]`.
     ambient: u32,
-    /// The draw's lights when the pipeline has more than its [`Light`]
-    /// ([`Lights`](super::Lights)): then every level and specular term comes from them, in
-    /// world space.
-    rig: Option<LightRig>,
 }
 
 /// A draw's specular highlight, ready for per-vertex (and per-face) specular terms
@@ -186,63 +188,6 @@ impl VertexLight {
             direction: direction.map(to_14_bits),
             normal_matrix: (!rotation).then_some(block),
             ambient: light.ambient.to_bits().clamp(0, 1 << 16) as u32,
-            rig: None,
-        }
-    }
-
-    /// Whether the pipeline's lights light the draw ([`with_rig`](Self::with_rig)).
-    #[inline(always)]
-    pub(crate) fn has_rig(&self) -> bool {
-        self.rig.is_some()
-    }
-
-    /// The light lighting with `rig` (the pipeline's lights) instead, if given.
-    pub(crate) fn with_rig(self, rig: Option<LightRig>) -> Self {
-        VertexLight { rig, ..self }
-    }
-
-    /// The light level of a vertex at `p` with model-space unit normal `n` (8.8 of the 0–255
-    /// scale): [`level`](Self::level) of `n`, or the pipeline's lights' at `p`.
-    #[inline]
-    pub(crate) fn level_at(&self, p: Vec3, n: Vec3) -> u16 {
-        match &self.rig {
-            None => self.level(n),
-            Some(rig) => rig.level(p, n),
-        }
-    }
-
-    /// The light level of the face `model` (8.8 of the 0–255 scale) from its geometric normal
-    /// `normal` (the pipeline's lights: at its centroid).
-    #[inline]
-    pub(crate) fn face_level(&self, model: &[Vec3; 3], normal: impl FnOnce() -> Vec3) -> u16 {
-        match &self.rig {
-            None => self.level(normal()),
-            Some(rig) => rig.face_level(model),
-        }
-    }
-
-    /// [`terms`](Self::terms) of a vertex at `p` (the pipeline's lights', with all their
-    /// highlights).
-    #[inline]
-    pub(crate) fn terms_at(&self, p: Vec3, n: Vec3, s: &VertexSpecular) -> (u32, u32) {
-        match &self.rig {
-            None => self.terms(n, s),
-            Some(rig) => rig.terms(p, n),
-        }
-    }
-
-    /// [`terms`](Self::terms) of the face `model` with geometric normal `normal` (the
-    /// pipeline's lights: at its centroid).
-    #[inline]
-    pub(crate) fn face_terms(
-        &self,
-        model: &[Vec3; 3],
-        normal: impl FnOnce() -> Vec3,
-        s: &VertexSpecular,
-    ) -> (u32, u32) {
-        match &self.rig {
-            None => self.terms(normal(), s),
-            Some(rig) => rig.face_terms(model),
         }
     }
 
@@ -532,10 +477,10 @@ impl VertexStage {
         (screen, inverse)
     }
 
-    /// The light level of a vertex at `p` with the model-space normal `n` (0 without a light).
+    /// The light level of a model-space normal (0 without a light).
     #[inline(always)]
-    pub(crate) fn level(&self, p: Vec3, n: Vec3) -> u16 {
-        self.light.as_ref().map_or(0, |l| l.level_at(p, n))
+    pub(crate) fn level(&self, n: Vec3) -> u16 {
+        self.light.as_ref().map_or(0, |l| l.level(n))
     }
 
     /// Transforms, classifies, projects (if inside) and lights the vertex at `p` with normal `n`.
@@ -543,7 +488,7 @@ impl VertexStage {
     pub(crate) fn vertex(&self, p: Vec3, n: Option<&Vec3>) -> ProjectedVertex {
         let mut vertex = self.placed(p);
         match n {
-            Some(n) => vertex.level = self.level(p, *n),
+            Some(n) => vertex.level = self.level(*n),
             None => vertex.code |= NO_NORMAL,
         }
         vertex
@@ -560,11 +505,7 @@ impl VertexStage {
         out: &mut [ProjectedVertex],
     ) {
         match self.light {
-            Some(light)
-                if light.normal_matrix.is_none()
-                    && light.rig.is_none()
-                    && normals.len() >= positions.len() =>
-            {
+            Some(light) if light.normal_matrix.is_none() && normals.len() >= positions.len() => {
                 for ((out, p), n) in out.iter_mut().zip(positions).zip(normals) {
                     *out = self.placed(*p);
                     out.level = light.level_of_unit(*n);
