@@ -7,7 +7,10 @@ use crate::raster::arith::{leading_zeros_64, mul_i32_wide, reciprocal_63};
 
 /// A directional light with an ambient term.
 ///
-/// A surface with unit normal `n` receives `level = ambient + (1 − ambient)·max(0, n·l)`.
+/// A surface with unit normal `n` receives `level = ambient + (1 − ambient)·max(0, n·l)`. A
+/// pipeline takes one ([`Pipeline::light`](super::Pipeline::light)), and up to three more
+/// directional and point lights in a [`Lights`] set; `Light::new(Vec3::ZERO, ambient)` is the
+/// ambient term alone.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Light {
     /// Unit vector from the surface towards the light (same space as the normals).

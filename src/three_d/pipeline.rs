@@ -23,7 +23,9 @@
 //! Front faces are counter-clockwise in normalised device coordinates (y up), as in OpenGL; on
 //! screen (y down) that is a negative area. Normals are transformed by
 //! [`Pipeline::normal_matrix`] (the model matrix by default, exact for rotations); the light is
-//! given in the same (world) space. Attributes are interpolated affinely in screen space (no
+//! given in the same (world) space, and so are the directional and point lights a pipeline may
+//! add to it ([`Pipeline::lights`]: point lights placed against the mesh by
+//! [`Pipeline::model`]). Attributes are interpolated affinely in screen space (no
 //! perspective correction); depth, being `z/w`, is affine in screen space and therefore exact.
 //! All state lives on the stack: the clipped polygon holds at most 10 vertices.
 //!
