@@ -47,6 +47,7 @@ mod firmware {
     use cortex_m_semihosting::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_raster::three_d::{DepthTarget, ProjectedVertex, Vec3};
+    use embedded_raster::three_d::{LightSource, Lights, Material, Scalar, Shading, Specular};
 
     use crate::clock::Ratio;
     use crate::scene3d::{self, FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
@@ -157,6 +158,41 @@ mod firmware {
             poses[pose] = clock::instructions(clock::measure(1, || frame()), calibration);
             pose += 1;
         });
+        // Spot with more lights (`MESH_LIGHTS=1` builds only: more materials drawn by the
+        // firmware change how the frames above inline): the frame's light and two point lights
+        // (flat and Gouraud, without and with a highlight), against the first light alone.
+        let lights = Lights::new()
+            .with(LightSource::point(
+                Vec3::from_bits(78643, 52429, 78643),
+                Scalar::from_bits(52429),
+                Scalar::from_bits(3 << 16),
+            ))
+            .with(LightSource::point(
+                Vec3::from_bits(-85197, -26214, 58982),
+                Scalar::from_bits(39322),
+                Scalar::from_bits(5 << 15),
+            ));
+        let one = scene3d::pipeline(Model::Spot);
+        let more = one.with_lights(lights);
+        let mut lit = [[0u64; 4]; 2];
+        let bench_lights = option_env!("MESH_LIGHTS").is_some();
+        for (k, shading) in [Shading::Flat, Shading::Gouraud].into_iter().enumerate() {
+            if !bench_lights {
+                break;
+            }
+            let plain = Material::new(scene3d::MATERIAL.color, shading);
+            let shiny = plain.with_specular(Specular::new(Scalar::from_bits(1 << 15), 24));
+            let frames = [(&one, plain), (&one, shiny), (&more, plain), (&more, shiny)];
+            for (j, (pipeline, material)) in frames.into_iter().enumerate() {
+                let ticks = clock::measure(1, || {
+                    target.clear(scene3d::BACKGROUND);
+                    let scratch = &mut SCRATCH[..];
+                    let _ =
+                        black_box(pipeline.draw_mesh_with(spot, &material, &mut target, scratch));
+                });
+                lit[k][j] = clock::instructions(ticks, calibration);
+            }
+        }
         // The textured frames: counts and checksums untimed, then timed with the scratch.
         textured3d::expand(TEXTURE);
         let mut textured = [None, None, None];
@@ -235,6 +271,22 @@ mod firmware {
             mean,
             max.copied().unwrap_or(0)
         );
+        if bench_lights {
+            hprintln!(
+                "\n| spot, shading (instructions a frame) | first light | with a highlight | with 2 point lights | both |"
+            );
+            hprintln!("|---|---:|---:|---:|---:|");
+            for (name, row) in ["flat", "Gouraud"].into_iter().zip(lit) {
+                hprintln!(
+                    "| {} | {} | {} | {} | {} |",
+                    name,
+                    row[0],
+                    row[1],
+                    row[2],
+                    row[3]
+                );
+            }
+        }
         hprintln!();
         if !same {
             hprintln!("error: the frames with and without the vertex scratch differ");

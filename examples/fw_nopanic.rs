@@ -13,7 +13,7 @@
 //! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
 //! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
 //! shading and culling, with and without a specular highlight, opaque matrices, viewport and
-//! light).
+//! lights, with the first light alone and with point and directional lights).
 //!
 //! ```text
 //! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
@@ -48,8 +48,8 @@ mod firmware {
     use embedded_graphics::primitives::Rectangle;
     use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
     use embedded_raster::three_d::{
-        Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, ProjectedVertex, Scalar,
-        Shading, Specular, Vec3,
+        Angle, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Pipeline,
+        ProjectedVertex, Scalar, Shading, Specular, Vec3,
     };
     use embedded_raster::{
         raster::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
@@ -198,6 +198,22 @@ mod firmware {
                 let shiny = material.with_specular(specular);
                 black_box(pipeline.draw_mesh(mesh, &shiny, &mut target));
                 let _ = black_box(pipeline.draw_mesh_with(mesh, &shiny, &mut target, SCRATCH));
+                // With more lights: point and directional, opaque.
+                let lights = black_box(
+                    Lights::new()
+                        .with(LightSource::point(
+                            black_box(Vec3::from_bits(1 << 16, 1 << 15, 1 << 16)),
+                            black_box(Scalar::ONE),
+                            black_box(Scalar::from_bits(3 << 16)),
+                        ))
+                        .with(LightSource::directional(
+                            black_box(Vec3::from_bits(0, -1 << 16, 0)),
+                            black_box(Scalar::from_bits(1 << 15)),
+                        )),
+                );
+                let lit = pipeline.with_lights(lights);
+                black_box(lit.draw_mesh(mesh, &material, &mut target));
+                let _ = black_box(lit.draw_mesh_with(mesh, &shiny, &mut target, SCRATCH));
             }
             black_box(target.depth());
         }

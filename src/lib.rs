@@ -96,8 +96,8 @@ pub use draw::{
 pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
-    Angle, Bounds, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, Scalar, Shading,
-    Specular, TexCoord, TexturedMaterial, ToScalar, Vec3,
+    Angle, Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline,
+    Scalar, Shading, Specular, TexCoord, TexturedMaterial, ToScalar, Vec3,
 };
 
 /// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
@@ -131,8 +131,9 @@ pub mod prelude {
     pub use crate::fixed_point::{pixel_centre, pixel_corner, Coord, ToCoord};
     pub use crate::texture::{Filter, Texture, Wrap};
     pub use crate::three_d::{
-        Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, Mat4, Material, Mesh, Pipeline,
-        Scalar, ScreenVertex, Shading, Specular, TexCoord, TexturedMaterial, ToScalar, Vec3, Vec4,
+        Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, LightSource, Lights, Mat4, Material,
+        Mesh, Pipeline, Scalar, ScreenVertex, Shading, Specular, TexCoord, TexturedMaterial,
+        ToScalar, Vec3, Vec4,
     };
 }
 

@@ -49,6 +49,7 @@
 
 use core::cmp::Ordering;
 
+pub mod lights;
 pub mod texture;
 
 /// Sub-pixel units per pixel.

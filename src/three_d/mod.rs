@@ -9,6 +9,8 @@
 //! * `mesh` — [`Mesh`]: positions, triangles and optional normals, colours and texture
 //!   coordinates ([`TexCoord`]), borrowed (typically from flash); [`Bounds`] to place it.
 //! * `pipeline` — [`Pipeline`] draws a [`Mesh`]: transform, clip in clip space, project, cull.
+//! * `light` — [`Light`] (one directional light and the ambient term), [`Lights`] (up to three
+//!   more directional and point lights, [`LightSource`]) and [`Specular`].
 //! * `shading` — [`Light`], [`Material`] (with an optional Blinn-Phong [`Specular`] highlight),
 //!   [`Shading`] and the depth-tested fills (flat, Gouraud, per-pixel lighting of quadratically
 //!   interpolated normals).
@@ -37,7 +39,7 @@ mod texturing;
 mod vertex;
 
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
-pub use light::{Light, Specular};
+pub use light::{Light, LightSource, Lights, Specular};
 pub use math::{
     inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
 };

@@ -23,7 +23,9 @@
 //! Front faces are counter-clockwise in normalised device coordinates (y up), as in OpenGL; on
 //! screen (y down) that is a negative area. Normals are transformed by
 //! [`Pipeline::normal_matrix`] (the model matrix by default, exact for rotations); the light is
-//! given in the same (world) space. Attributes are interpolated affinely in screen space (no
+//! given in the same (world) space, and so are the directional and point lights a pipeline may
+//! add to it ([`Pipeline::lights`]: point lights placed against the mesh by
+//! [`Pipeline::model`]). Attributes are interpolated affinely in screen space (no
 //! perspective correction); depth, being `z/w`, is affine in screen space and therefore exact.
 //! All state lives on the stack: the clipped polygon holds at most 10 vertices.
 //!
@@ -66,7 +68,7 @@ use embedded_graphics::primitives::Rectangle;
 use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
-use super::light::{Highlight, Light};
+use super::light::{Highlight, Light, LightRig, Lights, Specular};
 use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
@@ -147,8 +149,17 @@ pub struct Pipeline {
     pub viewport: Rectangle,
     /// Which faces to skip.
     pub cull: Cull,
-    /// The light, in world space.
+    /// The light, in world space: one directional light and the ambient term.
     pub light: Light,
+    /// More lights besides [`light`](Self::light), in world space: up to [`Lights::MAX`]
+    /// directional and point lights (none by default; [`with_lights`](Self::with_lights)).
+    pub lights: Lights,
+    /// Model space to world space, where point lights are ([`LightSource::point`]): set by
+    /// [`new`](Self::new); keep it in step with [`mvp`](Self::mvp) when setting that by hand
+    /// for a draw with point lights (no other draw reads it).
+    ///
+    /// [`LightSource::point`]: super::LightSource::point
+    pub model: Mat4,
 }
 
 /// [`Pipeline::draw_mesh_with`]'s scratch slice has fewer entries than the mesh has vertices;
@@ -172,7 +183,23 @@ impl Pipeline {
             viewport,
             cull: Cull::Back,
             light,
+            lights: Lights::new(),
+            model,
         }
+    }
+
+    /// The pipeline with the lights `lights` besides its [`light`](Self::light) ([`Lights`]
+    /// has an example).
+    ///
+    /// Every shading but per-pixel lighting lights with them as with the first light (flat: at
+    /// the face's centroid with its normal; Gouraud: per vertex), and a material's
+    /// [`Specular`](super::Specular) highlight shines for each. A
+    /// [`Shading::Quadratic`] material is lit per vertex (as [`Shading::Gouraud`]) while the
+    /// set lights anything: per-pixel lighting takes only the first light so far. A set that
+    /// lights nothing (empty, or every source of intensity 0) draws as without it, at the same
+    /// cost.
+    pub fn with_lights(self, lights: Lights) -> Self {
+        Pipeline { lights, ..self }
     }
 
     /// A pipeline like [`new`](Self::new) whose normals are transformed by the inverse transpose
@@ -261,6 +288,25 @@ impl Pipeline {
                 .map(|c| i64::from(n[r][c]) * g[c])
                 .fold(0i64, i64::saturating_add)
         }))
+    }
+
+    /// The draw's lights when [`lights`](Self::lights) light anything, with the highlight
+    /// `specular`.
+    #[inline(never)]
+    fn rig(&self, specular: Option<Specular>) -> Option<LightRig> {
+        if !self.lights.lit() {
+            return None;
+        }
+        let (light, lights) = (&self.light, &self.lights);
+        let view = self.view_direction();
+        LightRig::new(
+            light,
+            lights,
+            &self.model,
+            &self.normal_matrix,
+            view,
+            specular,
+        )
     }
 
     /// The world-space half vector `normalize(l + v)` of the light and the
@@ -558,6 +604,12 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     band: Option<BandPlanes>,
     fill: Fill<C>,
     texture: T,
+    /// Whether the vertices take their levels from `rig` (Gouraud shading with it): the frame
+    /// lights them after the stage, which then has no light.
+    vertex_rig: bool,
+    /// The pipeline's lights ([`Lights`]) when they light anything: then every level and
+    /// specular term comes from them instead of `light`.
+    rig: Option<LightRig>,
 }
 
 impl<'p, 't, C, R, S> Frame<'p, C, R, FrameTexture<'t, S>>
@@ -580,6 +632,8 @@ where
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
             stage,
             light,
+            rig: pipeline.rig(None),
+            vertex_rig: false,
             clip,
             fill: Fill::Textured(material.shading),
             texture: FrameTexture::new(material.texture),
@@ -595,13 +649,22 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         material: &Material<C>,
         clip: TargetClip<R>,
     ) -> Self {
-        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         let color = material.color;
         // A highlight of strength 0 is none: the same frame as without it.
-        let highlight = material
+        let specular = material
             .specular
-            .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0)
-            .map(|specular| Highlight::new(pipeline.half_vector(), specular));
+            .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0);
+        let rig = pipeline.rig(specular);
+        let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
+        // Per-pixel lighting takes the first light only: with more, the vertices' levels.
+        let material = &match (rig, material.shading) {
+            (Some(_), Shading::Quadratic) => Material {
+                shading: Shading::Gouraud,
+                ..*material
+            },
+            _ => *material,
+        };
+        let highlight = specular.map(|specular| Highlight::new(pipeline.half_vector(), specular));
         let (fill, vertex_light) = match highlight {
             None => Self::plain_fill(material, light),
             Some(h) => {
@@ -617,12 +680,18 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
                 (Fill::Specular(shiny), vertex_light)
             }
         };
+        // With the pipeline's lights, the frame lights the vertices (`vertex_rig`), not the
+        // stage.
+        let vertex_rig = rig.is_some() && vertex_light.is_some();
+        let vertex_light = vertex_light.filter(|_| rig.is_none());
         let stage = pipeline.stage(bound(mesh.vertices), vertex_light);
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
             stage,
             light,
+            rig,
+            vertex_rig,
             clip,
             fill,
             texture: NoTexture,
@@ -648,6 +717,8 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             pipeline: self.pipeline,
             stage: self.stage,
             light: self.light,
+            rig: self.rig,
+            vertex_rig: self.vertex_rig,
             band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
             clip,
             fill: self.fill.clone(),
@@ -661,7 +732,22 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         if T::TEXTURED {
             return self.stage.textured_vertex(p);
         }
-        self.stage.vertex(p, mesh.normals.get(k))
+        let n = mesh.normals.get(k);
+        let vertex = self.stage.vertex(p, n);
+        match (self.vertex_rig, n) {
+            (true, Some(n)) => self.rig_vertex(vertex, p, n),
+            _ => vertex,
+        }
+    }
+
+    /// `vertex` (at `p`, with normal `n`) lit by the pipeline's lights. Out of line: the plain
+    /// draws' face loop keeps its registers.
+    #[inline(never)]
+    fn rig_vertex(&self, vertex: ProjectedVertex, p: Vec3, n: &Vec3) -> ProjectedVertex {
+        match &self.rig {
+            Some(rig) => vertex.with_level(rig.level(p, *n)),
+            None => vertex,
+        }
     }
 
     /// Hands every face of `mesh` to `sink`, transforming each vertex once per face using it:
@@ -712,6 +798,21 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             return;
         }
         self.stage.vertices(mesh.vertices, mesh.normals, scratch);
+        if self.vertex_rig {
+            self.rig_vertices(mesh, scratch);
+        }
+    }
+
+    /// The levels of the vertices in `scratch` from the pipeline's lights (a second pass: the
+    /// stage's loops stay as they are).
+    #[inline(never)]
+    fn rig_vertices(&self, mesh: &Mesh<'_>, scratch: &mut [ProjectedVertex]) {
+        let Some(rig) = &self.rig else {
+            return;
+        };
+        for ((out, p), n) in scratch.iter_mut().zip(mesh.vertices).zip(mesh.normals) {
+            *out = out.with_level(rig.level(*p, *n));
+        }
     }
 
     /// Hands every face of `mesh` to `sink`, its vertices read from `scratch` (one entry per
@@ -929,8 +1030,10 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
 impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
-        let (e1, e2) = (model[1] - model[0], model[2] - model[0]);
-        self.light.level(normalize_wide(e1.cross_wide(e2)))
+        match &self.rig {
+            None => self.light.level(face_normal(model)),
+            Some(rig) => rig.face_level(model),
+        }
     }
 
     /// The face's unit world-space normals at its vertices, for the quadratic field.
@@ -1094,7 +1197,11 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             }
             // Flat (a material without light has no highlight).
             _ => {
-                let (level, specular) = self.light.terms(face_normal(&model()), vertex);
+                let model = model();
+                let (level, specular) = match &self.rig {
+                    None => self.light.terms(face_normal(&model), vertex),
+                    Some(rig) => rig.face_terms(&model),
+                };
                 let color = match &shiny.table {
                     // The level of `face_level`.
                     Some(table) if specular == 0 => table.at(((level * 255) >> 8) as u16),
@@ -1115,12 +1222,24 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         model: impl Fn() -> [Vec3; 3],
         s: &VertexSpecular,
     ) -> [u32; 3] {
-        let face = || self.light.terms(face_normal(&model()), s).1;
-        idx.map(|i| {
-            mesh.normals
-                .get(i)
-                .map_or_else(&face, |n| self.light.terms(*n, s).1)
-        })
+        let Some(rig) = &self.rig else {
+            let face = || self.light.terms(face_normal(&model()), s).1;
+            return idx.map(|i| {
+                mesh.normals
+                    .get(i)
+                    .map_or_else(&face, |n| self.light.terms(*n, s).1)
+            });
+        };
+        // The pipeline's lights: at the vertices' positions.
+        let model = model();
+        let face = || rig.face_terms(&model).1;
+        let at = |k: usize| {
+            let p = model.get(k).copied().unwrap_or_default();
+            idx.get(k)
+                .and_then(|&i| mesh.normals.get(i))
+                .map_or_else(&face, |n| rig.terms(p, *n).1)
+        };
+        [at(0), at(1), at(2)]
     }
 
     /// [`fill`](Self::fill) of a textured draw (out of line: the untextured fills keep their
@@ -1178,7 +1297,14 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     #[inline(always)]
     fn texel_levels(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [u16; 3] {
         match at_face(mesh.normals, idx) {
-            Some(n) => n.map(|n| self.light.level(*n)),
+            Some([a, b, c]) => match &self.rig {
+                None => [a, b, c].map(|n| self.light.level(*n)),
+                Some(rig) => [
+                    rig.level(model[0], *a),
+                    rig.level(model[1], *b),
+                    rig.level(model[2], *c),
+                ],
+            },
             None => [self.face_level(model); 3],
         }
     }

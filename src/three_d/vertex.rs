@@ -68,6 +68,12 @@ impl ProjectedVertex {
         }
     }
 
+    /// The vertex lit at `level` instead (the pipeline's lights, [`Lights`](super::Lights)).
+    #[inline(always)]
+    pub(crate) fn with_level(self, level: u16) -> Self {
+        ProjectedVertex { level, ..self }
+    }
+
     /// A vertex inside the view volume at `screen` with `q` (a textured face's fan).
     pub(crate) fn with_q(screen: ScreenVertex, q: Inverse) -> Self {
         ProjectedVertex {

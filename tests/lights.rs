@@ -1,0 +1,743 @@
+//! Several lights (`Pipeline::with_lights`: directional and point lights with the windowed
+//! falloff) against the f64 light model (`reference::lights`):
+//!
+//! * the falloff `(1 − d²/r²)²` of `LightSource::falloff` over distances and ranges, and the
+//!   point light's direction `normalize(P − X)` (`normalize_wide`: the table-and-Newton inverse
+//!   square root) over random and extreme vectors;
+//! * a lit icosphere, each face drawn alone and every pixel it covers checked: Gouraud (the f64
+//!   levels and highlights at the vertices interpolated by the exact screen barycentrics) and
+//!   flat (the face's at its centroid), with and without a highlight, for a rotation and a
+//!   non-uniform scale;
+//! * `draw_mesh`, `draw_mesh_with` and band rendering drawing the same pixels and depths;
+//! * extreme inputs: a light at a vertex, huge ranges and positions, intensity 0 (the frame
+//!   without it), full sets.
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
+use embedded_raster::reference::{self, lights as model};
+use embedded_raster::three_d::meshes::{self, icosphere::ICOSPHERE, torus::TORUS, MeshData};
+use embedded_raster::three_d::{
+    normalize_wide, Angle, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh,
+    Pipeline, ProjectedVertex, Scalar, Shading, Specular, Vec3, DEPTH_CLEAR,
+};
+use embedded_raster::GouraudColor;
+
+#[path = "support/vec_f64.rs"]
+mod vec_f64;
+use vec_f64::{dot, normalize};
+
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
+/// `LightSource::falloff` against `(1 − d²/r²)²` in f64 for ranges from 1/16 to 30000 and
+/// squared distances across them: within its stated 2⁻¹⁶.
+#[test]
+fn falloff_is_within_its_bound() {
+    let mut rng = Rng(0x11_9470);
+    let mut worst = 0.0f64;
+    for _ in 0..20000 {
+        let r = 2f64.powf(rng.range_f64(-4.0, 14.87));
+        let light = LightSource::point(Vec3::ZERO, Scalar::ONE, Scalar::from_num(r));
+        let r = light.range().to_num::<f64>();
+        let d2 = Scalar::from_num((r * r * rng.range_f64(0.0, 1.2)).min(32767.0));
+        let got = light.falloff(d2).to_num::<f64>();
+        let d2 = d2.to_num::<f64>();
+        let want = model::falloff(d2.sqrt(), r);
+        let err = (got - want).abs();
+        worst = worst.max(err);
+        assert!(err <= 1.0 / 65536.0, "r {r}, d² {d2}: {got} vs {want}");
+    }
+    println!(
+        "falloff: worst |error| {worst:.2e} (bound {:.2e})",
+        1.0 / 65536.0
+    );
+    let light = LightSource::point(Vec3::ZERO, Scalar::ONE, Scalar::from_num(2));
+    assert_eq!(light.falloff(Scalar::ZERO), Scalar::ONE);
+    assert_eq!(light.falloff(Scalar::from_num(4)), Scalar::ZERO);
+    assert_eq!(light.falloff(Scalar::from_num(-3)), Scalar::ONE);
+    assert_eq!(light.falloff(Scalar::MAX), Scalar::ZERO);
+    let none = LightSource::point(Vec3::ZERO, Scalar::ONE, Scalar::ZERO);
+    assert_eq!(none.falloff(Scalar::ZERO), Scalar::ZERO);
+    let huge = LightSource::point(Vec3::ZERO, Scalar::ONE, Scalar::MAX);
+    assert_eq!(huge.falloff(Scalar::from_num(100)), Scalar::ONE);
+}
+
+/// The direction towards a point light, `normalize(P − X)` of raw `I16F16` differences up to
+/// ±2³¹ (the saturated range), without floats: within 2⁻¹⁶·1.5 a component of the f64 unit
+/// vector, for random vectors of every magnitude and the extreme ones.
+#[test]
+fn point_directions_are_unit_within_bound() {
+    let mut rng = Rng(0x11_9471);
+    let mut worst = 0.0f64;
+    let mut check = |d: [i64; 3]| {
+        let got = meshes::to_f64(normalize_wide(d));
+        let want = normalize(d.map(|c| c as f64));
+        for k in 0..3 {
+            let err = (got[k] - want[k]).abs();
+            worst = worst.max(err);
+            assert!(err <= 1.5 / 65536.0, "{d:?}: {got:?} vs {want:?}");
+        }
+    };
+    for _ in 0..200000 {
+        let bits = rng.below(32) as u32;
+        let c = |r: &mut Rng| r.range(-(1i64 << bits), 1i64 << bits);
+        let d = [c(&mut rng), c(&mut rng), c(&mut rng)];
+        if d != [0; 3] {
+            check(d);
+        }
+    }
+    let m = i64::from(i32::MAX);
+    for d in [
+        [1, 0, 0],
+        [0, -1, 0],
+        [m, m, m],
+        [-m - 1, -m - 1, -m - 1],
+        [m, 1, 0],
+        [1, 1, 1],
+        [-m - 1, m, 3],
+    ] {
+        check(d);
+    }
+    assert_eq!(normalize_wide([0; 3]), Vec3::ZERO);
+    println!("direction: worst component error {:.2e}", worst);
+}
+
+const W: u32 = 160;
+const H: u32 = 120;
+
+/// The fixed-point scene and its f64 model.
+struct Scene {
+    pipeline: Pipeline,
+    model: model::Scene,
+}
+
+/// The lights of the sphere tests: the first light, a directional light and two point lights
+/// near the sphere (one reaching only part of it).
+fn lights() -> (Light, Lights, Vec<model::Source>) {
+    let light = Light::new(Vec3::new(-0.6, 0.9, 0.7), Scalar::from_num(0.1));
+    let sources = [
+        LightSource::point(
+            Vec3::new(1.3, 0.6, 1.4),
+            Scalar::from_num(0.9),
+            Scalar::from_num(3.2),
+        ),
+        LightSource::point(
+            Vec3::new(-1.2, -0.9, 0.8),
+            Scalar::from_num(1.3),
+            Scalar::from_num(1.9),
+        ),
+        LightSource::directional(Vec3::new(0.3, -1.0, 0.2), Scalar::from_num(0.35)),
+    ];
+    let mut set = Lights::new();
+    let mut f64_sources = Vec::new();
+    for s in sources {
+        set.push(s).unwrap();
+        f64_sources.push(to_model(&s));
+    }
+    (light, set, f64_sources)
+}
+
+/// The f64 source of a source (its stored, rounded values).
+fn to_model(s: &LightSource) -> model::Source {
+    let intensity = s.intensity().to_num::<f64>();
+    match (s.direction(), s.position()) {
+        (Some(d), _) => model::Source::Directional {
+            direction: meshes::to_f64(d),
+            intensity,
+        },
+        (_, Some(p)) => model::Source::Point {
+            position: meshes::to_f64(p),
+            intensity,
+            range: s.range().to_num::<f64>(),
+        },
+        _ => unreachable!(),
+    }
+}
+
+fn scene(model_matrix: Mat4, inverse_transpose: bool, specular: Option<Specular>) -> Scene {
+    let eye = [0.7, 0.9, 2.6];
+    let view = Mat4::look_at(Vec3::from(eye), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+    let projection = Mat4::perspective(Angle::from_degrees(50), W as f64 / H as f64, 0.5, 20.0);
+    let (light, set, sources) = lights();
+    let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
+    let pipeline = if inverse_transpose {
+        Pipeline::with_inverse_transpose(model_matrix, projection * view, viewport, light).unwrap()
+    } else {
+        Pipeline::new(model_matrix, projection * view, viewport, light)
+    }
+    .with_lights(set);
+    Scene {
+        pipeline,
+        model: model::Scene {
+            direction: Some(meshes::to_f64(light.direction())),
+            ambient: light.ambient().to_num::<f64>(),
+            sources,
+            eye: normalize(eye),
+            specular: specular.map(|s| (s.strength().to_num::<f64>(), f64::from(s.shininess()))),
+        },
+    }
+}
+
+/// A matrix's 3×4 block applied in f64.
+fn apply(m: &Mat4, p: [f64; 3], translate: bool) -> [f64; 3] {
+    let m = m.to_bits();
+    core::array::from_fn(|r| {
+        let t = if translate {
+            f64::from(m[r][3]) / 65536.0
+        } else {
+            0.0
+        };
+        (0..3)
+            .map(|c| f64::from(m[r][c]) / 65536.0 * p[c])
+            .sum::<f64>()
+            + t
+    })
+}
+
+/// Errors of one sphere drawing against f64.
+#[derive(Default, Debug)]
+struct Tally {
+    pixels: u64,
+    /// Faces with a vertex next to a terminator (`|n̂·l̂|` below 10⁻³ for a light reaching
+    /// it): not checked.
+    skipped: u64,
+    /// The largest error on faces a highlight reaches, and on the others.
+    worst: f64,
+    worst_plain: f64,
+    highlighted: u64,
+}
+
+/// Draws each face of `mesh` alone and checks every pixel it covers against the f64 model:
+/// Gouraud, the f64 level and highlight at the vertices interpolated; flat, at the centroid
+/// with the face normal. Tolerance: `plain + highlight·max` per channel, with
+/// `highlight = 3·shininess·strength·2⁻¹⁷·(1 + Σ intensities)` (the power's error and the
+/// cosines' within 2⁻¹⁶, amplified by the shininess, for each light) on faces a highlight
+/// reaches, and `plain = ½ LSB + the 256 levels' ½·base/255 + 0.02` (Gouraud) or `½ LSB + 0.1`
+/// (flat) and the levels' fixed-point error.
+fn check_sphere<C: GouraudColor>(
+    scene: &Scene,
+    mesh: &MeshData,
+    base: C,
+    shading: Shading,
+    specular: Option<Specular>,
+) -> Tally {
+    let mut material = Material::new(base, shading);
+    if let Some(s) = specular {
+        material = material.with_specular(s);
+    }
+    let pipeline = &scene.pipeline;
+    let max = C::MAX.map(f64::from);
+    let base_c = base.channels().map(f64::from);
+    let n = (W * H) as usize;
+    let (mut px, mut z) = (vec![base; n], vec![0u16; n]);
+    let mut tally = Tally::default();
+    let intensities: f64 = 1.0
+        + pipeline
+            .lights
+            .sources()
+            .iter()
+            .map(|s| s.intensity().to_num::<f64>())
+            .sum::<f64>();
+    let highlight = specular.map_or(0.0, |s| {
+        3.0 * f64::from(s.shininess()) * s.strength().to_num::<f64>() * intensities / 131072.0
+    });
+    // Whether a light reaching `x` grazes the surface there.
+    let grazing = |x: [f64; 3], n: [f64; 3]| {
+        let n = normalize(n);
+        let mut ls: Vec<[f64; 3]> = scene.model.direction.into_iter().collect();
+        for s in &scene.model.sources {
+            match *s {
+                model::Source::Directional { direction, .. } => ls.push(direction),
+                model::Source::Point {
+                    position, range, ..
+                } => {
+                    let d = vec_f64::sub(position, x);
+                    if dot(d, d).sqrt() < range && dot(d, d) > 0.0 {
+                        ls.push(d)
+                    }
+                }
+            }
+        }
+        ls.iter().any(|&l| dot(n, normalize(l)).abs() < 1e-3)
+    };
+    for face in &mesh.indices {
+        let one = [*face];
+        let single = Mesh::new(&mesh.vertices, &mesh.normals, &one);
+        let idx = face.map(usize::from);
+        let screen = idx.map(|i| pipeline.project(pipeline.clip_position(mesh.vertices[i])));
+        let Some(screen) = screen.iter().copied().collect::<Option<Vec<_>>>() else {
+            continue;
+        };
+        let raw = [0, 1, 2].map(|k| (screen[k].x.to_bits(), screen[k].y.to_bits()));
+        let mut target = DepthTarget::new(&mut px, &mut z, W, H).unwrap();
+        target.clear(C::from_channels([0; 3]));
+        let stats = pipeline.draw_mesh(&single, &material, &mut target);
+        let mut covered = 0;
+        reference::for_each_covered(raw, 0, 0, W as i32, H as i32, |_, _| covered += 1);
+        let drawn = target.depth().iter().filter(|&&d| d != DEPTH_CLEAR).count();
+        if stats.drawn == 0 {
+            assert_eq!(drawn, 0);
+            continue;
+        }
+        assert_eq!(drawn, covered, "face {face:?}: coverage");
+        let positions = idx.map(|i| apply(&pipeline.model, meshes::to_f64(mesh.vertices[i]), true));
+        let normals = idx.map(|i| {
+            normalize(apply(
+                &pipeline.normal_matrix,
+                meshes::to_f64(mesh.normals[i]),
+                false,
+            ))
+        });
+        let model_p = idx.map(|i| meshes::to_f64(mesh.vertices[i]));
+        let centroid_model =
+            core::array::from_fn(|k| (model_p[0][k] + model_p[1][k] + model_p[2][k]) / 3.0);
+        let centroid = apply(&pipeline.model, centroid_model, true);
+        let face_n = {
+            let (e1, e2) = (
+                vec_f64::sub(model_p[1], model_p[0]),
+                vec_f64::sub(model_p[2], model_p[0]),
+            );
+            normalize(apply(
+                &pipeline.normal_matrix,
+                vec_f64::cross(e1, e2),
+                false,
+            ))
+        };
+        let vertex = [0, 1, 2].map(|k| scene.model.terms(positions[k], normals[k]));
+        let flat = scene.model.terms(centroid, face_n);
+        let grazes = match shading {
+            Shading::Flat => grazing(centroid, face_n),
+            _ => (0..3).any(|k| grazing(positions[k], normals[k])),
+        };
+        if grazes {
+            tally.skipped += covered as u64;
+            continue;
+        }
+        let reached = match shading {
+            Shading::Flat => flat.1 > 1.0 / 16384.0,
+            _ => vertex.iter().any(|v| v.1 > 1.0 / 16384.0),
+        };
+        let tolerance = |ch: usize| match (reached, shading) {
+            (true, _) => 0.6 + highlight * max[ch],
+            (false, Shading::Flat) => 0.6 + 0.5 * base_c[ch] / 255.0,
+            (false, _) => 0.53 + 0.5 * base_c[ch] / 255.0,
+        };
+        reference::for_each_covered(raw, 0, 0, W as i32, H as i32, |i, j| {
+            let c = reference::barycentric(raw, i, j).unwrap();
+            let (level, spec) = match shading {
+                Shading::Flat => flat,
+                _ => (
+                    (0..3).map(|m| c[m] * vertex[m].0).sum::<f64>(),
+                    (0..3).map(|m| c[m] * vertex[m].1).sum::<f64>(),
+                ),
+            };
+            let got = target.framebuffer().get(i, j).unwrap().channels();
+            for ch in 0..C::CHANNELS {
+                let want = (base_c[ch] * level + max[ch] * spec).min(max[ch]);
+                let err = (f64::from(got[ch]) - want).abs();
+                if reached {
+                    tally.worst = tally.worst.max(err);
+                } else {
+                    tally.worst_plain = tally.worst_plain.max(err);
+                }
+                assert!(
+                    err <= tolerance(ch),
+                    "{shading:?} face {face:?} pixel {i},{j} channel {ch}: {} vs {want} \
+                     (level {level}, specular {spec})",
+                    got[ch]
+                );
+            }
+            tally.pixels += 1;
+            tally.highlighted += u64::from(spec * max[0] > 1.0);
+        });
+    }
+    tally
+}
+
+fn sphere() -> MeshData {
+    meshes::icosphere(1.0, 3)
+}
+
+/// A rotation and translation (normals as they are, positions moved) and a non-uniform scale
+/// (normals through the inverse transpose).
+fn poses() -> [(Mat4, bool, &'static str); 2] {
+    let rotation = Mat4::translation(Vec3::new(0.1, -0.05, 0.2))
+        * Mat4::rotation_y(Angle::from_degrees(25))
+        * Mat4::rotation_x(Angle::from_degrees(-15));
+    let mut stretch = Mat4::IDENTITY;
+    stretch.rows[0][0] = Scalar::from_num(1.15);
+    stretch.rows[1][1] = Scalar::from_num(0.85);
+    [
+        (rotation, false, "rotation"),
+        (rotation * stretch, true, "scaled"),
+    ]
+}
+
+/// Gouraud with several lights, without and with highlights, in Rgb888 and Rgb565.
+#[test]
+fn gouraud_lights_match_f64() {
+    let mesh = sphere();
+    for (model_matrix, it, name) in poses() {
+        for (specular, base) in [
+            (None, Rgb888::new(200, 90, 40)),
+            (
+                Some(Specular::new(Scalar::from_num(0.7), 24)),
+                Rgb888::new(40, 120, 230),
+            ),
+            (
+                Some(Specular::new(Scalar::ONE, 64)),
+                Rgb888::new(90, 90, 90),
+            ),
+        ] {
+            let scene = scene(model_matrix, it, specular);
+            let t = check_sphere(&scene, &mesh, base, Shading::Gouraud, specular);
+            println!("Gouraud {name} {specular:?} Rgb888: {t:?}");
+            assert!(t.pixels > 3000, "{t:?}");
+            if specular.is_some() {
+                assert!(t.highlighted > 100, "{t:?}");
+            }
+            let base = Rgb565::new(base.r() >> 3, base.g() >> 2, base.b() >> 3);
+            let t = check_sphere(&scene, &mesh, base, Shading::Gouraud, specular);
+            println!("Gouraud {name} {specular:?} Rgb565: {t:?}");
+        }
+    }
+}
+
+/// Flat with several lights (at each face's centroid), without and with a highlight.
+#[test]
+fn flat_lights_match_f64() {
+    let mesh = sphere();
+    for (model_matrix, it, name) in poses() {
+        for specular in [None, Some(Specular::new(Scalar::from_num(0.7), 12))] {
+            let scene = scene(model_matrix, it, specular);
+            let base = Rgb888::new(30, 200, 90);
+            let t = check_sphere(&scene, &mesh, base, Shading::Flat, specular);
+            println!("Flat {name} {specular:?} Rgb888: {t:?}");
+            assert!(t.pixels > 3000, "{t:?}");
+        }
+    }
+}
+
+/// Per-pixel shading with the lights draws the Gouraud frame (documented: per-pixel lighting
+/// takes the first light only, so with more it lights the vertices).
+#[test]
+fn quadratic_with_lights_is_lit_per_vertex() {
+    let mesh = sphere();
+    let specular = Specular::new(Scalar::from_num(0.5), 20);
+    let scene = scene(poses()[0].0, false, Some(specular));
+    let draw = |shading| {
+        let n = (W * H) as usize;
+        let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
+        let mut target = DepthTarget::new(&mut colors, &mut depth, W, H).unwrap();
+        target.clear(Rgb565::BLACK);
+        let material = Material::new(Rgb565::new(20, 40, 10), shading).with_specular(specular);
+        scene
+            .pipeline
+            .draw_mesh(&mesh.as_mesh(), &material, &mut target);
+        (colors, depth)
+    };
+    assert!(draw(Shading::Quadratic) == draw(Shading::Gouraud));
+}
+
+/// Every path draws the same pixels and depths with the lights: `draw_mesh`,
+/// `draw_mesh_with` and the bands (no bin, no scratch; scratch; bin) at several band heights,
+/// for each shading with and without a highlight, with faces clipped at the near plane, a mesh
+/// without normals and point lights moving through the meshes.
+#[test]
+fn every_path_draws_the_same_lights() {
+    let mut rng = Rng(0x11_9472);
+    let mut bare = meshes::icosphere(0.8, 1);
+    bare.normals.clear();
+    let (size, viewport) = (
+        Size::new(61, 47),
+        Rectangle::new(Point::new(-4, 3), Size::new(70, 50)),
+    );
+    let mut clipped = 0;
+    for round in 0..12 {
+        let shading = [Shading::Flat, Shading::Gouraud, Shading::Quadratic][round % 3];
+        let projection = Mat4::perspective(Angle::from_degrees(70), 1.4, 0.5, 12.0);
+        let distance = 1 + rng.below(3) as i32;
+        let view = Mat4::translation(Vec3::from_bits(0, 0, -(distance << 16) - (1 << 15)));
+        let model =
+            Mat4::rotation_x(Angle(rng.next() as u16)) * Mat4::rotation_y(Angle(rng.next() as u16));
+        let light = Light::new(Vec3::new(-0.4, 0.6, 0.9), Scalar::from_num(0.15));
+        let mut point = || {
+            let p = [0; 3].map(|_| rng.range_f64(-1.5, 1.5));
+            LightSource::point(
+                Vec3::from(p),
+                Scalar::from_num(rng.range_f64(0.2, 2.0)),
+                Scalar::from_num(rng.range_f64(0.5, 4.0)),
+            )
+        };
+        let lights = Lights::new()
+            .with(point())
+            .with(point())
+            .with(LightSource::directional(
+                Vec3::new(1, -1, 0.5),
+                Scalar::from_num(0.3),
+            ));
+        let mut pipeline =
+            Pipeline::new(model, projection * view, viewport, light).with_lights(lights);
+        pipeline.cull = [Cull::Back, Cull::None, Cull::Front][round / 4 % 3];
+        let specular = Specular::new(
+            Scalar::from_num(rng.range_f64(0.3, 1.0)),
+            rng.below(80) as u8 + 1,
+        );
+        let color = |r: &mut Rng| Rgb888::new(r.next() as u8, r.next() as u8, r.next() as u8);
+        let shiny = round % 2 == 0;
+        let material = |r: &mut Rng| {
+            let m = Material::new(color(r), shading);
+            if shiny {
+                m.with_specular(specular)
+            } else {
+                m
+            }
+        };
+        let meshes = [
+            (TORUS, material(&mut rng)),
+            (ICOSPHERE, material(&mut rng)),
+            (bare.as_mesh(), material(&mut rng)),
+        ];
+        let whole = |with_scratch: bool| {
+            let n = (size.width * size.height) as usize;
+            let (mut colors, mut depth) = (vec![Rgb888::BLACK; n], vec![0u16; n]);
+            let mut target =
+                DepthTarget::new(&mut colors, &mut depth, size.width, size.height).unwrap();
+            target.clear(Rgb888::new(3, 60, 90));
+            let mut clipped = 0;
+            for (mesh, material) in &meshes {
+                let stats = if with_scratch {
+                    let mut scratch = vec![ProjectedVertex::EMPTY; mesh.vertices.len()];
+                    pipeline
+                        .draw_mesh_with(mesh, material, &mut target, &mut scratch)
+                        .unwrap()
+                } else {
+                    pipeline.draw_mesh(mesh, material, &mut target)
+                };
+                clipped += stats.clipped;
+            }
+            (colors, depth, clipped)
+        };
+        let (want_colors, want_depth, c) = whole(true);
+        clipped += c;
+        let (colors, depth, _) = whole(false);
+        assert!(
+            colors == want_colors && depth == want_depth,
+            "round {round}: draw_mesh"
+        );
+        // The lights are there: not the frame without them.
+        let mut plain = pipeline;
+        plain.lights = Lights::new();
+        {
+            let n = (size.width * size.height) as usize;
+            let (mut colors, mut depth) = (vec![Rgb888::BLACK; n], vec![0u16; n]);
+            let mut target =
+                DepthTarget::new(&mut colors, &mut depth, size.width, size.height).unwrap();
+            target.clear(Rgb888::new(3, 60, 90));
+            for (mesh, material) in &meshes {
+                plain.draw_mesh(mesh, material, &mut target);
+            }
+            assert!(colors != want_colors, "round {round}: no light");
+        }
+        for rows in [1, 5, 16, 47] {
+            let layout = BandLayout::new(size, rows).unwrap();
+            for mode in 0..3 {
+                let (colors, depth) = banded(&layout, &pipeline, &meshes, mode);
+                assert!(
+                    colors == want_colors && depth == want_depth,
+                    "round {round}, {shading:?}, mode {mode}, {rows}-row bands"
+                );
+            }
+        }
+    }
+    assert!(clipped > 10, "{clipped} faces clipped");
+}
+
+/// The frame of `meshes` in the bands of `layout`: mode 0 `DepthBand::draw_mesh`, 1
+/// `draw_mesh_with`, 2 a `MeshBin`.
+fn banded(
+    layout: &BandLayout,
+    pipeline: &Pipeline,
+    meshes: &[(Mesh<'_>, Material<Rgb888>)],
+    mode: u32,
+) -> (Vec<Rgb888>, Vec<u16>) {
+    let n = layout.buffer_len();
+    let (mut colors, mut depth) = (vec![Rgb888::BLACK; n], vec![0u16; n]);
+    let (mut all_colors, mut all_depth) = (Vec::new(), Vec::new());
+    let mut scratch: Vec<Vec<ProjectedVertex>> = meshes
+        .iter()
+        .map(|m| vec![ProjectedVertex::EMPTY; m.0.vertices.len()])
+        .collect();
+    let mut band_scratch = vec![ProjectedVertex::EMPTY; 4096];
+    let mut storage: Vec<Vec<BinEntry>> = meshes
+        .iter()
+        .map(|m| vec![BinEntry::EMPTY; layout.count() as usize + 2 * m.0.indices.len() + 64])
+        .collect();
+    let mut bins = Vec::new();
+    if mode == 2 {
+        for ((mesh, material), (scratch, storage)) in meshes
+            .iter()
+            .zip(scratch.iter_mut().zip(storage.iter_mut()))
+        {
+            bins.push(MeshBin::new(pipeline, mesh, material, layout, scratch, storage).unwrap());
+        }
+    }
+    for index in 0..layout.count() {
+        let mut band = DepthBand::new(&mut colors, &mut depth, layout, index).unwrap();
+        band.clear(Rgb888::new(3, 60, 90));
+        match mode {
+            0 => meshes.iter().for_each(|(mesh, material)| {
+                band.draw_mesh(pipeline, mesh, material);
+            }),
+            1 => meshes.iter().for_each(|(mesh, material)| {
+                band.draw_mesh_with(pipeline, mesh, material, &mut band_scratch)
+                    .unwrap();
+            }),
+            _ => bins.iter_mut().for_each(|bin| bin.draw(&mut band).unwrap()),
+        }
+        all_colors.extend_from_slice(band.pixels());
+        all_depth.extend_from_slice(band.depth());
+    }
+    (all_colors, all_depth)
+}
+
+/// Draws `mesh` with `material` through `pipeline` into a fresh `W × H` target.
+fn frame(pipeline: &Pipeline, mesh: &Mesh<'_>, material: &Material<Rgb888>) -> Vec<Rgb888> {
+    let n = (W * H) as usize;
+    let (mut colors, mut depth) = (vec![Rgb888::BLACK; n], vec![0u16; n]);
+    let mut target = DepthTarget::new(&mut colors, &mut depth, W, H).unwrap();
+    target.clear(Rgb888::BLACK);
+    let mut scratch = vec![ProjectedVertex::EMPTY; mesh.vertices.len()];
+    pipeline
+        .draw_mesh_with(mesh, material, &mut target, &mut scratch)
+        .unwrap();
+    colors
+}
+
+/// Extreme inputs: sources of intensity 0 or range 0 (the frame without them, bit for bit), a
+/// full set, a point light exactly at a vertex (that vertex gets nothing from it, as in the
+/// f64 model, checked by the sphere test's machinery), huge ranges and positions at the ends
+/// of `I16F16` (no panic, the same frame twice, a huge range lighting like a directional
+/// light without falloff to within the f64 model's tolerance).
+#[test]
+fn extreme_lights() {
+    let mesh = sphere();
+    let specular = Specular::new(Scalar::from_num(0.8), 30);
+    let base = scene(poses()[0].0, false, Some(specular));
+    let plain = {
+        let mut p = base.pipeline;
+        p.lights = Lights::new();
+        p
+    };
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::Quadratic] {
+        let material = Material::new(Rgb888::new(200, 100, 50), shading).with_specular(specular);
+        let want = frame(&plain, &mesh.as_mesh(), &material);
+        let off = Lights::new()
+            .with(LightSource::point(
+                Vec3::new(0, 0, 1.2),
+                Scalar::ZERO,
+                Scalar::from_num(9),
+            ))
+            .with(LightSource::point(
+                Vec3::new(0, 0, 1.2),
+                Scalar::ONE,
+                Scalar::ZERO,
+            ))
+            .with(LightSource::directional(Vec3::ZERO, Scalar::ONE));
+        assert!(
+            frame(&plain.with_lights(off), &mesh.as_mesh(), &material) == want,
+            "{shading:?}"
+        );
+    }
+    // A full set.
+    let mut full = Lights::new();
+    for _ in 0..Lights::MAX {
+        full.push(LightSource::directional(Vec3::new(0, 1, 0), Scalar::ONE))
+            .unwrap();
+    }
+    let extra = LightSource::directional(Vec3::new(1, 0, 0), Scalar::ONE);
+    assert_eq!(full.push(extra), Err(extra));
+    assert_eq!(full.with(extra), full);
+    assert_eq!(full.sources().len(), Lights::MAX);
+    assert_eq!(Lights::default().sources().len(), 0);
+    // Clamped inputs.
+    let s = LightSource::point(Vec3::ZERO, Scalar::from_num(100), Scalar::from_num(-3));
+    assert_eq!(
+        (s.intensity(), s.range()),
+        (Scalar::from_num(4), Scalar::ZERO)
+    );
+
+    // A point light exactly at a vertex (of a torus's inner side, which it lights; identity
+    // model: world = model space), and lights at the ends of the range.
+    let torus = meshes::torus(0.8, 0.35, 24, 12);
+    let inner = torus
+        .vertices
+        .iter()
+        .min_by_key(|v| {
+            let [x, y, z] = v.to_bits().map(|c| i64::from(c).pow(2));
+            (x + y + z, v.to_bits())
+        })
+        .copied()
+        .unwrap();
+    let huge = Scalar::MAX;
+    let far = Vec3::from_bits(i32::MAX, i32::MIN, i32::MAX);
+    let cases = [
+        (
+            "at a vertex",
+            &torus,
+            LightSource::point(inner, Scalar::ONE, Scalar::from_num(1.5)),
+        ),
+        (
+            "huge range",
+            &mesh,
+            LightSource::point(Vec3::new(0.5, 2, 2), Scalar::ONE, huge),
+        ),
+        (
+            "far away, huge range",
+            &mesh,
+            LightSource::point(Vec3::new(0.5, 2, 20000), Scalar::from_num(4), huge),
+        ),
+        (
+            "at the corner, huge range",
+            &mesh,
+            LightSource::point(far, Scalar::from_num(4), huge),
+        ),
+        (
+            "at the corner",
+            &mesh,
+            LightSource::point(far, Scalar::from_num(4), Scalar::from_num(3)),
+        ),
+    ];
+    for (name, mesh, source) in cases {
+        let mut s = scene(Mat4::IDENTITY, false, Some(specular));
+        s.pipeline.lights = Lights::new().with(source);
+        s.model.sources = vec![to_model(&source)];
+        s.model.direction = Some([0.0, 0.0, 0.0]).filter(|_| false);
+        s.pipeline.light = Light::new(Vec3::ZERO, Scalar::from_num(0.1));
+        for shading in [Shading::Gouraud, Shading::Flat] {
+            let t = check_sphere(&s, mesh, Rgb888::new(120, 140, 60), shading, Some(specular));
+            println!("{name} {shading:?}: {t:?}");
+            assert!(t.pixels > 1000, "{t:?}");
+        }
+        let material = Material::new(Rgb888::new(120, 140, 60), Shading::Quadratic);
+        let a = frame(&s.pipeline, &mesh.as_mesh(), &material);
+        assert!(
+            a == frame(&s.pipeline, &mesh.as_mesh(), &material),
+            "{name}"
+        );
+        // Lit by it (the corner is out of reach: only the ambient term).
+        let mut dark = s.pipeline;
+        dark.lights = Lights::new();
+        let lit = a != frame(&dark, &mesh.as_mesh(), &material);
+        assert_eq!(lit, !name.starts_with("at the corner"), "{name}");
+    }
+    // The model matrix at the ends of the range too: saturating, no panic.
+    let mut s = scene(Mat4::IDENTITY, false, None);
+    s.pipeline.model = Mat4::from_bits([[i32::MAX; 4], [i32::MIN; 4], [i32::MAX; 4], [0; 4]]);
+    s.pipeline.lights = Lights::new().with(LightSource::point(far, Scalar::ONE, huge));
+    let material = Material::new(Rgb888::new(120, 140, 60), Shading::Gouraud);
+    let _ = frame(&s.pipeline, &mesh.as_mesh(), &material);
+}
