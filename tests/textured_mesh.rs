@@ -23,7 +23,8 @@
 //!   those pixels the chord's deviation from the true curve, computed here from the exact plane
 //!   of the face over the span the reference gives it (`exact`), and the steps' rounding;
 //! * the screen-space fill, which faces whose interpolation departs from the perspective-correct
-//!   values by at most 1/16 texel (1/4 light level) take (`nearly_affine`): that departure,
+//!   values by at most 1/16 texel (and a quarter of the target's finest channel step in light
+//!   level: 1/4 level into Rgb888, about one into Rgb565) take (`nearly_affine`): that departure,
 //!   bounded here from the f64 `w`s (`affine_ratio`), plus the 2D planes' rounding;
 //!
 //! each plus the vertices' screen-position error (from `CLIP_ERROR`, see
@@ -33,7 +34,7 @@
 //! Run with `cargo test --features reference --test textured_mesh -- --nocapture` to see the
 //! statistics.
 
-use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
@@ -445,6 +446,9 @@ fn exact(
 /// in screen space (src/three_d/texturing.rs, `nearly_affine`).
 const AFFINE_TEXELS: f64 = 1.0 / 16.0;
 const AFFINE_LEVEL: f64 = 0.25 / 255.0;
+/// Into Rgb565 the level's bound is a quarter of green's 6-bit step: 8.8 levels
+/// `⌊64 · 255 / 63⌋ = 259`, about one level.
+const AFFINE_LEVEL_565: f64 = 259.0 / 256.0 / 255.0;
 
 /// How far the fill's value of a vertex attribute of face `f` may lie from the exact one at a
 /// pixel where the exact attribute is `e`: the perspective fill's documented error (`δ·spread
@@ -655,6 +659,24 @@ where
     let material = TexturedMaterial::new(texture, shading);
     let stats = pipeline.draw_textured_mesh(mesh, &material, &mut frame.target());
     (frame, stats)
+}
+
+/// [`textured`] into an Rgb565 target: its colours.
+fn textured_rgb565<S: TexelSource>(
+    pipeline: &Pipeline,
+    mesh: &Mesh<'_>,
+    texture: &Texture<S>,
+    shading: Shading,
+) -> Vec<Rgb565>
+where
+    Rgb565: From<S::Color>,
+{
+    let (mut px, mut z) = (vec![Rgb565::BLACK; N], vec![DEPTH_CLEAR; N]);
+    let mut target = DepthTarget::new(&mut px, &mut z, W, H).unwrap();
+    target.clear(Rgb565::BLACK);
+    let material = TexturedMaterial::new(texture, shading);
+    pipeline.draw_textured_mesh(mesh, &material, &mut target);
+    px
 }
 
 fn untextured(pipeline: &Pipeline, mesh: &Mesh<'_>, color: Rgb888, shading: Shading) -> Frame {
@@ -1170,6 +1192,9 @@ struct Lit {
     /// Pixels written, and of all pixels those whose depth the untextured draw gives too.
     written: u64,
     same_depth: u64,
+    /// The Gouraud draw into Rgb565 (its own 5- and 6-bit LSBs), and less its allowance.
+    gouraud_565: f64,
+    gouraud_565_beyond: f64,
 }
 
 /// Draws `case` with a constant texture lit Flat and Gouraud by a random light, and the
@@ -1188,7 +1213,10 @@ fn check_lit(case: &Case, rng: &mut Rng, lit: &mut Lit) {
     let mesh = case.mesh.as_mesh();
     let (flat, _) = textured(&scene.pipeline, &mesh, &texture, Shading::Flat);
     let (gouraud, _) = textured(&scene.pipeline, &mesh, &texture, Shading::Gouraud);
+    let gouraud_565 = textured_rgb565(&scene.pipeline, &mesh, &texture, Shading::Gouraud);
     let color = Rgb888::new(TEXEL[0], TEXEL[1], TEXEL[2]);
+    let texel_565 = Rgb565::from(color);
+    let texel_565 = [texel_565.r(), texel_565.g(), texel_565.b()].map(f64::from);
     let plain = untextured(&scene.pipeline, &mesh, color, Shading::Gouraud);
     // The textured draws cover the untextured draw's pixels (documented); the depths are
     // counted.
@@ -1258,8 +1286,139 @@ fn check_lit(case: &Case, rng: &mut Rng, lit: &mut Lit) {
             lit.untextured_vs_textured = lit.untextured_vs_textured.max((u - g).abs());
             lit.untextured_vs_exact = lit.untextured_vs_exact.max((u - want).abs());
         }
+        // The same into Rgb565, whose fill may take screen space with about one level of
+        // departure (a quarter of green's step): within 1 LSB of each channel plus the
+        // allowance, in that channel's own steps.
+        let affine = affine_ratio(
+            &scene,
+            f,
+            &[(f.spread(), AFFINE_TEXELS), (spread, AFFINE_LEVEL_565)],
+        )
+        .map(|r| departure(r, spread, AFFINE_LEVEL_565));
+        let tol = tolerance(&scene, f, &e, spread, affine, rounding);
+        let c = gouraud_565[p];
+        for (k, g) in [c.r(), c.g(), c.b()].map(f64::from).into_iter().enumerate() {
+            let want = texel_565[k] * e.value.clamp(0.0, 1.0);
+            let d = (g - want).abs();
+            assert!(
+                d <= 1.0 + texel_565[k] * tol,
+                "{}: pixel {i},{j} face {face} channel {k}: Gouraud into Rgb565 {g}, exact \
+                 {want:.3} (levels {:?}, tolerance {:.5}), pose {:?}",
+                case.name,
+                f.levels,
+                tol,
+                case.pose
+            );
+            lit.gouraud_565 = lit.gouraud_565.max(d);
+            lit.gouraud_565_beyond = lit.gouraud_565_beyond.max(d - texel_565[k] * tol);
+        }
         lit.pixels += 1;
     }
+}
+
+/// The largest errors of the vertex-colour comparison (LSB): pixels checked, the largest
+/// error, and the largest beyond its allowance.
+#[derive(Debug, Default)]
+struct Tinted {
+    pixels: u64,
+    worst: f64,
+    beyond: f64,
+}
+
+/// Draws `case` with random vertex colours tinting a constant texture
+/// (`TexturedMaterial::with_vertex_colors`), Gouraud-lit by a random light, and checks every
+/// pixel the reference gives one face against the texel times the f64 colour-times-level of
+/// the vertices, interpolated perspective-correct at the ray's hit: within 1 LSB plus the
+/// interpolation's tolerance (as the levels', with each channel's spread) and the tint's 8.8
+/// quantisation.
+fn check_tinted(case: &Case, rng: &mut Rng, tinted: &mut Tinted) {
+    let light = normalize([
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(0.2, 1.0),
+    ]);
+    let ambient = rng.range_f64(0.0, 0.4);
+    let scene = Scene::new(&case.pose, light, ambient);
+    let bytes: Vec<u8> = (0..16).flat_map(|_| TEXEL).collect();
+    let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
+    let mut data = case.mesh.clone();
+    data.colors = (0..data.vertices.len())
+        .map(|_| {
+            Rgb888::new(
+                rng.below(256) as u8,
+                rng.below(256) as u8,
+                rng.below(256) as u8,
+            )
+        })
+        .collect();
+    let mesh = data.as_mesh();
+    let mut frame = Frame::new();
+    let material = TexturedMaterial::new(&texture, Shading::Gouraud).with_vertex_colors();
+    scene
+        .pipeline
+        .draw_textured_mesh(&mesh, &material, &mut frame.target());
+    let faces = ref_faces(&scene, &data, (4, 4));
+    let (verdicts, spans) = verdicts(&scene, &faces);
+    for (p, verdict) in verdicts.into_iter().enumerate() {
+        let Verdict::Face { face, .. } = verdict else {
+            continue;
+        };
+        let (i, j) = ((p as u32 % W) as i32, (p as u32 / W) as i32);
+        let f = &faces[face];
+        let colors = data.indices[face].map(|v| data.colors[usize::from(v)]);
+        let tint = |k: usize| {
+            let c = colors.map(|c| f64::from([c.r(), c.g(), c.b()][k]) / 255.0);
+            [0, 1, 2].map(|v| c[v] * f.levels[v])
+        };
+        let spreads = [0, 1, 2].map(|k| spread_of(tint(k)));
+        let widest = spreads[0].max(spreads[1]).max(spreads[2]);
+        let ratio = affine_ratio(
+            &scene,
+            f,
+            &[(f.spread(), AFFINE_TEXELS), (widest, AFFINE_LEVEL)],
+        );
+        let got = frame.px[p];
+        for (k, g) in [got.r(), got.g(), got.b()]
+            .map(f64::from)
+            .into_iter()
+            .enumerate()
+        {
+            let e = exact(&scene, f, spans.of(face, j), tint(k), (i, j), UNIT);
+            let affine = ratio.map(|r| departure(r, spreads[k], AFFINE_LEVEL));
+            // The screen-space planes' rounding as the levels'; the tint's own 8.8 rounding.
+            let rounding = 2.0 / (256.0 * 255.0);
+            let tol = tolerance(&scene, f, &e, spreads[k], affine, rounding) + 1.0 / 65_280.0;
+            let texel = f64::from(TEXEL[k]);
+            let want = texel * e.value.clamp(0.0, 1.0);
+            let d = (g - want).abs();
+            assert!(
+                d <= 1.0 + texel * tol,
+                "{}: pixel {i},{j} face {face} channel {k}: {g}, exact {want:.3} (colours \
+                 {colors:?}, levels {:?}, tolerance {tol:.5}), pose {:?}",
+                case.name,
+                f.levels,
+                case.pose
+            );
+            tinted.worst = tinted.worst.max(d);
+            tinted.beyond = tinted.beyond.max(d - texel * tol);
+        }
+        tinted.pixels += 1;
+    }
+}
+
+/// Vertex colours tint textured meshes: every pixel within 1 LSB (plus the interpolation's
+/// tolerance) of the texel times the vertices' colour-times-level, perspective-correct, on
+/// clipped and unclipped cases.
+#[test]
+fn vertex_colors_tint_texels() {
+    let (unclipped, clipped) = all_cases();
+    let mut rng = Rng(0x7e47_3d07);
+    let mut tinted = Tinted::default();
+    for case in unclipped.iter().chain(&clipped) {
+        check_tinted(case, &mut rng, &mut tinted);
+    }
+    println!("{tinted:?}");
+    assert!(tinted.pixels > 60_000, "{tinted:?}");
 }
 
 /// Flat and Gouraud lighting of textured meshes (a constant texture, so the colour is the
@@ -1341,9 +1500,20 @@ fn paths_round<S: TexelSource>(
 where
     Rgb888: From<S::Color>,
 {
-    let mesh = case.mesh.as_mesh();
-    let material = TexturedMaterial::new(texture, shading);
-    let (whole, stats) = textured(&scene.pipeline, &mesh, texture, shading);
+    // Every other round's faces tinted by vertex colours.
+    let mut data = case.mesh.clone();
+    let mut material = TexturedMaterial::new(texture, shading);
+    if round % 2 == 1 {
+        data.colors = (0..data.vertices.len() as u32)
+            .map(|k| Rgb888::new((k * 97) as u8, (k * 31 + 80) as u8, (k * 57 + 160) as u8))
+            .collect();
+        material = material.with_vertex_colors();
+    }
+    let mesh = data.as_mesh();
+    let mut whole = Frame::new();
+    let stats = scene
+        .pipeline
+        .draw_textured_mesh(&mesh, &material, &mut whole.target());
     let mut once = Frame::new();
     let mut scratch = vec![ProjectedVertex::EMPTY; case.mesh.vertices.len()];
     let with = scene
@@ -1373,7 +1543,8 @@ where
     stats
 }
 
-/// Every way of drawing a textured mesh gives the same frame, bit for bit: `draw_textured_mesh`
+/// Every way of drawing a textured mesh (every other round tinted by vertex colours) gives the
+/// same frame, bit for bit: `draw_textured_mesh`
 /// and `draw_textured_mesh_with` (a vertex scratch: the same stats too), and band rendering
 /// (`DepthBands` of 1, 8, 16 and 240 rows, each band drawn with and without a scratch) against
 /// the frame drawn whole — colours and depths, over the suite's poses (clipped and not), every

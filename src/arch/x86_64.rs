@@ -32,10 +32,11 @@ pub(crate) struct ChannelRows<const N: usize> {
 }
 
 impl<const N: usize> ChannelRows<N> {
-    /// Rows starting at `value`, stepped by `dx` per column and `dy` per row (`N ≤ 4`).
+    /// Rows starting at `value`, stepped by `dx` per column and `dy` per row (`N ≤ 4`: the
+    /// values past the fourth read as 0; `tiny::shade` takes no more).
     #[inline(always)]
     pub(crate) fn new(value: [u32; N], dx: [u32; N], dy: [u32; N]) -> Self {
-        const { assert!(N <= 4) };
+        debug_assert!(N <= 4);
         let vector = |v: [u32; N]| {
             let w: [u32; 4] = core::array::from_fn(|k| v.get(k).copied().unwrap_or(0));
             // SAFETY: SSE2 is part of the x86-64 baseline.

@@ -65,7 +65,8 @@ pub(crate) fn shade<const N: usize>(
     shader: &mut impl SpanShader<N>,
 ) -> bool {
     let (w, h) = triangle.extent;
-    if w >= TINY || h >= TINY || width < LANES as u32 {
+    // The row values are four lanes of one register (`ChannelRows`).
+    if N > 4 || w >= TINY || h >= TINY || width < LANES as u32 {
         return false;
     }
     let steps = shader.prepare(planes.step());

@@ -63,6 +63,7 @@
 //! assert_eq!(target.framebuffer().get(32, 24), Some(Rgb565::WHITE));
 //! ```
 
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::primitives::Rectangle;
 
 use super::band::{BandPlanes, SideCache};
@@ -475,8 +476,8 @@ enum Fill<C> {
     /// Per-pixel lighting of the quadratic normal field.
     Quadratic(C),
     /// The frame's texture, lit by one level a face (`Flat`), the vertex levels (`Gouraud`)
-    /// or not at all (`Unlit`).
-    Textured(Shading),
+    /// or not at all (`Unlit`); tinted by the mesh's vertex colours if `true`.
+    Textured(Shading, bool),
     /// A material with a highlight, lit with `Flat`, `Gouraud` or `Quadratic` shading.
     Specular(Shiny<C>),
 }
@@ -635,7 +636,7 @@ where
             rig: pipeline.rig(None),
             vertex_rig: false,
             clip,
-            fill: Fill::Textured(material.shading),
+            fill: Fill::Textured(material.shading, material.vertex_colors),
             texture: FrameTexture::new(material.texture),
         }
     }
@@ -1142,8 +1143,8 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 let light = &self.pipeline.light;
                 shading::fill_quadratic(target, clip, tri, &normals, light, *color);
             }
-            Fill::Textured(shading) => {
-                self.fill_textured(mesh, idx, model, v, bary, *shading, target)
+            Fill::Textured(shading, tinted) => {
+                self.fill_textured(mesh, idx, model, v, bary, (*shading, *tinted), target)
             }
             Fill::Specular(shiny) => self.fill_specular(mesh, idx, model, v, bary, shiny, target),
         }
@@ -1253,16 +1254,34 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         model: impl Fn() -> [Vec3; 3],
         v: [&ProjectedVertex; 3],
         bary: Option<[Bary; 3]>,
-        shading: Shading,
+        (shading, tinted): (Shading, bool),
         target: &mut DepthTarget<'_, C>,
     ) {
-        let light = match shading {
-            Shading::Unlit => TexelLight::Full,
-            Shading::Flat => TexelLight::Level(self.face_level(&model())),
-            Shading::Gouraud | Shading::Quadratic => {
+        let colors = if tinted {
+            at_face(mesh.colors, idx)
+        } else {
+            None
+        };
+        let light = match (shading, colors) {
+            (Shading::Unlit, None) => TexelLight::Full,
+            (Shading::Flat, None) => TexelLight::Level(self.face_level(&model())),
+            (Shading::Gouraud | Shading::Quadratic, None) => {
                 let levels = self.texel_levels(mesh, idx, &model());
                 let levels = at_bary(bary, levels.map(|l| [i64::from(l)]));
                 TexelLight::Levels(levels.map(|[l]| l.clamp(0, u16::MAX.into()) as u16))
+            }
+            (shading, Some(colors)) => {
+                let levels = match shading {
+                    Shading::Unlit => [u16::MAX; 3],
+                    Shading::Flat => [self.face_level(&model()); 3],
+                    Shading::Gouraud | Shading::Quadratic => self.texel_levels(mesh, idx, &model()),
+                };
+                let tints = [0, 1, 2].map(|k| {
+                    let level = i64::from(levels[k].min(255 << 8));
+                    tint(colors[k], level)
+                });
+                let tints = at_bary(bary, tints);
+                TexelLight::Tints(tints.map(|t| t.map(|c| c.clamp(0, i64::from(255 << 8)) as u16)))
             }
         };
         let texels = self.texels(mesh, idx);
@@ -1398,7 +1417,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                     .sum();
                 ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
             };
-            let textured = matches!(self.fill, Fill::Textured(_));
+            let textured = matches!(self.fill, Fill::Textured(..));
             let v = [s0, s1, s2].map(|s| match textured {
                 true => ProjectedVertex::with_q(s.0, s.2),
                 false => ProjectedVertex::lit(s.0, level(&s.1)),
@@ -1421,6 +1440,14 @@ fn at_bary<const N: usize>(bary: Option<[Bary; 3]>, values: [[i64; N]; 3]) -> [[
             (sum + (1 << 29)) >> 30
         })
     })
+}
+
+/// A vertex colour times a light level (8.8 of the 0–255 scale, at most 255): each channel's
+/// tint, 8.8 of the 0–255 scale (`c · level / 255`, by `257 / 2¹⁶` for the division, within
+/// 2⁻⁸ of a level).
+#[inline(always)]
+fn tint(color: &Rgb888, level: i64) -> [i64; 3] {
+    [color.r(), color.g(), color.b()].map(|c| (i64::from(c) * level * 257 + (1 << 15)) >> 16)
 }
 
 /// The unit geometric normal of the face `model` (model space).

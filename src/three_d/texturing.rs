@@ -126,6 +126,9 @@ pub(crate) enum TexelLight {
     Level(u16),
     /// By the vertices' levels (8.8 of the 0–255 scale), interpolated perspective-correct.
     Levels([u16; 3]),
+    /// Channel by channel by the vertices' tints (each channel 8.8 of the 0–255 scale: a
+    /// vertex colour times its light level), interpolated perspective-correct.
+    Tints([[u16; 3]; 3]),
 }
 
 /// A texture a frame draws its faces with: none (a material's colour), or a texture of some
@@ -218,13 +221,20 @@ where
 /// A textured material: the texture a mesh's texture coordinates read and how the light
 /// modulates its texels ([`Shading::Unlit`](super::Shading): not at all; `Flat`: one level a
 /// face; `Gouraud`: the vertex levels interpolated perspective-correct; `Quadratic` is taken
-/// as `Gouraud`).
+/// as `Gouraud`), and whether the mesh's vertex colours tint them
+/// ([`with_vertex_colors`](Self::with_vertex_colors)).
+///
+/// A pixel's colour is `texel · light`, or with vertex colours `texel · colour · light`
+/// channel by channel (the colour and the light level both interpolated perspective-correct,
+/// as one tint a channel); a mesh without colours draws as without them.
 #[derive(Debug)]
 pub struct TexturedMaterial<'t, S> {
     /// The texture.
     pub texture: &'t Texture<S>,
     /// How the texels are lit.
     pub shading: super::Shading,
+    /// Whether the mesh's vertex colours ([`Mesh::colors`](super::Mesh)) tint the texels.
+    pub vertex_colors: bool,
 }
 
 impl<S> Clone for TexturedMaterial<'_, S> {
@@ -236,9 +246,53 @@ impl<S> Clone for TexturedMaterial<'_, S> {
 impl<S> Copy for TexturedMaterial<'_, S> {}
 
 impl<'t, S> TexturedMaterial<'t, S> {
-    /// The material of `texture` lit with `shading`.
+    /// The material of `texture` lit with `shading`, without vertex colours.
     pub const fn new(texture: &'t Texture<S>, shading: super::Shading) -> Self {
-        TexturedMaterial { texture, shading }
+        TexturedMaterial {
+            texture,
+            shading,
+            vertex_colors: false,
+        }
+    }
+
+    /// The same material with its texels tinted by the mesh's vertex colours: a pixel is
+    /// `texel · colour · light`, channel by channel (white where the mesh has no colours).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::{Rgb565, Rgb888, RgbColor}, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::texture::{Rgb565Texels, Texture};
+    /// use embedded_raster::three_d::{DepthTarget, Light, Mat4, Mesh, Pipeline, Shading};
+    /// use embedded_raster::three_d::{TexCoord, TexturedMaterial, Vec3};
+    ///
+    /// // A white texture on a square facing the camera, its vertices red and blue.
+    /// static TEXELS: [u16; 1] = [0xffff];
+    /// let texture = Texture::new(Rgb565Texels(&TEXELS), 1, 1).unwrap();
+    /// let v = |x: f32, y: f32| Vec3::new(x, y, 0.0);
+    /// let vertices = [v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)];
+    /// let colors = [Rgb888::RED, Rgb888::RED, Rgb888::BLUE, Rgb888::BLUE];
+    /// let uvs = [TexCoord::new(0.0, 0.0); 4];
+    /// let indices = [[0, 1, 2], [0, 2, 3]];
+    /// let mesh = Mesh::new(&vertices, &[], &indices).with_colors(&colors).with_uvs(&uvs);
+    /// let viewport = Rectangle::new(Point::zero(), Size::new(16, 16));
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, Mat4::IDENTITY, viewport, Light::default());
+    /// let material = TexturedMaterial::new(&texture, Shading::Unlit).with_vertex_colors();
+    /// let (mut px, mut z) = ([Rgb565::BLACK; 16 * 16], [0u16; 16 * 16]);
+    /// let mut target = DepthTarget::new(&mut px, &mut z, 16, 16).unwrap();
+    /// target.clear(Rgb565::BLACK);
+    /// pipeline.draw_textured_mesh(&mesh, &material, &mut target);
+    /// // Red at the bottom (y is up in clip space), blue at the top, blended between.
+    /// let (bottom, top) = (target.framebuffer().get(8, 15).unwrap(), target.framebuffer().get(8, 0).unwrap());
+    /// assert!(bottom.r() >= 29 && bottom.b() <= 2 && top.b() >= 29 && top.r() <= 2);
+    /// let middle = target.framebuffer().get(8, 8).unwrap();
+    /// assert!((13..=17).contains(&middle.r()) && (13..=17).contains(&middle.b()));
+    /// ```
+    pub const fn with_vertex_colors(self) -> Self {
+        TexturedMaterial {
+            vertex_colors: true,
+            ..self
+        }
     }
 }
 
@@ -260,23 +314,47 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     let rect = clip.rect();
     let position = screen.map(|v| v.position());
     if nearly_affine(q, texels, &light, affine_level::<C>()) {
-        // Screen-space interpolation is within the bound here: the 2D textured fill's planes.
+        // Screen-space interpolation is within the bound here: the 2D textured fill's planes,
+        // with the light's after the texel coordinates'.
         let (mu, u) = PlaneMap::new(texels.map(|t| t[0]));
         let (mv, v) = PlaneMap::new(texels.map(|t| t[1]));
-        let levels = match light {
-            TexelLight::Levels(l) => l,
-            TexelLight::Level(l) => [l; 3],
-            TexelLight::Full => [0; 3],
-        };
-        let more = [0, 1, 2].map(|k| [u[k], v[k], levels[k]]);
-        let attributes = with_depth(screen, more, [0; 3]);
-        let fill = AffineFill {
-            target,
-            sampler,
-            maps: [mu, mv],
-            lit: !matches!(light, TexelLight::Full),
-        };
-        clip.rows().shade(position, &attributes, &rect, fill);
+        let maps = [mu, mv];
+        let rows = clip.rows();
+        match light {
+            TexelLight::Full => {
+                let more = [0, 1, 2].map(|k| [u[k], v[k]]);
+                let a = with_depth::<2, 3>(screen, more, [0; 2]);
+                rows.shade(
+                    position,
+                    &a,
+                    &rect,
+                    AffineFill::new(target, sampler, maps, Unlit),
+                );
+            }
+            TexelLight::Level(level) => {
+                let more = [0, 1, 2].map(|k| [u[k], v[k]]);
+                let light = Constant(level_fraction(level));
+                let a = with_depth::<2, 3>(screen, more, [0; 2]);
+                rows.shade(
+                    position,
+                    &a,
+                    &rect,
+                    AffineFill::new(target, sampler, maps, light),
+                );
+            }
+            TexelLight::Levels(l) => {
+                let more = [0, 1, 2].map(|k| [u[k], v[k], l[k]]);
+                let a = with_depth::<3, 4>(screen, more, [0; 3]);
+                let fill = AffineFill::new(target, sampler, maps, PlaneLevel);
+                rows.shade(position, &a, &rect, fill);
+            }
+            TexelLight::Tints(t) => {
+                let more = [0, 1, 2].map(|k| [u[k], v[k], t[k][0], t[k][1], t[k][2]]);
+                let a = with_depth::<5, 6>(screen, more, [0; 5]);
+                let fill = AffineFill::new(target, sampler, maps, PlaneTints);
+                rows.shade(position, &a, &rect, fill);
+            }
+        }
         return;
     }
     let perspective = perspective::attributes(q.map(Inverse::value));
@@ -311,6 +389,16 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 sampler,
                 coordinates,
                 light: Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
+            };
+            clip.rows().shade(position, &attributes, &rect, fill);
+        }
+        TexelLight::Tints(tints) => {
+            let channel = |c: usize| Corrected::new(tints.map(|t| level_fraction(t[c]) as i32));
+            let fill = TexturedFill {
+                target,
+                sampler,
+                coordinates,
+                light: Tints([channel(0), channel(1), channel(2)]),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
@@ -370,31 +458,53 @@ fn nearly_affine(
     if u64::from(texel_spread) * ratio > AFFINE_TEXELS * twice {
         return false;
     }
-    match light {
-        TexelLight::Levels(l) => {
-            let levels = spread(l.map(i32::from)) as u32;
-            u64::from(levels) * ratio <= affine_level * twice
+    let levels = match light {
+        TexelLight::Levels(l) => spread(l.map(i32::from)) as u32,
+        TexelLight::Tints(t) => {
+            let channel = |c: usize| spread(t.map(|t| i32::from(t[c]))) as u32;
+            channel(0).max(channel(1)).max(channel(2))
         }
-        _ => true,
-    }
+        TexelLight::Full | TexelLight::Level(_) => return true,
+    };
+    u64::from(levels) * ratio <= affine_level * twice
 }
 
 /// The span shader of a textured face interpolated in screen space: the depth, the texel
-/// coordinates (16-bit planes as [`PlaneMap`] maps them) and the light level (8.8) as planes.
-struct AffineFill<'t, 'a, 'x, C, S> {
+/// coordinates (16-bit planes as [`PlaneMap`] maps them) and the light's planes after them, if
+/// any (`L` reads them).
+struct AffineFill<'t, 'a, 'x, C, S, L> {
     target: &'t mut DepthTarget<'a, C>,
     sampler: Sampler<'x, S>,
     maps: [PlaneMap; 2],
-    /// Whether the level plane lights the texels.
-    lit: bool,
+    light: L,
 }
 
-impl<C, S> SpanShader<4> for AffineFill<'_, '_, '_, C, S>
+impl<'t, 'a, 'x, C, S, L> AffineFill<'t, 'a, 'x, C, S, L> {
+    /// The fill of `target` sampling with `sampler` at the coordinates `maps` map, lit by
+    /// `light`.
+    #[inline(always)]
+    fn new(
+        target: &'t mut DepthTarget<'a, C>,
+        sampler: Sampler<'x, S>,
+        maps: [PlaneMap; 2],
+        light: L,
+    ) -> Self {
+        AffineFill {
+            target,
+            sampler,
+            maps,
+            light,
+        }
+    }
+}
+
+impl<C, S, L, const N: usize> SpanShader<N> for AffineFill<'_, '_, '_, C, S, L>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
+    L: PlaneLight<N>,
 {
-    type Steps = ([u32; 4], (i32, i32));
+    type Steps = ([u32; N], (i32, i32));
 
     /// Small faces (most of a mesh's) are scanned: the same spans without the walk's
     /// divisions.
@@ -404,7 +514,7 @@ where
     }
 
     #[inline(always)]
-    fn prepare(&mut self, step: [u32; 4]) -> Self::Steps {
+    fn prepare(&mut self, step: [u32; N]) -> Self::Steps {
         (
             step,
             (self.maps[0].step(step[1]), self.maps[1].step(step[2])),
@@ -415,7 +525,7 @@ where
     /// sampler chosen once a face rather than once a span, the buffers indexed directly. The
     /// same spans, values and pixels as [`span`](Self::span) gives them.
     #[inline(always)]
-    fn small_rows(&mut self, scan: &SmallScan<'_, 4>) -> bool {
+    fn small_rows(&mut self, scan: &SmallScan<'_, N>) -> bool {
         let steps = self.prepare(scan.planes().step());
         let (colors, depths, width) = self.target.buffers_mut();
         let rows = SmallRows {
@@ -425,14 +535,14 @@ where
             scan,
             steps,
             maps: self.maps,
-            lit: self.lit,
+            light: self.light,
         };
         self.sampler.run(rows);
         true
     }
 
     #[inline(always)]
-    fn span(&mut self, (step, texel): &Self::Steps, span: Span, start: [u32; 4]) {
+    fn span(&mut self, (step, texel): &Self::Steps, span: Span, start: [u32; N]) {
         let Some((colors, depths)) = self.target.clipped_spans_mut(span) else {
             return;
         };
@@ -445,24 +555,26 @@ where
             depth: (start[0], step[0]),
             at: (x, y),
             step: (dx, dy),
-            level: self.lit.then_some((start[3], step[3])),
+            level: self.light.of_planes(&start, step),
+            light: self.light,
         };
         self.sampler.run(run);
     }
 }
 
 /// One span of [`AffineFill`].
-struct AffineSpan<'p, C> {
+struct AffineSpan<'p, C, L: SpanLight> {
     colors: &'p mut [C],
     depths: &'p mut [u16],
     depth: (u32, u32),
     at: (i32, i32),
     step: (i32, i32),
-    /// The level plane's value and step, if the texels are lit.
-    level: Option<(u32, u32)>,
+    /// The light's state at the first pixel, and its step.
+    level: (L::Level, L::Level),
+    light: L,
 }
 
-impl<C: GouraudColor> SampledLoop<C> for AffineSpan<'_, C> {
+impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for AffineSpan<'_, C, L> {
     type Output = ();
 
     #[inline(always)]
@@ -470,49 +582,33 @@ impl<C: GouraudColor> SampledLoop<C> for AffineSpan<'_, C> {
         let (y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
         let (z, dz) = self.depth;
         let (x, dx) = (self.at.0, self.step.0);
-        let (colors, depths) = (self.colors, self.depths);
-        match self.level {
-            None => {
-                let values = (z, x, y, 0);
-                pixels(colors, depths, values, (dz, dx, dy, 0), &texel, Unlit);
-            }
-            Some((l, dl)) => {
-                let (values, steps) = ((z, x, y, l as i32), (dz, dx, dy, dl as i32));
-                pixels(colors, depths, values, steps, &texel, PlaneLevel);
-            }
-        }
+        let (l, dl) = self.level;
+        let (values, steps) = ((z, x, y, l), (dz, dx, dy, dl));
+        pixels(self.colors, self.depths, values, steps, &texel, self.light);
     }
 }
 
 /// The rows of a small face of [`AffineFill`] (its `small_rows`), in one loop.
-struct SmallRows<'p, 's, C> {
+struct SmallRows<'p, 's, C, L, const N: usize> {
     colors: &'p mut [C],
     depths: &'p mut [u16],
     /// Pixels a row of both buffers.
     width: usize,
-    scan: &'p SmallScan<'s, 4>,
-    steps: ([u32; 4], (i32, i32)),
+    scan: &'p SmallScan<'s, N>,
+    steps: ([u32; N], (i32, i32)),
     maps: [PlaneMap; 2],
-    lit: bool,
+    light: L,
 }
 
-impl<C: GouraudColor> SampledLoop<C> for SmallRows<'_, '_, C> {
+impl<C: GouraudColor, L: PlaneLight<N>, const N: usize> SampledLoop<C>
+    for SmallRows<'_, '_, C, L, N>
+{
     type Output = ();
 
+    /// Each row's run (as the walk gives them) and its pixels: what [`AffineFill::span`] draws
+    /// for it.
     #[inline(always)]
     fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
-        match self.lit {
-            false => self.rows(&texel, y_shift, Unlit),
-            true => self.rows(&texel, y_shift, PlaneLevel),
-        }
-    }
-}
-
-impl<C: GouraudColor> SmallRows<'_, '_, C> {
-    /// Each row's run (as the walk gives them) and its pixels, lit by
-    /// `light`: what [`AffineFill::span`] draws for it.
-    #[inline(always)]
-    fn rows<L: SpanLight>(self, texel: &impl Fn(i32, i32) -> C, y_shift: u32, light: L) {
         let (step, texel_step) = self.steps;
         let planes = self.scan.planes();
         let mut row_values = planes.first();
@@ -532,16 +628,19 @@ impl<C: GouraudColor> SmallRows<'_, '_, C> {
                 let range =
                     row_start.wrapping_add(start as usize)..row_start.wrapping_add(end as usize);
                 let len = end - start;
-                let at = |k: usize| row_values[k].wrapping_add(step[k].wrapping_mul(start));
+                let at: [u32; N] = core::array::from_fn(|k| {
+                    row_values[k].wrapping_add(step[k].wrapping_mul(start))
+                });
                 if let (Some(colors), Some(depths)) = (
                     self.colors.get_mut(range.clone()),
                     self.depths.get_mut(range),
                 ) {
-                    let (x, dx) = m_u.run(at(1), step[1], texel_step.0, len);
-                    let (y, dy) = m_v.run(at(2), step[2], texel_step.1, len);
-                    let values = (at(0), x, y << y_shift, at(3) as i32);
-                    let steps = (step[0], dx, dy << y_shift, step[3] as i32);
-                    pixels(colors, depths, values, steps, texel, light);
+                    let (x, dx) = m_u.run(at[1], step[1], texel_step.0, len);
+                    let (y, dy) = m_v.run(at[2], step[2], texel_step.1, len);
+                    let (l, dl) = self.light.of_planes(&at, &step);
+                    let values = (at[0], x, y << y_shift, l);
+                    let steps = (step[0], dx, dy << y_shift, dl);
+                    pixels(colors, depths, values, steps, &texel, self.light);
                 }
             }
             for (value, step) in row_values.iter_mut().zip(row_step) {
@@ -558,13 +657,30 @@ fn level_fraction(level: u16) -> u32 {
     (u32::from(level) * 257 + 128) >> 8
 }
 
-/// How the span loop lights a texel: the level's 16-bit fraction at each pixel.
+/// How the span loop lights a texel: a state a pixel (the level's 16-bit fraction, or one for
+/// each channel), stepped from pixel to pixel.
 trait SpanLight: Copy {
-    /// The per-pixel state of a chunk from `start` to `end` (perspective barycentrics) over
-    /// `over` pixels.
-    fn chunk(&self, start: (Lambda, Lambda), end: (Lambda, Lambda), over: u32) -> (i32, i32);
-    /// The texel lit at the state's level.
-    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C;
+    /// The state at a pixel, and its step to the next.
+    type Level: Copy;
+    /// The state at the first pixel of a chunk from `start` to `end` (perspective
+    /// barycentrics) over `over` pixels, and its step.
+    fn chunk(
+        &self,
+        start: (Lambda, Lambda),
+        end: (Lambda, Lambda),
+        over: u32,
+    ) -> (Self::Level, Self::Level);
+    /// The texel lit at `level`.
+    fn apply<C: GouraudColor>(&self, texel: C, level: Self::Level) -> C;
+    /// `level` a pixel on.
+    fn step(level: Self::Level, by: Self::Level) -> Self::Level;
+}
+
+/// A light of the screen-space fill, its state read from the planes after the texel
+/// coordinates' (attributes 3 onwards of `N`).
+trait PlaneLight<const N: usize>: SpanLight {
+    /// The state at a pixel whose planes' values are `at`, and its step for the planes' `step`.
+    fn of_planes(&self, at: &[u32; N], step: &[u32; N]) -> (Self::Level, Self::Level);
 }
 
 /// No light.
@@ -572,38 +688,71 @@ trait SpanLight: Copy {
 struct Unlit;
 
 impl SpanLight for Unlit {
+    type Level = ();
+
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
-        (0, 0)
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ((), ()) {
+        ((), ())
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, _: i32) -> C {
+    fn apply<C: GouraudColor>(&self, texel: C, _: ()) -> C {
         texel
+    }
+
+    #[inline(always)]
+    fn step(_: (), _: ()) {}
+}
+
+impl<const N: usize> PlaneLight<N> for Unlit {
+    #[inline(always)]
+    fn of_planes(&self, _: &[u32; N], _: &[u32; N]) -> ((), ()) {
+        ((), ())
     }
 }
 
-/// One level for the face.
+/// One level for the face (a 16-bit fraction).
 #[derive(Clone, Copy)]
 struct Constant(u32);
 
 impl SpanLight for Constant {
+    type Level = ();
+
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
-        (self.0 as i32, 0)
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ((), ()) {
+        ((), ())
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
-        scale_channels::<C>(texel.channels(), level as u32)
+    fn apply<C: GouraudColor>(&self, texel: C, _: ()) -> C {
+        scale_channels::<C>(texel.channels(), self.0)
+    }
+
+    #[inline(always)]
+    fn step(_: (), _: ()) {}
+}
+
+impl<const N: usize> PlaneLight<N> for Constant {
+    #[inline(always)]
+    fn of_planes(&self, _: &[u32; N], _: &[u32; N]) -> ((), ()) {
+        ((), ())
     }
 }
 
-/// The screen-space fill's level plane (8.24 of the 0–255 scale, stepped as it is).
+/// A plane's value (8.24 of the 0–255 scale) as a 16-bit fraction (255 is 65535).
+#[inline(always)]
+fn plane_fraction(value: i32) -> u32 {
+    ((value as u32 >> 12) * 257) >> 12
+}
+
+/// The screen-space fill's level plane (8.24 of the 0–255 scale, stepped as it is): attribute
+/// 3 of 4.
 #[derive(Clone, Copy)]
 struct PlaneLevel;
 
 impl SpanLight for PlaneLevel {
+    type Level = i32;
+
     #[inline(always)]
     fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
         (0, 0)
@@ -611,9 +760,53 @@ impl SpanLight for PlaneLevel {
 
     #[inline(always)]
     fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
-        // To a 16-bit fraction (255 is 65535).
-        let level = ((level as u32 >> 12) * 257) >> 12;
-        scale_channels::<C>(texel.channels(), level)
+        scale_channels::<C>(texel.channels(), plane_fraction(level))
+    }
+
+    #[inline(always)]
+    fn step(level: i32, by: i32) -> i32 {
+        level.wrapping_add(by)
+    }
+}
+
+impl PlaneLight<4> for PlaneLevel {
+    #[inline(always)]
+    fn of_planes(&self, at: &[u32; 4], step: &[u32; 4]) -> (i32, i32) {
+        (at[3] as i32, step[3] as i32)
+    }
+}
+
+/// The screen-space fill's three tint planes (8.24 of the 0–255 scale, stepped as they are):
+/// attributes 3 to 5 of 6.
+#[derive(Clone, Copy)]
+struct PlaneTints;
+
+impl SpanLight for PlaneTints {
+    type Level = [i32; 3];
+
+    #[inline(always)]
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ([i32; 3], [i32; 3]) {
+        ([0; 3], [0; 3])
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, tint: [i32; 3]) -> C {
+        tint_channels::<C>(texel.channels(), tint.map(plane_fraction))
+    }
+
+    #[inline(always)]
+    fn step(tint: [i32; 3], by: [i32; 3]) -> [i32; 3] {
+        [0, 1, 2].map(|c| tint[c].wrapping_add(by[c]))
+    }
+}
+
+impl PlaneLight<6> for PlaneTints {
+    #[inline(always)]
+    fn of_planes(&self, at: &[u32; 6], step: &[u32; 6]) -> ([i32; 3], [i32; 3]) {
+        (
+            [at[3], at[4], at[5]].map(|v| v as i32),
+            [step[3], step[4], step[5]].map(|v| v as i32),
+        )
     }
 }
 
@@ -622,6 +815,8 @@ impl SpanLight for PlaneLevel {
 struct Varying(Corrected);
 
 impl SpanLight for Varying {
+    type Level = i32;
+
     #[inline(always)]
     fn chunk(&self, start: (Lambda, Lambda), end: (Lambda, Lambda), over: u32) -> (i32, i32) {
         let (a, b) = (self.0.at(start), self.0.at(end));
@@ -632,6 +827,49 @@ impl SpanLight for Varying {
     fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
         scale_channels::<C>(texel.channels(), level.clamp(0, 1 << 16) as u32)
     }
+
+    #[inline(always)]
+    fn step(level: i32, by: i32) -> i32 {
+        level.wrapping_add(by)
+    }
+}
+
+/// The vertices' tints (16-bit fractions a channel), perspective-correct at the chunks' ends
+/// and stepped between.
+#[derive(Clone, Copy)]
+struct Tints([Corrected; 3]);
+
+impl SpanLight for Tints {
+    type Level = [i32; 3];
+
+    #[inline(always)]
+    fn chunk(
+        &self,
+        start: (Lambda, Lambda),
+        end: (Lambda, Lambda),
+        over: u32,
+    ) -> ([i32; 3], [i32; 3]) {
+        let a = self.0.map(|c| c.at(start));
+        let b = self.0.map(|c| c.at(end));
+        (a, [0, 1, 2].map(|c| step_over(a[c], b[c], over)))
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, tint: [i32; 3]) -> C {
+        tint_channels::<C>(texel.channels(), tint.map(|t| t.clamp(0, 1 << 16) as u32))
+    }
+
+    #[inline(always)]
+    fn step(tint: [i32; 3], by: [i32; 3]) -> [i32; 3] {
+        [0, 1, 2].map(|c| tint[c].wrapping_add(by[c]))
+    }
+}
+
+/// The channels `base` each times its own 16-bit fraction `tint` (at most 2¹⁶), rounded.
+#[inline(always)]
+fn tint_channels<C: GouraudColor>(base: [u8; 3], tint: [u32; 3]) -> C {
+    let s = |c: usize| ((u32::from(base[c]) * tint[c] + (1 << 15)) >> 16) as u8;
+    C::from_channels([s(0), s(1), s(2)])
 }
 
 /// The span shader of the textured fills: depth test, texel coordinates (and light level) from
@@ -732,8 +970,8 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
 fn chunk_pixels<C: GouraudColor, L: SpanLight>(
     colors: &mut [C],
     depths: &mut [u16],
-    values: (u32, i32, i32, i32),
-    steps: (u32, i32, i32, i32),
+    values: (u32, i32, i32, L::Level),
+    steps: (u32, i32, i32, L::Level),
     texel: &impl Fn(i32, i32) -> C,
     light: L,
 ) -> u32 {
@@ -747,8 +985,8 @@ fn chunk_pixels<C: GouraudColor, L: SpanLight>(
 fn pixels<C: GouraudColor, L: SpanLight>(
     colors: &mut [C],
     depths: &mut [u16],
-    (mut z, mut x, mut y, mut level): (u32, i32, i32, i32),
-    (dz, dx, dy, dl): (u32, i32, i32, i32),
+    (mut z, mut x, mut y, mut level): (u32, i32, i32, L::Level),
+    (dz, dx, dy, dl): (u32, i32, i32, L::Level),
     texel: &impl Fn(i32, i32) -> C,
     light: L,
 ) -> u32 {
@@ -761,7 +999,7 @@ fn pixels<C: GouraudColor, L: SpanLight>(
         z = z.wrapping_add(dz);
         x = x.wrapping_add(dx);
         y = y.wrapping_add(dy);
-        level = level.wrapping_add(dl);
+        level = L::step(level, dl);
     }
     z
 }
