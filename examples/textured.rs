@@ -23,7 +23,8 @@ use embedded_graphics::{
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture, Wrap};
 use embedded_raster::three_d::{
-    Angle, DepthTarget, Light, Mat4, Material, Pipeline, Scalar, Shading, TexturedMaterial, Vec3,
+    Angle, DepthTarget, Light, Mat4, Material, Pipeline, Scalar, Shading, Specular,
+    TexturedMaterial, Vec3,
 };
 use embedded_raster::{
     GouraudTriangle, SliceFramebuffer, TexturedTriangle, TexturedVertex, Vertex,
@@ -80,6 +81,11 @@ fn spot_pipeline(scale: u32) -> Pipeline {
 /// Spot's frame at `scale` times 320×240, textured with `filter` or, for `None`, in the plain
 /// Gouraud material: the colour buffer, row-major.
 fn render_spot(scale: u32, filter: Option<Filter>) -> Vec<Rgb565> {
+    render_spot_lit(scale, filter, None)
+}
+
+/// [`render_spot`] with a Blinn-Phong highlight on the texture, if `specular` is given.
+fn render_spot_lit(scale: u32, filter: Option<Filter>, specular: Option<Specular>) -> Vec<Rgb565> {
     let (w, h) = (FRAME.0 * scale, FRAME.1 * scale);
     let mut pixels = vec![BACKGROUND; (w * h) as usize];
     let mut depth = vec![0u16; (w * h) as usize];
@@ -91,7 +97,10 @@ fn render_spot(scale: u32, filter: Option<Filter>) -> Vec<Rgb565> {
             let texture = Texture::new(SPOT_TEXTURE, SPOT_TEXTURE_WIDTH, SPOT_TEXTURE_HEIGHT)
                 .expect("256 × 256 texels")
                 .with_filter(filter);
-            let material = TexturedMaterial::new(&texture, Shading::Gouraud);
+            let mut material = TexturedMaterial::new(&texture, Shading::Gouraud);
+            if let Some(specular) = specular {
+                material = material.with_specular(specular);
+            }
             pipeline.draw_textured_mesh(&SPOT_TEXTURED, &material, &mut target)
         }
         None => {
@@ -146,16 +155,23 @@ fn save(display: &SimulatorDisplay<Rgb565>, name: &str) {
     println!("wrote {path}");
 }
 
-/// `textured_spot.png`: the textured spot (bilinear) and the plain one, side by side.
+/// `textured_spot.png`: the textured spot (bilinear), the same with a highlight, and the plain
+/// one, side by side.
 fn textured_spot() {
     let (w, h) = FRAME;
-    let mut display = SimulatorDisplay::new(Size::new(2 * w, h));
+    let mut display = SimulatorDisplay::new(Size::new(3 * w, h));
+    let highlight = Specular::new(Scalar::from_num(0.5), 24);
     let panels = [
-        (Some(Filter::Bilinear), "textured, Gouraud"),
-        (None, "untextured, Gouraud"),
+        (Some(Filter::Bilinear), None, "textured, Gouraud"),
+        (
+            Some(Filter::Bilinear),
+            Some(highlight),
+            "textured, specular",
+        ),
+        (None, None, "untextured, Gouraud"),
     ];
-    for (k, (filter, name)) in panels.into_iter().enumerate() {
-        let pixels = render_spot(1, filter);
+    for (k, (filter, specular, name)) in panels.into_iter().enumerate() {
+        let pixels = render_spot_lit(1, filter, specular);
         let at = Point::new(k as i32 * w as i32, 0);
         blit(
             &mut display,

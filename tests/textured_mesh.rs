@@ -41,10 +41,10 @@ use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
 use embedded_raster::reference::texture::{nearest_texel, RefTexture, RefWrap};
 use embedded_raster::texture::{Filter, Rgb565Texels, Rgb888Texels, TexelSource, Texture, Wrap};
 use embedded_raster::three_d::meshes::{icosphere, MeshData};
-use embedded_raster::three_d::{Angle, TexCoord, Vec3};
+use embedded_raster::three_d::{Angle, Scalar, TexCoord, Vec3};
 use embedded_raster::three_d::{Cull, DepthTarget, DrawStats, Mesh, Pipeline, DEPTH_CLEAR};
 use embedded_raster::three_d::{
-    Light, Material, ProjectedVertex, ScratchTooSmall, Shading, TexturedMaterial,
+    Light, Material, ProjectedVertex, ScratchTooSmall, Shading, Specular, TexturedMaterial,
 };
 
 #[path = "support/raycast.rs"]
@@ -1406,6 +1406,109 @@ fn check_tinted(case: &Case, rng: &mut Rng, tinted: &mut Tinted) {
     }
 }
 
+/// Draws `case` with a constant texture, Gouraud-lit with a Blinn-Phong highlight
+/// (`TexturedMaterial::with_specular`) by a random light, and checks every pixel the reference
+/// gives one face against `min(255, texel · L + 255 · S)`, `L` and `S` the vertices' f64
+/// Lambert level and `strength · max(0, n·ĥ)^shininess` (none facing away from the light;
+/// `ĥ` between the light and the viewer at infinity along +z) interpolated
+/// perspective-correct at the ray's hit: within 1 LSB plus each term's interpolation
+/// tolerance, the power's `shininess · 2⁻¹⁷` and the terms' 8.8 quantisation.
+fn check_shiny(case: &Case, rng: &mut Rng, shiny: &mut Tinted) {
+    let light = normalize([
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(0.2, 1.0),
+    ]);
+    let ambient = rng.range_f64(0.0, 0.4);
+    let scene = Scene::new(&case.pose, light, ambient);
+    let specular = Specular::new(fx(rng.range_f64(0.2, 1.0)), rng.below(48) as u8 + 1);
+    let (strength, shininess) = (fl(specular.strength()), specular.shininess());
+    let bytes: Vec<u8> = (0..16).flat_map(|_| TEXEL).collect();
+    let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
+    let mesh = case.mesh.as_mesh();
+    let mut frame = Frame::new();
+    let material = TexturedMaterial::new(&texture, Shading::Gouraud).with_specular(specular);
+    scene
+        .pipeline
+        .draw_textured_mesh(&mesh, &material, &mut frame.target());
+    let half = normalize([scene.light[0], scene.light[1], scene.light[2] + 1.0]);
+    let world_normal = |n: Vec3| normalize(rotate(&scene.view.model_view, normalize(bits3(n))));
+    let faces = ref_faces(&scene, &case.mesh, (4, 4));
+    let (verdicts, spans) = verdicts(&scene, &faces);
+    for (p, verdict) in verdicts.into_iter().enumerate() {
+        let Verdict::Face { face, .. } = verdict else {
+            continue;
+        };
+        if case.mesh.normals.is_empty() {
+            continue;
+        }
+        let (i, j) = ((p as u32 % W) as i32, (p as u32 / W) as i32);
+        let f = &faces[face];
+        let normals =
+            case.mesh.indices[face].map(|v| world_normal(case.mesh.normals[usize::from(v)]));
+        let speculars = normals.map(|n| match dot(n, scene.light) > 0.0 {
+            true => strength * dot(n, half).max(0.0).powi(i32::from(shininess)),
+            false => 0.0,
+        });
+        let (level_spread, specular_spread) = (spread_of(f.levels), spread_of(speculars));
+        let ratio = affine_ratio(
+            &scene,
+            f,
+            &[
+                (f.spread(), AFFINE_TEXELS),
+                (level_spread.max(specular_spread), AFFINE_LEVEL),
+            ],
+        );
+        let rounding = 2.0 / (256.0 * 255.0);
+        let term = |values: [f64; 3], spread: f64| {
+            let e = exact(&scene, f, spans.of(face, j), values, (i, j), UNIT);
+            let affine = ratio.map(|r| departure(r, spread, AFFINE_LEVEL));
+            let tol = tolerance(&scene, f, &e, spread, affine, rounding) + 1.0 / 65_280.0;
+            (e.value.clamp(0.0, 1.0), tol)
+        };
+        let (level, level_tol) = term(f.levels, level_spread);
+        let (spec, spec_tol) = term(speculars, specular_spread);
+        let spec_tol = spec_tol + f64::from(shininess) / 131_072.0;
+        let got = frame.px[p];
+        for (k, g) in [got.r(), got.g(), got.b()]
+            .map(f64::from)
+            .into_iter()
+            .enumerate()
+        {
+            let texel = f64::from(TEXEL[k]);
+            let want = (texel * level + 255.0 * spec).min(255.0);
+            let allowance = texel * level_tol + 255.0 * spec_tol;
+            let d = (g - want).abs();
+            assert!(
+                d <= 1.0 + allowance,
+                "{}: pixel {i},{j} face {face} channel {k}: {g}, exact {want:.3} (levels {:?}, \
+                 speculars {speculars:?}, allowance {allowance:.4}), pose {:?}",
+                case.name,
+                f.levels,
+                case.pose
+            );
+            shiny.worst = shiny.worst.max(d);
+            shiny.beyond = shiny.beyond.max(d - allowance);
+        }
+        shiny.pixels += 1;
+    }
+}
+
+/// Highlights on textured meshes: every pixel within 1 LSB (plus the interpolation's
+/// tolerance and the power's bound) of the texel times the f64 Lambert level plus the f64
+/// Blinn-Phong term, both perspective-correct, on clipped and unclipped cases.
+#[test]
+fn highlights_light_texels() {
+    let (unclipped, clipped) = all_cases();
+    let mut rng = Rng(0x7e47_3d09);
+    let mut shiny = Tinted::default();
+    for case in unclipped.iter().chain(&clipped) {
+        check_shiny(case, &mut rng, &mut shiny);
+    }
+    println!("{shiny:?}");
+    assert!(shiny.pixels > 30_000, "{shiny:?}");
+}
+
 /// Vertex colours tint textured meshes: every pixel within 1 LSB (plus the interpolation's
 /// tolerance) of the texel times the vertices' colour-times-level, perspective-correct, on
 /// clipped and unclipped cases.
@@ -1509,6 +1612,10 @@ where
             .collect();
         material = material.with_vertex_colors();
     }
+    // Two rounds in three highlighted.
+    if round % 3 != 0 {
+        material = material.with_specular(Specular::new(Scalar::from_num(0.6), 12));
+    }
     let mesh = data.as_mesh();
     let mut whole = Frame::new();
     let stats = scene
@@ -1543,7 +1650,8 @@ where
     stats
 }
 
-/// Every way of drawing a textured mesh (every other round tinted by vertex colours) gives the
+/// Every way of drawing a textured mesh (every other round tinted by vertex colours, two in
+/// three highlighted) gives the
 /// same frame, bit for bit: `draw_textured_mesh`
 /// and `draw_textured_mesh_with` (a vertex scratch: the same stats too), and band rendering
 /// (`DepthBands` of 1, 8, 16 and 240 rows, each band drawn with and without a scratch) against

@@ -476,8 +476,8 @@ enum Fill<C> {
     /// Per-pixel lighting of the quadratic normal field.
     Quadratic(C),
     /// The frame's texture, lit by one level a face (`Flat`), the vertex levels (`Gouraud`)
-    /// or not at all (`Unlit`); tinted by the mesh's vertex colours if `true`.
-    Textured(Shading, bool),
+    /// or not at all (`Unlit`); tinted by the mesh's vertex colours, and highlighted.
+    Textured(Texturing),
     /// A material with a highlight, lit with `Flat`, `Gouraud` or `Quadratic` shading.
     Specular(Shiny<C>),
 }
@@ -494,6 +494,16 @@ struct Shiny<C> {
     /// The material colour's levels (flat and Gouraud shading): the faces that the highlight
     /// does not reach (a specular term of 0 at every vertex) are filled as without it.
     table: Option<ShadeTable<C>>,
+}
+
+/// How a textured draw lights its texels.
+#[derive(Debug, Clone, Copy)]
+struct Texturing {
+    shading: Shading,
+    /// Whether the mesh's vertex colours tint them.
+    tinted: bool,
+    /// The highlight per vertex or face, its half vector in the normals' space.
+    highlight: Option<VertexSpecular>,
 }
 
 /// Where the face stage hands the faces it keeps: a target to fill them into now (a frame's, or a
@@ -628,15 +638,27 @@ where
     ) -> Self {
         let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
         let stage = pipeline.stage(bound(mesh.vertices), None);
+        // A highlight of strength 0 is none: the same frame as without it.
+        let specular = material
+            .specular
+            .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0);
+        let highlight = specular.map(|specular| {
+            let h = Highlight::new(pipeline.half_vector(), specular);
+            light.specular(&pipeline.normal_matrix, &h)
+        });
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
             stage,
             light,
-            rig: pipeline.rig(None),
+            rig: pipeline.rig(specular),
             vertex_rig: false,
             clip,
-            fill: Fill::Textured(material.shading, material.vertex_colors),
+            fill: Fill::Textured(Texturing {
+                shading: material.shading,
+                tinted: material.vertex_colors,
+                highlight,
+            }),
             texture: FrameTexture::new(material.texture),
         }
     }
@@ -1143,8 +1165,8 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 let light = &self.pipeline.light;
                 shading::fill_quadratic(target, clip, tri, &normals, light, *color);
             }
-            Fill::Textured(shading, tinted) => {
-                self.fill_textured(mesh, idx, model, v, bary, (*shading, *tinted), target)
+            Fill::Textured(texturing) => {
+                self.fill_textured(mesh, idx, model, v, bary, texturing, target)
             }
             Fill::Specular(shiny) => self.fill_specular(mesh, idx, model, v, bary, shiny, target),
         }
@@ -1254,34 +1276,47 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         model: impl Fn() -> [Vec3; 3],
         v: [&ProjectedVertex; 3],
         bary: Option<[Bary; 3]>,
-        (shading, tinted): (Shading, bool),
+        texturing: &Texturing,
         target: &mut DepthTarget<'_, C>,
     ) {
+        let Texturing {
+            shading, tinted, ..
+        } = *texturing;
         let colors = if tinted {
             at_face(mesh.colors, idx)
         } else {
             None
         };
-        let light = match (shading, colors) {
-            (Shading::Unlit, None) => TexelLight::Full,
-            (Shading::Flat, None) => TexelLight::Level(self.face_level(&model())),
-            (Shading::Gouraud | Shading::Quadratic, None) => {
+        let speculars = texturing
+            .highlight
+            .map(|h| self.texel_speculars(mesh, idx, &model, bary, shading, &h))
+            .filter(|s| *s != [0; 3]);
+        let light = match (shading, colors, speculars) {
+            (Shading::Unlit, None, _) => TexelLight::Full,
+            (Shading::Flat, None, None) => TexelLight::Level(self.face_level(&model())),
+            (Shading::Gouraud | Shading::Quadratic, None, None) => {
                 let levels = self.texel_levels(mesh, idx, &model());
                 let levels = at_bary(bary, levels.map(|l| [i64::from(l)]));
                 TexelLight::Levels(levels.map(|[l]| l.clamp(0, u16::MAX.into()) as u16))
             }
-            (shading, Some(colors)) => {
+            (shading, colors, speculars) => {
                 let levels = match shading {
                     Shading::Unlit => [u16::MAX; 3],
                     Shading::Flat => [self.face_level(&model()); 3],
                     Shading::Gouraud | Shading::Quadratic => self.texel_levels(mesh, idx, &model()),
                 };
+                let white = [&Rgb888::WHITE; 3];
+                let colors = colors.unwrap_or(white);
                 let tints = [0, 1, 2].map(|k| {
                     let level = i64::from(levels[k].min(255 << 8));
                     tint(colors[k], level)
                 });
                 let tints = at_bary(bary, tints);
-                TexelLight::Tints(tints.map(|t| t.map(|c| c.clamp(0, i64::from(255 << 8)) as u16)))
+                let tints = tints.map(|t| t.map(|c| c.clamp(0, i64::from(255 << 8)) as u16));
+                match speculars {
+                    None => TexelLight::Tints(tints),
+                    Some(speculars) => TexelLight::Shiny { tints, speculars },
+                }
             }
         };
         let texels = self.texels(mesh, idx);
@@ -1290,6 +1325,36 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         let q = v.map(|v| v.q());
         let tri = v.map(|v| v.screen());
         self.texture.fill(target, &self.clip, tri, q, texels, light);
+    }
+
+    /// The specular terms of a textured face's vertices `idx` (at `model`; a fan's at `bary`)
+    /// for the highlight `h`, 8.8 of the 0–255 scale as its levels: per vertex (Gouraud and
+    /// quadratic shading) or the face's (flat).
+    fn texel_speculars(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: &impl Fn() -> [Vec3; 3],
+        bary: Option<[Bary; 3]>,
+        shading: Shading,
+        h: &VertexSpecular,
+    ) -> [u16; 3] {
+        let eight = |s: i64| ((s.clamp(0, 1 << 16) * 255 + (1 << 7)) >> 8) as u16;
+        match shading {
+            Shading::Unlit => [0; 3],
+            Shading::Flat => {
+                let model = model();
+                let (_, specular) = match &self.rig {
+                    None => self.light.terms(face_normal(&model), h),
+                    Some(rig) => rig.face_terms(&model),
+                };
+                [eight(i64::from(specular)); 3]
+            }
+            Shading::Gouraud | Shading::Quadratic => {
+                let speculars = self.vertex_speculars(mesh, idx, model, h);
+                at_bary(bary, speculars.map(|s| [i64::from(s)])).map(|[s]| eight(s))
+            }
+        }
     }
 
     /// The 16.16 texel coordinates of the face's vertices `idx` from the mesh's normalised

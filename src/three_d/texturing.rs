@@ -129,6 +129,14 @@ pub(crate) enum TexelLight {
     /// Channel by channel by the vertices' tints (each channel 8.8 of the 0–255 scale: a
     /// vertex colour times its light level), interpolated perspective-correct.
     Tints([[u16; 3]; 3]),
+    /// By the vertices' tints, plus their specular terms (8.8 of the 0–255 scale) as white
+    /// light, saturating; both interpolated perspective-correct.
+    Shiny {
+        /// Each vertex's tints.
+        tints: [[u16; 3]; 3],
+        /// Each vertex's specular term.
+        speculars: [u16; 3],
+    },
 }
 
 /// A texture a frame draws its faces with: none (a material's colour), or a texture of some
@@ -235,6 +243,9 @@ pub struct TexturedMaterial<'t, S> {
     pub shading: super::Shading,
     /// Whether the mesh's vertex colours ([`Mesh::colors`](super::Mesh)) tint the texels.
     pub vertex_colors: bool,
+    /// A Blinn-Phong highlight added to the lit texel as white light (flat: per face; Gouraud
+    /// and quadratic: per vertex, interpolated perspective-correct; none unlit), or none.
+    pub specular: Option<super::Specular>,
 }
 
 impl<S> Clone for TexturedMaterial<'_, S> {
@@ -252,6 +263,16 @@ impl<'t, S> TexturedMaterial<'t, S> {
             texture,
             shading,
             vertex_colors: false,
+            specular: None,
+        }
+    }
+
+    /// The same material with a highlight: `texel · light + specular · max` in every channel
+    /// (the highlight white, saturating), as a [`Material`](super::Material)'s.
+    pub const fn with_specular(self, specular: super::Specular) -> Self {
+        TexturedMaterial {
+            specular: Some(specular),
+            ..self
         }
     }
 
@@ -354,6 +375,15 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 let fill = AffineFill::new(target, sampler, maps, PlaneTints);
                 rows.shade(position, &a, &rect, fill);
             }
+            TexelLight::Shiny {
+                tints: t,
+                speculars,
+            } => {
+                let more = [0, 1, 2].map(|k| [u[k], v[k], t[k][0], t[k][1], t[k][2], speculars[k]]);
+                let a = with_depth::<6, 7>(screen, more, [0; 6]);
+                let fill = AffineFill::new(target, sampler, maps, PlaneShiny);
+                rows.shade(position, &a, &rect, fill);
+            }
         }
         return;
     }
@@ -399,6 +429,17 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 sampler,
                 coordinates,
                 light: Tints([channel(0), channel(1), channel(2)]),
+            };
+            clip.rows().shade(position, &attributes, &rect, fill);
+        }
+        TexelLight::Shiny { tints, speculars } => {
+            let channel = |c: usize| Corrected::new(tints.map(|t| level_fraction(t[c]) as i32));
+            let specular = Corrected::new(speculars.map(|s| level_fraction(s) as i32));
+            let fill = TexturedFill {
+                target,
+                sampler,
+                coordinates,
+                light: Shiny([channel(0), channel(1), channel(2), specular]),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
@@ -463,6 +504,14 @@ fn nearly_affine(
         TexelLight::Tints(t) => {
             let channel = |c: usize| spread(t.map(|t| i32::from(t[c]))) as u32;
             channel(0).max(channel(1)).max(channel(2))
+        }
+        TexelLight::Shiny {
+            tints: t,
+            speculars,
+        } => {
+            let channel = |c: usize| spread(t.map(|t| i32::from(t[c]))) as u32;
+            let specular = spread(speculars.map(i32::from)) as u32;
+            channel(0).max(channel(1)).max(channel(2)).max(specular)
         }
         TexelLight::Full | TexelLight::Level(_) => return true,
     };
@@ -863,6 +912,85 @@ impl SpanLight for Tints {
     fn step(tint: [i32; 3], by: [i32; 3]) -> [i32; 3] {
         [0, 1, 2].map(|c| tint[c].wrapping_add(by[c]))
     }
+}
+
+/// The screen-space fill's tint planes and specular plane (8.24 of the 0–255 scale, stepped
+/// as they are): attributes 3 to 6 of 7.
+#[derive(Clone, Copy)]
+struct PlaneShiny;
+
+impl SpanLight for PlaneShiny {
+    type Level = [i32; 4];
+
+    #[inline(always)]
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ([i32; 4], [i32; 4]) {
+        ([0; 4], [0; 4])
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; 4]) -> C {
+        shiny_channels::<C>(texel.channels(), light.map(plane_fraction))
+    }
+
+    #[inline(always)]
+    fn step(light: [i32; 4], by: [i32; 4]) -> [i32; 4] {
+        [0, 1, 2, 3].map(|c| light[c].wrapping_add(by[c]))
+    }
+}
+
+impl PlaneLight<7> for PlaneShiny {
+    #[inline(always)]
+    fn of_planes(&self, at: &[u32; 7], step: &[u32; 7]) -> ([i32; 4], [i32; 4]) {
+        (
+            [at[3], at[4], at[5], at[6]].map(|v| v as i32),
+            [step[3], step[4], step[5], step[6]].map(|v| v as i32),
+        )
+    }
+}
+
+/// The vertices' tints and specular terms (16-bit fractions), perspective-correct at the
+/// chunks' ends and stepped between.
+#[derive(Clone, Copy)]
+struct Shiny([Corrected; 4]);
+
+impl SpanLight for Shiny {
+    type Level = [i32; 4];
+
+    #[inline(always)]
+    fn chunk(
+        &self,
+        start: (Lambda, Lambda),
+        end: (Lambda, Lambda),
+        over: u32,
+    ) -> ([i32; 4], [i32; 4]) {
+        let a = self.0.map(|c| c.at(start));
+        let b = self.0.map(|c| c.at(end));
+        (a, [0, 1, 2, 3].map(|c| step_over(a[c], b[c], over)))
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; 4]) -> C {
+        shiny_channels::<C>(texel.channels(), light.map(|t| t.clamp(0, 1 << 16) as u32))
+    }
+
+    #[inline(always)]
+    fn step(light: [i32; 4], by: [i32; 4]) -> [i32; 4] {
+        [0, 1, 2, 3].map(|c| light[c].wrapping_add(by[c]))
+    }
+}
+
+/// The channels `base` each times its own 16-bit fraction (the first three of `light`, at
+/// most 2¹⁶), plus the specular fraction (the fourth) of the channel's maximum, rounded once
+/// and saturating at the maximum.
+#[inline(always)]
+fn shiny_channels<C: GouraudColor>(base: [u8; 3], light: [u32; 4]) -> C {
+    let specular = light[3].min(1 << 16);
+    let s = |c: usize| {
+        let max = u32::from(C::MAX[c]);
+        let v = (u32::from(base[c]) * light[c].min(1 << 16) + max * specular + (1 << 15)) >> 16;
+        v.min(max) as u8
+    };
+    C::from_channels([s(0), s(1), s(2)])
 }
 
 /// The channels `base` each times its own 16-bit fraction `tint` (at most 2¹⁶), rounded.
