@@ -195,7 +195,7 @@ mod firmware {
         }
         // The textured frames: counts and checksums untimed, then timed with the scratch.
         textured3d::expand(TEXTURE);
-        let mut textured = [None, None, None];
+        let mut textured = [None, None, None, None];
         for (k, frame) in Textured::ALL.into_iter().enumerate() {
             let stats = textured3d::render(frame, TEXTURE, &mut target, Some(&mut SCRATCH[..]));
             let covered = scene3d::covered(target.depth());

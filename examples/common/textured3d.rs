@@ -14,7 +14,9 @@
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
-use embedded_raster::three_d::{DepthTarget, DrawStats, ProjectedVertex, Shading};
+use embedded_raster::three_d::{
+    DepthTarget, DrawStats, ProjectedVertex, Scalar, Shading, Specular,
+};
 use embedded_raster::three_d::{Mesh, TexturedMaterial};
 
 use crate::scene3d::{pipeline, Model, BACKGROUND, SIZE};
@@ -44,11 +46,18 @@ pub enum Textured {
     Bilinear,
     /// The 4-bit palette texels in flash, nearest.
     Palette,
+    /// Rgb565 texels in RAM, nearest, with a Blinn-Phong highlight.
+    Specular,
 }
 
 impl Textured {
     /// All, in report order.
-    pub const ALL: [Textured; 3] = [Textured::Nearest, Textured::Bilinear, Textured::Palette];
+    pub const ALL: [Textured; 4] = [
+        Textured::Nearest,
+        Textured::Bilinear,
+        Textured::Palette,
+        Textured::Specular,
+    ];
 
     /// The name in reports.
     pub fn name(self) -> &'static str {
@@ -56,6 +65,7 @@ impl Textured {
             Textured::Nearest => "spot-textured-nearest",
             Textured::Bilinear => "spot-textured-bilinear",
             Textured::Palette => "spot-textured-palette",
+            Textured::Specular => "spot-textured-specular",
         }
     }
 }
@@ -80,7 +90,7 @@ pub fn render(
     target.clear(BACKGROUND);
     match frame {
         Textured::Palette => match Texture::new(SPOT_TEXTURE, w, h) {
-            Ok(texture) => draw(&texture, target, scratch),
+            Ok(texture) => draw(&texture, None, target, scratch),
             Err(_) => DrawStats::default(),
         },
         _ => {
@@ -88,17 +98,21 @@ pub fn render(
                 Textured::Bilinear => Filter::Bilinear,
                 _ => Filter::Nearest,
             };
+            // Strength ½, shininess 24.
+            let specular = (frame == Textured::Specular)
+                .then(|| Specular::new(Scalar::from_bits(1 << 15), 24));
             match Texture::new(Rgb565Texels(texels), w, h) {
-                Ok(texture) => draw(&texture.with_filter(filter), target, scratch),
+                Ok(texture) => draw(&texture.with_filter(filter), specular, target, scratch),
                 Err(_) => DrawStats::default(),
             }
         }
     }
 }
 
-/// Spot in the bench frame with `texture`, Gouraud-lit.
+/// Spot in the bench frame with `texture`, Gouraud-lit, highlighted by `specular` if given.
 fn draw<S>(
     texture: &Texture<S>,
+    specular: Option<Specular>,
     target: &mut DepthTarget<'_, Rgb565>,
     scratch: Option<&mut [ProjectedVertex]>,
 ) -> DrawStats
@@ -107,7 +121,10 @@ where
     Rgb565: From<S::Color>,
 {
     let pipeline = pipeline(Model::Spot);
-    let material = TexturedMaterial::new(texture, Shading::Gouraud);
+    let mut material = TexturedMaterial::new(texture, Shading::Gouraud);
+    if let Some(specular) = specular {
+        material = material.with_specular(specular);
+    }
     let mesh: &Mesh<'_> = &SPOT_TEXTURED;
     match scratch {
         Some(scratch) => pipeline
