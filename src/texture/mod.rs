@@ -25,7 +25,7 @@ pub(crate) mod span;
 pub use address::Wrap;
 pub use map::{Filter, Texture, TextureError, MAX_SIZE};
 pub use source::{
-    Direct, Gray8Texels, Indexed4, Indexed8, Rgb565Texels, Rgb888Texels, TexelSource,
+    Direct, Gray8Texels, Indexed4, Indexed8, Rgb565Texels, Rgb888Texels, Solid, TexelSource,
 };
 
 /// A texel coordinate: signed 16.16 fixed point in texels (the `fixed` crate's `I16F16`).

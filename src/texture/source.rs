@@ -260,6 +260,43 @@ impl<C: PixelColor + Default> TexelSource for Direct<'_, C> {
     }
 }
 
+/// One colour as a texture's only texel: with a 1 × 1 [`Texture`](super::Texture) it makes a
+/// [`TexturedMaterial`](crate::three_d::TexturedMaterial) of a plain colour — the textured
+/// pipeline's perspective-correct light levels, vertex colours and highlights for an
+/// untextured mesh (a [`Material`](crate::three_d::Material)'s levels are interpolated in
+/// screen space).
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use embedded_raster::texture::{Solid, Texture};
+/// use embedded_raster::three_d::{Shading, TexturedMaterial};
+///
+/// let texture = Texture::new(Solid(Rgb565::YELLOW), 1, 1).unwrap();
+/// let material = TexturedMaterial::new(&texture, Shading::Gouraud);
+/// # let _ = material;
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Solid<C>(pub C);
+
+impl<C: PixelColor> TexelSource for Solid<C> {
+    type Color = C;
+
+    #[inline(always)]
+    fn texels(&self) -> usize {
+        1
+    }
+
+    #[inline(always)]
+    fn texel(&self, _: usize) -> C {
+        self.0
+    }
+
+    #[inline(always)]
+    fn prefix(&self, last: usize) -> Option<Self> {
+        (last == 0).then_some(*self)
+    }
+}
+
 /// Palette entry `i`, or the first entry for an index past the end.
 #[inline(always)]
 fn palette_color<C: Copy + Default>(palette: &[C], i: usize) -> C {

@@ -25,8 +25,12 @@
 //! [`Pipeline::normal_matrix`] (the model matrix by default, exact for rotations); the light is
 //! given in the same (world) space, and so are the directional and point lights a pipeline may
 //! add to it ([`Pipeline::lights`]: point lights placed against the mesh by
-//! [`Pipeline::model`]). Attributes are interpolated affinely in screen space (no
-//! perspective correction); depth, being `z/w`, is affine in screen space and therefore exact.
+//! [`Pipeline::model`]). A [`Material`]'s attributes are interpolated affinely in screen
+//! space (no perspective correction: the cheaper choice, good for small faces); a
+//! [`TexturedMaterial`] interpolates its texel coordinates, light levels, vertex colours and
+//! highlights perspective-correct — of a plain colour with a 1 × 1
+//! [`Solid`](crate::texture::Solid) texture. Depth, being `z/w`, is affine in screen space and
+//! therefore exact.
 //! All state lives on the stack: the clipped polygon holds at most 10 vertices.
 //!
 //! ```
