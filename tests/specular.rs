@@ -16,7 +16,7 @@
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
+use embedded_raster::band::BandLayout;
 use embedded_raster::reference::{self, texture};
 use embedded_raster::three_d::meshes::{self, icosphere::ICOSPHERE, torus::TORUS, MeshData};
 use embedded_raster::three_d::{
@@ -28,6 +28,10 @@ use embedded_raster::GouraudColor;
 #[path = "support/vec_f64.rs"]
 mod vec_f64;
 use vec_f64::{dot, normalize};
+
+#[path = "support/banded.rs"]
+mod banded;
+use banded::banded;
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -521,54 +525,6 @@ fn every_path_draws_the_same_highlights() {
         }
     }
     assert!(clipped > 10, "{clipped} faces clipped");
-}
-
-/// The frame of `meshes` in the bands of `layout`: mode 0 `DepthBand::draw_mesh`, 1
-/// `draw_mesh_with`, 2 a `MeshBin`.
-fn banded(
-    layout: &BandLayout,
-    pipeline: &Pipeline,
-    meshes: &[(Mesh<'_>, Material<Rgb888>)],
-    mode: u32,
-) -> (Vec<Rgb888>, Vec<u16>) {
-    let n = layout.buffer_len();
-    let (mut colors, mut depth) = (vec![Rgb888::BLACK; n], vec![0u16; n]);
-    let (mut all_colors, mut all_depth) = (Vec::new(), Vec::new());
-    let mut scratch: Vec<Vec<ProjectedVertex>> = meshes
-        .iter()
-        .map(|m| vec![ProjectedVertex::EMPTY; m.0.vertices.len()])
-        .collect();
-    let mut band_scratch = vec![ProjectedVertex::EMPTY; 4096];
-    let mut storage: Vec<Vec<BinEntry>> = meshes
-        .iter()
-        .map(|m| vec![BinEntry::EMPTY; layout.count() as usize + 2 * m.0.indices.len() + 64])
-        .collect();
-    let mut bins = Vec::new();
-    if mode == 2 {
-        for ((mesh, material), (scratch, storage)) in meshes
-            .iter()
-            .zip(scratch.iter_mut().zip(storage.iter_mut()))
-        {
-            bins.push(MeshBin::new(pipeline, mesh, material, layout, scratch, storage).unwrap());
-        }
-    }
-    for index in 0..layout.count() {
-        let mut band = DepthBand::new(&mut colors, &mut depth, layout, index).unwrap();
-        band.clear(Rgb888::new(3, 60, 90));
-        match mode {
-            0 => meshes.iter().for_each(|(mesh, material)| {
-                band.draw_mesh(pipeline, mesh, material);
-            }),
-            1 => meshes.iter().for_each(|(mesh, material)| {
-                band.draw_mesh_with(pipeline, mesh, material, &mut band_scratch)
-                    .unwrap();
-            }),
-            _ => bins.iter_mut().for_each(|bin| bin.draw(&mut band).unwrap()),
-        }
-        all_colors.extend_from_slice(band.pixels());
-        all_depth.extend_from_slice(band.depth());
-    }
-    (all_colors, all_depth)
 }
 
 /// Without a highlight, or with one of strength 0, a material draws what it drew before the

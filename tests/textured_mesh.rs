@@ -1179,6 +1179,22 @@ fn probed_coordinates_are_within_the_tolerance() {
 /// The constant texel of the lit tests.
 const TEXEL: [u8; 3] = [240, 180, 100];
 
+/// `case`'s scene under a random light (from the front half) with a random ambient level.
+fn random_lit_scene(case: &Case, rng: &mut Rng) -> Scene {
+    let light = normalize([
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(-1.0, 1.0),
+        rng.range_f64(0.2, 1.0),
+    ]);
+    let ambient = rng.range_f64(0.0, 0.4);
+    Scene::new(&case.pose, light, ambient)
+}
+
+/// The bytes of a 4 × 4 Rgb888 texture of [`TEXEL`] everywhere.
+fn constant_texels() -> Vec<u8> {
+    (0..16).flat_map(|_| TEXEL).collect()
+}
+
 /// The largest channel errors of a lit comparison (LSB).
 #[derive(Debug, Default)]
 struct Lit {
@@ -1203,14 +1219,8 @@ struct Lit {
 /// untextured Gouraud material of the same colour; checks the lit colours against the f64
 /// Lambert levels at every pixel the reference gives one face.
 fn check_lit(case: &Case, rng: &mut Rng, lit: &mut Lit) {
-    let light = normalize([
-        rng.range_f64(-1.0, 1.0),
-        rng.range_f64(-1.0, 1.0),
-        rng.range_f64(0.2, 1.0),
-    ]);
-    let ambient = rng.range_f64(0.0, 0.4);
-    let scene = Scene::new(&case.pose, light, ambient);
-    let bytes: Vec<u8> = (0..16).flat_map(|_| TEXEL).collect();
+    let scene = random_lit_scene(case, rng);
+    let bytes = constant_texels();
     let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
     let mesh = case.mesh.as_mesh();
     let (flat, _) = textured(&scene.pipeline, &mesh, &texture, Shading::Flat);
@@ -1334,14 +1344,8 @@ struct Tinted {
 /// interpolation's tolerance (as the levels', with each channel's spread) and the tint's 8.8
 /// quantisation.
 fn check_tinted(case: &Case, rng: &mut Rng, tinted: &mut Tinted) {
-    let light = normalize([
-        rng.range_f64(-1.0, 1.0),
-        rng.range_f64(-1.0, 1.0),
-        rng.range_f64(0.2, 1.0),
-    ]);
-    let ambient = rng.range_f64(0.0, 0.4);
-    let scene = Scene::new(&case.pose, light, ambient);
-    let bytes: Vec<u8> = (0..16).flat_map(|_| TEXEL).collect();
+    let scene = random_lit_scene(case, rng);
+    let bytes = constant_texels();
     let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
     let mut data = case.mesh.clone();
     data.colors = (0..data.vertices.len())
@@ -1416,16 +1420,10 @@ fn check_tinted(case: &Case, rng: &mut Rng, tinted: &mut Tinted) {
 /// perspective-correct at the ray's hit: within 1 LSB plus each term's interpolation
 /// tolerance, the power's `shininess · 2⁻¹⁷` and the terms' 8.8 quantisation.
 fn check_shiny(case: &Case, rng: &mut Rng, shiny: &mut Tinted) {
-    let light = normalize([
-        rng.range_f64(-1.0, 1.0),
-        rng.range_f64(-1.0, 1.0),
-        rng.range_f64(0.2, 1.0),
-    ]);
-    let ambient = rng.range_f64(0.0, 0.4);
-    let scene = Scene::new(&case.pose, light, ambient);
+    let scene = random_lit_scene(case, rng);
     let specular = Specular::new(fx(rng.range_f64(0.2, 1.0)), rng.below(48) as u8 + 1);
     let (strength, shininess) = (fl(specular.strength()), specular.shininess());
-    let bytes: Vec<u8> = (0..16).flat_map(|_| TEXEL).collect();
+    let bytes = constant_texels();
     let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
     let mesh = case.mesh.as_mesh();
     let mut frame = Frame::new();

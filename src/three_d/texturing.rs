@@ -372,7 +372,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
             TexelLight::Tints(t) => {
                 let more = [0, 1, 2].map(|k| [u[k], v[k], t[k][0], t[k][1], t[k][2]]);
                 let a = with_depth::<5, 6>(screen, more, [0; 5]);
-                let fill = AffineFill::new(target, sampler, maps, PlaneTints);
+                let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<3>);
                 rows.shade(position, &a, &rect, fill);
             }
             TexelLight::Shiny {
@@ -381,7 +381,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
             } => {
                 let more = [0, 1, 2].map(|k| [u[k], v[k], t[k][0], t[k][1], t[k][2], speculars[k]]);
                 let a = with_depth::<6, 7>(screen, more, [0; 6]);
-                let fill = AffineFill::new(target, sampler, maps, PlaneShiny);
+                let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<4>);
                 rows.shade(position, &a, &rect, fill);
             }
         }
@@ -428,7 +428,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 target,
                 sampler,
                 coordinates,
-                light: Tints([channel(0), channel(1), channel(2)]),
+                light: CorrectedChannels([channel(0), channel(1), channel(2)]),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
@@ -439,7 +439,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 target,
                 sampler,
                 coordinates,
-                light: Shiny([channel(0), channel(1), channel(2), specular]),
+                light: CorrectedChannels([channel(0), channel(1), channel(2), specular]),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
@@ -825,38 +825,57 @@ impl PlaneLight<4> for PlaneLevel {
     }
 }
 
-/// The screen-space fill's three tint planes (8.24 of the 0–255 scale, stepped as they are):
-/// attributes 3 to 5 of 6.
+/// The screen-space fill's `K` channel planes after the texel coordinates' (8.24 of the 0–255
+/// scale, stepped as they are): three tints (attributes 3 to 5 of 6), and a specular term
+/// (attribute 6 of 7) with a fourth.
 #[derive(Clone, Copy)]
-struct PlaneTints;
+struct PlaneChannels<const K: usize>;
 
-impl SpanLight for PlaneTints {
-    type Level = [i32; 3];
+impl<const K: usize> SpanLight for PlaneChannels<K> {
+    type Level = [i32; K];
 
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ([i32; 3], [i32; 3]) {
-        ([0; 3], [0; 3])
+    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ([i32; K], [i32; K]) {
+        ([0; K], [0; K])
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, tint: [i32; 3]) -> C {
-        tint_channels::<C>(texel.channels(), tint.map(plane_fraction))
+    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; K]) -> C {
+        lit_channels::<C, K>(texel.channels(), light.map(plane_fraction))
     }
 
     #[inline(always)]
-    fn step(tint: [i32; 3], by: [i32; 3]) -> [i32; 3] {
-        [0, 1, 2].map(|c| tint[c].wrapping_add(by[c]))
+    fn step(light: [i32; K], by: [i32; K]) -> [i32; K] {
+        core::array::from_fn(|c| light[c].wrapping_add(by[c]))
     }
 }
 
-impl PlaneLight<6> for PlaneTints {
+impl PlaneLight<6> for PlaneChannels<3> {
     #[inline(always)]
     fn of_planes(&self, at: &[u32; 6], step: &[u32; 6]) -> ([i32; 3], [i32; 3]) {
-        (
-            [at[3], at[4], at[5]].map(|v| v as i32),
-            [step[3], step[4], step[5]].map(|v| v as i32),
-        )
+        after_texels(at, step)
     }
+}
+
+impl PlaneLight<7> for PlaneChannels<4> {
+    #[inline(always)]
+    fn of_planes(&self, at: &[u32; 7], step: &[u32; 7]) -> ([i32; 4], [i32; 4]) {
+        after_texels(at, step)
+    }
+}
+
+/// The `K` planes' values and steps after the depth and the texel coordinates (attributes
+/// `3 .. 3 + K` of `N`).
+#[inline(always)]
+fn after_texels<const N: usize, const K: usize>(
+    at: &[u32; N],
+    step: &[u32; N],
+) -> ([i32; K], [i32; K]) {
+    let of = |v: &[u32; N], c: usize| v.get(3 + c).copied().unwrap_or(0) as i32;
+    (
+        core::array::from_fn(|c| of(at, c)),
+        core::array::from_fn(|c| of(step, c)),
+    )
 }
 
 /// The vertices' levels, perspective-correct at the chunks' ends and stepped between.
@@ -883,13 +902,13 @@ impl SpanLight for Varying {
     }
 }
 
-/// The vertices' tints (16-bit fractions a channel), perspective-correct at the chunks' ends
-/// and stepped between.
+/// The vertices' `K` channels (16-bit fractions: three tints, and a specular term with a
+/// fourth), perspective-correct at the chunks' ends and stepped between.
 #[derive(Clone, Copy)]
-struct Tints([Corrected; 3]);
+struct CorrectedChannels<const K: usize>([Corrected; K]);
 
-impl SpanLight for Tints {
-    type Level = [i32; 3];
+impl<const K: usize> SpanLight for CorrectedChannels<K> {
+    type Level = [i32; K];
 
     #[inline(always)]
     fn chunk(
@@ -897,106 +916,35 @@ impl SpanLight for Tints {
         start: (Lambda, Lambda),
         end: (Lambda, Lambda),
         over: u32,
-    ) -> ([i32; 3], [i32; 3]) {
+    ) -> ([i32; K], [i32; K]) {
         let a = self.0.map(|c| c.at(start));
         let b = self.0.map(|c| c.at(end));
-        (a, [0, 1, 2].map(|c| step_over(a[c], b[c], over)))
+        (a, core::array::from_fn(|c| step_over(a[c], b[c], over)))
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, tint: [i32; 3]) -> C {
-        tint_channels::<C>(texel.channels(), tint.map(|t| t.clamp(0, 1 << 16) as u32))
+    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; K]) -> C {
+        lit_channels::<C, K>(texel.channels(), light.map(|t| t.clamp(0, 1 << 16) as u32))
     }
 
     #[inline(always)]
-    fn step(tint: [i32; 3], by: [i32; 3]) -> [i32; 3] {
-        [0, 1, 2].map(|c| tint[c].wrapping_add(by[c]))
-    }
-}
-
-/// The screen-space fill's tint planes and specular plane (8.24 of the 0–255 scale, stepped
-/// as they are): attributes 3 to 6 of 7.
-#[derive(Clone, Copy)]
-struct PlaneShiny;
-
-impl SpanLight for PlaneShiny {
-    type Level = [i32; 4];
-
-    #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ([i32; 4], [i32; 4]) {
-        ([0; 4], [0; 4])
-    }
-
-    #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; 4]) -> C {
-        shiny_channels::<C>(texel.channels(), light.map(plane_fraction))
-    }
-
-    #[inline(always)]
-    fn step(light: [i32; 4], by: [i32; 4]) -> [i32; 4] {
-        [0, 1, 2, 3].map(|c| light[c].wrapping_add(by[c]))
-    }
-}
-
-impl PlaneLight<7> for PlaneShiny {
-    #[inline(always)]
-    fn of_planes(&self, at: &[u32; 7], step: &[u32; 7]) -> ([i32; 4], [i32; 4]) {
-        (
-            [at[3], at[4], at[5], at[6]].map(|v| v as i32),
-            [step[3], step[4], step[5], step[6]].map(|v| v as i32),
-        )
-    }
-}
-
-/// The vertices' tints and specular terms (16-bit fractions), perspective-correct at the
-/// chunks' ends and stepped between.
-#[derive(Clone, Copy)]
-struct Shiny([Corrected; 4]);
-
-impl SpanLight for Shiny {
-    type Level = [i32; 4];
-
-    #[inline(always)]
-    fn chunk(
-        &self,
-        start: (Lambda, Lambda),
-        end: (Lambda, Lambda),
-        over: u32,
-    ) -> ([i32; 4], [i32; 4]) {
-        let a = self.0.map(|c| c.at(start));
-        let b = self.0.map(|c| c.at(end));
-        (a, [0, 1, 2, 3].map(|c| step_over(a[c], b[c], over)))
-    }
-
-    #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; 4]) -> C {
-        shiny_channels::<C>(texel.channels(), light.map(|t| t.clamp(0, 1 << 16) as u32))
-    }
-
-    #[inline(always)]
-    fn step(light: [i32; 4], by: [i32; 4]) -> [i32; 4] {
-        [0, 1, 2, 3].map(|c| light[c].wrapping_add(by[c]))
+    fn step(light: [i32; K], by: [i32; K]) -> [i32; K] {
+        core::array::from_fn(|c| light[c].wrapping_add(by[c]))
     }
 }
 
 /// The channels `base` each times its own 16-bit fraction (the first three of `light`, at
-/// most 2¹⁶), plus the specular fraction (the fourth) of the channel's maximum, rounded once
-/// and saturating at the maximum.
+/// most 2¹⁶), plus a fourth fraction, if any, of the channel's maximum (a white highlight),
+/// rounded once and saturating at the maximum.
 #[inline(always)]
-fn shiny_channels<C: GouraudColor>(base: [u8; 3], light: [u32; 4]) -> C {
-    let specular = light[3].min(1 << 16);
+fn lit_channels<C: GouraudColor, const K: usize>(base: [u8; 3], light: [u32; K]) -> C {
+    let fraction = |c: usize| light.get(c).copied().unwrap_or(0).min(1 << 16);
+    let specular = fraction(3);
     let s = |c: usize| {
         let max = u32::from(C::MAX[c]);
-        let v = (u32::from(base[c]) * light[c].min(1 << 16) + max * specular + (1 << 15)) >> 16;
+        let v = (u32::from(base[c]) * fraction(c) + max * specular + (1 << 15)) >> 16;
         v.min(max) as u8
     };
-    C::from_channels([s(0), s(1), s(2)])
-}
-
-/// The channels `base` each times its own 16-bit fraction `tint` (at most 2¹⁶), rounded.
-#[inline(always)]
-fn tint_channels<C: GouraudColor>(base: [u8; 3], tint: [u32; 3]) -> C {
-    let s = |c: usize| ((u32::from(base[c]) * tint[c] + (1 << 15)) >> 16) as u8;
     C::from_channels([s(0), s(1), s(2)])
 }
 
