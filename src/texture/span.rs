@@ -167,8 +167,8 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
             // are then the row's storage offset, and a mask alone finds it.
             // The closures take copies: values the loop keeps in registers, not loads through a
             // reference (which the compiler cannot tell from the pixels being written).
-            &Sampler::MaskedNearest(masks, texels) if masks.row_bits() <= 16 => {
-                let rows = masks.y_mask << masks.row_shift;
+            &Sampler::MaskedNearest(masks, texels) if masks.rows.is_some() => {
+                let rows = masks.rows.unwrap_or(0);
                 let sample = move |x: i32, y_scaled: i32| {
                     let row = (y_scaled >> 16) as u32 & rows;
                     let column = (x >> 16) as u32 & masks.x_mask;
@@ -245,6 +245,9 @@ pub(crate) struct PowerOfTwoRepeat {
     x_mask: u32,
     y_mask: u32,
     row_shift: u32,
+    /// The row mask in storage units, `y_mask << row_shift`, for textures of up to 2¹⁶ texels
+    /// (whose storage index fits 16 bits).
+    rows: Option<u32>,
 }
 
 impl PowerOfTwoRepeat {
@@ -253,19 +256,20 @@ impl PowerOfTwoRepeat {
     pub(crate) fn of<S: TexelSource>(texture: &Texture<S>) -> Option<Self> {
         let (x, y) = texture.axes();
         match (x.wrap(), y.wrap(), x.shift(), y.shift()) {
-            (Wrap::Repeat, Wrap::Repeat, Some(row_shift), Some(_)) => Some(PowerOfTwoRepeat {
-                x_mask: x.size() - 1,
-                y_mask: y.size() - 1,
-                row_shift,
-            }),
+            (Wrap::Repeat, Wrap::Repeat, Some(row_shift), Some(_)) => {
+                let y_mask = y.size() - 1;
+                // At most 16 index bits (`row_shift` plus the bit length of `y_mask`), found
+                // by shifts: a bit length is a library call on Cortex-M0.
+                let fits = row_shift <= 16 && y_mask >> (16 - row_shift) == 0;
+                Some(PowerOfTwoRepeat {
+                    x_mask: x.size() - 1,
+                    y_mask,
+                    row_shift,
+                    rows: fits.then(|| y_mask << row_shift),
+                })
+            }
             _ => None,
         }
-    }
-
-    /// Bits of a texel's storage index: `log2(width × height)`.
-    #[inline(always)]
-    fn row_bits(&self) -> u32 {
-        self.row_shift + (32 - self.y_mask.leading_zeros())
     }
 
     /// The index of the texture's last texel (its texels less one: a power of two less one).
