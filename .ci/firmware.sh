@@ -62,10 +62,11 @@ MICROBIT_BAND_FRAME_LIMIT=160000000
 # The firmware issue's targets, instructions per covered pixel on large triangles (enforced:
 # QEMU's instruction counts are deterministic for a given toolchain and source).
 declare -A SOLID_TARGET=([cortex-m4]=3)
-# The texture issue's target for nearest affine texturing (64×64 Rgb565, power of two,
-# repeating) on the Cortex-M4, enforced: measured 10.76, a margin of 10 %. The other figures
-# of fw_texture_bench go to the report (docs/benchmarks.md has them against their targets).
-declare -A TEXTURE_TARGET=([cortex-m4]=12)
+# The texture issue's targets for nearest affine texturing (64×64 Rgb565, power of two,
+# repeating), enforced: on the Cortex-M4 measured 10.76, a margin of 10 %; on the Cortex-M0
+# (its Thumb-1 texel loop) measured 19.96, a margin of 10 %. The other figures of
+# fw_texture_bench go to the report (docs/benchmarks.md has them against their targets).
+declare -A TEXTURE_TARGET=([cortex-m4]=12 [cortex-m0]=22)
 declare -A GOURAUD_TARGET=([cortex-m4]=10 [cortex-m0]=17.4)
 
 fail() {
