@@ -13,7 +13,10 @@
 //! depth-tested fill (`draw_textured`) with the far vertices three times as deep as the near
 //! one, every pixel passing the depth test (each pass nearer than the last).
 //!
-//! The host build prints the cases and their pixel counts only.
+//! After each case, and after an untimed drawing of random textured triangles ([`check`]), the
+//! firmware prints a checksum line of the framebuffer (`texture <w>x<h> <what> fnv1a=…`); the
+//! host build prints the same lines for both sizes, and `.ci/firmware.sh` compares them (the
+//! Cortex-M0 has a span loop of its own).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 use embedded_graphics::pixelcolor::Rgb565;
@@ -22,7 +25,7 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_raster::texture::{Filter, Indexed4, Rgb565Texels, TexelCoord, TexelSource, Texture};
 use embedded_raster::three_d::TexturedScreenVertex;
 use embedded_raster::three_d::{draw_textured, DepthTarget, Scalar, ScreenVertex};
-use embedded_raster::{Coord, SolidTriangle, TexturedTriangle, TexturedVertex};
+use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle, TexturedTriangle, TexturedVertex};
 
 #[allow(dead_code)]
 #[path = "common/scene.rs"]
@@ -158,6 +161,62 @@ fn vertices_3d(corners: &[(i32, i32); 3], width: i32, depth: u16) -> [TexturedSc
     })
 }
 
+/// Random triangles for [`check`].
+const CHECK_TRIANGLES: u32 = 300;
+
+/// Untimed: [`CHECK_TRIANGLES`] random triangles over and around the screen with random texel
+/// coordinates (spreads from a fraction of a texel to 2¹⁵ texels, anywhere in the range), nearest,
+/// from the texels as textures of several power-of-two shapes, drawn into the framebuffer (which
+/// the caller clears).
+fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let (w, h) = (fb.size().width as i32, fb.size().height as i32);
+    let mut state = 0x2545_f491_u32;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    };
+    let shapes = [(64, 64), (256, 16), (1, 4096), (8, 2), (16, 256)];
+    for k in 0..CHECK_TRIANGLES {
+        let (tw, th) = shapes[(k % shapes.len() as u32) as usize];
+        let Ok(texture) = Texture::new(Rgb565Texels(&TEXELS), tw, th) else {
+            return;
+        };
+        let (base_u, base_v) = (next() as i32, next() as i32);
+        let spread = 8 + next() % 24;
+        let mut vertex = || {
+            // Sub-pixel positions from half a screen before to half a screen past it.
+            let x = (next() % (w as u32 * 512)) as i32 - w * 128;
+            let y = (next() % (h as u32 * 512)) as i32 - h * 128;
+            let u = base_u.wrapping_add(next() as i32 >> spread);
+            let v = base_v.wrapping_add(next() as i32 >> spread);
+            TexturedVertex {
+                x: Coord::from_bits(x),
+                y: Coord::from_bits(y),
+                u: TexelCoord::from_bits(u),
+                v: TexelCoord::from_bits(v),
+            }
+        };
+        let vertices = [vertex(), vertex(), vertex()];
+        TexturedTriangle::new(vertices, &texture).draw_into(fb);
+    }
+}
+
+/// The checksum line of `what` drawn into `pixels` (`w × h`).
+struct CheckLine<'a> {
+    size: (u32, u32),
+    what: &'a str,
+    pixels: &'a [Rgb565],
+}
+
+impl core::fmt::Display for CheckLine<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let (w, h, sum) = (self.size.0, self.size.1, scene::checksum(self.pixels));
+        write!(f, "texture {w}x{h} {} fnv1a={sum:#010x}", self.what)
+    }
+}
+
 /// Covered pixels of one pass over the large set on a `w × h` screen (untimed).
 fn count_pixels(w: u32, h: u32) -> u32 {
     let mut pixels = 0;
@@ -260,6 +319,7 @@ mod firmware {
         hprintln!("| texturing | instr/pixel, large |");
         hprintln!("|---|---:|");
         let mut pass = 0u16;
+        let mut checksums = [0u32; CASES.len()];
         // TEXTURE_CASE=<index> at build time measures that case alone (for a profile).
         let only = option_env!("TEXTURE_CASE").and_then(|c| c.parse::<usize>().ok());
         for (index, case) in CASES.into_iter().enumerate() {
@@ -279,7 +339,29 @@ mod firmware {
                 case.name(),
                 Ratio(instructions, pixels * u64::from(REPS))
             );
+            checksums[index] = scene::checksum(fb.framebuffer().pixels());
         }
+        // The checksums after the table (whose lines CI reads as they are); not for a profile.
+        if only.is_some() {
+            board::exit(true)
+        }
+        for (index, &sum) in checksums.iter().enumerate() {
+            hprintln!(
+                "texture {}x{} case{} fnv1a={:#010x}",
+                width,
+                height,
+                index,
+                sum
+            );
+        }
+        fb.clear(Rgb565::new(0, 0, 0));
+        check(fb.framebuffer_mut());
+        let line = CheckLine {
+            size: (width, height),
+            what: "check",
+            pixels: fb.framebuffer().pixels(),
+        };
+        hprintln!("{}", line);
         board::exit(true)
     }
 }
@@ -296,9 +378,32 @@ fn main() {
             vec![0u16; (width * height) as usize],
         );
         let mut fb = DepthTarget::new(&mut px, &mut z, width, height).expect("buffers");
-        for case in CASES {
+        for (index, case) in CASES.into_iter().enumerate() {
+            fb.clear(Rgb565::BLACK);
             run_case(case, &mut fb, 0);
             println!("  {}", case.name());
+            let what = format!("case{index}");
+            let pixels = fb.framebuffer().pixels();
+            println!(
+                "{}",
+                CheckLine {
+                    size: (width, height),
+                    what: &what,
+                    pixels
+                }
+            );
         }
+        fb.clear(Rgb565::BLACK);
+        check(fb.framebuffer_mut());
+        let pixels = fb.framebuffer().pixels();
+        let what = "check";
+        println!(
+            "{}",
+            CheckLine {
+                size: (width, height),
+                what,
+                pixels
+            }
+        );
     }
 }

@@ -15,6 +15,8 @@ pub(crate) mod x86_64;
 
 use core::num::NonZeroU32;
 
+#[cfg(armv6m)]
+pub(crate) use thumbv6m::masked_nearest_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 
@@ -48,6 +50,45 @@ pub(crate) const FAST_WIDE_DIVISION: bool = cfg!(target_pointer_width = "64");
 /// ARMv7-M: the rows of a small depth-tested triangle with light levels (the 3D pipeline's
 /// Gouraud fill) are drawn by one assembly loop ([`level_rows`]); elsewhere span by span.
 pub(crate) const LEVEL_ROWS: bool = cfg!(armv7m);
+
+/// ARMv6-M: an affine span of nearest texels from a power-of-two repeating texture of raw
+/// Rgb565 words into Rgb565 pixels is one assembly loop ([`masked_nearest_565`]); elsewhere the
+/// portable masked loop (`texture::span`), which LLVM keeps in registers there.
+pub(crate) const MASKED_NEAREST_565: bool = cfg!(armv6m);
+
+/// An affine span of nearest texels of a texture repeating on both axes with power-of-two
+/// sides, whose texels are raw Rgb565 words: pixel `i` is `texels[row | column]` with `column =
+/// ((x + i·dx) >> 16) & x_mask` and `row = ((y + i·dy) >> 16) & rows`, `y` and `dy` being the
+/// 16.16 coordinate and step scaled by the row width (wrapping), as in `texture::span`'s masked
+/// nearest loop.
+///
+/// Public in this private module: the argument of a hidden `GouraudColor` method, which no
+/// implementation outside the crate can name.
+#[derive(Clone, Copy, Debug)]
+// Read only where the assembly is (and by the host's test of its arithmetic).
+#[cfg_attr(not(any(armv6m, test)), allow(dead_code))]
+pub struct MaskedSpan565<'a> {
+    /// The texels (row-major).
+    pub(crate) texels: &'a [u16],
+    /// The 16.16 texel `x` at the first pixel and its step a pixel.
+    pub(crate) x: (i32, i32),
+    /// `y`, likewise, both scaled by the row width (shifted left by its bits, wrapping).
+    pub(crate) y: (i32, i32),
+    /// The column mask (the width less one).
+    pub(crate) x_mask: u32,
+    /// The row mask in storage units: the height less one, times the width.
+    pub(crate) rows: u32,
+}
+
+/// [`masked_nearest_565`] where there is none: draws nothing and says so.
+#[cfg(not(armv6m))]
+#[inline(always)]
+pub(crate) fn masked_nearest_565(
+    _pixels: &mut [embedded_graphics::pixelcolor::Rgb565],
+    _span: &MaskedSpan565<'_>,
+) -> bool {
+    false
+}
 
 /// A small triangle's rows in the division form of the raster core's `RowRuns`, over buffers
 /// of `width` pixels a row.

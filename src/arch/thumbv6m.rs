@@ -1,4 +1,5 @@
-//! ARMv6-M (Cortex-M0/M0+): the 5-6-5 span loop in Thumb-1 assembly.
+//! ARMv6-M (Cortex-M0/M0+): the 5-6-5 span loop and the masked nearest texel loop in Thumb-1
+//! assembly.
 //!
 //! LLVM keeps the loop's masks, steps and words in memory on Thumb-1 (26 instructions a pair of
 //! pixels, ~70 a span around them). Here the pair loop keeps everything in registers and stores
@@ -11,7 +12,26 @@
 //! wherever the lanes are in range, as they are at every covered pixel (the low half of each
 //! 16-bit lane is the same modulo 2¹⁶ however the pair words are formed); the host tests that
 //! loop, and CI checks that the Cortex-M0 firmware's scene has the host's checksum.
+//!
+//! The masked nearest texel loop ([`masked_nearest_565`]): LLVM unrolls the portable loop
+//! (`texture::span`'s `Affine` with the masked nearest sampler) four times but keeps the masks,
+//! steps and texel pointer on the stack — 67 instructions for four pixels, ~140 a span around
+//! them (18.5 of the 29 instructions a pixel of a large textured triangle). Here everything
+//! stays in registers (the coordinates, masks, texel and pixel pointers in the low ones, the
+//! steps and the end in high ones) and a pixel is 9 instructions: the byte offset of its texel
+//! from the two coordinates shifted by 15 (not 16) and the masks doubled, one `ldrh`, one
+//! `strh`, two adds; four pixels a loop pass, the first pass entered at the pixel that leaves a
+//! multiple of four (a computed jump: no second copy for the remainder). It reads the texel the
+//! portable loop reads at every pixel: `((y >> 15) & 2·rows) | ((x >> 15) & 2·x_mask)` is twice
+//! `((y >> 16) & rows) | ((x >> 16) & x_mask)` bit for bit (the masks' bit 0 is clear after
+//! doubling, and bit `k + 1` of `v >> 15` is bit `k` of `v >> 16`). The host tests that formula
+//! against `Texture::sample`; CI checks the Cortex-M0 `fw_texture_bench` frames against the
+//! host's.
 #![allow(unsafe_code)]
+
+use embedded_graphics::pixelcolor::Rgb565;
+
+use super::MaskedSpan565;
 
 /// r4 = two pixels from the channel words lr (top), r1 (middle), r2 (bottom) with the masks
 /// r3 = 0xF800F800, r6 = 0x07E007E0 and r7 = 0x001F001F: top & r3 | (middle >> 5) & r6 |
@@ -164,4 +184,137 @@ pub(crate) unsafe fn span_565(
     // `steps` (the caller's promises) and the three of `values`; it saves and restores every
     // register the AAPCS asks it to.
     unsafe { embedded_raster_565_span_v6m(pixels, len, values, steps) }
+}
+
+/// One pixel of the masked nearest loop, stored at `[r0, #$offset]`: r1 = x, r2 = y (scaled),
+/// r3 = 2·x_mask, r4 = 2·rows, r5 = the texels, r8 / r9 = the steps; r6, r7 are clobbered.
+macro_rules! masked_pixel {
+    ($offset:literal) => {
+        concat!(
+            "asrs r6, r1, #15\n",
+            "ands r6, r3\n",
+            "asrs r7, r2, #15\n",
+            "ands r7, r4\n",
+            "orrs r6, r7\n",
+            "ldrh r6, [r5, r6]\n",
+            "strh r6, [r0, #",
+            $offset,
+            "]\n",
+            "add r1, r8\n",
+            "add r2, r9\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_masked_nearest_565_v6m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_masked_nearest_565_v6m",
+    ".hidden embedded_raster_masked_nearest_565_v6m",
+    ".type embedded_raster_masked_nearest_565_v6m,%function",
+    ".thumb_func",
+    // r0 = pixels (2-byte aligned), r1 = pixel count, r2 = texels, r3 = the walk: x, y,
+    // x_mask, rows, dx, dy.
+    "embedded_raster_masked_nearest_565_v6m:",
+    "push {{r4-r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "push {{r4, r5}}",
+    "mov r5, r2",
+    // r12 = past the last pixel; nothing to draw for no pixels.
+    "lsls r1, r1, #1",
+    "beq 4f",
+    "adds r1, r0, r1",
+    "mov r12, r1",
+    "ldm r3, {{r1, r2, r3, r4, r6, r7}}",
+    "mov r8, r6",
+    "mov r9, r7",
+    "lsls r3, r3, #1",
+    "lsls r4, r4, #1",
+    // Into the four-pixel loop at its pixel m = (−count) mod 4, the pointer m pixels back (so
+    // that the first pixel is stored at the first address and the passes end at the last):
+    // r6 = 2m, a jump of 18m bytes from the loop's start, which the PC reads as (4 bytes past
+    // the `add`): a pixel is nine instructions of 16 bits (ARMv6-M's only 32-bit ones are
+    // `bl`, `mrs`, `msr` and the barriers).
+    "mov r6, r12",
+    "subs r6, r0, r6",
+    "movs r7, #6",
+    "ands r6, r7",
+    "subs r0, r0, r6",
+    "lsls r7, r6, #3",
+    "adds r7, r7, r6",
+    "add pc, r7",
+    "nop",
+    "3:",
+    masked_pixel!("0"),
+    masked_pixel!("2"),
+    masked_pixel!("4"),
+    masked_pixel!("6"),
+    "adds r0, #8",
+    "cmp r0, r12",
+    "blo 3b",
+    "4:",
+    "pop {{r4, r5}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "pop {{r4-r7, pc}}",
+    ".size embedded_raster_masked_nearest_565_v6m, . - embedded_raster_masked_nearest_565_v6m",
+);
+
+extern "C" {
+    /// The masked nearest loop above.
+    ///
+    /// # Safety
+    ///
+    /// `pixels` must be valid for writes of `len` consecutive, 2-byte aligned `u16`s, `walk`
+    /// for reads of six aligned `u32`s, and `texels` for reads of the `u16`s at every index
+    /// `i ≤ rows | x_mask` (`walk`'s third and fourth words, each below 2³⁰).
+    fn embedded_raster_masked_nearest_565_v6m(
+        pixels: *mut u16,
+        len: usize,
+        texels: *const u16,
+        walk: *const [u32; 6],
+    );
+}
+
+/// Fills `pixels` with the texels of `span` (see [`MaskedSpan565`]): pixel `i` gets the raw
+/// word `texels[row | column]` of its coordinate, as the portable masked nearest loop gives it.
+/// `false` without drawing anything if a masked index could reach past the texels, so no input
+/// reads or writes out of bounds.
+#[inline(always)]
+pub(crate) fn masked_nearest_565(pixels: &mut [Rgb565], span: &MaskedSpan565<'_>) -> bool {
+    // embedded-graphics' `Rgb565(RawU16(u16))`: one `u16`, whose raw bits are the colour's.
+    const { assert!(core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2) };
+    // Every index the loop forms is `row | column ≤ rows | x_mask`.
+    let last = span.rows | span.x_mask;
+    if last as usize >= span.texels.len() {
+        return false;
+    }
+    let walk = [
+        span.x.0 as u32,
+        span.y.0 as u32,
+        span.x_mask,
+        span.rows,
+        span.x.1 as u32,
+        span.y.1 as u32,
+    ];
+    // SAFETY: the function writes exactly `pixels.len()` consecutive 2-byte aligned `u16`s from
+    // the slice's start, which are the slice's pixels (an `Rgb565` is one `u16`, any bits a
+    // colour; the first pass's stores before the start are jumped over, its pointer m pixels
+    // back only an address), and reads the six words of `walk` and texels at byte offsets
+    // `((y >> 15) & 2·rows) | ((x >> 15) & 2·x_mask)`: even and at most `2·last`, so the `u16`
+    // at index `last < texels.len()` or below (the masks are below `texels.len() < 2³⁰`, so
+    // doubling them does not overflow). It saves and restores every register the AAPCS asks
+    // it to.
+    unsafe {
+        embedded_raster_masked_nearest_565_v6m(
+            pixels.as_mut_ptr().cast(),
+            pixels.len(),
+            span.texels.as_ptr(),
+            &walk,
+        );
+    }
+    true
 }

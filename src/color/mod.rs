@@ -24,6 +24,7 @@ use embedded_graphics::pixelcolor::{
 };
 use embedded_graphics::prelude::PixelColor;
 
+use crate::arch::MaskedSpan565;
 pub use crate::arch::LANES;
 
 mod packed565;
@@ -153,6 +154,17 @@ pub trait GouraudColor: PixelColor {
             Self::fill_prepared(run, start, steps);
         }
     }
+
+    /// Fills `dst` with an affine span of nearest Rgb565 texels by a loop of the target's own,
+    /// if this format has one there (Rgb565 on Cortex-M0); `false` without writing anything
+    /// where it has none (the default). Hidden: its argument's type cannot be named outside the
+    /// crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn fill_masked_565(dst: &mut [Self], span: &MaskedSpan565<'_>) -> bool {
+        let _ = (dst, span);
+        false
+    }
 }
 
 /// Per-pixel channel steps of a triangle, prepared for a colour format's span loop
@@ -222,9 +234,10 @@ pub(crate) fn fill_by_state<C: GouraudColor>(dst: &mut [C], start: [u32; 3], ste
 }
 
 /// `GouraudColor` for RGB formats; `order = [top, 1, bottom]` selects the 5-6-5 span loop with
-/// that channel order in the raw value.
+/// that channel order in the raw value; `masked_565` is the target's masked nearest texel loop
+/// (for the format whose raw bits are Rgb565 texels' own).
 macro_rules! rgb_color {
-    ($t:ty $(, order = $order:expr)?) => {
+    ($t:ty $(, order = $order:expr)? $(, masked_565 = $masked:path)?) => {
         impl GouraudColor for $t {
             const CHANNELS: usize = 3;
             const MAX: [u8; 3] = [<$t>::MAX_R, <$t>::MAX_G, <$t>::MAX_B];
@@ -273,6 +286,12 @@ macro_rules! rgb_color {
                     masked_row_565(row, covered, first, start, steps, $order)
                 }
             )?
+            $(
+                #[inline(always)]
+                fn fill_masked_565(dst: &mut [Self], span: &MaskedSpan565<'_>) -> bool {
+                    $masked(dst, span)
+                }
+            )?
         }
     };
 }
@@ -301,7 +320,11 @@ rgb_color!(Bgr666);
 rgb_color!(Rgb888);
 rgb_color!(Bgr888);
 
-rgb_color!(Rgb565, order = [0, 1, 2]);
+rgb_color!(
+    Rgb565,
+    order = [0, 1, 2],
+    masked_565 = crate::arch::masked_nearest_565
+);
 rgb_color!(Bgr565, order = [2, 1, 0]);
 gray_color!(Gray2 = 3, Gray4 = 15, Gray8 = 255);
 

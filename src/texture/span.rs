@@ -11,6 +11,7 @@
 use super::address::Wrap;
 use super::map::{bilinear_by, Filter, Texture};
 use super::source::TexelSource;
+use crate::arch::{self, MaskedSpan565};
 use crate::color::GouraudColor;
 use crate::raster::arith::leading_zeros_32;
 
@@ -167,8 +168,8 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
             // are then the row's storage offset, and a mask alone finds it.
             // The closures take copies: values the loop keeps in registers, not loads through a
             // reference (which the compiler cannot tell from the pixels being written).
-            &Sampler::MaskedNearest(masks, texels) if masks.row_bits() <= 16 => {
-                let rows = masks.y_mask << masks.row_shift;
+            &Sampler::MaskedNearest(masks, texels) if masks.rows.is_some() => {
+                let rows = masks.rows.unwrap_or(0);
                 let sample = move |x: i32, y_scaled: i32| {
                     let row = (y_scaled >> 16) as u32 & rows;
                     let column = (x >> 16) as u32 & masks.x_mask;
@@ -212,6 +213,19 @@ pub(crate) fn fill_affine<S, C>(
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
+    // Raw Rgb565 texels into Rgb565 pixels: the target's loop, if it has one (the same texels
+    // as the masked loop below).
+    if arch::MASKED_NEAREST_565 {
+        if let Sampler::MaskedNearest(masks, texels) = sampler {
+            if let Some(words) = texels.rgb565_words() {
+                if let Some(span) = masks.span_565(words.0, at, step) {
+                    if C::fill_masked_565(dst, &span) {
+                        return;
+                    }
+                }
+            }
+        }
+    }
     sampler.run(Affine { dst, at, step });
 }
 
@@ -245,6 +259,9 @@ pub(crate) struct PowerOfTwoRepeat {
     x_mask: u32,
     y_mask: u32,
     row_shift: u32,
+    /// The row mask in storage units, `y_mask << row_shift`, for textures of up to 2¹⁶ texels
+    /// (whose storage index fits 16 bits).
+    rows: Option<u32>,
 }
 
 impl PowerOfTwoRepeat {
@@ -253,19 +270,38 @@ impl PowerOfTwoRepeat {
     pub(crate) fn of<S: TexelSource>(texture: &Texture<S>) -> Option<Self> {
         let (x, y) = texture.axes();
         match (x.wrap(), y.wrap(), x.shift(), y.shift()) {
-            (Wrap::Repeat, Wrap::Repeat, Some(row_shift), Some(_)) => Some(PowerOfTwoRepeat {
-                x_mask: x.size() - 1,
-                y_mask: y.size() - 1,
-                row_shift,
-            }),
+            (Wrap::Repeat, Wrap::Repeat, Some(row_shift), Some(_)) => {
+                let y_mask = y.size() - 1;
+                // At most 16 index bits (`row_shift` plus the bit length of `y_mask`), found
+                // by shifts: a bit length is a library call on Cortex-M0.
+                let fits = row_shift <= 16 && y_mask >> (16 - row_shift) == 0;
+                Some(PowerOfTwoRepeat {
+                    x_mask: x.size() - 1,
+                    y_mask,
+                    row_shift,
+                    rows: fits.then(|| y_mask << row_shift),
+                })
+            }
             _ => None,
         }
     }
 
-    /// Bits of a texel's storage index: `log2(width × height)`.
+    /// The span of `texels` from `at` stepping by `step` (16.16) for a target's own masked
+    /// nearest loop, if the texture's storage index fits 16 bits.
     #[inline(always)]
-    fn row_bits(&self) -> u32 {
-        self.row_shift + (32 - self.y_mask.leading_zeros())
+    fn span_565<'w>(
+        &self,
+        texels: &'w [u16],
+        at: (i32, i32),
+        step: (i32, i32),
+    ) -> Option<MaskedSpan565<'w>> {
+        Some(MaskedSpan565 {
+            texels,
+            x: (at.0, step.0),
+            y: (at.1 << self.row_shift, step.1 << self.row_shift),
+            x_mask: self.x_mask,
+            rows: self.rows?,
+        })
     }
 
     /// The index of the texture's last texel (its texels less one: a power of two less one).
@@ -343,6 +379,52 @@ mod tests {
                 // Within half a step of the values' scale, modulo 2³².
                 let err = i64::from(c[k].wrapping_sub(back));
                 assert!(err.abs() <= 1 << shift >> 1, "{c:?} {k}: {back}");
+            }
+        }
+    }
+
+    /// The Cortex-M0 masked nearest loop's arithmetic (`arch::thumbv6m`), modelled here: each
+    /// texel's byte offset from the coordinates shifted by 15 and the masks doubled, the
+    /// coordinates stepped by wrapping adds. Its spans are `Texture::sample`'s.
+    #[test]
+    fn doubled_mask_offsets_read_the_sampled_texels() {
+        let mut next = crate::random(0x7e47_0004);
+        let texels: [u16; 4096] = core::array::from_fn(|_| next() as u16);
+        let shapes = [
+            (64, 64),
+            (256, 16),
+            (1, 4096),
+            (4096, 1),
+            (8, 2),
+            (1, 1),
+            (16, 256),
+        ];
+        for n in 0..4_000 {
+            let (w, h) = shapes[n % shapes.len()];
+            let texture = Texture::new(Rgb565Texels(&texels), w, h).unwrap();
+            let Sampler::MaskedNearest(masks, source) = Sampler::new(&texture) else {
+                panic!("{w}×{h} is masked");
+            };
+            let at = (next() as i32, next() as i32);
+            let step = (
+                (next() as i32) >> (next() % 32),
+                (next() as i32) >> (next() % 32),
+            );
+            let span = masks.span_565(source.0, at, step).unwrap();
+            assert!(((span.rows | span.x_mask) as usize) < span.texels.len());
+            let (mut x, mut y) = (span.x.0, span.y.0);
+            for i in 0..40 {
+                let offset =
+                    ((y >> 15) as u32 & (span.rows << 1)) | ((x >> 15) as u32 & (span.x_mask << 1));
+                assert_eq!(offset % 2, 0);
+                let got = Rgb565::from(RawU16::new(span.texels[offset as usize / 2]));
+                let want = texture.sample::<Rgb565>(
+                    at.0.wrapping_add(step.0.wrapping_mul(i)),
+                    at.1.wrapping_add(step.1.wrapping_mul(i)),
+                );
+                assert_eq!(got, want, "{w}×{h} {at:?} {step:?} {i}");
+                x = x.wrapping_add(span.x.1);
+                y = y.wrapping_add(span.y.1);
             }
         }
     }
