@@ -268,7 +268,10 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
             TexelLight::Level(l) => [l; 3],
             TexelLight::Full => [0; 3],
         };
-        let more = [0, 1, 2].map(|k| [u[k], v[k], levels[k]]);
+        // Without indices: no bounds checks where the compiler does not inline (`opt-level`
+        // "s", "z").
+        let ([u0, u1, u2], [v0, v1, v2], [l0, l1, l2]) = (u, v, levels);
+        let more = [[u0, v0, l0], [u1, v1, l1], [u2, v2, l2]];
         let attributes = with_depth(screen, more, [0; 3]);
         let fill = AffineFill {
             target,
@@ -769,5 +772,7 @@ fn pixels<C: GouraudColor, L: SpanLight>(
 /// The first `n` items of `items` and the rest, if it has `n`.
 #[inline(always)]
 fn split<T>(items: &mut [T], n: usize) -> Option<(&mut [T], &mut [T])> {
-    (n <= items.len()).then(|| items.split_at_mut(n))
+    // Not `then` and `split_at_mut`: where `then` is not inlined (`opt-level` "s", "z"), the
+    // split's own length check is a panic path.
+    items.split_at_mut_checked(n)
 }
