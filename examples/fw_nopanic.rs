@@ -13,7 +13,12 @@
 //! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
 //! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
 //! shading and culling, with and without a specular highlight, opaque matrices, viewport and
-//! light).
+//! light), and textured drawing (`examples/common/texture_scene.rs`: 2D `TexturedTriangle`s
+//! through `draw` and `draw_into` with every wrap mode and filter; a textured mesh through
+//! `draw_textured_mesh_with` with every shading, perspective-correct faces among its own, and
+//! `three_d::draw_textured`; on the MPS2 boards also `draw_textured_mesh`, which the micro:bit's
+//! flash has no room for at opt-level 3), whose `textures` checksum lines must be the host
+//! build's (`cargo run --release --example fw_nopanic` prints them).
 //!
 //! ```text
 //! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
@@ -23,6 +28,9 @@
 #[allow(dead_code)]
 #[path = "common/scene.rs"]
 mod scene;
+
+#[path = "common/texture_scene.rs"]
+mod texture_scene;
 
 #[cfg(target_os = "none")]
 #[allow(dead_code)]
@@ -57,11 +65,24 @@ mod firmware {
     };
 
     use crate::plain_print::{decimal, hex, print};
-    use crate::{board, scene};
+    use crate::{board, scene, texture_scene};
 
     /// Size of the framebuffers for the other colour formats.
     const SMALL: (u32, u32) = (24, 16);
     const SMALL_PIXELS: usize = (SMALL.0 * SMALL.1) as usize;
+
+    /// Prints a `textures` line: `what`, the frame's size and its checksum (the host's format).
+    fn textures_line(what: &[u8], (width, height): (u32, u32), checksum: u32) {
+        print(b"textures ");
+        print(what);
+        print(b" ");
+        decimal(u64::from(width));
+        print(b"x");
+        decimal(u64::from(height));
+        print(b" fnv1a=0x");
+        hex(checksum);
+        print(b"\n");
+    }
 
     /// Draws a scene shape recoloured to `C` both ways into `fb`, with opaque inputs.
     fn draw_as<C: GouraudColor>(
@@ -85,36 +106,18 @@ mod firmware {
         }
     }
 
-    #[entry]
-    fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
-        static mut RGB888: [Rgb888; SMALL_PIXELS] = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
-        static mut GRAY8: [Gray8; SMALL_PIXELS] = [Gray8::new(0); SMALL_PIXELS];
-        static mut BINARY: [BinaryColor; SMALL_PIXELS] = [BinaryColor::Off; SMALL_PIXELS];
-        static mut COLORS_3D: [Rgb565; SMALL_PIXELS] = [Rgb565::new(0, 0, 0); SMALL_PIXELS];
-        static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
-        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
-
-        // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
-        let (width, height) = black_box(board::SIZE);
-        let Some(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
-            board::exit(false)
-        };
-        scene::render(&mut fb);
-        // The same line as fw_scene's `scene::ChecksumLine`.
-        print(b"scene ");
-        decimal(u64::from(width));
-        print(b"x");
-        decimal(u64::from(height));
-        print(b" fnv1a=0x");
-        hex(scene::checksum(fb.pixels()));
-        print(b"\n");
-
-        // Other colour formats, both entry points, opaque framebuffer sizes.
-        let (sw, sh) = black_box(SMALL);
-        let mut rgb888 = SliceFramebuffer::new(RGB888, sw, sh);
-        let mut gray8 = SliceFramebuffer::new(GRAY8, sw, sh);
-        let mut binary = SliceFramebuffer::new(BINARY, sw, sh);
+    /// The scene's shapes in other colour formats through both entry points, and their spans
+    /// under a clip rectangle, into `sw × sh` framebuffers on the stack (out of line: the
+    /// stack they take is free again for the 3D draws, which the micro:bit's 16 KiB of RAM
+    /// needs).
+    #[inline(never)]
+    fn other_formats(sw: u32, sh: u32) {
+        let mut rgb888_pixels = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
+        let mut gray8_pixels = [Gray8::new(0); SMALL_PIXELS];
+        let mut binary_pixels = [BinaryColor::Off; SMALL_PIXELS];
+        let mut rgb888 = SliceFramebuffer::new(&mut rgb888_pixels, sw, sh);
+        let mut gray8 = SliceFramebuffer::new(&mut gray8_pixels, sw, sh);
+        let mut binary = SliceFramebuffer::new(&mut binary_pixels, sw, sh);
         let mut spans = 0u32;
         scene::for_each_shape(sw, sh, |shape| {
             let shape = black_box(shape);
@@ -143,6 +146,37 @@ mod firmware {
             );
         });
         black_box(spans);
+        black_box((
+            rgb888.as_ref().map(|f| f.pixels()),
+            gray8.as_ref().map(|f| f.pixels()),
+        ));
+        black_box(binary.as_ref().map(|f| f.pixels()));
+    }
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
+        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+
+        // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
+        let (width, height) = black_box(board::SIZE);
+        let Some(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
+            board::exit(false)
+        };
+        scene::render(&mut fb);
+        // The same line as fw_scene's `scene::ChecksumLine`.
+        print(b"scene ");
+        decimal(u64::from(width));
+        print(b"x");
+        decimal(u64::from(height));
+        print(b" fnv1a=0x");
+        hex(scene::checksum(fb.pixels()));
+        print(b"\n");
+
+        // Other colour formats, both entry points, opaque framebuffer sizes.
+        let (sw, sh) = black_box(SMALL);
+        other_formats(sw, sh);
 
         // The framebuffer's DrawTarget methods on opaque rectangles and pixels (any corner in
         // i32, any size, past i32::MAX too).
@@ -164,7 +198,9 @@ mod firmware {
 
         // The 3D pipeline: a flash mesh, opaque matrices, viewport and light, every shading and
         // culling, with and without the vertex scratch.
-        if let Some(mut target) = DepthTarget::new(COLORS_3D, DEPTH_3D, sw, sh) {
+        // Its colours in the scene's framebuffer, done with (RAM for the stack on the micro:bit).
+        let colors_3d = fb.pixels_mut().get_mut(..SMALL_PIXELS).unwrap_or_default();
+        if let Some(mut target) = DepthTarget::new(colors_3d, DEPTH_3D, sw, sh) {
             let projection = black_box(Mat4::perspective(
                 Angle::from_degrees(60),
                 Scalar::from_bits(98_304),
@@ -201,16 +237,43 @@ mod firmware {
             }
             black_box(target.depth());
         }
-        black_box((
-            rgb888.as_ref().map(|f| f.pixels()),
-            gray8.as_ref().map(|f| f.pixels()),
-        ));
-        black_box(binary.as_ref().map(|f| f.pixels()));
+
+        // Textured drawing into the scene's framebuffer (at least 64×48), the 3D frames with
+        // the small depth buffer.
+        let checksum = texture_scene::render_2d(fb.pixels_mut());
+        textures_line(b"2d", texture_scene::SIZE_2D, checksum);
+        let checksum = texture_scene::render_3d(fb.pixels_mut(), DEPTH_3D, SCRATCH);
+        textures_line(b"3d", texture_scene::SIZE_3D, checksum);
+        // Not on the micro:bit, whose flash it would overflow at opt-level 3.
+        #[cfg(target_has_atomic = "32")]
+        {
+            let checksum = texture_scene::render_3d_mesh(fb.pixels_mut(), DEPTH_3D);
+            textures_line(b"3d-mesh", texture_scene::SIZE_3D, checksum);
+        }
         board::exit(true)
     }
 }
 
+/// The host prints the `textures` lines the firmware must print (`.ci/firmware.sh` compares
+/// them; the scene's line is `fw_scene`'s).
 #[cfg(not(target_os = "none"))]
 fn main() {
-    println!("fw_nopanic is firmware: build it with --target thumbv6m-none-eabi (see .cargo/config.toml)");
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::*;
+    use embedded_raster::three_d::ProjectedVertex;
+
+    let (w, h) = texture_scene::SIZE_2D;
+    let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
+    let checksum = texture_scene::render_2d(&mut pixels);
+    println!("textures 2d {w}x{h} fnv1a=0x{checksum:08x}");
+    let (w, h) = texture_scene::SIZE_3D;
+    let (mut colors, mut depths) = (
+        vec![Rgb565::BLACK; (w * h) as usize],
+        vec![0; (w * h) as usize],
+    );
+    let mut scratch = [ProjectedVertex::EMPTY; 42];
+    let checksum = texture_scene::render_3d(&mut colors, &mut depths, &mut scratch);
+    println!("textures 3d {w}x{h} fnv1a=0x{checksum:08x}");
+    let checksum = texture_scene::render_3d_mesh(&mut colors, &mut depths);
+    println!("textures 3d-mesh {w}x{h} fnv1a=0x{checksum:08x}");
 }
