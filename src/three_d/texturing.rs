@@ -31,7 +31,7 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
-use super::math::Scalar;
+use super::math::{zip3_with, Scalar};
 use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
 use super::vertex::Inverse;
 use crate::color::GouraudColor;
@@ -268,10 +268,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
             TexelLight::Level(l) => [l; 3],
             TexelLight::Full => [0; 3],
         };
-        // Without indices: no bounds checks where the compiler does not inline (`opt-level`
-        // "s", "z").
-        let ([u0, u1, u2], [v0, v1, v2], [l0, l1, l2]) = (u, v, levels);
-        let more = [[u0, v0, l0], [u1, v1, l1], [u2, v2, l2]];
+        let more = zip3_with(u, v, levels, |u, v, level| [u, v, level]);
         let attributes = with_depth(screen, more, [0; 3]);
         let fill = AffineFill {
             target,
