@@ -3,11 +3,12 @@
 #
 # For each board (mps2-an386 Cortex-M4F, mps2-an385 Cortex-M3, micro:bit Cortex-M0):
 #   * builds the firmware examples in release mode (.cargo/config.toml has the link flags);
-#   * fw_nopanic must link: its panic handler is an undefined symbol, so any panic path left in
-#     the drawing code after optimisation fails the build;
+#   * fw_nopanic and fw_nopanic_textures must link: their panic handler is an undefined symbol,
+#     so any panic path left in the drawing code after optimisation fails the build;
 #   * fw_scene and fw_nopanic run under QEMU and must exit with status 0 and print the same
 #     checksum as the host build of fw_scene (whose image tests/firmware_checksum.rs checks
-#     against an independent reference);
+#     against an independent reference), and fw_nopanic_textures the same textured frames'
+#     checksums as its host build;
 #   * fw_bench counts instructions with SysTick under -icount; its tables go to
 #     target/firmware-bench.md, followed by the flash/RAM footprint of the M0 and M4 builds;
 #   * fw_texture_bench likewise, and its framebuffers' checksum lines (each case's, and random
@@ -114,6 +115,24 @@ run_ok() {
     run_elf "$machine" "$cpu" "target/$target/release/examples/$example" "$example"
 }
 
+# Checks the `textures` lines of fw_nopanic_textures's `output` (`what` in messages) against the host's:
+# the 2D and 3D textured frames, and draw_textured_mesh's frame ("3d-mesh") except on the
+# micro:bit (its flash has no room for that draw at opt-level 3).
+check_textures() {
+    local what=$1 output=$2 machine=$3 got kind line want kinds=(2d 3d)
+    [ "$machine" = microbit ] || kinds+=(3d-mesh)
+    got=$(printf '%s\n' "$output" | grep '^textures ' || true)
+    [ "$(printf '%s\n' "$got" | grep -c '^textures ')" -eq "${#kinds[@]}" ] ||
+        fail "$what on $machine printed $(printf '%s\n' "$got" | grep -c '^textures ') textures lines, not ${#kinds[@]}"
+    for kind in "${kinds[@]}"; do
+        line=$(printf '%s\n' "$got" | grep "^textures $kind " || true)
+        want=$(printf '%s\n' "$TEXTURES" | grep "^textures $kind " || true)
+        [ -n "$line" ] && [ "$line" = "$want" ] ||
+            fail "$what on $machine: textured frame '$line', host: '$want'"
+    done
+    echo "  ok: $what on $machine matches the host's textured frames (${kinds[*]})"
+}
+
 # Runs `example` and checks its exit status and its checksum line against the host's.
 check_scene() {
     local target=$1 machine=$2 cpu=$3 example=$4 output line size want
@@ -136,6 +155,10 @@ printf '%s\n' "$EXPECTED"
 [ "$(printf '%s\n' "$EXPECTED" | grep -c '^scene ')" -ge 2 ] || fail "no host checksums"
 TEXTURE_EXPECTED=$(cargo run --quiet --release --example fw_texture_bench | grep '^texture ')
 [ "$(printf '%s\n' "$TEXTURE_EXPECTED" | grep -c '^texture ')" -ge 2 ] || fail "no host texture checksums"
+echo "--- host textured frames (cargo run --release --example fw_nopanic_textures)"
+TEXTURES=$(cargo run --quiet --release --example fw_nopanic_textures)
+printf '%s\n' "$TEXTURES"
+[ "$(printf '%s\n' "$TEXTURES" | grep -c '^textures ')" -eq 3 ] || fail "no host textured frames"
 
 mkdir -p target
 bench=$(mktemp)
@@ -160,11 +183,14 @@ for board in "${BOARDS[@]}"; do
     cargo build --quiet --release --target "$target" "${examples[@]}"
 
     log=$(mktemp)
-    if ! cargo build --quiet --release --target "$target" --example fw_nopanic 2>"$log"; then
-        grep -E 'undefined symbol|referenced by|>>>' "$log" >&2 || cat "$log" >&2
+    if ! cargo build --quiet --release --target "$target" --example fw_nopanic \
+        --example fw_nopanic_textures 2>"$log"; then
+        grep -E 'undefined symbol|referenced by|>>>|FLASH|RAM' "$log" >&2 || cat "$log" >&2
         rm -f "$log"
-        fail "fw_nopanic does not link for $target: a panic path is left in the drawing code" \
-            "(or in fw_nopanic/scene.rs). Build fw_scene and look for calls to core::panicking."
+        fail "fw_nopanic or fw_nopanic_textures does not link for $target: a panic path is left" \
+            "in the drawing code (or in scene.rs/texture_scene.rs), or it outgrew the board's memory" \
+            "(the micro:bit's 256 KiB of flash). Build fw_scene and look for calls to" \
+            "core::panicking."
     fi
     rm -f "$log"
     for e in "${SIZE_EXAMPLES[@]}"; do
@@ -174,6 +200,8 @@ for board in "${BOARDS[@]}"; do
 
     check_scene "$target" "$machine" "$cpu" fw_scene
     check_scene "$target" "$machine" "$cpu" fw_nopanic
+    run_ok "$target" "$machine" "$cpu" fw_nopanic_textures
+    check_textures fw_nopanic_textures "$OUTPUT" "$machine"
 
     run_ok "$target" "$machine" "$cpu" fw_bench
     output=$OUTPUT
@@ -206,8 +234,10 @@ done
 
 # ---- size-optimised builds ----------------------------------------------------------------------
 # Firmware is often built for size: at opt-level "s" and "z" the drawing code must still have no
-# panic path (fw_nopanic links only then) and draw the host's pixels. Their own target
-# directories keep the release builds above.
+# panic path (fw_nopanic links only then: the scene, the other colour formats, the 3D pipeline and
+# the texture code — 2D textured triangles with every wrap mode and filter, textured meshes and
+# three_d::draw_textured, perspective-correct) and draw the host's pixels (the scene's checksum
+# and the textured frames'). Their own target directories keep the release builds above.
 echo "--- fw_nopanic at opt-level s and z"
 for level in s z; do
     for board in "thumbv6m-none-eabi microbit cortex-m0" "thumbv7em-none-eabihf mps2-an386 cortex-m4"; do
@@ -215,11 +245,12 @@ for level in s z; do
         dir="target/opt-level-$level"
         log=$(mktemp)
         if ! CARGO_PROFILE_RELEASE_OPT_LEVEL=$level cargo build --quiet --release --target "$target" \
-            --target-dir "$dir" --example fw_nopanic 2>"$log"; then
-            grep -E 'undefined symbol|referenced by|>>>' "$log" >&2 || cat "$log" >&2
+            --target-dir "$dir" --example fw_nopanic --example fw_nopanic_textures 2>"$log"; then
+            grep -E 'undefined symbol|referenced by|>>>|FLASH|RAM' "$log" >&2 || cat "$log" >&2
             rm -f "$log"
             fail "fw_nopanic does not link for $target at opt-level $level: a panic path is left" \
-                "in the drawing code. List the calls to core::panicking in its disassembly."
+                "in the drawing code (or the firmware outgrew the board's memory). List the calls to" \
+                "core::panicking in its disassembly."
         fi
         rm -f "$log"
         run_elf "$machine" "$cpu" "$dir/$target/release/examples/fw_nopanic" \
@@ -229,6 +260,9 @@ for level in s z; do
         [ -n "$line" ] && [ "$line" = "$want" ] ||
             fail "fw_nopanic at opt-level $level on $machine: '$line', host: '$want'"
         echo "  ok: fw_nopanic at opt-level $level links for $target and matches the host on $machine"
+        run_elf "$machine" "$cpu" "$dir/$target/release/examples/fw_nopanic_textures" \
+            "fw_nopanic_textures at opt-level $level"
+        check_textures "fw_nopanic_textures at opt-level $level" "$OUTPUT" "$machine"
     done
 done
 

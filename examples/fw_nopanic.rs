@@ -13,7 +13,8 @@
 //! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
 //! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
 //! shading and culling, with and without a specular highlight, opaque matrices, viewport and
-//! lights, with the first light alone and with point and directional lights).
+//! lights, with the first light alone and with point and directional lights). Textured drawing
+//! has a firmware of its own, `fw_nopanic_textures`.
 //!
 //! ```text
 //! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic
@@ -85,36 +86,18 @@ mod firmware {
         }
     }
 
-    #[entry]
-    fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
-        static mut RGB888: [Rgb888; SMALL_PIXELS] = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
-        static mut GRAY8: [Gray8; SMALL_PIXELS] = [Gray8::new(0); SMALL_PIXELS];
-        static mut BINARY: [BinaryColor; SMALL_PIXELS] = [BinaryColor::Off; SMALL_PIXELS];
-        static mut COLORS_3D: [Rgb565; SMALL_PIXELS] = [Rgb565::new(0, 0, 0); SMALL_PIXELS];
-        static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
-        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
-
-        // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
-        let (width, height) = black_box(board::SIZE);
-        let Some(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
-            board::exit(false)
-        };
-        scene::render(&mut fb);
-        // The same line as fw_scene's `scene::ChecksumLine`.
-        print(b"scene ");
-        decimal(u64::from(width));
-        print(b"x");
-        decimal(u64::from(height));
-        print(b" fnv1a=0x");
-        hex(scene::checksum(fb.pixels()));
-        print(b"\n");
-
-        // Other colour formats, both entry points, opaque framebuffer sizes.
-        let (sw, sh) = black_box(SMALL);
-        let mut rgb888 = SliceFramebuffer::new(RGB888, sw, sh);
-        let mut gray8 = SliceFramebuffer::new(GRAY8, sw, sh);
-        let mut binary = SliceFramebuffer::new(BINARY, sw, sh);
+    /// The scene's shapes in other colour formats through both entry points, and their spans
+    /// under a clip rectangle, into `sw × sh` framebuffers on the stack (out of line: the
+    /// stack they take is free again for the 3D draws, which the micro:bit's 16 KiB of RAM
+    /// needs).
+    #[inline(never)]
+    fn other_formats(sw: u32, sh: u32) {
+        let mut rgb888_pixels = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
+        let mut gray8_pixels = [Gray8::new(0); SMALL_PIXELS];
+        let mut binary_pixels = [BinaryColor::Off; SMALL_PIXELS];
+        let mut rgb888 = SliceFramebuffer::new(&mut rgb888_pixels, sw, sh);
+        let mut gray8 = SliceFramebuffer::new(&mut gray8_pixels, sw, sh);
+        let mut binary = SliceFramebuffer::new(&mut binary_pixels, sw, sh);
         let mut spans = 0u32;
         scene::for_each_shape(sw, sh, |shape| {
             let shape = black_box(shape);
@@ -143,6 +126,37 @@ mod firmware {
             );
         });
         black_box(spans);
+        black_box((
+            rgb888.as_ref().map(|f| f.pixels()),
+            gray8.as_ref().map(|f| f.pixels()),
+        ));
+        black_box(binary.as_ref().map(|f| f.pixels()));
+    }
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
+        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+
+        // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
+        let (width, height) = black_box(board::SIZE);
+        let Some(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
+            board::exit(false)
+        };
+        scene::render(&mut fb);
+        // The same line as fw_scene's `scene::ChecksumLine`.
+        print(b"scene ");
+        decimal(u64::from(width));
+        print(b"x");
+        decimal(u64::from(height));
+        print(b" fnv1a=0x");
+        hex(scene::checksum(fb.pixels()));
+        print(b"\n");
+
+        // Other colour formats, both entry points, opaque framebuffer sizes.
+        let (sw, sh) = black_box(SMALL);
+        other_formats(sw, sh);
 
         // The framebuffer's DrawTarget methods on opaque rectangles and pixels (any corner in
         // i32, any size, past i32::MAX too).
@@ -164,7 +178,9 @@ mod firmware {
 
         // The 3D pipeline: a flash mesh, opaque matrices, viewport and light, every shading and
         // culling, with and without the vertex scratch.
-        if let Some(mut target) = DepthTarget::new(COLORS_3D, DEPTH_3D, sw, sh) {
+        // Its colours in the scene's framebuffer, done with (RAM for the stack on the micro:bit).
+        let colors_3d = fb.pixels_mut().get_mut(..SMALL_PIXELS).unwrap_or_default();
+        if let Some(mut target) = DepthTarget::new(colors_3d, DEPTH_3D, sw, sh) {
             let projection = black_box(Mat4::perspective(
                 Angle::from_degrees(60),
                 Scalar::from_bits(98_304),
@@ -217,11 +233,7 @@ mod firmware {
             }
             black_box(target.depth());
         }
-        black_box((
-            rgb888.as_ref().map(|f| f.pixels()),
-            gray8.as_ref().map(|f| f.pixels()),
-        ));
-        black_box(binary.as_ref().map(|f| f.pixels()));
+
         board::exit(true)
     }
 }

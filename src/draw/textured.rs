@@ -202,8 +202,11 @@ impl<'t, S: TexelSource> Texels<'t, S> {
     fn new(texture: &'t Texture<S>, vertices: &[TexturedVertex; 3]) -> (Self, Attributes<2>) {
         let (mu, u) = PlaneMap::new(vertices.map(|v| v.u.to_bits()));
         let (mv, v) = PlaneMap::new(vertices.map(|v| v.v.to_bits()));
+        // Vertex by vertex without indices: a `map` over indices keeps their bounds checks
+        // (panic paths) where `opt-level` "s" or "z" does not inline it.
+        let ([u0, u1, u2], [v0, v1, v2]) = (u, v);
         let attributes = Attributes {
-            values: [0, 1, 2].map(|k| [u[k], v[k]]),
+            values: [[u0, v0], [u1, v1], [u2, v2]],
             // The maps truncate: no rounding offset.
             half: [0; 2],
         };

@@ -57,10 +57,14 @@ pub(crate) fn attributes(q: [u64; 3]) -> Attributes<3> {
         // At least 1: a vertex at (practically) infinite w still has a positive q.
         v.clamp(1, u64::from(Q_MAX)) as u16
     });
-    let values = [0, 1, 2].map(|k| {
-        let own = |vertex: usize| if vertex == k { n[k] } else { 0 };
-        [n[k] + MARGIN, own(1) + MARGIN, own(2) + MARGIN]
-    });
+    // Vertex by vertex without indices: no bounds checks where the compiler does not inline
+    // (`opt-level` "s", "z").
+    let [n0, n1, n2] = n;
+    let values = [
+        [n0 + MARGIN, MARGIN, MARGIN],
+        [n1 + MARGIN, n1 + MARGIN, MARGIN],
+        [n2 + MARGIN, MARGIN, n2 + MARGIN],
+    ];
     Attributes {
         values,
         half: [0; 3],

@@ -176,11 +176,11 @@ pub(crate) fn zip_with<T: Copy + Default, R, const N: usize>(
 
 /// [`zip_with`] of three vectors' components.
 #[inline(always)]
-pub(crate) fn zip3_with<T: Copy, R>(
-    [a0, a1, a2]: [T; 3],
-    [b0, b1, b2]: [T; 3],
+pub(crate) fn zip3_with<A, B, T, R>(
+    [a0, a1, a2]: [A; 3],
+    [b0, b1, b2]: [B; 3],
     [c0, c1, c2]: [T; 3],
-    mut f: impl FnMut(T, T, T) -> R,
+    mut f: impl FnMut(A, B, T) -> R,
 ) -> [R; 3] {
     [f(a0, b0, c0), f(a1, b1, c1), f(a2, b2, c2)]
 }

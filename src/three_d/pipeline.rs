@@ -74,7 +74,7 @@ use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
 use super::depth::{DepthTarget, ScreenVertex};
 use super::light::{Highlight, Light, LightRig, Lights, Specular};
-use super::math::{normalize_wide, Bary, Mat4, Vec3, Vec4, BARY_ONE};
+use super::math::{normalize_wide, zip3_with, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::texturing::{FaceTexture, FrameTexture, NoTexture, TexelLight, TexturedMaterial};
@@ -1311,9 +1311,8 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 };
                 let white = [&Rgb888::WHITE; 3];
                 let colors = colors.unwrap_or(white);
-                let tints = [0, 1, 2].map(|k| {
-                    let level = i64::from(levels[k].min(255 << 8));
-                    tint(colors[k], level)
+                let tints = zip3_with(levels, colors, [(); 3], |level, color, ()| {
+                    tint(color, i64::from(level.min(255 << 8)))
                 });
                 let tints = at_bary(bary, tints);
                 let tints = tints.map(|t| t.map(|c| c.clamp(0, i64::from(255 << 8)) as u16));

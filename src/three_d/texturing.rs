@@ -31,9 +31,10 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
-use super::math::Scalar;
+use super::math::{zip3_with, Scalar};
 use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
 use super::vertex::Inverse;
+use crate::arch::SIZE_OVER_SPEED;
 use crate::color::GouraudColor;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
@@ -334,6 +335,10 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
 {
     let rect = clip.rect();
     let position = screen.map(|v| v.position());
+    // Where flash counts more than speed, fewer kinds of light with the same pixels (the arms
+    // `if !SIZE_OVER_SPEED` below): no light is a full level (`(c·65535 + 2¹⁵) >> 16 = c`),
+    // tints are tints with a highlight of 0.
+    let full = level_fraction(255 << 8);
     if nearly_affine(q, texels, &light, affine_level::<C>()) {
         // Screen-space interpolation is within the bound here: the 2D textured fill's planes,
         // with the light's after the texel coordinates'.
@@ -342,8 +347,8 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
         let maps = [mu, mv];
         let rows = clip.rows();
         match light {
-            TexelLight::Full => {
-                let more = [0, 1, 2].map(|k| [u[k], v[k]]);
+            TexelLight::Full if !SIZE_OVER_SPEED => {
+                let more = zip3_with(u, v, [(); 3], |u, v, ()| [u, v]);
                 let a = with_depth::<2, 3>(screen, more, [0; 2]);
                 rows.shade(
                     position,
@@ -352,9 +357,12 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                     AffineFill::new(target, sampler, maps, Unlit),
                 );
             }
-            TexelLight::Level(level) => {
-                let more = [0, 1, 2].map(|k| [u[k], v[k]]);
-                let light = Constant(level_fraction(level));
+            TexelLight::Full | TexelLight::Level(_) => {
+                let more = zip3_with(u, v, [(); 3], |u, v, ()| [u, v]);
+                let light = match light {
+                    TexelLight::Level(level) => Constant(level_fraction(level)),
+                    _ => Constant(full),
+                };
                 let a = with_depth::<2, 3>(screen, more, [0; 2]);
                 rows.shade(
                     position,
@@ -364,22 +372,24 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
                 );
             }
             TexelLight::Levels(l) => {
-                let more = [0, 1, 2].map(|k| [u[k], v[k], l[k]]);
+                let more = zip3_with(u, v, l, |u, v, l| [u, v, l]);
                 let a = with_depth::<3, 4>(screen, more, [0; 3]);
                 let fill = AffineFill::new(target, sampler, maps, PlaneLevel);
                 rows.shade(position, &a, &rect, fill);
             }
-            TexelLight::Tints(t) => {
-                let more = [0, 1, 2].map(|k| [u[k], v[k], t[k][0], t[k][1], t[k][2]]);
+            TexelLight::Tints(t) if !SIZE_OVER_SPEED => {
+                let more = zip3_with(u, v, t, |u, v, [r, g, b]| [u, v, r, g, b]);
                 let a = with_depth::<5, 6>(screen, more, [0; 5]);
                 let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<3>);
                 rows.shade(position, &a, &rect, fill);
             }
-            TexelLight::Shiny {
-                tints: t,
-                speculars,
-            } => {
-                let more = [0, 1, 2].map(|k| [u[k], v[k], t[k][0], t[k][1], t[k][2], speculars[k]]);
+            TexelLight::Tints(t) | TexelLight::Shiny { tints: t, .. } => {
+                let speculars = match light {
+                    TexelLight::Shiny { speculars, .. } => speculars,
+                    _ => [0; 3],
+                };
+                let light = zip3_with(t, speculars, [(); 3], |t, s, ()| (t, s));
+                let more = zip3_with(u, v, light, |u, v, ([r, g, b], s)| [u, v, r, g, b, s]);
                 let a = with_depth::<6, 7>(screen, more, [0; 6]);
                 let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<4>);
                 rows.shade(position, &a, &rect, fill);
@@ -395,7 +405,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     );
     // One span loop for each kind of light.
     match light {
-        TexelLight::Full => {
+        TexelLight::Full if !SIZE_OVER_SPEED => {
             let fill = TexturedFill {
                 target,
                 sampler,
@@ -404,12 +414,16 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
-        TexelLight::Level(level) => {
+        TexelLight::Full | TexelLight::Level(_) => {
+            let level = match light {
+                TexelLight::Level(level) => level_fraction(level),
+                _ => full,
+            };
             let fill = TexturedFill {
                 target,
                 sampler,
                 coordinates,
-                light: Constant(level_fraction(level)),
+                light: Constant(level),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
@@ -422,28 +436,44 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
-        TexelLight::Tints(tints) => {
-            let channel = |c: usize| Corrected::new(tints.map(|t| level_fraction(t[c]) as i32));
+        TexelLight::Tints(tints) if !SIZE_OVER_SPEED => {
+            let [r, g, b] = transpose(tints).map(corrected_levels);
             let fill = TexturedFill {
                 target,
                 sampler,
                 coordinates,
-                light: CorrectedChannels([channel(0), channel(1), channel(2)]),
+                light: CorrectedChannels([r, g, b]),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
-        TexelLight::Shiny { tints, speculars } => {
-            let channel = |c: usize| Corrected::new(tints.map(|t| level_fraction(t[c]) as i32));
-            let specular = Corrected::new(speculars.map(|s| level_fraction(s) as i32));
+        TexelLight::Tints(tints) | TexelLight::Shiny { tints, .. } => {
+            let speculars = match light {
+                TexelLight::Shiny { speculars, .. } => speculars,
+                _ => [0; 3],
+            };
+            let [r, g, b] = transpose(tints).map(corrected_levels);
             let fill = TexturedFill {
                 target,
                 sampler,
                 coordinates,
-                light: CorrectedChannels([channel(0), channel(1), channel(2), specular]),
+                light: CorrectedChannels([r, g, b, corrected_levels(speculars)]),
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
     }
+}
+
+/// Levels (8.8 of the 0–255 scale) at the vertices as 16-bit fractions corrected for
+/// perspective.
+#[inline(always)]
+fn corrected_levels(levels: [u16; 3]) -> Corrected {
+    Corrected::new(levels.map(|l| level_fraction(l) as i32))
+}
+
+/// The vertices' channels as the channels' vertex values (and back).
+#[inline(always)]
+fn transpose<T>([[a0, a1, a2], [b0, b1, b2], [c0, c1, c2]]: [[T; 3]; 3]) -> [[T; 3]; 3] {
+    [[a0, b0, c0], [a1, b1, c1], [a2, b2, c2]]
 }
 
 /// The largest departure from the perspective-correct texel coordinates that screen-space
@@ -502,16 +532,16 @@ fn nearly_affine(
     let levels = match light {
         TexelLight::Levels(l) => spread(l.map(i32::from)) as u32,
         TexelLight::Tints(t) => {
-            let channel = |c: usize| spread(t.map(|t| i32::from(t[c]))) as u32;
-            channel(0).max(channel(1)).max(channel(2))
+            let [r, g, b] = transpose(*t).map(|c| spread(c.map(i32::from)) as u32);
+            r.max(g).max(b)
         }
         TexelLight::Shiny {
             tints: t,
             speculars,
         } => {
-            let channel = |c: usize| spread(t.map(|t| i32::from(t[c]))) as u32;
+            let [r, g, b] = transpose(*t).map(|c| spread(c.map(i32::from)) as u32);
             let specular = spread(speculars.map(i32::from)) as u32;
-            channel(0).max(channel(1)).max(channel(2)).max(specular)
+            r.max(g).max(b).max(specular)
         }
         TexelLight::Full | TexelLight::Level(_) => return true,
     };
@@ -677,9 +707,10 @@ impl<C: GouraudColor, L: PlaneLight<N>, const N: usize> SampledLoop<C>
                 let range =
                     row_start.wrapping_add(start as usize)..row_start.wrapping_add(end as usize);
                 let len = end - start;
-                let at: [u32; N] = core::array::from_fn(|k| {
-                    row_values[k].wrapping_add(step[k].wrapping_mul(start))
-                });
+                let mut at = row_values;
+                for (value, step) in at.iter_mut().zip(step) {
+                    *value = value.wrapping_add(step.wrapping_mul(start));
+                }
                 if let (Some(colors), Some(depths)) = (
                     self.colors.get_mut(range.clone()),
                     self.depths.get_mut(range),
@@ -846,7 +877,7 @@ impl<const K: usize> SpanLight for PlaneChannels<K> {
 
     #[inline(always)]
     fn step(light: [i32; K], by: [i32; K]) -> [i32; K] {
-        core::array::from_fn(|c| light[c].wrapping_add(by[c]))
+        add_each(light, by)
     }
 }
 
@@ -862,6 +893,15 @@ impl PlaneLight<7> for PlaneChannels<4> {
     fn of_planes(&self, at: &[u32; 7], step: &[u32; 7]) -> ([i32; 4], [i32; 4]) {
         after_texels(at, step)
     }
+}
+
+/// Each of `values` plus its `steps` (wrapping).
+#[inline(always)]
+fn add_each<const K: usize>(mut values: [i32; K], steps: [i32; K]) -> [i32; K] {
+    for (value, step) in values.iter_mut().zip(steps) {
+        *value = value.wrapping_add(step);
+    }
+    values
 }
 
 /// The `K` planes' values and steps after the depth and the texel coordinates (attributes
@@ -918,8 +958,11 @@ impl<const K: usize> SpanLight for CorrectedChannels<K> {
         over: u32,
     ) -> ([i32; K], [i32; K]) {
         let a = self.0.map(|c| c.at(start));
-        let b = self.0.map(|c| c.at(end));
-        (a, core::array::from_fn(|c| step_over(a[c], b[c], over)))
+        let mut steps = self.0.map(|c| c.at(end));
+        for (step, a) in steps.iter_mut().zip(a) {
+            *step = step_over(a, *step, over);
+        }
+        (a, steps)
     }
 
     #[inline(always)]
@@ -929,7 +972,7 @@ impl<const K: usize> SpanLight for CorrectedChannels<K> {
 
     #[inline(always)]
     fn step(light: [i32; K], by: [i32; K]) -> [i32; K] {
-        core::array::from_fn(|c| light[c].wrapping_add(by[c]))
+        add_each(light, by)
     }
 }
 
@@ -940,12 +983,17 @@ impl<const K: usize> SpanLight for CorrectedChannels<K> {
 fn lit_channels<C: GouraudColor, const K: usize>(base: [u8; 3], light: [u32; K]) -> C {
     let fraction = |c: usize| light.get(c).copied().unwrap_or(0).min(1 << 16);
     let specular = fraction(3);
-    let s = |c: usize| {
-        let max = u32::from(C::MAX[c]);
-        let v = (u32::from(base[c]) * fraction(c) + max * specular + (1 << 15)) >> 16;
+    let s = |c: u8, max: u8, fraction: u32| {
+        let max = u32::from(max);
+        let v = (u32::from(c) * fraction + max * specular + (1 << 15)) >> 16;
         v.min(max) as u8
     };
-    C::from_channels([s(0), s(1), s(2)])
+    let ([c0, c1, c2], [m0, m1, m2]) = (base, C::MAX);
+    C::from_channels([
+        s(c0, m0, fraction(0)),
+        s(c1, m1, fraction(1)),
+        s(c2, m2, fraction(2)),
+    ])
 }
 
 /// The span shader of the textured fills: depth test, texel coordinates (and light level) from
@@ -1083,5 +1131,7 @@ fn pixels<C: GouraudColor, L: SpanLight>(
 /// The first `n` items of `items` and the rest, if it has `n`.
 #[inline(always)]
 fn split<T>(items: &mut [T], n: usize) -> Option<(&mut [T], &mut [T])> {
-    (n <= items.len()).then(|| items.split_at_mut(n))
+    // Not `then` and `split_at_mut`: where `then` is not inlined (`opt-level` "s", "z"), the
+    // split's own length check is a panic path.
+    items.split_at_mut_checked(n)
 }

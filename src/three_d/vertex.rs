@@ -166,7 +166,14 @@ impl Inverse {
         if most > COMMON_SHIFTS {
             return None;
         }
-        let scaled = [0, 1, 2].map(|k| u32::from(q[k].mantissa) << d[k]);
+        // Without indices: no bounds checks where the compiler does not inline (`opt-level`
+        // "s", "z").
+        let ([q0, q1, q2], [d0, d1, d2]) = (q, d);
+        let scaled = [
+            u32::from(q0.mantissa) << d0,
+            u32::from(q1.mantissa) << d1,
+            u32::from(q2.mantissa) << d2,
+        ];
         Some((scaled, u32::from(most)))
     }
 }

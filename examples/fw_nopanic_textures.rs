@@ -1,0 +1,101 @@
+//! Firmware that must link without a panic handler, as `fw_nopanic`, for the textured drawing
+//! (`examples/common/texture_scene.rs`): 2D `TexturedTriangle`s through `draw` and `draw_into`
+//! with every wrap mode and filter; a textured mesh through `draw_textured_mesh_with` with every
+//! shading, vertex colours and highlights, perspective-correct faces among its own, and
+//! `three_d::draw_textured`; on the MPS2 boards also `draw_textured_mesh`, which the micro:bit's
+//! flash has no room for at opt-level 3. Its `textures` checksum lines must be the host build's
+//! (`cargo run --release --example fw_nopanic_textures` prints them; `.ci/firmware.sh` compares
+//! them on every board, at opt-level 3, "s" and "z"). A firmware of its own: with the rest of
+//! `fw_nopanic` it would not fit the micro:bit's 256 KiB of flash.
+//!
+//! ```text
+//! cargo run --release --target thumbv6m-none-eabi --example fw_nopanic_textures
+//! ```
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[path = "common/texture_scene.rs"]
+mod texture_scene;
+
+#[cfg(target_os = "none")]
+#[allow(dead_code)]
+#[path = "common/board.rs"]
+mod board;
+
+#[cfg(target_os = "none")]
+#[path = "common/nopanic.rs"]
+mod nopanic;
+
+#[cfg(target_os = "none")]
+#[path = "common/plain_print.rs"]
+mod plain_print;
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use cortex_m_rt::entry;
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_raster::three_d::ProjectedVertex;
+
+    use crate::plain_print::{decimal, hex, print};
+    use crate::{board, texture_scene};
+
+    /// The 3D frames' pixels.
+    const PIXELS_3D: usize = (texture_scene::SIZE_3D.0 * texture_scene::SIZE_3D.1) as usize;
+    /// The 2D frame's pixels.
+    const PIXELS_2D: usize = (texture_scene::SIZE_2D.0 * texture_scene::SIZE_2D.1) as usize;
+
+    /// Prints a `textures` line: `what`, the frame's size and its checksum (the host's format).
+    fn textures_line(what: &[u8], (width, height): (u32, u32), checksum: u32) {
+        print(b"textures ");
+        print(what);
+        print(b" ");
+        decimal(u64::from(width));
+        print(b"x");
+        decimal(u64::from(height));
+        print(b" fnv1a=0x");
+        hex(checksum);
+        print(b"\n");
+    }
+
+    #[entry]
+    fn main() -> ! {
+        static mut PIXELS: [Rgb565; PIXELS_2D] = [Rgb565::new(0, 0, 0); PIXELS_2D];
+        static mut DEPTH_3D: [u16; PIXELS_3D] = [0; PIXELS_3D];
+        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+
+        let checksum = texture_scene::render_2d(PIXELS);
+        textures_line(b"2d", texture_scene::SIZE_2D, checksum);
+        let checksum = texture_scene::render_3d(PIXELS, DEPTH_3D, SCRATCH);
+        textures_line(b"3d", texture_scene::SIZE_3D, checksum);
+        // Not on the micro:bit, whose flash it would overflow at opt-level 3.
+        #[cfg(target_has_atomic = "32")]
+        {
+            let checksum = texture_scene::render_3d_mesh(PIXELS, DEPTH_3D);
+            textures_line(b"3d-mesh", texture_scene::SIZE_3D, checksum);
+        }
+        board::exit(true)
+    }
+}
+
+/// The host prints the `textures` lines the firmware must print (`.ci/firmware.sh` compares
+/// them; the scene's line is `fw_scene`'s).
+#[cfg(not(target_os = "none"))]
+fn main() {
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::*;
+    use embedded_raster::three_d::ProjectedVertex;
+
+    let (w, h) = texture_scene::SIZE_2D;
+    let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
+    let checksum = texture_scene::render_2d(&mut pixels);
+    println!("textures 2d {w}x{h} fnv1a=0x{checksum:08x}");
+    let (w, h) = texture_scene::SIZE_3D;
+    let (mut colors, mut depths) = (
+        vec![Rgb565::BLACK; (w * h) as usize],
+        vec![0; (w * h) as usize],
+    );
+    let mut scratch = [ProjectedVertex::EMPTY; 42];
+    let checksum = texture_scene::render_3d(&mut colors, &mut depths, &mut scratch);
+    println!("textures 3d {w}x{h} fnv1a=0x{checksum:08x}");
+    let checksum = texture_scene::render_3d_mesh(&mut colors, &mut depths);
+    println!("textures 3d-mesh {w}x{h} fnv1a=0x{checksum:08x}");
+}
