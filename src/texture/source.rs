@@ -53,7 +53,21 @@ pub trait TexelSource: Copy {
         let _ = last;
         None
     }
+
+    /// The texels as raw Rgb565 words, if they are stored so (the texel at `index` being
+    /// `Rgb565::from(RawU16::new(words[index]))`): for span loops that copy them. Hidden: its
+    /// return type cannot be named outside the crate, so only the crate's sources say yes.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn rgb565_words(&self) -> Option<Rgb565Words<'_>> {
+        None
+    }
 }
+
+/// Raw Rgb565 texel words ([`TexelSource::rgb565_words`]): public in this private module, so
+/// that no source outside the crate can claim to be one.
+#[derive(Debug, Clone, Copy)]
+pub struct Rgb565Words<'a>(pub(crate) &'a [u16]);
 
 /// Rgb565 texels as raw 16-bit words (embedded-graphics' `RawU16` bits: red in the top five).
 ///
@@ -90,6 +104,11 @@ impl TexelSource for Rgb565Texels<'_> {
     #[inline(always)]
     fn prefix(&self, last: usize) -> Option<Self> {
         Some(Rgb565Texels(self.0.get(..=last)?))
+    }
+
+    #[inline(always)]
+    fn rgb565_words(&self) -> Option<Rgb565Words<'_>> {
+        Some(Rgb565Words(self.0))
     }
 }
 
