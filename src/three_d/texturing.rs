@@ -733,18 +733,7 @@ fn texel_rows<'w, S: TexelSource, const N: usize>(
     light: Option<RowLight>,
 ) -> Option<arch::TexturedRows<'w>> {
     let light = light?;
-    let Sampler::MaskedNearest(masks, texels) = sampler else {
-        return None;
-    };
-    let texels = texels.rgb565_words()?.0;
-    // The masks of columns and of rows (in storage units), and `Sampler::run`'s `y` shift:
-    // the bits of a row (the width less one is the column mask).
-    let (x_mask, rows_mask) = (masks.texel_index(-1, 0), masks.texel_index(0, -1));
-    let (x_mask, rows_mask) = (x_mask as u32, rows_mask as u32);
-    if x_mask | rows_mask > 0xffff {
-        return None;
-    }
-    let y_shift = 32 - x_mask.leading_zeros();
+    let (texels, x_mask, rows_mask, y_shift) = masked_565(sampler)?;
     let maps = [shift_map(&maps[0])?, shift_map(&maps[1])?];
     let planes = scan.planes();
     let (first, step, row_step) = (planes.first(), planes.step(), planes.row_step());
@@ -777,6 +766,25 @@ fn texel_rows<'w, S: TexelSource, const N: usize>(
         x_mask,
         rows_mask,
     })
+}
+
+/// The raw Rgb565 texels of a masked nearest sampler of a texture of up to 2¹⁶ texels, its
+/// column mask, its row mask (in storage units) and `y`'s shift in [`Sampler::run`] (the bits
+/// of a row: the width less one is the column mask).
+#[inline(always)]
+fn masked_565<'w, S: TexelSource>(
+    sampler: &'w Sampler<'_, S>,
+) -> Option<(&'w [u16], u32, u32, u32)> {
+    let Sampler::MaskedNearest(masks, texels) = sampler else {
+        return None;
+    };
+    let texels = texels.rgb565_words()?.0;
+    let (x_mask, rows_mask) = (masks.texel_index(-1, 0), masks.texel_index(0, -1));
+    let (x_mask, rows_mask) = (x_mask as u32, rows_mask as u32);
+    if x_mask | rows_mask > 0xffff {
+        return None;
+    }
+    Some((texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()))
 }
 
 /// `map` as `(base, down)`, a plane value `p` mapping to `base + (p >> down)`, if it maps so
@@ -1237,6 +1245,40 @@ fn split<T>(items: &mut [T], n: usize) -> Option<(&mut [T], &mut [T])> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::texture::Rgb565Texels;
+    use embedded_graphics::pixelcolor::raw::RawU16;
+    use embedded_graphics::pixelcolor::Rgb565;
+
+    /// The textured row loop's texels, masks and shift read the sampled texels.
+    #[test]
+    fn masked_565_reads_the_nearest_texels() {
+        let mut next = crate::random(0x7e47_0006);
+        let texels: [u16; 1 << 16] = core::array::from_fn(|_| next() as u16);
+        let shapes = [
+            (256, 256),
+            (64, 32),
+            (1, 4096),
+            (4096, 1),
+            (8, 2),
+            (1, 1),
+            (16, 256),
+        ];
+        for n in 0..4_000 {
+            let (w, h) = shapes[n % shapes.len()];
+            let texture = Texture::new(Rgb565Texels(&texels), w, h).unwrap();
+            let sampler = Sampler::new(&texture);
+            let (words, x_mask, rows_mask, y_shift) = masked_565(&sampler).unwrap();
+            assert!(((rows_mask | x_mask) as usize) < words.len());
+            let (x, y) = (next() as i32, next() as i32);
+            let index = (((y << y_shift) >> 16) as u32 & rows_mask) | ((x >> 16) as u32 & x_mask);
+            let got = Rgb565::from(RawU16::new(words[index as usize]));
+            assert_eq!(got, texture.nearest(x, y), "{w}×{h}");
+        }
+        // Other filters: the portable loop.
+        let texture = Texture::new(Rgb565Texels(&texels), 64, 64).unwrap();
+        let bilinear = texture.with_filter(crate::texture::Filter::Bilinear);
+        assert!(masked_565(&Sampler::new(&bilinear)).is_none());
+    }
 
     /// The textured row loop's form of the coordinate maps reads the plane values as
     /// `PlaneMap::at` does, for coordinates of any spread (or declines).
