@@ -19,6 +19,8 @@ use core::num::NonZeroU32;
 pub(crate) use thumbv6m::masked_nearest_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
+#[cfg(armv7m)]
+pub(crate) use thumbv7m::textured_rows;
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one
 /// SSE2 register.
@@ -124,6 +126,66 @@ pub(crate) fn level_rows<C: Copy>(
     _depths: &mut [u16],
     _rows: &LevelRows,
     _table: &[C; 256],
+) -> bool {
+    false
+}
+
+/// ARMv7-M: the rows of a small depth-tested face with nearest texels of a power-of-two
+/// repeating texture of raw Rgb565 words into Rgb565 pixels, unlit or lit by a level plane (the
+/// 3D pipeline's textured screen-space fill), are drawn by one assembly loop
+/// ([`textured_rows`]); elsewhere by the portable row loop.
+pub(crate) const TEXTURED_ROWS: bool = cfg!(armv7m);
+
+/// The rows of a small textured face for [`textured_rows`]: the region and its runs as
+/// [`LevelRows`] has them, the planes of the depth, the texel coordinates and the light level,
+/// how the coordinates' planes map to 16.16 texels, and the texture.
+///
+/// Pixel `column` of a row's run `start..end` (at least one pixel; the plane values `p` at
+/// `start` are the row's values plus `start` column steps, wrapping) is depth-tested with
+/// `z >> 16` against the stored depth (strictly nearer is drawn: depth and colour written) and
+/// coloured with the texel at `x = base_u + (p_u >> down_u)` and `y = (base_v + (p_v >> down_v))
+/// << y_shift` stepped by `texel_steps` a pixel (by the second pixel's own `x` and `y` less the
+/// first's in a run of two), all wrapping: `texels[((y >> 16) & rows_mask) | ((x >> 16) &
+/// x_mask)]`, raw, or with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for the level
+/// plane's `f = ((l >> 12)·257) >> 12` — the integers of the portable `SmallRows` loop with
+/// the masked nearest sampler.
+///
+/// Public in this private module: the argument of a hidden `GouraudColor` method, which no
+/// implementation outside the crate can name.
+#[derive(Clone, Copy, Debug)]
+// Read only where the assembly is (elsewhere the row loop declines them).
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub struct TexturedRows<'a> {
+    /// The region, its runs and the depth plane (`level` unused).
+    pub(crate) region: LevelRows,
+    /// The horizontal texel coordinate's plane: value at the first pixel, step a column, step
+    /// a row.
+    pub(crate) u: [u32; 3],
+    /// The vertical one's.
+    pub(crate) v: [u32; 3],
+    /// The light level's plane, if lit.
+    pub(crate) level: Option<[u32; 3]>,
+    /// The coordinates' planes as 16.16 texels: `(base, down)` for `u` and `v`.
+    pub(crate) maps: [(i32, u32); 2],
+    /// The texel coordinates' steps a pixel (16.16, `y`'s before its shift).
+    pub(crate) texel_steps: (i32, i32),
+    /// `y`'s shift: the bits of a texture row.
+    pub(crate) y_shift: u32,
+    /// The texels (row-major).
+    pub(crate) texels: &'a [u16],
+    /// The column mask (the width less one).
+    pub(crate) x_mask: u32,
+    /// The row mask in storage units: the height less one, times the width.
+    pub(crate) rows_mask: u32,
+}
+
+/// [`textured_rows`] where there is none: draws nothing and says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn textured_rows<C: Copy>(
+    _colors: &mut [C],
+    _depths: &mut [u16],
+    _rows: &TexturedRows<'_>,
 ) -> bool {
     false
 }

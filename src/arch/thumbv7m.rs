@@ -19,7 +19,7 @@
 //! the Cortex-M3 and M4 firmware frames have the host's checksums.
 #![allow(unsafe_code)]
 
-use super::LevelRows;
+use super::{LevelRows, TexturedRows};
 
 /// What the assembly reads: `LevelRows` as pointers and the per-row state first (offsets in
 /// the comments are the assembly's).
@@ -209,4 +209,333 @@ pub(crate) fn level_rows<C: Copy>(
     // non-zero divisors only, and saves and restores every register the AAPCS asks it to.
     unsafe { embedded_raster_level_rows_v7m(&mut block, u32::from(rows.middle_starts)) };
     true
+}
+
+/// What the textured row loop reads and updates: `TexturedRows` as pointers, the per-row state
+/// first (offsets in the comments are the assembly's).
+#[repr(C)]
+struct TexturedBlock {
+    /// 0-12: depth, `u`, `v` and level plane values at the row's first column; 16: the depth
+    /// pointer there; 20-28: the bounds' numerators at the row.
+    row: [u32; 5],
+    numerators: [i32; 3],
+    /// 32-60: their steps a row (the pointer's in bytes).
+    row_steps: [u32; 5],
+    numerator_steps: [i32; 3],
+    /// 64-72: the divisors; 76: the region's columns.
+    divisors: [u32; 3],
+    columns: u32,
+    /// 80-92: the four planes' steps a column.
+    column_steps: [u32; 4],
+    /// 96, 100: `u`'s map (base, down); 104, 108: `v`'s; 112: `y`'s shift.
+    map_u: [u32; 2],
+    map_v: [u32; 2],
+    y_shift: u32,
+    /// 116, 120: the texel steps a pixel (`y`'s shifted).
+    texel_steps: [i32; 2],
+    /// 124: the colour pointer's offset from the depth pointer, in bytes (wrapping).
+    color_offset: u32,
+    /// 128: rows left (at least one).
+    rows: u32,
+    /// 132: the texels; 136: the column mask; 140: the row mask.
+    texels: *const u16,
+    x_mask: u32,
+    rows_mask: u32,
+}
+
+const _: () = assert!(core::mem::size_of::<TexturedBlock>() == 144);
+
+/// The rows of the textured loop. `$middle` folds the middle bound (r2) into the start (r1) or
+/// the end (r3); `$pixel` draws the pixel at r8 (the negative byte offset from the run's end)
+/// and steps the planes. The block's pointer is at [sp, #16]; the per-pixel steps at [sp] (depth,
+/// `x`, `y`, level); r11 = the texels, r12 = the column mask, lr = the row mask throughout.
+macro_rules! textured_rows {
+    ($middle:literal, $pixel:expr) => {
+        concat!(
+            "1:\n",
+            "ldr r0, [sp, #16]\n",
+            // The run: three divisions, start ≥ 0, end ≤ columns.
+            "ldrd r1, r2, [r0, #20]\n",
+            "ldr r3, [r0, #28]\n",
+            "ldrd r4, r5, [r0, #64]\n",
+            "ldr r6, [r0, #72]\n",
+            "sdiv r1, r1, r4\n",
+            "sdiv r3, r3, r6\n",
+            "sdiv r2, r2, r5\n",
+            "bic r1, r1, r1, asr #31\n",
+            "ldr r4, [r0, #76]\n",
+            "cmp r3, r4\n",
+            "it gt\n",
+            "movgt r3, r4\n",
+            $middle,
+            "\n",
+            "cmp r3, r1\n",
+            "ble 3f\n",
+            // The planes at the run's first pixel (r4-r7), the depth and colour pointers past its
+            // end (r9, r10), minus its length (r8).
+            "ldm r0, {{r4, r5, r6, r7, r9}}\n",
+            "ldrd r2, r8, [r0, #80]\n",
+            "mla r4, r2, r1, r4\n",
+            "mla r5, r8, r1, r5\n",
+            "ldrd r2, r8, [r0, #88]\n",
+            "mla r6, r2, r1, r6\n",
+            "mla r7, r8, r1, r7\n",
+            "subs r8, r1, r3\n",
+            "add r9, r9, r3, lsl #1\n",
+            "ldr r2, [r0, #124]\n",
+            "add r10, r9, r2\n",
+            // The texel steps: a run of two takes its second pixel's own coordinates.
+            "cmn r8, #2\n",
+            "beq 5f\n",
+            "ldrd r1, r2, [r0, #116]\n",
+            "strd r1, r2, [sp, #4]\n",
+            "6:\n",
+            // The coordinates: x (r5), y shifted (r6); r8 the byte offset.
+            "ldrd r1, r2, [r0, #96]\n",
+            "lsr r5, r5, r2\n",
+            "add r5, r5, r1\n",
+            "ldrd r1, r2, [r0, #104]\n",
+            "lsr r6, r6, r2\n",
+            "add r6, r6, r1\n",
+            "ldr r1, [r0, #112]\n",
+            "lsl r6, r6, r1\n",
+            "lsl r8, r8, #1\n",
+            "2:\n",
+            $pixel,
+            "adds r8, #2\n",
+            "bne 2b\n",
+            // The next row: the planes, the depth pointer and the numerators stepped.
+            "3:\n",
+            "ldr r0, [sp, #16]\n",
+            "ldm r0, {{r1-r4}}\n",
+            "add r9, r0, #32\n",
+            "ldm r9, {{r5-r8}}\n",
+            "add r1, r5\n",
+            "add r2, r6\n",
+            "add r3, r7\n",
+            "add r4, r8\n",
+            "stm r0, {{r1-r4}}\n",
+            "add r10, r0, #16\n",
+            "ldm r10, {{r1-r4}}\n",
+            "add r9, r0, #48\n",
+            "ldm r9, {{r5-r8}}\n",
+            "add r1, r5\n",
+            "add r2, r6\n",
+            "add r3, r7\n",
+            "add r4, r8\n",
+            "stm r10, {{r1-r4}}\n",
+            "ldr r1, [r0, #128]\n",
+            "subs r1, #1\n",
+            "str r1, [r0, #128]\n",
+            "bne 1b\n",
+            "add sp, #20\n",
+            "pop {{r4-r11, pc}}\n",
+            // A run of two: the steps to the second pixel's coordinates.
+            "5:\n",
+            "ldr r3, [r0, #100]\n",
+            "ldr r1, [r0, #84]\n",
+            "add r1, r1, r5\n",
+            "lsr r1, r1, r3\n",
+            "lsr r2, r5, r3\n",
+            "sub r1, r1, r2\n",
+            "str r1, [sp, #4]\n",
+            "ldr r3, [r0, #108]\n",
+            "ldr r1, [r0, #88]\n",
+            "add r1, r1, r6\n",
+            "lsr r1, r1, r3\n",
+            "lsr r2, r6, r3\n",
+            "sub r1, r1, r2\n",
+            "ldr r3, [r0, #112]\n",
+            "lsl r1, r1, r3\n",
+            "str r1, [sp, #8]\n",
+            "b 6b\n",
+        )
+    };
+}
+
+/// The depth test and the texel's index and fetch (into r0) of the pixel at r8; `4:` the next.
+macro_rules! textured_texel {
+    () => {
+        concat!(
+            "ldrh r0, [r9, r8]\n",
+            "cmp r0, r4, lsr #16\n",
+            "bls 4f\n",
+            "lsr r0, r4, #16\n",
+            "strh r0, [r9, r8]\n",
+            "and r0, lr, r6, lsr #16\n",
+            "and r1, r12, r5, lsr #16\n",
+            "orr r0, r0, r1\n",
+            "ldrh r0, [r11, r0, lsl #1]\n",
+        )
+    };
+}
+
+/// An unlit pixel: the texel as it is.
+macro_rules! unlit_pixel {
+    () => {
+        concat!(
+            textured_texel!(),
+            "strh r0, [r10, r8]\n",
+            "4:\n",
+            "ldm sp, {{r0-r2}}\n",
+            "add r4, r0\n",
+            "add r5, r1\n",
+            "add r6, r2\n",
+        )
+    };
+}
+
+/// A pixel lit by the level plane (r7): `f = ((l >> 12)·257) >> 12`, each channel `c` of the
+/// texel replaced by `(c·f + 2¹⁵) >> 16`, blue, green, red.
+macro_rules! lit_pixel {
+    () => {
+        concat!(
+            textured_texel!(),
+            "lsr r1, r7, #12\n",
+            "add r1, r1, r1, lsl #8\n",
+            "lsr r1, r1, #12\n",
+            "mov r3, #32768\n",
+            "and r2, r0, #31\n",
+            "mla r2, r2, r1, r3\n",
+            "bic r0, r0, #31\n",
+            "orr r0, r0, r2, lsr #16\n",
+            "ubfx r2, r0, #5, #6\n",
+            "mla r2, r2, r1, r3\n",
+            "lsr r2, r2, #16\n",
+            "bfi r0, r2, #5, #6\n",
+            "lsr r2, r0, #11\n",
+            "mla r2, r2, r1, r3\n",
+            "lsr r2, r2, #16\n",
+            "bfi r0, r2, #11, #5\n",
+            "strh r0, [r10, r8]\n",
+            "4:\n",
+            "ldm sp, {{r0-r3}}\n",
+            "add r4, r0\n",
+            "add r5, r1\n",
+            "add r6, r2\n",
+            "add r7, r3\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_textured_rows_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_textured_rows_v7m",
+    ".hidden embedded_raster_textured_rows_v7m",
+    ".type embedded_raster_textured_rows_v7m,%function",
+    ".thumb_func",
+    // r0 = the block, r1 = the variant: 1 if the middle bound is a start bound, plus 2 if lit.
+    "embedded_raster_textured_rows_v7m:",
+    "push {{r4-r11, lr}}",
+    // [sp]: the per-pixel steps (the depth's and the level's; the coordinates' a run); [sp, #16]:
+    // the block.
+    "sub sp, #20",
+    "str r0, [sp, #16]",
+    "ldr r2, [r0, #80]",
+    "ldr r3, [r0, #92]",
+    "str r2, [sp]",
+    "str r3, [sp, #12]",
+    "add r2, r0, #132",
+    "ldm r2, {{r11, r12, lr}}",
+    "cmp r1, #2",
+    "bhs 20f",
+    "cmp r1, #0",
+    "beq 11f",
+    textured_rows!("cmp r2, r1\nit gt\nmovgt r1, r2", unlit_pixel!()),
+    "11:",
+    textured_rows!("cmp r2, r3\nit lt\nmovlt r3, r2", unlit_pixel!()),
+    "20:",
+    "cmp r1, #2",
+    "beq 21f",
+    textured_rows!("cmp r2, r1\nit gt\nmovgt r1, r2", lit_pixel!()),
+    "21:",
+    textured_rows!("cmp r2, r3\nit lt\nmovlt r3, r2", lit_pixel!()),
+    ".size embedded_raster_textured_rows_v7m, . - embedded_raster_textured_rows_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_textured_rows_v7m(block: *mut TexturedBlock, variant: u32);
+}
+
+/// Draws the rows `rows` into `colors` and `depths` (row-major, `rows.region.width` pixels a
+/// row) as [`TexturedRows`] describes. `false` without drawing anything if the region is not
+/// inside both buffers, a texel index the masks allow is not inside `rows.texels`, a shift is
+/// not below 32 or `C` is not a 16-bit colour, so no input reads or writes outside them. `C`
+/// must be the 5-6-5 format whose raw value is the texels' (the caller's promise: the colours
+/// written are those raw values).
+#[inline(always)]
+pub(crate) fn textured_rows<C: Copy>(
+    colors: &mut [C],
+    depths: &mut [u16],
+    rows: &TexturedRows<'_>,
+) -> bool {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return false;
+    }
+    let region = &rows.region;
+    let Some(stride) = region_stride(colors.len().min(depths.len()), region) else {
+        return false;
+    };
+    // Every index `row | column` is at most `rows_mask | x_mask`.
+    let last = (rows.rows_mask | rows.x_mask) as usize;
+    let shifts = [rows.maps[0].1, rows.maps[1].1, rows.y_shift];
+    if last >= rows.texels.len() || shifts.iter().any(|&s| s > 31) {
+        return false;
+    }
+    let [s, m, e] = region.bounds;
+    let depths = depths.as_mut_ptr().wrapping_add(region.first);
+    let colors: *mut u16 = colors.as_mut_ptr().wrapping_add(region.first).cast();
+    let (level, variant) = match rows.level {
+        Some(level) => (level, 2),
+        None => ([0; 3], 0),
+    };
+    let (u, v, z) = (rows.u, rows.v, region.depth);
+    let mut block = TexturedBlock {
+        row: [z[0], u[0], v[0], level[0], depths as usize as u32],
+        numerators: [s.0, m.0, e.0],
+        row_steps: [z[2], u[2], v[2], level[2], stride],
+        numerator_steps: [s.2, m.2, e.2],
+        divisors: [s.1.get(), m.1.get(), e.1.get()],
+        columns: region.columns,
+        column_steps: [z[1], u[1], v[1], level[1]],
+        map_u: [rows.maps[0].0 as u32, rows.maps[0].1],
+        map_v: [rows.maps[1].0 as u32, rows.maps[1].1],
+        y_shift: rows.y_shift,
+        texel_steps: [rows.texel_steps.0, rows.texel_steps.1 << rows.y_shift],
+        color_offset: (colors as usize).wrapping_sub(depths as usize) as u32,
+        rows: region.rows,
+        texels: rows.texels.as_ptr(),
+        x_mask: rows.x_mask,
+        rows_mask: rows.rows_mask,
+    };
+    let variant = variant | u32::from(region.middle_starts);
+    // SAFETY: the function writes only pixels of the region — rows `0..rows` from the first
+    // pixel, `width` pixels apart, each in columns `start..end` with `0 ≤ start` and
+    // `end ≤ columns` — which are inside both buffers (checked above), as 2-byte aligned `u16`s
+    // (`C` is a 2-byte colour whose raw value the texels are, the caller's promise). It reads
+    // the texels at indices of at most `rows_mask | x_mask`, inside them (checked above), reads
+    // and writes the block (its own), divides by the non-zero divisors only, and saves and
+    // restores every register the AAPCS asks it to, its stack frame its own.
+    unsafe { embedded_raster_textured_rows_v7m(&mut block, variant) };
+    true
+}
+
+/// The row stride in bytes of a region of `rows` inside buffers of `len` pixels, if it is
+/// inside them and the stride fits 32 bits.
+#[inline(always)]
+fn region_stride(len: usize, rows: &LevelRows) -> Option<u32> {
+    let (columns, count) = (rows.columns as usize, rows.rows as usize);
+    let wide = |n: usize| n as u64;
+    let last = wide(rows.first)
+        + wide(count.wrapping_sub(1)) * wide(rows.width)
+        + wide(columns.wrapping_sub(1));
+    let inside = columns >= 1 && count >= 1 && columns <= rows.width && last < wide(len);
+    if !inside {
+        return None;
+    }
+    u32::try_from(rows.width.checked_mul(2)?).ok()
 }

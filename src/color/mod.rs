@@ -104,6 +104,21 @@ pub trait GouraudColor: PixelColor {
         Self::from_stepped(state)
     }
 
+    /// Draws the rows of a small textured face into `colors` and `depths` by a loop of the
+    /// target's own, if this format has one there (Rgb565 on ARMv7-M, whose raw values the
+    /// texels are); `false` without writing anything where it has none (the default). Hidden:
+    /// its argument's type cannot be named outside the crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn textured_rows_565(
+        colors: &mut [Self],
+        depths: &mut [u16],
+        rows: &crate::arch::TexturedRows<'_>,
+    ) -> bool {
+        let _ = (colors, depths, rows);
+        false
+    }
+
     /// The state one pixel to the right of `state`; by default the values plus the steps,
     /// wrapping.
     #[inline(always)]
@@ -250,6 +265,15 @@ macro_rules! rgb_color {
                 <$t>::new(c[0], c[1], c[2])
             }
             $(
+                // Rgb565 (the raw order of Rgb565 texels) only.
+                #[inline(always)]
+                fn textured_rows_565(
+                    colors: &mut [Self],
+                    depths: &mut [u16],
+                    rows: &crate::arch::TexturedRows<'_>,
+                ) -> bool {
+                    $order == [0, 1, 2] && crate::arch::textured_rows(colors, depths, rows)
+                }
                 #[inline]
                 fn prepare_steps(step: [u32; 3]) -> SpanSteps {
                     prepare_565(step, $order)

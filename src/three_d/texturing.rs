@@ -34,7 +34,7 @@ use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{zip3_with, Scalar};
 use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
 use super::vertex::Inverse;
-use crate::arch::SIZE_OVER_SPEED;
+use crate::arch::{self, SIZE_OVER_SPEED};
 use crate::color::GouraudColor;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
@@ -607,6 +607,15 @@ where
     fn small_rows(&mut self, scan: &SmallScan<'_, N>) -> bool {
         let steps = self.prepare(scan.planes().step());
         let (colors, depths, width) = self.target.buffers_mut();
+        // The target's row loop where it draws these texels and light (the same pixels).
+        if arch::TEXTURED_ROWS {
+            let texel = steps.1;
+            if let Some(rows) = texel_rows(scan, width, texel, self.maps, &self.sampler, L::ROWS) {
+                if C::textured_rows_565(colors, depths, &rows) {
+                    return true;
+                }
+            }
+        }
         let rows = SmallRows {
             colors,
             depths,
@@ -731,6 +740,93 @@ impl<C: GouraudColor, L: PlaneLight<N>, const N: usize> SampledLoop<C>
     }
 }
 
+/// The lights the target's textured row loop ([`arch::textured_rows`]) draws.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum RowLight {
+    /// [`Unlit`].
+    Unlit,
+    /// [`PlaneLevel`].
+    Level,
+}
+
+/// The rows of a small face for the target's textured row loop, if it draws them: nearest
+/// texels of a power-of-two repeating texture of up to 2¹⁶ raw Rgb565 words (the masked loop
+/// of [`Sampler::run`]), unlit or lit by the level plane, the coordinates' planes mapped by
+/// right shifts; `None` for the portable loop.
+#[inline(always)]
+fn texel_rows<'w, S: TexelSource, const N: usize>(
+    scan: &SmallScan<'_, N>,
+    width: usize,
+    texel_steps: (i32, i32),
+    maps: [PlaneMap; 2],
+    sampler: &'w Sampler<'_, S>,
+    light: Option<RowLight>,
+) -> Option<arch::TexturedRows<'w>> {
+    let light = light?;
+    let (texels, x_mask, rows_mask, y_shift) = masked_565(sampler)?;
+    let maps = [shift_map(&maps[0])?, shift_map(&maps[1])?];
+    let planes = scan.planes();
+    let (first, step, row_step) = (planes.first(), planes.step(), planes.row_step());
+    let plane = |k: usize| Some([*first.get(k)?, *step.get(k)?, *row_step.get(k)?]);
+    let runs = scan.runs();
+    let (x0, y0) = scan.origin();
+    let region = arch::LevelRows {
+        first: (y0 as usize).wrapping_mul(width).wrapping_add(x0 as usize),
+        width,
+        columns: runs.columns,
+        rows: scan.rows(),
+        bounds: runs.bounds.map(|b| (b.numerator, b.divisor, b.step)),
+        middle_starts: runs.middle_starts,
+        depth: plane(0)?,
+        level: [0; 3],
+    };
+    let level = match light {
+        RowLight::Unlit => None,
+        RowLight::Level => Some(plane(3)?),
+    };
+    Some(arch::TexturedRows {
+        region,
+        u: plane(1)?,
+        v: plane(2)?,
+        level,
+        maps,
+        texel_steps,
+        y_shift,
+        texels,
+        x_mask,
+        rows_mask,
+    })
+}
+
+/// The raw Rgb565 texels of a masked nearest sampler of a texture of up to 2¹⁶ texels, its
+/// column mask, its row mask (in storage units) and `y`'s shift in [`Sampler::run`] (the bits
+/// of a row: the width less one is the column mask).
+#[inline(always)]
+fn masked_565<'w, S: TexelSource>(
+    sampler: &'w Sampler<'_, S>,
+) -> Option<(&'w [u16], u32, u32, u32)> {
+    let Sampler::MaskedNearest(masks, texels) = sampler else {
+        return None;
+    };
+    let texels = texels.rgb565_words()?.0;
+    let (x_mask, rows_mask) = (masks.texel_index(-1, 0), masks.texel_index(0, -1));
+    let (x_mask, rows_mask) = (x_mask as u32, rows_mask as u32);
+    if x_mask | rows_mask > 0xffff {
+        return None;
+    }
+    Some((texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()))
+}
+
+/// `map` as `(base, down)`, a plane value `p` mapping to `base + (p >> down)`, if it maps so
+/// (not for coordinates spread over more than 2³² units of 2⁻¹⁶ texel, whose values shift left).
+#[inline(always)]
+fn shift_map(map: &PlaneMap) -> Option<(i32, u32)> {
+    let base = map.at(0);
+    let all = map.at(u32::MAX).wrapping_sub(base) as u32;
+    let down = all.leading_zeros();
+    (u32::MAX.checked_shr(down)? == all).then_some((base, down))
+}
+
 /// A light level (8.8 of the 0–255 scale) as a fraction with 16 bits (`65535` for 255).
 #[inline(always)]
 fn level_fraction(level: u16) -> u32 {
@@ -759,6 +855,9 @@ trait SpanLight: Copy {
 /// A light of the screen-space fill, its state read from the planes after the texel
 /// coordinates' (attributes 3 onwards of `N`).
 trait PlaneLight<const N: usize>: SpanLight {
+    /// The target's textured row loop's form of this light, if it has one.
+    const ROWS: Option<RowLight> = None;
+
     /// The state at a pixel whose planes' values are `at`, and its step for the planes' `step`.
     fn of_planes(&self, at: &[u32; N], step: &[u32; N]) -> (Self::Level, Self::Level);
 }
@@ -785,6 +884,8 @@ impl SpanLight for Unlit {
 }
 
 impl<const N: usize> PlaneLight<N> for Unlit {
+    const ROWS: Option<RowLight> = Some(RowLight::Unlit);
+
     #[inline(always)]
     fn of_planes(&self, _: &[u32; N], _: &[u32; N]) -> ((), ()) {
         ((), ())
@@ -850,6 +951,8 @@ impl SpanLight for PlaneLevel {
 }
 
 impl PlaneLight<4> for PlaneLevel {
+    const ROWS: Option<RowLight> = Some(RowLight::Level);
+
     #[inline(always)]
     fn of_planes(&self, at: &[u32; 4], step: &[u32; 4]) -> (i32, i32) {
         (at[3] as i32, step[3] as i32)
@@ -1134,4 +1237,67 @@ fn split<T>(items: &mut [T], n: usize) -> Option<(&mut [T], &mut [T])> {
     // Not `then` and `split_at_mut`: where `then` is not inlined (`opt-level` "s", "z"), the
     // split's own length check is a panic path.
     items.split_at_mut_checked(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::texture::Rgb565Texels;
+    use embedded_graphics::pixelcolor::raw::RawU16;
+    use embedded_graphics::pixelcolor::Rgb565;
+
+    /// The textured row loop's texels, masks and shift read the sampled texels.
+    #[test]
+    fn masked_565_reads_the_nearest_texels() {
+        let mut next = crate::random(0x7e47_0006);
+        let texels: [u16; 1 << 16] = core::array::from_fn(|_| next() as u16);
+        let shapes = [
+            (256, 256),
+            (64, 32),
+            (1, 4096),
+            (4096, 1),
+            (8, 2),
+            (1, 1),
+            (16, 256),
+        ];
+        for n in 0..4_000 {
+            let (w, h) = shapes[n % shapes.len()];
+            let texture = Texture::new(Rgb565Texels(&texels), w, h).unwrap();
+            let sampler = Sampler::new(&texture);
+            let (words, x_mask, rows_mask, y_shift) = masked_565(&sampler).unwrap();
+            assert!(((rows_mask | x_mask) as usize) < words.len());
+            let (x, y) = (next() as i32, next() as i32);
+            let index = (((y << y_shift) >> 16) as u32 & rows_mask) | ((x >> 16) as u32 & x_mask);
+            let got = Rgb565::from(RawU16::new(words[index as usize]));
+            assert_eq!(got, texture.nearest(x, y), "{w}×{h}");
+        }
+        // Other filters: the portable loop.
+        let texture = Texture::new(Rgb565Texels(&texels), 64, 64).unwrap();
+        let bilinear = texture.with_filter(crate::texture::Filter::Bilinear);
+        assert!(masked_565(&Sampler::new(&bilinear)).is_none());
+    }
+
+    /// The textured row loop's form of the coordinate maps reads the plane values as
+    /// `PlaneMap::at` does, for coordinates of any spread (or declines).
+    #[test]
+    fn shift_maps_are_the_plane_maps() {
+        let mut next = crate::random(0x7e47_0005);
+        let mut declined = 0;
+        for n in 0..20_000 {
+            let spread = 1u64 << (n % 33);
+            let lo = next() as i32;
+            let c = [(); 3].map(|_| (i64::from(lo) + (next() % spread) as i64) as i32);
+            let (map, _) = PlaneMap::new(c);
+            let Some((base, down)) = shift_map(&map) else {
+                declined += 1;
+                continue;
+            };
+            for _ in 0..8 {
+                let value = next() as u32;
+                assert_eq!(base.wrapping_add((value >> down) as i32), map.at(value));
+            }
+        }
+        // Only coordinates spread over nearly 2³² units shift left.
+        assert!(declined < 20_000 / 33 * 2, "{declined}");
+    }
 }
