@@ -280,10 +280,9 @@ impl<C: PixelColor + Default> TexelSource for Direct<'_, C> {
 }
 
 /// One colour as a texture's only texel: with a 1 × 1 [`Texture`](super::Texture) it makes a
-/// [`TexturedMaterial`](crate::three_d::TexturedMaterial) of a plain colour — the textured
-/// pipeline's perspective-correct light levels, vertex colours and highlights for an
-/// untextured mesh (a [`Material`](crate::three_d::Material)'s levels are interpolated in
-/// screen space).
+/// `three_d::TexturedMaterial` of a plain colour — the textured pipeline's perspective-correct
+/// light levels, vertex colours and highlights for an untextured mesh (a `three_d::Material`'s
+/// levels are interpolated in screen space).
 ///
 /// ```
 /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
