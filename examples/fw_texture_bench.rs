@@ -24,7 +24,9 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::texture::{Filter, Indexed4, Rgb565Texels, TexelCoord, TexelSource, Texture};
 use embedded_raster::three_d::TexturedScreenVertex;
-use embedded_raster::three_d::{draw_textured, DepthTarget, Scalar, ScreenVertex};
+use embedded_raster::three_d::{
+    draw_textured, draw_textured_lit, DepthTarget, Scalar, ScreenVertex,
+};
 use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle, TexturedTriangle, TexturedVertex};
 
 #[allow(dead_code)]
@@ -98,15 +100,17 @@ enum Case {
     AffineNearestDraw,
     PerspectiveNearest,
     PerspectiveBilinear,
+    PerspectiveNearestLit,
 }
 
-const CASES: [Case; 6] = [
+const CASES: [Case; 7] = [
     Case::AffineNearestInto,
     Case::AffineNearestIndexed4Into,
     Case::AffineBilinearInto,
     Case::AffineNearestDraw,
     Case::PerspectiveNearest,
     Case::PerspectiveBilinear,
+    Case::PerspectiveNearestLit,
 ];
 
 impl Case {
@@ -118,6 +122,9 @@ impl Case {
             Case::AffineNearestDraw => "TexturedTriangle::draw nearest",
             Case::PerspectiveNearest => "draw_textured perspective nearest",
             Case::PerspectiveBilinear => "draw_textured perspective bilinear",
+            Case::PerspectiveNearestLit => {
+                "draw_textured_lit perspective nearest (texture × Gouraud)"
+            }
         }
     }
 }
@@ -203,6 +210,56 @@ fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     }
 }
 
+/// Untimed: [`CHECK_TRIANGLES`] random perspective-correct textured triangles over and around
+/// the screen — `w` ratios up to 1:20 within a triangle, random depths, texel coordinates and
+/// light levels, unlit and lit, nearest, from the texels as textures of several power-of-two
+/// shapes (and one that is not) — drawn into the depth target (which the caller clears):
+/// the spans' chunks of every length, clipped at every edge, levels at the clamp.
+fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
+    let size = fb.framebuffer().size();
+    let clip = Rectangle::new(Point::zero(), size);
+    let (w, h) = (size.width as i32, size.height as i32);
+    let mut state = 0x9e37_79b9_u32;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    };
+    let shapes = [(64, 64), (256, 16), (1, 4096), (8, 2), (16, 256), (48, 64)];
+    for k in 0..CHECK_TRIANGLES {
+        let (tw, th) = shapes[(k % shapes.len() as u32) as usize];
+        let Ok(texture) = Texture::new(Rgb565Texels(&TEXELS), tw, th) else {
+            return;
+        };
+        let (base_u, base_v) = (next() as i32, next() as i32);
+        let spread = 10 + next() % 20;
+        let mut vertex = || {
+            let x = (next() % (w as u32 * 512)) as i32 - w * 128;
+            let y = (next() % (h as u32 * 512)) as i32 - h * 128;
+            // w from 1/2 to 10 (16.16).
+            let depth_w = (1 << 15) + (next() % (19 << 15)) as i32;
+            TexturedScreenVertex {
+                screen: ScreenVertex::new(
+                    Coord::from_bits(x),
+                    Coord::from_bits(y),
+                    (next() % 60_000) as u16,
+                ),
+                w: Scalar::from_bits(depth_w),
+                u: TexelCoord::from_bits(base_u.wrapping_add(next() as i32 >> spread)),
+                v: TexelCoord::from_bits(base_v.wrapping_add(next() as i32 >> spread)),
+            }
+        };
+        let v = [vertex(), vertex(), vertex()];
+        if k % 2 == 0 {
+            draw_textured(fb, &clip, &v, &texture);
+        } else {
+            let levels = [next() as u8, next() as u8, next() as u8];
+            draw_textured_lit(fb, &clip, &v, &texture, levels);
+        }
+    }
+}
+
 /// The checksum line of `what` drawn into `pixels` (`w × h`).
 struct CheckLine<'a> {
     size: (u32, u32),
@@ -246,6 +303,15 @@ fn run<S: TexelSource>(
             Case::PerspectiveNearest | Case::PerspectiveBilinear => {
                 let v = vertices_3d(&corners, size.width as i32, 60_000 - pass);
                 draw_textured(fb, &clip, &v, texture);
+            }
+            Case::PerspectiveNearestLit => {
+                let v = vertices_3d(&corners, size.width as i32, 60_000 - pass);
+                // Light from 64 to 255 across the screen, and down it.
+                let levels = corners.map(|(x, y)| {
+                    let (w, h) = (size.width as i32, size.height as i32);
+                    (64 + (x * 127 / w.max(1) + y * 64 / h.max(1)).clamp(0, 191)) as u8
+                });
+                draw_textured_lit(fb, &clip, &v, texture, levels);
             }
             Case::AffineNearestDraw => {
                 let t = TexturedTriangle::new(vertices_2d(&corners), texture);
@@ -362,6 +428,14 @@ mod firmware {
             pixels: fb.framebuffer().pixels(),
         };
         hprintln!("{}", line);
+        fb.clear(Rgb565::new(0, 0, 0));
+        check_3d(&mut fb);
+        let line = CheckLine {
+            size: (width, height),
+            what: "check3d",
+            pixels: fb.framebuffer().pixels(),
+        };
+        hprintln!("{}", line);
         board::exit(true)
     }
 }
@@ -402,6 +476,17 @@ fn main() {
             CheckLine {
                 size: (width, height),
                 what,
+                pixels
+            }
+        );
+        fb.clear(Rgb565::BLACK);
+        check_3d(&mut fb);
+        let pixels = fb.framebuffer().pixels();
+        println!(
+            "{}",
+            CheckLine {
+                size: (width, height),
+                what: "check3d",
                 pixels
             }
         );

@@ -20,6 +20,8 @@ pub(crate) use thumbv6m::masked_nearest_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
+pub(crate) use thumbv7m::perspective_span;
+#[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one
@@ -186,6 +188,63 @@ pub(crate) fn textured_rows<C: Copy>(
     _colors: &mut [C],
     _depths: &mut [u16],
     _rows: &TexturedRows<'_>,
+) -> bool {
+    false
+}
+
+/// ARMv7-M: a depth-tested span of the perspective-correct textured fill with nearest texels of
+/// a power-of-two repeating texture of raw Rgb565 words into Rgb565 pixels, unlit or lit by a
+/// perspective-correct level, chunks and pixels, is drawn by one assembly function
+/// ([`perspective_span`]); elsewhere by the portable span loop.
+pub(crate) const PERSPECTIVE_SPAN: bool = cfg!(armv7m);
+
+/// One span of the perspective-correct textured fill for [`perspective_span`]: the integers of
+/// the portable loop (`three_d::texturing`'s `PerspectiveSpan` with the masked nearest sampler).
+///
+/// The span is cut into chunks of 16 pixels (the last one shorter). At a chunk's ends the
+/// perspective barycentrics `(λ₁, λ₂)` come from the three planes' values there as
+/// `raster::perspective::lambdas` finds them, and each attribute `(base, d₁, d₂)` is `base +
+/// ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ / 2¹⁶⌋` (wrapping); between them the attributes step by
+/// `raster::perspective::step_over`'s steps. A pixel is depth-tested with `z >> 16` against the
+/// stored depth (strictly nearer is drawn: depth and colour written) and coloured with the texel
+/// `texels[((y << y_shift >> 16) & rows_mask) | ((x >> 16) & x_mask)]`, raw, or with each 5-6-5
+/// channel `c` scaled to `(c·f + 2¹⁵) >> 16` for the level `f` clamped to `0..=2¹⁶`.
+///
+/// Public in this private module: the argument of a hidden `GouraudColor` method, which no
+/// implementation outside the crate can name.
+#[derive(Clone, Copy, Debug)]
+// Read only where the assembly is (elsewhere the span loop declines them).
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub struct PerspectiveSpan565<'a> {
+    /// The depth plane's value at the first pixel and its step a pixel.
+    pub(crate) depth: (u32, u32),
+    /// The perspective planes' (`q`, `b₁·q`, `b₂·q`) values at the first pixel.
+    pub(crate) planes: [u32; 3],
+    /// Their steps a pixel.
+    pub(crate) steps: [u32; 3],
+    /// The texel coordinates (16.16) as `(base, d₁, d₂)`.
+    pub(crate) u: [i32; 3],
+    /// `v`, likewise.
+    pub(crate) v: [i32; 3],
+    /// The level (a 16-bit fraction) as `(base, d₁, d₂)`, if lit.
+    pub(crate) level: Option<[i32; 3]>,
+    /// The texels (row-major).
+    pub(crate) texels: &'a [u16],
+    /// The column mask (the width less one).
+    pub(crate) x_mask: u32,
+    /// The row mask in storage units: the height less one, times the width.
+    pub(crate) rows_mask: u32,
+    /// `y`'s shift: the bits of a texture row.
+    pub(crate) y_shift: u32,
+}
+
+/// [`perspective_span`] where there is none: draws nothing and says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn perspective_span<C: Copy>(
+    _colors: &mut [C],
+    _depths: &mut [u16],
+    _span: &PerspectiveSpan565<'_>,
 ) -> bool {
     false
 }

@@ -19,7 +19,7 @@
 //! the Cortex-M3 and M4 firmware frames have the host's checksums.
 #![allow(unsafe_code)]
 
-use super::{LevelRows, TexturedRows};
+use super::{LevelRows, PerspectiveSpan565, TexturedRows};
 
 /// What the assembly reads: `LevelRows` as pointers and the per-row state first (offsets in
 /// the comments are the assembly's).
@@ -521,6 +521,394 @@ pub(crate) fn textured_rows<C: Copy>(
     // and writes the block (its own), divides by the non-zero divisors only, and saves and
     // restores every register the AAPCS asks it to, its stack frame its own.
     unsafe { embedded_raster_textured_rows_v7m(&mut block, variant) };
+    true
+}
+
+/// What the perspective span's assembly reads and updates (offsets in the comments are the
+/// assembly's).
+#[repr(C)]
+struct PerspectiveBlock {
+    /// 0: the depth pointer at the chunk's first pixel; 4: the colour pointer's offset from it
+    /// in bytes (wrapping); 8: pixels left.
+    depths: *mut u16,
+    color_offset: u32,
+    left: u32,
+    /// 12-20: the perspective planes at the chunk's first pixel; 24-32: their steps a pixel.
+    planes: [u32; 3],
+    steps: [u32; 3],
+    /// 36-44, 48-56, 60-68: `u`, `v` and the level as `(base, d₁, d₂)`.
+    u: [i32; 3],
+    v: [i32; 3],
+    level: [i32; 3],
+    /// 72: the texels; 76: the column mask; 80: the row mask; 84: `y`'s shift.
+    texels: *const u16,
+    x_mask: u32,
+    rows_mask: u32,
+    y_shift: u32,
+    /// 88, 92: the depth plane at the chunk's first pixel, its step.
+    depth: u32,
+    depth_step: u32,
+}
+
+const _: () = assert!(core::mem::size_of::<PerspectiveBlock>() == 96);
+
+/// The perspective barycentrics (r1, r2) from the planes' values r5-r7, as
+/// `raster::perspective::lambdas`: `q = max((r5 >> 16) − 128, 1)` (the margin off, saturating),
+/// `r = 2³¹ / q`, `λₖ = (min(max((vₖ >> 16) − 128, 0), q)·r) >> 15`. Clobbers r3, r8.
+macro_rules! lambdas {
+    () => {
+        concat!(
+            "lsr r3, r5, #16\n",
+            "subs r3, r3, #128\n",
+            "it ls\n",
+            "movls r3, #1\n",
+            "mov r8, #0x80000000\n",
+            "udiv r8, r8, r3\n",
+            "lsr r1, r6, #16\n",
+            "subs r1, r1, #128\n",
+            "it lo\n",
+            "movlo r1, #0\n",
+            "cmp r1, r3\n",
+            "it hi\n",
+            "movhi r1, r3\n",
+            "mul r1, r1, r8\n",
+            "lsr r1, r1, #15\n",
+            "lsr r2, r7, #16\n",
+            "subs r2, r2, #128\n",
+            "it lo\n",
+            "movlo r2, #0\n",
+            "cmp r2, r3\n",
+            "it hi\n",
+            "movhi r2, r3\n",
+            "mul r2, r2, r8\n",
+            "lsr r2, r2, #15\n",
+        )
+    };
+}
+
+/// An attribute at the barycentrics (r1, r2) into `$dst`: `base + ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ /
+/// 2¹⁶⌋` (the 64-bit products' bits 16-47), from `(base, d₁, d₂)` at `$at` in the block (r0).
+/// Clobbers r10, r11.
+macro_rules! corrected {
+    ($dst:literal, $at:literal, $d1:literal, $d2:literal) => {
+        concat!(
+            "ldr ",
+            $dst,
+            ", [r0, #",
+            $at,
+            "]\n",
+            "ldr r10, [r0, #",
+            $d1,
+            "]\n",
+            "smull r10, r11, r1, r10\n",
+            "lsr r10, r10, #16\n",
+            "orr r10, r10, r11, lsl #16\n",
+            "add ",
+            $dst,
+            ", ",
+            $dst,
+            ", r10\n",
+            "ldr r10, [r0, #",
+            $d2,
+            "]\n",
+            "smull r10, r11, r2, r10\n",
+            "lsr r10, r10, #16\n",
+            "orr r10, r10, r11, lsl #16\n",
+            "add ",
+            $dst,
+            ", ",
+            $dst,
+            ", r10\n",
+        )
+    };
+}
+
+/// `$d`, an attribute's difference over the chunk, as its step a pixel for a chunk shorter
+/// than 16 (r3 = `⌈2¹⁶ / over⌉`): `(d >> 16)·r3 + ((d & 0xffff)·r3 >> 16)`, wrapping, as
+/// `raster::perspective::step_over`. Clobbers r10.
+macro_rules! step_over {
+    ($d:literal) => {
+        concat!(
+            "uxth r10, ",
+            $d,
+            "\n",
+            "mul r10, r10, r3\n",
+            "lsr r10, r10, #16\n",
+            "asr ",
+            $d,
+            ", ",
+            $d,
+            ", #16\n",
+            "mla ",
+            $d,
+            ", ",
+            $d,
+            ", r3, r10\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_perspective_span_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_perspective_span_v7m",
+    ".hidden embedded_raster_perspective_span_v7m",
+    ".type embedded_raster_perspective_span_v7m,%function",
+    ".thumb_func",
+    // r0 = the block (at least one pixel left), r1 = 1 if lit.
+    "embedded_raster_perspective_span_v7m:",
+    "push {{r4-r11, lr}}",
+    // [sp]: the steps a pixel of the depth, x, y (shifted) and level; [sp, #16]: the block;
+    // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]: the
+    // chunk's pixels.
+    "sub sp, #40",
+    "str r0, [sp, #16]",
+    "str r1, [sp, #20]",
+    "ldr r1, [r0, #92]",
+    "str r1, [sp]",
+    // The attributes at the span's first pixel.
+    "add r4, r0, #12",
+    "ldm r4, {{r5-r7}}",
+    lambdas!(),
+    corrected!("r4", "36", "40", "44"),
+    corrected!("r5", "48", "52", "56"),
+    corrected!("r6", "60", "64", "68"),
+    "add r3, sp, #24",
+    "stm r3, {{r4-r6}}",
+    // A chunk: r3 = its pixels (16, or all that are left), r12 = `over`, the pixels from its
+    // first to the one its end values are at (16, or the last: one less).
+    "1:",
+    "ldr r0, [sp, #16]",
+    "ldr r3, [r0, #8]",
+    "cmp r3, #16",
+    "ite hi",
+    "movhi r3, #16",
+    "subls r12, r3, #1",
+    "it hi",
+    "movhi r12, #16",
+    "str r3, [sp, #36]",
+    "ldr r1, [r0, #8]",
+    "sub r1, r1, r3",
+    "str r1, [r0, #8]",
+    "cmp r12, #0",
+    "beq 7f",
+    // The planes `over` pixels on, and the attributes there.
+    "add r4, r0, #12",
+    "ldm r4, {{r5-r7}}",
+    "add r11, r0, #24",
+    "ldm r11, {{r8-r10}}",
+    "mla r5, r8, r12, r5",
+    "mla r6, r9, r12, r6",
+    "mla r7, r10, r12, r7",
+    "stm r4, {{r5-r7}}",
+    lambdas!(),
+    corrected!("r4", "36", "40", "44"),
+    corrected!("r5", "48", "52", "56"),
+    "ldr r3, [sp, #20]",
+    "cbz r3, 5f",
+    corrected!("r6", "60", "64", "68"),
+    "5:",
+    // r7-r9 = the values at the chunk's first pixel; the end values are the next chunk's.
+    "add r3, sp, #24",
+    "ldm r3, {{r7-r9}}",
+    "stm r3, {{r4-r6}}",
+    "sub r4, r4, r7",
+    "sub r5, r5, r8",
+    "sub r6, r6, r9",
+    "cmp r12, #16",
+    "bne 6f",
+    "asr r4, r4, #4",
+    "asr r5, r5, #4",
+    "asr r6, r6, #4",
+    "b 8f",
+    "6:",
+    "movw r3, #65535",
+    "add r3, r3, r12",
+    "udiv r3, r3, r12",
+    step_over!("r4"),
+    step_over!("r5"),
+    step_over!("r6"),
+    "b 8f",
+    // A last chunk of one pixel: no steps.
+    "7:",
+    "movs r4, #0",
+    "movs r5, #0",
+    "movs r6, #0",
+    "add r3, sp, #24",
+    "ldm r3, {{r7-r9}}",
+    // r4-r6 = the steps of x, y and the level, r7-r9 = their values; `y` shifted, the steps
+    // stored; r2 = the depth pointer past the chunk, r3 = the colour pointer likewise, r1 = the
+    // byte offset of the chunk's first pixel from them.
+    "8:",
+    "ldr r3, [r0, #84]",
+    "lsl r8, r8, r3",
+    "lsl r5, r5, r3",
+    "add r3, sp, #4",
+    "stm r3, {{r4-r6}}",
+    "ldr r10, [sp, #36]",
+    "ldr r2, [r0]",
+    "add r2, r2, r10, lsl #1",
+    "str r2, [r0]",
+    "ldr r3, [r0, #4]",
+    "add r3, r3, r2",
+    "lsl r1, r10, #1",
+    "rsb r1, r1, #0",
+    "ldr r11, [sp, #20]",
+    "cmp r11, #0",
+    "bne 30f",
+    // Unlit: r1 = the offset, r2/r3 = the pointers, r4/r5 = the depth and its step, r6/r7 = x,
+    // r8/r9 = y, r10 = the texels, r11 = the column mask, r12 = the row mask.
+    "mov r6, r7",
+    "mov r7, r4",
+    "mov r9, r5",
+    "ldr r5, [sp]",
+    "ldr r4, [r0, #88]",
+    "add lr, r0, #72",
+    "ldm lr, {{r10-r12}}",
+    "2:",
+    "ldrh lr, [r2, r1]",
+    "cmp lr, r4, lsr #16",
+    "bls 4f",
+    "lsr lr, r4, #16",
+    "strh lr, [r2, r1]",
+    "and lr, r11, r6, lsr #16",
+    "and r0, r12, r8, lsr #16",
+    "orr lr, lr, r0",
+    "ldrh lr, [r10, lr, lsl #1]",
+    "strh lr, [r3, r1]",
+    "4:",
+    "add r4, r5",
+    "add r6, r7",
+    "add r8, r9",
+    "adds r1, #2",
+    "bne 2b",
+    "b 9f",
+    // Lit: r0-r3 scratch (the steps from [sp] at each pixel's end), r4 = the depth, r5 = x, r6 =
+    // y, r7 = the level, r8 = the offset, r9/r10 = the pointers, r11 = the texels, r12 = the
+    // column mask, lr = the row mask.
+    "30:",
+    "mov r5, r7",
+    "mov r6, r8",
+    "mov r7, r9",
+    "mov r8, r1",
+    "mov r9, r2",
+    "mov r10, r3",
+    "ldr r4, [r0, #88]",
+    "add r1, r0, #72",
+    "ldm r1, {{r11, r12, lr}}",
+    "32:",
+    "ldrh r0, [r9, r8]",
+    "cmp r0, r4, lsr #16",
+    "bls 34f",
+    "lsr r0, r4, #16",
+    "strh r0, [r9, r8]",
+    "and r0, r12, r5, lsr #16",
+    "and r1, lr, r6, lsr #16",
+    "orr r0, r0, r1",
+    "ldrh r0, [r11, r0, lsl #1]",
+    // f = the level clamped to 0..=2¹⁶; each channel (c·f + 2¹⁵) >> 16.
+    "bic r1, r7, r7, asr #31",
+    "cmp r1, #65536",
+    "it hi",
+    "movhi r1, #65536",
+    "mov r3, #32768",
+    "and r2, r0, #31",
+    "mla r2, r2, r1, r3",
+    "bic r0, r0, #31",
+    "orr r0, r0, r2, lsr #16",
+    "ubfx r2, r0, #5, #6",
+    "mla r2, r2, r1, r3",
+    "lsr r2, r2, #16",
+    "bfi r0, r2, #5, #6",
+    "lsr r2, r0, #11",
+    "mla r2, r2, r1, r3",
+    "lsr r2, r2, #16",
+    "bfi r0, r2, #11, #5",
+    "strh r0, [r10, r8]",
+    "34:",
+    "ldm sp, {{r0-r3}}",
+    "add r4, r0",
+    "add r5, r1",
+    "add r6, r2",
+    "add r7, r3",
+    "adds r8, #2",
+    "bne 32b",
+    // The depth plane kept for the next chunk; the next chunk, if any.
+    "9:",
+    "ldr r0, [sp, #16]",
+    "str r4, [r0, #88]",
+    "ldr r3, [r0, #8]",
+    "cmp r3, #0",
+    "bne 1b",
+    "add sp, #40",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_perspective_span_v7m, . - embedded_raster_perspective_span_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    ///
+    /// # Safety
+    ///
+    /// `block` is valid for reads and writes; its `left` is at least one and its pointers
+    /// address `left` pixels of 2-byte aligned `u16` depths and colours; every index of at most
+    /// `rows_mask | x_mask` is inside its texels; `y_shift` is below 32.
+    fn embedded_raster_perspective_span_v7m(block: *mut PerspectiveBlock, lit: u32);
+}
+
+/// Draws the span `span` into the first pixels of `colors` and `depths` (as many as both
+/// have) as [`PerspectiveSpan565`] describes. `false` without drawing anything if a texel
+/// index the masks allow is not inside `span.texels`, the shift is not below 32 or `C` is not a
+/// 16-bit colour, so no input reads or writes outside them. `C` must be the 5-6-5 format whose
+/// raw value is the texels' (the caller's promise: the colours written are those raw values).
+#[inline(always)]
+pub(crate) fn perspective_span<C: Copy>(
+    colors: &mut [C],
+    depths: &mut [u16],
+    span: &PerspectiveSpan565<'_>,
+) -> bool {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return false;
+    }
+    let last = (span.rows_mask | span.x_mask) as usize;
+    if last >= span.texels.len() || span.y_shift > 31 {
+        return false;
+    }
+    let len = colors.len().min(depths.len());
+    let Ok(left @ 1..) = u32::try_from(len) else {
+        return len == 0;
+    };
+    let depth_pointer = depths.as_mut_ptr();
+    let colors: *mut u16 = colors.as_mut_ptr().cast();
+    let (level, lit) = match span.level {
+        Some(level) => (level, 1),
+        None => ([0; 3], 0),
+    };
+    let mut block = PerspectiveBlock {
+        depths: depth_pointer,
+        color_offset: (colors as usize).wrapping_sub(depth_pointer as usize) as u32,
+        left,
+        planes: span.planes,
+        steps: span.steps,
+        u: span.u,
+        v: span.v,
+        level,
+        texels: span.texels.as_ptr(),
+        x_mask: span.x_mask,
+        rows_mask: span.rows_mask,
+        y_shift: span.y_shift,
+        depth: span.depth.0,
+        depth_step: span.depth.1,
+    };
+    // SAFETY: `left` (at least one) is at most both buffers' lengths, which the function
+    // writes the first `left` entries of, as 2-byte aligned `u16`s (`C` is a 2-byte colour whose
+    // raw value the texels are, the caller's promise); it reads texels at indices of at most
+    // `rows_mask | x_mask`, inside them, with `y_shift` below 32 (both checked above), reads and
+    // writes the block (its own), divides by non-zero values only (`q ≥ 1`, `over ≥ 1`), and
+    // saves and restores every register the AAPCS asks it to, its stack frame its own.
+    unsafe { embedded_raster_perspective_span_v7m(&mut block, lit) };
     true
 }
 

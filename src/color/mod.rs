@@ -119,6 +119,21 @@ pub trait GouraudColor: PixelColor {
         false
     }
 
+    /// Draws a span of the perspective-correct textured fill into `colors` and `depths` by a
+    /// loop of the target's own, if this format has one there (Rgb565 on ARMv7-M, whose raw
+    /// values the texels are); `false` without writing anything where it has none (the
+    /// default). Hidden: its argument's type cannot be named outside the crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn perspective_span_565(
+        colors: &mut [Self],
+        depths: &mut [u16],
+        span: &crate::arch::PerspectiveSpan565<'_>,
+    ) -> bool {
+        let _ = (colors, depths, span);
+        false
+    }
+
     /// The state one pixel to the right of `state`; by default the values plus the steps,
     /// wrapping.
     #[inline(always)]
@@ -273,6 +288,14 @@ macro_rules! rgb_color {
                     rows: &crate::arch::TexturedRows<'_>,
                 ) -> bool {
                     $order == [0, 1, 2] && crate::arch::textured_rows(colors, depths, rows)
+                }
+                #[inline(always)]
+                fn perspective_span_565(
+                    colors: &mut [Self],
+                    depths: &mut [u16],
+                    span: &crate::arch::PerspectiveSpan565<'_>,
+                ) -> bool {
+                    $order == [0, 1, 2] && crate::arch::perspective_span(colors, depths, span)
                 }
                 #[inline]
                 fn prepare_steps(step: [u32; 3]) -> SpanSteps {

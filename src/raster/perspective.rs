@@ -107,6 +107,13 @@ impl Corrected {
         }
     }
 
+    /// `(a₀, d₁, d₂)`: the value at vertex 0 and the differences (wrapping).
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> [i32; 3] {
+        let d = |k: usize| (self.high[k] << 16) | self.low[k] as i32;
+        [self.base, d(0), d(1)]
+    }
+
     /// `a₀ + ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ / 2¹⁶⌋` modulo 2³² (`λ` at most 2¹⁷).
     #[inline(always)]
     pub(crate) fn at(&self, (l1, l2): (Lambda, Lambda)) -> i32 {

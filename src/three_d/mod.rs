@@ -14,7 +14,7 @@
 //! * `shading` — [`Light`], [`Material`] (with an optional Blinn-Phong [`Specular`] highlight),
 //!   [`Shading`] and the depth-tested fills (flat, Gouraud, per-pixel lighting of quadratically
 //!   interpolated normals).
-//! * `texturing` — [`draw_textured`]: textured, depth-tested fills with perspective-correct texel
+//! * `texturing` — [`draw_textured`] and [`draw_textured_lit`]: textured, depth-tested fills with perspective-correct texel
 //!   coordinates.
 //! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
 //! * `band` — a band's rows as two clip-space planes: how a band's draw without a bin rejects
@@ -51,5 +51,5 @@ pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Material, QuadraticNormals, Shading,
 };
 pub(crate) use texturing::FaceTexture;
-pub use texturing::{draw_textured, TexturedMaterial, TexturedScreenVertex};
+pub use texturing::{draw_textured, draw_textured_lit, TexturedMaterial, TexturedScreenVertex};
 pub use vertex::ProjectedVertex;

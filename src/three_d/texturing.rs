@@ -112,6 +112,62 @@ pub fn draw_textured<S, C>(
     );
 }
 
+/// [`draw_textured`] with each texel lit: scaled channel by channel by a light level that
+/// `levels` gives at the vertices (0 black, 255 the texel as it is), interpolated
+/// perspective-correct like the texel coordinates (texture × Gouraud light, as the 3D
+/// pipeline lights a [`TexturedMaterial`] with [`Shading::Gouraud`](super::Shading::Gouraud)).
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::{Rgb565, RgbColor}, prelude::*, primitives::Rectangle};
+/// use embedded_raster::texture::{Rgb565Texels, TexelCoord, Texture};
+/// use embedded_raster::three_d::{draw_textured_lit, DepthTarget, Scalar, ScreenVertex, TexturedScreenVertex};
+/// use embedded_raster::Coord;
+///
+/// static WHITE: [u16; 1] = [0xffff];
+/// let texture = Texture::new(Rgb565Texels(&WHITE), 1, 1).unwrap();
+/// let (mut px, mut z) = ([Rgb565::BLACK; 16 * 16], [u16::MAX; 16 * 16]);
+/// let mut target = DepthTarget::new(&mut px, &mut z, 16, 16).unwrap();
+/// let v = |x: i32, y: i32| TexturedScreenVertex {
+///     screen: ScreenVertex::new(Coord::from_num(x), Coord::from_num(y), 100),
+///     w: Scalar::from_num(1),
+///     u: TexelCoord::from_num(0),
+///     v: TexelCoord::from_num(0),
+/// };
+/// let clip = Rectangle::new(Point::zero(), Size::new(16, 16));
+/// // Full light along the left edge, none at the right vertex.
+/// draw_textured_lit(&mut target, &clip, &[v(0, 0), v(16, 0), v(0, 16)], &texture, [255, 0, 255]);
+/// let green = |x: i32| target.framebuffer().get(x, 1).unwrap().g();
+/// assert!(green(1) > 55 && green(12) < 20);
+/// ```
+pub fn draw_textured_lit<S, C>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &Rectangle,
+    vertices: &[TexturedScreenVertex; 3],
+    texture: &Texture<S>,
+    levels: [u8; 3],
+) where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    let clip = TargetClip::new(clip, target);
+    let q = vertices.map(|v| Inverse::of(inverse_w(v.w)));
+    let texels = vertices.map(|v| [v.u.to_bits(), v.v.to_bits()]);
+    let screen = vertices.each_ref().map(|v| &v.screen);
+    // 8.8 levels: 255 is 255 · 256, the full fraction.
+    let levels = levels.map(|l| u16::from(l) << 8);
+    fill_textured(
+        target,
+        &clip,
+        screen,
+        q,
+        texels,
+        Sampler::new(texture),
+        TexelLight::Levels(levels),
+    );
+}
+
 /// `2⁴⁷ / w` (of the raw `I16F16` bits, at least 1): a `q` for the perspective planes.
 fn inverse_w(w: Scalar) -> u64 {
     let w = u64::try_from(w.to_bits()).unwrap_or(0).max(1);
@@ -850,6 +906,14 @@ trait SpanLight: Copy {
     fn apply<C: GouraudColor>(&self, texel: C, level: Self::Level) -> C;
     /// `level` a pixel on.
     fn step(level: Self::Level, by: Self::Level) -> Self::Level;
+
+    /// This light in the target's perspective span loop ([`arch::perspective_span`]), if it
+    /// draws it: `Some(None)` unlit, `Some(Some(level))` for a 16-bit fraction `level` as
+    /// `(base, d₁, d₂)` that the loop clamps to `0..=2¹⁶` and scales each channel by.
+    #[inline(always)]
+    fn span_level(&self) -> Option<Option<[i32; 3]>> {
+        None
+    }
 }
 
 /// A light of the screen-space fill, its state read from the planes after the texel
@@ -881,6 +945,11 @@ impl SpanLight for Unlit {
 
     #[inline(always)]
     fn step(_: (), _: ()) {}
+
+    #[inline(always)]
+    fn span_level(&self) -> Option<Option<[i32; 3]>> {
+        Some(None)
+    }
 }
 
 impl<const N: usize> PlaneLight<N> for Unlit {
@@ -911,6 +980,12 @@ impl SpanLight for Constant {
 
     #[inline(always)]
     fn step(_: (), _: ()) {}
+
+    /// The same level everywhere: at most 65 535, which the loop's clamp leaves as it is.
+    #[inline(always)]
+    fn span_level(&self) -> Option<Option<[i32; 3]>> {
+        Some(Some([self.0 as i32, 0, 0]))
+    }
 }
 
 impl<const N: usize> PlaneLight<N> for Constant {
@@ -1043,6 +1118,11 @@ impl SpanLight for Varying {
     fn step(level: i32, by: i32) -> i32 {
         level.wrapping_add(by)
     }
+
+    #[inline(always)]
+    fn span_level(&self) -> Option<Option<[i32; 3]>> {
+        Some(Some(self.0.parts()))
+    }
 }
 
 /// The vertices' `K` channels (16-bit fractions: three tints, and a specular term with a
@@ -1134,6 +1214,30 @@ where
         let Some((colors, depths)) = self.target.clipped_spans_mut(span) else {
             return;
         };
+        // The target's span loop where it draws these texels and light (the same pixels).
+        if arch::PERSPECTIVE_SPAN {
+            // The sampler first: a bilinear face's spans stop at its kind.
+            if let Some((texels, x_mask, rows_mask, y_shift)) = masked_565(&self.sampler) {
+                if let Some(level) = self.light.span_level() {
+                    let ([dz, dq, dp1, dp2], [z, q, p1, p2]) = (*steps, start);
+                    let span = arch::PerspectiveSpan565 {
+                        depth: (z, dz),
+                        planes: [q, p1, p2],
+                        steps: [dq, dp1, dp2],
+                        u: self.coordinates.0.parts(),
+                        v: self.coordinates.1.parts(),
+                        level,
+                        texels,
+                        x_mask,
+                        rows_mask,
+                        y_shift,
+                    };
+                    if C::perspective_span_565(colors, depths, &span) {
+                        return;
+                    }
+                }
+            }
+        }
         let run = PerspectiveSpan {
             colors,
             depths,
