@@ -212,7 +212,7 @@ fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
 
 /// Untimed: [`CHECK_TRIANGLES`] random perspective-correct textured triangles over and around
 /// the screen — `w` ratios up to 1:20 within a triangle, random depths, texel coordinates and
-/// light levels, unlit and lit, nearest, from the texels as textures of several power-of-two
+/// light levels (often 0 or 255), unlit and lit, nearest, from the texels as textures of several power-of-two
 /// shapes (and one that is not) — drawn into the depth target (which the caller clears):
 /// the spans' chunks of every length, clipped at every edge, levels at the clamp.
 fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
@@ -254,7 +254,14 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
         if k % 2 == 0 {
             draw_textured(fb, &clip, &v, &texture);
         } else {
-            let levels = [next() as u8, next() as u8, next() as u8];
+            // Levels at the ends of the range too: a level stepped down to 0 or up to 255
+            // passes them between two chunk ends (the loops' clamp).
+            let mut level = || match next() % 3 {
+                0 => 0,
+                1 => 255,
+                _ => (next() >> 24) as u8,
+            };
+            let levels = [level(), level(), level()];
             draw_textured_lit(fb, &clip, &v, &texture, levels);
         }
     }

@@ -648,6 +648,68 @@ macro_rules! step_over {
     };
 }
 
+/// The depth test and the texel's index and fetch (into r0) of the lit loop's pixel at r8
+/// (`34:` the next pixel).
+macro_rules! perspective_texel {
+    () => {
+        concat!(
+            "ldrh r0, [r9, r8]\n",
+            "cmp r0, r4, lsr #16\n",
+            "bls 34f\n",
+            "lsr r0, r4, #16\n",
+            "strh r0, [r9, r8]\n",
+            "and r0, r12, r5, lsr #16\n",
+            "and r1, lr, r6, lsr #16\n",
+            "orr r0, r0, r1\n",
+            "ldrh r0, [r11, r0, lsl #1]\n",
+        )
+    };
+}
+
+/// The texel (r0) with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for `$f`, stored
+/// at the lit loop's pixel. Clobbers r2, r3.
+macro_rules! scaled_texel {
+    ($f:literal) => {
+        concat!(
+            "mov r3, #32768\n",
+            "and r2, r0, #31\n",
+            "mla r2, r2, ",
+            $f,
+            ", r3\n",
+            "bic r0, r0, #31\n",
+            "orr r0, r0, r2, lsr #16\n",
+            "ubfx r2, r0, #5, #6\n",
+            "mla r2, r2, ",
+            $f,
+            ", r3\n",
+            "lsr r2, r2, #16\n",
+            "bfi r0, r2, #5, #6\n",
+            "lsr r2, r0, #11\n",
+            "mla r2, r2, ",
+            $f,
+            ", r3\n",
+            "lsr r2, r2, #16\n",
+            "bfi r0, r2, #11, #5\n",
+            "strh r0, [r10, r8]\n",
+        )
+    };
+}
+
+/// The lit loop's step to the next pixel: the steps from [sp] (depth, x, y, level).
+macro_rules! lit_step {
+    () => {
+        concat!(
+            "34:\n",
+            "ldm sp, {{r0-r3}}\n",
+            "add r4, r0\n",
+            "add r5, r1\n",
+            "add r6, r2\n",
+            "add r7, r3\n",
+            "adds r8, #2\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_perspective_span_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -661,8 +723,7 @@ core::arch::global_asm!(
     "embedded_raster_perspective_span_v7m:",
     "push {{r4-r11, lr}}",
     // [sp]: the steps a pixel of the depth, x, y (shifted) and level; [sp, #16]: the block;
-    // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]: the
-    // chunk's pixels.
+    // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel.
     "sub sp, #40",
     "str r0, [sp, #16]",
     "str r1, [sp, #20]",
@@ -677,31 +738,18 @@ core::arch::global_asm!(
     corrected!("r6", "60", "64", "68"),
     "add r3, sp, #24",
     "stm r3, {{r4-r6}}",
-    // A chunk: r3 = its pixels (16, or all that are left), r12 = `over`, the pixels from its
-    // first to the one its end values are at (16, or the last: one less).
+    // A chunk of 16 pixels with more after it: its end values are the next chunk's first.
     "1:",
     "ldr r0, [sp, #16]",
     "ldr r3, [r0, #8]",
-    "cmp r3, #16",
-    "ite hi",
-    "movhi r3, #16",
-    "subls r12, r3, #1",
-    "it hi",
-    "movhi r12, #16",
-    "str r3, [sp, #36]",
-    "ldr r1, [r0, #8]",
-    "sub r1, r1, r3",
-    "str r1, [r0, #8]",
-    "cmp r12, #0",
-    "beq 7f",
-    // The planes `over` pixels on, and the attributes there.
+    "subs r12, r3, #16",
+    "bls 20f",
+    "str r12, [r0, #8]",
     "add r4, r0, #12",
-    "ldm r4, {{r5-r7}}",
-    "add r11, r0, #24",
-    "ldm r11, {{r8-r10}}",
-    "mla r5, r8, r12, r5",
-    "mla r6, r9, r12, r6",
-    "mla r7, r10, r12, r7",
+    "ldm r4, {{r5-r10}}",
+    "add r5, r5, r8, lsl #4",
+    "add r6, r6, r9, lsl #4",
+    "add r7, r7, r10, lsl #4",
     "stm r4, {{r5-r7}}",
     lambdas!(),
     corrected!("r4", "36", "40", "44"),
@@ -710,26 +758,48 @@ core::arch::global_asm!(
     "cbz r3, 5f",
     corrected!("r6", "60", "64", "68"),
     "5:",
-    // r7-r9 = the values at the chunk's first pixel; the end values are the next chunk's.
     "add r3, sp, #24",
     "ldm r3, {{r7-r9}}",
     "stm r3, {{r4-r6}}",
     "sub r4, r4, r7",
+    "asr r4, r4, #4",
+    "sub r5, r5, r8",
+    "asr r5, r5, #4",
+    "sub r6, r6, r9",
+    "asr r6, r6, #4",
+    "mov r10, #16",
+    "b 8f",
+    // The last chunk: r3 = its pixels, r12 = `over` (one less: its end values are at its last
+    // pixel).
+    "20:",
+    "movs r1, #0",
+    "str r1, [r0, #8]",
+    "subs r12, r3, #1",
+    "beq 7f",
+    "add r4, r0, #12",
+    "ldm r4, {{r5-r10}}",
+    "mla r5, r8, r12, r5",
+    "mla r6, r9, r12, r6",
+    "mla r7, r10, r12, r7",
+    lambdas!(),
+    corrected!("r4", "36", "40", "44"),
+    corrected!("r5", "48", "52", "56"),
+    "ldr r3, [sp, #20]",
+    "cbz r3, 25f",
+    corrected!("r6", "60", "64", "68"),
+    "25:",
+    "add r3, sp, #24",
+    "ldm r3, {{r7-r9}}",
+    "sub r4, r4, r7",
     "sub r5, r5, r8",
     "sub r6, r6, r9",
-    "cmp r12, #16",
-    "bne 6f",
-    "asr r4, r4, #4",
-    "asr r5, r5, #4",
-    "asr r6, r6, #4",
-    "b 8f",
-    "6:",
     "movw r3, #65535",
     "add r3, r3, r12",
     "udiv r3, r3, r12",
     step_over!("r4"),
     step_over!("r5"),
     step_over!("r6"),
+    "add r10, r12, #1",
     "b 8f",
     // A last chunk of one pixel: no steps.
     "7:",
@@ -738,23 +808,21 @@ core::arch::global_asm!(
     "movs r6, #0",
     "add r3, sp, #24",
     "ldm r3, {{r7-r9}}",
-    // r4-r6 = the steps of x, y and the level, r7-r9 = their values; `y` shifted, the steps
-    // stored; r2 = the depth pointer past the chunk, r3 = the colour pointer likewise, r1 = the
-    // byte offset of the chunk's first pixel from them.
+    "mov r10, #1",
+    // r4-r6 = the steps of x, y and the level, r7-r9 = their values, r10 = the chunk's pixels;
+    // `y` shifted; r2 = the depth pointer past the chunk, r3 = the colour pointer likewise, r1 =
+    // the byte offset of the chunk's first pixel from them.
     "8:",
     "ldr r3, [r0, #84]",
     "lsl r8, r8, r3",
     "lsl r5, r5, r3",
-    "add r3, sp, #4",
-    "stm r3, {{r4-r6}}",
-    "ldr r10, [sp, #36]",
     "ldr r2, [r0]",
     "add r2, r2, r10, lsl #1",
     "str r2, [r0]",
     "ldr r3, [r0, #4]",
     "add r3, r3, r2",
-    "lsl r1, r10, #1",
-    "rsb r1, r1, #0",
+    "rsb r1, r10, #0",
+    "lsl r1, r1, #1",
     "ldr r11, [sp, #20]",
     "cmp r11, #0",
     "bne 30f",
@@ -785,10 +853,22 @@ core::arch::global_asm!(
     "adds r1, #2",
     "bne 2b",
     "b 9f",
-    // Lit: r0-r3 scratch (the steps from [sp] at each pixel's end), r4 = the depth, r5 = x, r6 =
-    // y, r7 = the level, r8 = the offset, r9/r10 = the pointers, r11 = the texels, r12 = the
-    // column mask, lr = the row mask.
+    // Lit: the steps to [sp]; the flags `ls` if the level is inside 0..=2¹⁶ at the chunk's
+    // first and last pixels and steps by at most 2¹⁶ (then it is inside at every pixel between,
+    // and the loop needs no clamp), kept by the moves up to the `bhi`.
     "30:",
+    "add r11, sp, #4",
+    "stm r11, {{r4-r6}}",
+    "sub r11, r10, #1",
+    "mla r11, r6, r11, r9",
+    "add r6, r6, #65536",
+    "cmp r6, #131072",
+    "it ls",
+    "cmpls r9, #65536",
+    "it ls",
+    "cmpls r11, #65536",
+    // r0-r3 scratch, r4 = the depth, r5 = x, r6 = y, r7 = the level, r8 = the offset, r9/r10 =
+    // the pointers, r11 = the texels, r12 = the column mask, lr = the row mask.
     "mov r5, r7",
     "mov r6, r8",
     "mov r7, r9",
@@ -797,44 +877,26 @@ core::arch::global_asm!(
     "mov r10, r3",
     "ldr r4, [r0, #88]",
     "add r1, r0, #72",
+    "bhi 36f",
     "ldm r1, {{r11, r12, lr}}",
     "32:",
-    "ldrh r0, [r9, r8]",
-    "cmp r0, r4, lsr #16",
-    "bls 34f",
-    "lsr r0, r4, #16",
-    "strh r0, [r9, r8]",
-    "and r0, r12, r5, lsr #16",
-    "and r1, lr, r6, lsr #16",
-    "orr r0, r0, r1",
-    "ldrh r0, [r11, r0, lsl #1]",
-    // f = the level clamped to 0..=2¹⁶; each channel (c·f + 2¹⁵) >> 16.
+    perspective_texel!(),
+    scaled_texel!("r7"),
+    lit_step!(),
+    "bne 32b",
+    "b 9f",
+    // The level clamped at each pixel: f = min(max(level, 0), 2¹⁶) in r1.
+    "36:",
+    "ldm r1, {{r11, r12, lr}}",
+    "37:",
+    perspective_texel!(),
     "bic r1, r7, r7, asr #31",
     "cmp r1, #65536",
     "it hi",
     "movhi r1, #65536",
-    "mov r3, #32768",
-    "and r2, r0, #31",
-    "mla r2, r2, r1, r3",
-    "bic r0, r0, #31",
-    "orr r0, r0, r2, lsr #16",
-    "ubfx r2, r0, #5, #6",
-    "mla r2, r2, r1, r3",
-    "lsr r2, r2, #16",
-    "bfi r0, r2, #5, #6",
-    "lsr r2, r0, #11",
-    "mla r2, r2, r1, r3",
-    "lsr r2, r2, #16",
-    "bfi r0, r2, #11, #5",
-    "strh r0, [r10, r8]",
-    "34:",
-    "ldm sp, {{r0-r3}}",
-    "add r4, r0",
-    "add r5, r1",
-    "add r6, r2",
-    "add r7, r3",
-    "adds r8, #2",
-    "bne 32b",
+    scaled_texel!("r1"),
+    lit_step!(),
+    "bne 37b",
     // The depth plane kept for the next chunk; the next chunk, if any.
     "9:",
     "ldr r0, [sp, #16]",
