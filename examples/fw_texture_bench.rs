@@ -214,7 +214,9 @@ fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
 /// the screen — `w` ratios up to 1:20 within a triangle, random depths, texel coordinates and
 /// light levels (often 0 or 255), unlit and lit, nearest, from the texels as textures of several power-of-two
 /// shapes (and one that is not) — drawn into the depth target (which the caller clears):
-/// the spans' chunks of every length, clipped at every edge, levels at the clamp.
+/// the spans' chunks of every length, clipped at every edge, levels at the clamp. Out of line:
+/// its frame is not added to the firmware's `main` (the micro:bit's 4 KB of stack).
+#[inline(never)]
 fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
     let size = fb.framebuffer().size();
     let clip = Rectangle::new(Point::zero(), size);
@@ -252,7 +254,7 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
         };
         let v = [vertex(), vertex(), vertex()];
         if k % 2 == 0 {
-            draw_textured(fb, &clip, &v, &texture);
+            draw_3d(fb, &clip, &v, &texture, None);
         } else {
             // Levels at the ends of the range too: a level stepped down to 0 or up to 255
             // passes them between two chunk ends (the loops' clamp).
@@ -262,7 +264,7 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
                 _ => (next() >> 24) as u8,
             };
             let levels = [level(), level(), level()];
-            draw_textured_lit(fb, &clip, &v, &texture, levels);
+            draw_3d(fb, &clip, &v, &texture, Some(levels));
         }
     }
 }
@@ -309,7 +311,7 @@ fn run<S: TexelSource>(
         match case {
             Case::PerspectiveNearest | Case::PerspectiveBilinear => {
                 let v = vertices_3d(&corners, size.width as i32, 60_000 - pass);
-                draw_textured(fb, &clip, &v, texture);
+                draw_3d(fb, &clip, &v, texture, None);
             }
             Case::PerspectiveNearestLit => {
                 let v = vertices_3d(&corners, size.width as i32, 60_000 - pass);
@@ -318,17 +320,47 @@ fn run<S: TexelSource>(
                     let (w, h) = (size.width as i32, size.height as i32);
                     (64 + (x * 127 / w.max(1) + y * 64 / h.max(1)).clamp(0, 191)) as u8
                 });
-                draw_textured_lit(fb, &clip, &v, texture, levels);
+                draw_3d(fb, &clip, &v, texture, Some(levels));
             }
-            Case::AffineNearestDraw => {
-                let t = TexturedTriangle::new(vertices_2d(&corners), texture);
-                let _ = t.draw(fb.framebuffer_mut());
-            }
-            _ => {
-                TexturedTriangle::new(vertices_2d(&corners), texture)
-                    .draw_into(fb.framebuffer_mut());
-            }
+            Case::AffineNearestDraw => draw_2d(fb, &vertices_2d(&corners), texture, false),
+            _ => draw_2d(fb, &vertices_2d(&corners), texture, true),
         }
+    }
+}
+
+/// A 2D textured triangle by `draw_into` or `Drawable::draw`. Out of line, as [`draw_3d`]: the
+/// micro:bit's 4 KB of stack holds one fill's frame at a time, not all of them.
+#[inline(never)]
+fn draw_2d<S: TexelSource>(
+    fb: &mut DepthTarget<'_, Rgb565>,
+    vertices: &[TexturedVertex; 3],
+    texture: &Texture<S>,
+    into: bool,
+) where
+    Rgb565: From<S::Color>,
+{
+    let t = TexturedTriangle::new(*vertices, texture);
+    if into {
+        t.draw_into(fb.framebuffer_mut());
+    } else {
+        let _ = t.draw(fb.framebuffer_mut());
+    }
+}
+
+/// `draw_textured`, or `draw_textured_lit` with `levels`. Out of line (see [`draw_2d`]).
+#[inline(never)]
+fn draw_3d<S: TexelSource>(
+    fb: &mut DepthTarget<'_, Rgb565>,
+    clip: &Rectangle,
+    v: &[TexturedScreenVertex; 3],
+    texture: &Texture<S>,
+    levels: Option<[u8; 3]>,
+) where
+    Rgb565: From<S::Color>,
+{
+    match levels {
+        Some(levels) => draw_textured_lit(fb, clip, v, texture, levels),
+        None => draw_textured(fb, clip, v, texture),
     }
 }
 
