@@ -131,7 +131,7 @@ fn mul_32_limbs(a: u32, b: u32) -> u64 {
 }
 
 /// First guesses `2^16 / (t + ½) − 256` for the top eight bits `t ∈ [128, 256)` of a
-/// normalised 32-bit divisor (128 bytes of flash).
+/// normalised 32-bit (or 16-bit) divisor (128 bytes of flash).
 const RECIPROCAL_SEED_8: [u8; 128] = {
     let mut table = [0u8; 128];
     let mut i = 0;
@@ -216,6 +216,70 @@ fn reciprocal_63_newton(d: u32) -> u64 {
         rem -= d as i64;
     }
     x
+}
+
+/// `⌊2³¹ / q⌋` for `0 < q < 2¹⁶` without a division (the perspective chunks' reciprocal on
+/// ARMv6-M, `raster::perspective::lambdas`, where [`div_rem_u32`] takes a loop iteration a
+/// quotient bit: 17 to 18 of them, about 400 instructions, for the usual `q ∈ [2¹⁴, 2¹⁶)`): a
+/// seed from [`RECIPROCAL_SEED_8`] (the table of [`reciprocal_63_newton`], which the 3D code
+/// links anyway: no flash of its own), one Newton step, the quotient of its remainder from the
+/// same reciprocal, and one exact correction. All in 32-bit integers (five `muls`, no long
+/// product): on Cortex-M0 38 instructions with the call for `q ≥ 2¹⁵` (one more when the
+/// correction adds), about 4 more a halving below. Exact for every `q < 2¹⁶` (the test checks
+/// them all); a larger `q` gives some value (no panic, no division).
+///
+/// Let `R = 2³¹ / q` (real) and `d = q·2ˢ ∈ [2¹⁵, 2¹⁶)` (`s ≤ 15`), so `R = 2³¹⁺ˢ / d`.
+///
+/// 1. Seed: `d`'s top byte `t ∈ [128, 256)` gives `g = ⌊2¹⁷ / (2t + 1)⌋ ≈ 2²⁴ / d` within a
+///    relative `ε < 2⁻⁷` (half the byte's interval, `2⁻⁸`, plus the floor's, under `2⁻⁸`): the
+///    error term `e = 2²⁴ − g·d` has `|e| < 2¹⁷` (at most 93 696), and `x₀ = g·2⁷⁺ˢ ≈ R`.
+/// 2. Newton: `x₁ = ⌊x₀ + x₀·(2³¹ − q·x₀) / 2³¹⌋ = ⌊g·(2²⁴ + e) / 2¹⁷⁻ˢ⌋`, as `q·x₀ = 2⁷·g·d`.
+///    It is formed at a fixed scale as `f = g·2²² + ⌊g·e / 4⌋` (`|g·e| < 2²⁶`), so `x₁ = ⌊f /
+///    2¹⁵⁻ˢ⌋` (nested floors by powers of two are one floor). With `x₀ = R(1 − ε)` the step gives
+///    `R(1 − ε²)` before the floor: `x₁ ≤ R` (so `f ≤ 2⁴⁶ / d ≤ 2³¹`, no overflow) and `R − x₁ <
+///    R·ε² + 1`. The remainder `e₁ = 2³¹ − q·x₁ = q·(R − x₁)` is then in `[0, 2¹⁷ + 2¹⁶)` (at
+///    most 127 508), exact in the wrapping 32-bit product.
+/// 3. Remainder: `⌊R⌋ = x₁ + ⌊e₁ / q⌋`, and `e₁ / q = e₁·2ˢ / d` with `2³⁰ / d ≈ z = ⌊f / 2¹⁶⌋
+///    ≤ 2¹⁵` (`x₁`'s top bits, within a relative `2⁻¹⁴`): `c = ⌊⌊e₁ / 2⌋·z / 2²⁹⁻ˢ⌋`, the product
+///    under `2¹⁷·2¹⁵`. Every truncation rounds down, so `c ≤ e₁ / q`: `x₁ + c ≤ ⌊R⌋`, and the
+///    remainder `2³¹ − q·(x₁ + c) = e₁ − q·c ≥ 0`. `c` (the shortfall `R − x₁`, at most 32 767) is
+///    short by under `c·2⁻¹⁴` from `z` and under 1 from each floor: a few units at most, and by the
+///    exhaustive test never more than one.
+/// 4. Correction: one more if that remainder is still `q` or more.
+#[cfg_attr(not(armv6m), allow(dead_code))]
+#[cfg_attr(armv6m, inline(never))]
+pub(crate) fn reciprocal_31(q: NonZeroU32) -> u32 {
+    let q = q.get();
+    let (x, remainder) = reciprocal_31_estimate(q);
+    x.wrapping_add(u32::from(remainder >= q))
+}
+
+/// Steps 1 to 3 of [`reciprocal_31`] for `0 < q < 2¹⁶`: `(x, 2³¹ − q·x)` with `x ≤ ⌊2³¹ /
+/// q⌋ ≤ x + 1`.
+#[inline(always)]
+fn reciprocal_31_estimate(q: u32) -> (u32, u32) {
+    // d = q·2ˢ in [2¹⁵, 2¹⁶) and k = 15 − s, a bit a step (no `clz` on ARMv6-M): no step for
+    // the usual q ≥ 2¹⁵ (a triangle's largest q is in [32 640, 65 279], the others below it by
+    // its w ratio), fifteen for q = 1. The loop ends for any q > 0; the mask tells the compiler that the
+    // shifts below are in range.
+    let (mut d, mut k) = (q, 15);
+    while d >> 15 == 0 {
+        d <<= 1;
+        k -= 1;
+    }
+    let k = k & 15;
+    // Index t − 128 by a mask: in range for any d, no bounds check.
+    let g = RECIPROCAL_SEED_8
+        .get((d >> 8) as usize & 127)
+        .map_or(256, |&seed| 256 + u32::from(seed));
+    let e = (1u32 << 24).wrapping_sub(d.wrapping_mul(g)) as i32;
+    // 2¹⁵⁻ˢ·x₁ before its floor (step 2).
+    let f = (g << 22).wrapping_add(((g as i32).wrapping_mul(e) >> 2) as u32);
+    let x = f >> k;
+    let e1 = (1u32 << 31).wrapping_sub(q.wrapping_mul(x));
+    // ⌊e₁ / q⌋ by the reciprocal's top bits, never over (step 3).
+    let c = ((e1 >> 1).wrapping_mul(f >> 16)) >> (14 + k);
+    (x.wrapping_add(c), e1.wrapping_sub(q.wrapping_mul(c)))
 }
 
 /// Whether a rare loop has steps left, counting `left` down to 0: the count is hidden from the
@@ -732,6 +796,21 @@ mod tests {
             (0, -5),
         ] {
             assert_eq!(wrapping_mul_i32_limbs(g, d), g.wrapping_mul(i64::from(d)));
+        }
+    }
+
+    /// The division-free `⌊2³¹ / q⌋` of every 16-bit `q`: exact, its estimate never above the
+    /// quotient and at most one below (the one correction step suffices).
+    #[test]
+    fn reciprocal_31_is_the_exact_floor_for_every_q() {
+        for q in 1..=u16::MAX {
+            let exact = (1u32 << 31) / u32::from(q);
+            let (x, remainder) = reciprocal_31_estimate(q.into());
+            assert!(x <= exact && exact - x <= 1, "{q}: {x}");
+            assert_eq!(remainder, (1u32 << 31) - u32::from(q) * x, "{q}");
+            if let Some(q) = NonZeroU32::new(q.into()) {
+                assert_eq!(reciprocal_31(q), exact, "{q}");
+            }
         }
     }
 

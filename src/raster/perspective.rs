@@ -16,10 +16,10 @@
 //! of its 16-bit scale, so `λ` is within about `1/q` of the exact ratio: `3·10⁻⁵` for `ρ = 1`,
 //! `6·10⁻⁴` for `ρ = 20`, plus the 2⁻¹⁵ of its fixed-point reciprocal.
 
-use super::arith::{div_rem_u32, leading_zeros_64};
+use super::arith::{div_rem_u32, leading_zeros_64, reciprocal_31};
 use super::plane::Attributes;
-use crate::arch::NO_LONG_MULTIPLY;
-use core::num::NonZeroU32;
+use crate::arch::{HAS_DIVIDER, NO_LONG_MULTIPLY};
+use core::num::{NonZeroU16, NonZeroU32};
 
 /// Margin added to every vertex value, so that the planes' rounding error (under one unit)
 /// never takes a value below zero, where it would wrap.
@@ -73,13 +73,23 @@ pub(crate) fn attributes(q: [u64; 3]) -> Attributes<3> {
 
 /// The perspective barycentrics `(λ₁, λ₂)` at a pixel from the three planes' values there
 /// (8.24 of the 8-bit scale: the 16-bit value times 2¹⁶): `(bₖ·q) / q`, from one reciprocal
-/// `⌊2³¹ / q⌋` (a division: one instruction where there is a divider).
+/// `⌊2³¹ / q⌋` (a division: one instruction where there is a divider; on ARMv6-M a seed and
+/// Newton steps, [`reciprocal_31`], a tenth of the shift-subtract division's instructions).
 #[inline(always)]
 pub(crate) fn lambdas(values: [u32; 3]) -> (Lambda, Lambda) {
     let whole = |v: u32| (v >> 16).saturating_sub(u32::from(MARGIN));
-    let q = whole(values[0]).max(1);
-    // 2³¹ / q ≤ 2³¹ (q ≥ 1), exact quotient.
-    let r = div_rem_u32(1 << 31, NonZeroU32::MIN.saturating_add(q - 1)).0;
+    // q: the whole part, at least 1 (and below 2¹⁶); r = 2³¹ / q ≤ 2³¹, the exact quotient.
+    let (q, r) = if HAS_DIVIDER {
+        let q = whole(values[0]).max(1);
+        (
+            q,
+            div_rem_u32(1 << 31, NonZeroU32::MIN.saturating_add(q - 1)).0,
+        )
+    } else {
+        // As a 16-bit value (the same q), which the Cortex-M0 code around takes in less flash.
+        let q = NonZeroU16::new(whole(values[0]) as u16).unwrap_or(NonZeroU16::MIN);
+        (u32::from(q.get()), reciprocal_31(q.into()))
+    };
     // p ≤ q (at covered pixels up to the planes' rounding, clamped): p·r ≤ 2³¹.
     let lambda = |v: u32| (whole(v).min(q) * r) >> 15;
     (lambda(values[1]), lambda(values[2]))
