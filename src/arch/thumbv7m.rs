@@ -353,13 +353,17 @@ macro_rules! textured_rows {
     };
 }
 
-/// The depth test and the texel's index and fetch (into r0) of the pixel at r8; `4:` the next.
+/// The depth test and the texel's index and fetch (into r0) of the pixel at r8 (r9 the depth
+/// pointer, r4 the depth, r5/r6 = x/y, r12/lr their masks, r11 the texels); `$skip` the next
+/// pixel. Clobbers r1.
 macro_rules! textured_texel {
-    () => {
+    ($skip:literal) => {
         concat!(
             "ldrh r0, [r9, r8]\n",
             "cmp r0, r4, lsr #16\n",
-            "bls 4f\n",
+            "bls ",
+            $skip,
+            "\n",
             "lsr r0, r4, #16\n",
             "strh r0, [r9, r8]\n",
             "and r0, lr, r6, lsr #16\n",
@@ -370,11 +374,40 @@ macro_rules! textured_texel {
     };
 }
 
+/// The texel (r0) with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for `$f`, stored
+/// at the lit loop's pixel. Clobbers r2, r3.
+macro_rules! scaled_texel {
+    ($f:literal) => {
+        concat!(
+            "mov r3, #32768\n",
+            "and r2, r0, #31\n",
+            "mla r2, r2, ",
+            $f,
+            ", r3\n",
+            "bic r0, r0, #31\n",
+            "orr r0, r0, r2, lsr #16\n",
+            "ubfx r2, r0, #5, #6\n",
+            "mla r2, r2, ",
+            $f,
+            ", r3\n",
+            "lsr r2, r2, #16\n",
+            "bfi r0, r2, #5, #6\n",
+            "lsr r2, r0, #11\n",
+            "mla r2, r2, ",
+            $f,
+            ", r3\n",
+            "lsr r2, r2, #16\n",
+            "bfi r0, r2, #11, #5\n",
+            "strh r0, [r10, r8]\n",
+        )
+    };
+}
+
 /// An unlit pixel: the texel as it is.
 macro_rules! unlit_pixel {
     () => {
         concat!(
-            textured_texel!(),
+            textured_texel!("4f"),
             "strh r0, [r10, r8]\n",
             "4:\n",
             "ldm sp, {{r0-r2}}\n",
@@ -390,24 +423,11 @@ macro_rules! unlit_pixel {
 macro_rules! lit_pixel {
     () => {
         concat!(
-            textured_texel!(),
+            textured_texel!("4f"),
             "lsr r1, r7, #12\n",
             "add r1, r1, r1, lsl #8\n",
             "lsr r1, r1, #12\n",
-            "mov r3, #32768\n",
-            "and r2, r0, #31\n",
-            "mla r2, r2, r1, r3\n",
-            "bic r0, r0, #31\n",
-            "orr r0, r0, r2, lsr #16\n",
-            "ubfx r2, r0, #5, #6\n",
-            "mla r2, r2, r1, r3\n",
-            "lsr r2, r2, #16\n",
-            "bfi r0, r2, #5, #6\n",
-            "lsr r2, r0, #11\n",
-            "mla r2, r2, r1, r3\n",
-            "lsr r2, r2, #16\n",
-            "bfi r0, r2, #11, #5\n",
-            "strh r0, [r10, r8]\n",
+            scaled_texel!("r1"),
             "4:\n",
             "ldm sp, {{r0-r3}}\n",
             "add r4, r0\n",
@@ -473,17 +493,12 @@ pub(crate) fn textured_rows<C: Copy>(
     depths: &mut [u16],
     rows: &TexturedRows<'_>,
 ) -> bool {
-    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
-        return false;
-    }
     let region = &rows.region;
     let Some(stride) = region_stride(colors.len().min(depths.len()), region) else {
         return false;
     };
-    // Every index `row | column` is at most `rows_mask | x_mask`.
-    let last = (rows.rows_mask | rows.x_mask) as usize;
     let shifts = [rows.maps[0].1, rows.maps[1].1, rows.y_shift];
-    if last >= rows.texels.len() || shifts.iter().any(|&s| s > 31) {
+    if !masked_texels::<C>(rows.texels, rows.x_mask, rows.rows_mask, &shifts) {
         return false;
     }
     let [s, m, e] = region.bounds;
@@ -644,53 +659,6 @@ macro_rules! step_over {
             ", ",
             $d,
             ", r3, r10\n",
-        )
-    };
-}
-
-/// The depth test and the texel's index and fetch (into r0) of the lit loop's pixel at r8
-/// (`34:` the next pixel).
-macro_rules! perspective_texel {
-    () => {
-        concat!(
-            "ldrh r0, [r9, r8]\n",
-            "cmp r0, r4, lsr #16\n",
-            "bls 34f\n",
-            "lsr r0, r4, #16\n",
-            "strh r0, [r9, r8]\n",
-            "and r0, r12, r5, lsr #16\n",
-            "and r1, lr, r6, lsr #16\n",
-            "orr r0, r0, r1\n",
-            "ldrh r0, [r11, r0, lsl #1]\n",
-        )
-    };
-}
-
-/// The texel (r0) with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for `$f`, stored
-/// at the lit loop's pixel. Clobbers r2, r3.
-macro_rules! scaled_texel {
-    ($f:literal) => {
-        concat!(
-            "mov r3, #32768\n",
-            "and r2, r0, #31\n",
-            "mla r2, r2, ",
-            $f,
-            ", r3\n",
-            "bic r0, r0, #31\n",
-            "orr r0, r0, r2, lsr #16\n",
-            "ubfx r2, r0, #5, #6\n",
-            "mla r2, r2, ",
-            $f,
-            ", r3\n",
-            "lsr r2, r2, #16\n",
-            "bfi r0, r2, #5, #6\n",
-            "lsr r2, r0, #11\n",
-            "mla r2, r2, ",
-            $f,
-            ", r3\n",
-            "lsr r2, r2, #16\n",
-            "bfi r0, r2, #11, #5\n",
-            "strh r0, [r10, r8]\n",
         )
     };
 }
@@ -880,7 +848,7 @@ core::arch::global_asm!(
     "bhi 36f",
     "ldm r1, {{r11, r12, lr}}",
     "32:",
-    perspective_texel!(),
+    textured_texel!("34f"),
     scaled_texel!("r7"),
     lit_step!(),
     "bne 32b",
@@ -889,7 +857,7 @@ core::arch::global_asm!(
     "36:",
     "ldm r1, {{r11, r12, lr}}",
     "37:",
-    perspective_texel!(),
+    textured_texel!("34f"),
     "bic r1, r7, r7, asr #31",
     "cmp r1, #65536",
     "it hi",
@@ -931,11 +899,7 @@ pub(crate) fn perspective_span<C: Copy>(
     depths: &mut [u16],
     span: &PerspectiveSpan565<'_>,
 ) -> bool {
-    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
-        return false;
-    }
-    let last = (span.rows_mask | span.x_mask) as usize;
-    if last >= span.texels.len() || span.y_shift > 31 {
+    if !masked_texels::<C>(span.texels, span.x_mask, span.rows_mask, &[span.y_shift]) {
         return false;
     }
     let len = colors.len().min(depths.len());
@@ -972,6 +936,16 @@ pub(crate) fn perspective_span<C: Copy>(
     // saves and restores every register the AAPCS asks it to, its stack frame its own.
     unsafe { embedded_raster_perspective_span_v7m(&mut block, lit) };
     true
+}
+
+/// Whether the loops may draw `C` from `texels` with these masks and shifts: `C` a 2-byte colour
+/// (the 5-6-5 raw value the texels are), every index `row | column` (at most `rows_mask |
+/// x_mask`) inside the texels, every shift below 32.
+#[inline(always)]
+fn masked_texels<C>(texels: &[u16], x_mask: u32, rows_mask: u32, shifts: &[u32]) -> bool {
+    let colour = core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2;
+    let last = (rows_mask | x_mask) as usize;
+    colour && last < texels.len() && shifts.iter().all(|&s| s <= 31)
 }
 
 /// The row stride in bytes of a region of `rows` inside buffers of `len` pixels, if it is
