@@ -73,28 +73,41 @@ fn err(line: usize, message: impl Into<String>) -> ObjError {
 
 fn floats(line: usize, words: &[&str], n: usize) -> Result<[f64; 3], ObjError> {
     if words.len() < n {
-        return Err(err(line, format!("expected {n} numbers")));
+        let found = words.len();
+        return Err(err(line, format!("expected {n} numbers, found {found}")));
     }
     let mut v = [0.0; 3];
     for (slot, w) in v.iter_mut().zip(words) {
         *slot = w
             .parse::<f64>()
-            .map_err(|_| err(line, format!("not a number: {w}")))?;
+            .map_err(|_| err(line, format!("expected a number, found `{w}`")))?;
         if !slot.is_finite() {
-            return Err(err(line, format!("not finite: {w}")));
+            return Err(err(line, format!("expected a finite number, found `{w}`")));
         }
     }
     Ok(v)
 }
 
-/// Resolves a 1-based or negative (relative) OBJ index against `count` items.
-fn index(line: usize, word: &str, count: usize) -> Result<usize, ObjError> {
-    let i: i64 = word
-        .parse()
-        .map_err(|_| err(line, format!("bad index: {word}")))?;
+/// Resolves a 1-based or negative (relative) OBJ index against the `count` items of `kind`
+/// (`"v"`, `"vt"` or `"vn"`) read so far.
+fn index(line: usize, word: &str, count: usize, kind: &str) -> Result<usize, ObjError> {
+    let i: i64 = word.parse().map_err(|_| {
+        err(
+            line,
+            format!("expected a `{kind}` index (a non-zero integer), found `{word}`"),
+        )
+    })?;
     let resolved = if i > 0 { i - 1 } else { count as i64 + i };
     if i == 0 || resolved < 0 || resolved >= count as i64 {
-        return Err(err(line, format!("index out of range: {word}")));
+        let before = match count {
+            0 => format!("no `{kind}` line before it"),
+            1 => format!("1 `{kind}` line before it (index 1 or -1)"),
+            n => format!("{n} `{kind}` lines before it (indices 1 to {n} or -1 to -{n})"),
+        };
+        return Err(err(
+            line,
+            format!("`{kind}` index {word} out of range: {before}"),
+        ));
     }
     Ok(resolved as usize)
 }
@@ -156,18 +169,22 @@ pub fn parse_with(src: &str, options: ParseOptions) -> Result<MeshData, ObjError
             "vn" => normals.push(floats(line, rest, 3)?),
             "f" => {
                 if rest.len() < 3 {
-                    return Err(err(line, "a face needs at least 3 vertices"));
+                    let given = rest.len();
+                    return Err(err(
+                        line,
+                        format!("a face needs at least 3 vertices, given {given}"),
+                    ));
                 }
                 let mut corner = Vec::with_capacity(rest.len());
                 for w in rest {
                     let mut parts = w.split('/');
-                    let p = index(line, parts.next().unwrap_or(""), positions.len())?;
-                    let mut optional = |count: usize| match parts.next() {
-                        Some(s) if !s.is_empty() => index(line, s, count).map(Some),
+                    let p = index(line, parts.next().unwrap_or(""), positions.len(), "v")?;
+                    let mut optional = |count: usize, kind: &str| match parts.next() {
+                        Some(s) if !s.is_empty() => index(line, s, count, kind).map(Some),
                         _ => Ok(None),
                     };
-                    let t = optional(texcoords.len())?;
-                    let nrm = optional(normals.len())?;
+                    let t = optional(texcoords.len(), "vt")?;
+                    let nrm = optional(normals.len(), "vn")?;
                     let key = (p, t, nrm);
                     let id = *ref_ids.entry(key).or_insert_with(|| {
                         refs.push(key);
@@ -347,4 +364,44 @@ pub fn to_obj(mesh: &MeshData) -> String {
         s += "\n";
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use std::string::ToString;
+
+    use super::*;
+
+    /// The error's message: the line and what was wrong there (issue #32, item 2).
+    #[test]
+    fn obj_error_message() {
+        let cases = [
+            (
+                "v 0 0 0\nv 1 0 0\nf 1 2 3\n",
+                "line 3: `v` index 3 out of range: 2 `v` lines before it (indices 1 to 2 or -1 to -2)",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n",
+                "line 5: `vt` index 2 out of range: 1 `vt` line before it (index 1 or -1)",
+            ),
+            (
+                "v 0 0 0\nf 1 1 x\n",
+                "line 2: expected a `v` index (a non-zero integer), found `x`",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n",
+                "line 4: `vn` index 1 out of range: no `vn` line before it",
+            ),
+            ("v 0 0\n", "line 1: expected 3 numbers, found 2"),
+            ("# a comment\nv 0 zero 0\n", "line 2: expected a number, found `zero`"),
+            ("v 0 inf 0\n", "line 1: expected a finite number, found `inf`"),
+            (
+                "v 0 0 0\nv 1 0 0\nf 1 2\n",
+                "line 3: a face needs at least 3 vertices, given 2",
+            ),
+        ];
+        for (text, message) in cases {
+            assert_eq!(parse(text).unwrap_err().to_string(), message, "{text:?}");
+        }
+    }
 }
