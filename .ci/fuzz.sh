@@ -2,7 +2,8 @@
 # Fuzz step of CI (called from .ci/run; also runs on its own): installs cargo-fuzz if it is
 # missing, builds the fuzz crate (fuzz/, its own workspace) with debug assertions and overflow
 # checks, and runs every target for FUZZ_SECONDS seconds (default 20) from its corpus in
-# fuzz/corpus/ (empty on a fresh checkout). Any panic, failed check or input slower than 5 s
+# fuzz/corpus/ (empty on a fresh checkout) and its committed seeds in fuzz/seeds/<target>/ (past
+# findings, run first: read, never written). Any panic, failed check or input slower than 5 s
 # fails the step; the crashing input is left in fuzz/artifacts/<target>/.
 #
 # The long campaign (docs/testing.md), per target:
@@ -30,8 +31,12 @@ echo "built in $(($(date +%s) - started)) s"
 mkdir -p ../target
 for target in $(cargo fuzz list); do
     log="../target/fuzz-$target.log"
-    if ! cargo fuzz run -a "$target" -- -max_total_time="$SECONDS_PER_TARGET" -timeout=5 \
-        -print_final_stats=1 >"$log" 2>&1; then
+    # New inputs go to the first corpus directory, so the seeds stay as committed.
+    mkdir -p "corpus/$target"
+    corpora=("corpus/$target")
+    [ -d "seeds/$target" ] && corpora+=("seeds/$target")
+    if ! cargo fuzz run -a "$target" "${corpora[@]}" -- -max_total_time="$SECONDS_PER_TARGET" \
+        -timeout=5 -print_final_stats=1 >"$log" 2>&1; then
         tail -n 60 "$log"
         echo "FAIL: fuzz target $target (full log: target/fuzz-$target.log)" >&2
         exit 1

@@ -54,6 +54,38 @@
 //! The README has a 3D example; [`three_d`] describes the pipeline, [`fixed_point`] how to
 //! build coordinates from floats, pixel indices and embedded-graphics `Point`s.
 //!
+//! # Errors
+//!
+//! Every error type — [`band::BandError`], [`three_d::MeshError`], [`three_d::ScratchTooSmall`],
+//! [`texture::TextureError`], [`raster::TooLarge`], and on the host `three_d::obj`'s and
+//! `texture::convert`'s — implements [`core::fmt::Display`], with a message that says what was
+//! needed and what was given, and [`core::error::Error`] (`std::error::Error`): `?` takes them
+//! into `Box<dyn std::error::Error>` or an error-reporting crate's type.
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use embedded_raster::band::{BandLayout, ColorBands};
+//! use embedded_raster::texture::{Rgb565Texels, Texture};
+//!
+//! fn set_up(texels: &[u16], band: &mut [Rgb565]) -> Result<(), Box<dyn std::error::Error>> {
+//!     let texture = Texture::new(Rgb565Texels(texels), 8, 8)?;
+//!     let layout = BandLayout::new(Size::new(320, 240), 16)?;
+//!     let bands = ColorBands::new(layout, band)?;
+//!     # let _ = (texture, bands);
+//!     Ok(())
+//! }
+//!
+//! let mut band = [Rgb565::BLACK; 320 * 16];
+//! assert!(set_up(&[0; 64], &mut band).is_ok());
+//! let error = set_up(&[0; 60], &mut band).unwrap_err();
+//! assert_eq!(error.to_string(), "the texture's size needs 64 texels, the storage holds 60");
+//! let error = set_up(&[0; 64], &mut band[..320 * 15]).unwrap_err();
+//! assert_eq!(
+//!     error.to_string(),
+//!     "a colour band buffer needs 5120 pixels (width · rows), given 4800"
+//! );
+//! ```
+//!
 //! # Features
 //!
 //! | feature | what it adds |

@@ -89,7 +89,7 @@ fn bench_spot() -> MeshData {
         env!("CARGO_MANIFEST_DIR"),
         "/examples/common/meshes/spot/spot_triangulated.obj"
     );
-    let mut spot = obj::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut spot = obj::read_file(path).unwrap();
     spot.uvs.clear();
     spot.weld();
     spot.scale_to_fit(1.0);
@@ -118,7 +118,7 @@ fn bench_spot_textured() -> MeshData {
         env!("CARGO_MANIFEST_DIR"),
         "/examples/common/meshes/spot/spot_triangulated.obj"
     );
-    let mut spot = obj::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut spot = obj::read_file(path).unwrap();
     spot.weld();
     spot.scale_to_fit(1.0);
     spot
@@ -256,6 +256,162 @@ fn obj_parses_and_round_trips() {
     assert_eq!(e.line, 2);
     assert_eq!(obj::parse("v 0 0 0\nf 1 2 3\n").unwrap_err().line, 2);
     assert_eq!(obj::parse("v 0 0 0\nf 1 1\n").unwrap_err().line, 2);
+}
+
+/// Text without faces is an error about the whole text (line 0), not an empty mesh (issue #32,
+/// item 6): empty, blank, comments only, vertices only, every kind of `v` line without `f`.
+#[test]
+fn obj_without_faces_is_an_error() {
+    let cases = [
+        ("", "0 lines, 0 `v` and 0 `f` lines"),
+        ("\n\n  \n", "3 lines, 0 `v` and 0 `f` lines"),
+        (
+            "# exported by nothing\n# at all",
+            "2 lines, 0 `v` and 0 `f` lines",
+        ),
+        (
+            "o empty\ng group\ns 1\nusemtl m\n",
+            "4 lines, 0 `v` and 0 `f` lines",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n",
+            "3 lines, 3 `v` and 0 `f` lines",
+        ),
+        (
+            "v 0 0 0\nvt 0 0\nvn 0 0 1\n# f 1 1 1\n",
+            "4 lines, 1 `v` and 0 `f` lines",
+        ),
+    ];
+    for (text, counts) in cases {
+        for weld in [true, false] {
+            let e = obj::parse_with(text, obj::ParseOptions { weld }).unwrap_err();
+            assert_eq!(e.line, 0, "{text:?}");
+            assert_eq!(
+                e.to_string(),
+                format!("no faces: a mesh needs at least one `f` line; the text has {counts}"),
+                "{text:?}"
+            );
+        }
+        let read = obj::read(text.as_bytes()).unwrap_err();
+        assert!(
+            matches!(read, obj::ReadError::Obj { path: None, .. }),
+            "{read:?}"
+        );
+    }
+}
+
+/// OBJ text with `n` distinct vertices on `v` lines (a grid in z = 0) and faces naming them in
+/// order, three new ones a face, the last face reaching back for vertices it lacks; each
+/// vertex's `v` line is repeated `repeat` times in a row (positions that weld).
+fn numbered_vertices(n: usize, repeat: usize) -> String {
+    let mut text = String::new();
+    for i in 0..n {
+        for _ in 0..repeat {
+            text += &format!("v {} {} 0\n", i % 300, i / 300);
+        }
+    }
+    let line = |i: usize| i * repeat + 1;
+    let mut i = 0;
+    while i < n {
+        let [a, b, c] = [i, i + 1, i + 2].map(|k| if k < n { k } else { k - 3 });
+        text += &format!("f {} {} {}\n", line(a), line(b), line(c));
+        i += 3;
+    }
+    text
+}
+
+/// More than 65536 distinct vertices: the error names the line of the face that brings the
+/// 65537th (issue #32, item 6; it said line 0), welded or not; at 65536 the mesh is read.
+#[test]
+fn obj_vertex_limit_names_its_line() {
+    // 65538 `v` lines, then faces of three new vertices each: the 65537th is the first corner
+    // of face 21,846 (vertices 65,536 to 65,538, 0-based 65,535..), on line 65,538 + 21,846.
+    let text = numbered_vertices(65538, 1);
+    for weld in [true, false] {
+        let e = obj::parse_with(&text, obj::ParseOptions { weld }).unwrap_err();
+        assert_eq!(e.line, 65538 + 21846, "weld: {weld}");
+        assert_eq!(
+            e.to_string(),
+            "line 87384: more than 65536 distinct vertices (indices are u16): this face's vertex \
+             is the 65537th"
+        );
+    }
+    let mesh = obj::parse(&numbered_vertices(65536, 1)).unwrap();
+    assert_eq!(mesh.vertices.len(), 65536);
+
+    // 40,000 positions on two `v` lines each: 80,000 references weld into 40,000 vertices.
+    assert_eq!(
+        obj::parse(&numbered_vertices(40000, 2))
+            .unwrap()
+            .vertices
+            .len(),
+        40000
+    );
+    // Kept apart, a vertex is a distinct `v/vt/vn` reference: 40,000 positions named plainly,
+    // then again with a texture coordinate, are 80,000 vertices (welded: 40,000, as the missing
+    // texture coordinates are (0, 0) too). The 65,537th is the 25,537th textured reference: the
+    // first corner of the 8,513th textured face, after 40,000 `v` lines, 13,334 plain faces and
+    // a `vt` line.
+    let plain = numbered_vertices(40000, 1);
+    let mut textured = plain.clone() + "vt 0 0\n";
+    for face in plain.lines().filter(|l| l.starts_with("f ")) {
+        let corners: Vec<String> = face[2..].split(' ').map(|i| format!("{i}/1")).collect();
+        textured += &format!("f {}\n", corners.join(" "));
+    }
+    assert_eq!(obj::parse(&textured).unwrap().vertices.len(), 40000);
+    let e = obj::parse_with(&textured, obj::ParseOptions { weld: false }).unwrap_err();
+    assert_eq!(e.line, 40000 + 13334 + 1 + 8513);
+}
+
+/// Reading from any `Read` and from a file (issue #32, item 6): the meshes `parse` gives; the
+/// file's errors carry its path.
+#[test]
+fn obj_reads_readers_and_files() {
+    let tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    let want = obj::parse(tet).unwrap();
+    assert_eq!(obj::read(tet.as_bytes()).unwrap(), want);
+    assert_eq!(obj::read(std::io::Cursor::new(tet)).unwrap(), want);
+    let apart = obj::ParseOptions { weld: false };
+    assert_eq!(
+        obj::read_with(tet.as_bytes(), apart).unwrap(),
+        obj::parse_with(tet, apart).unwrap()
+    );
+    // Bytes that are not UTF-8 in a comment.
+    let mut latin1 = b"# cr\xe9\xe9 par nobody\n".to_vec();
+    latin1.extend_from_slice(tet.as_bytes());
+    assert_eq!(obj::read(&latin1[..]).unwrap(), want);
+
+    let dir = std::env::temp_dir().join(format!("embedded-raster-obj-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("tet.obj");
+    std::fs::write(&file, tet).unwrap();
+    assert_eq!(obj::read_file(&file).unwrap(), want);
+
+    let bad = dir.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nf 1 2 3\n").unwrap();
+    let e = obj::read_file(&bad).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "{}: line 2: `v` index 2 out of range: 1 `v` line before it (index 1 or -1)",
+            bad.display()
+        )
+    );
+    assert!(matches!(&e, obj::ReadError::Obj { error, .. } if error.line == 2));
+
+    let missing = dir.join("missing.obj");
+    let e = obj::read_file(&missing).unwrap_err();
+    let obj::ReadError::Io { path, error } = &e else {
+        panic!("{e:?}");
+    };
+    assert_eq!(path.as_deref(), Some(missing.as_path()));
+    assert_eq!(error.kind(), std::io::ErrorKind::NotFound);
+    assert!(
+        e.to_string()
+            .starts_with(&format!("cannot read the OBJ file {}: ", missing.display())),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 fn check_normals_agree(m: &MeshData) {

@@ -1,6 +1,7 @@
-//! `three_d::obj::parse` on arbitrary text: no panic; a mesh it returns is consistent (one
-//! normal per vertex, every index in range) and survives `to_obj` → `parse` unchanged; it is
-//! then drawn by the pipeline (unit cube camera) without panic.
+//! `three_d::obj::parse` on arbitrary text: no panic; a mesh it returns is consistent (at least
+//! one face, one normal per vertex, every index in range) and survives `to_obj` → `parse`
+//! unchanged; it is then drawn by the pipeline (unit cube camera) without panic. `obj::read` of
+//! the same bytes gives the same result.
 #![no_main]
 
 use embedded_graphics::pixelcolor::Gray8;
@@ -10,9 +11,16 @@ use embedded_raster::three_d::{obj, DepthTarget, Light, Mat4, Material, Pipeline
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|text: &str| {
-    let Ok(mesh) = obj::parse(text) else {
+    let parsed = obj::parse(text);
+    match (obj::read(text.as_bytes()), &parsed) {
+        (Ok(read), Ok(parsed)) => assert_eq!(&read, parsed, "read and parse differ"),
+        (Err(obj::ReadError::Obj { error, .. }), Err(parsed)) => assert_eq!(&error, parsed),
+        (read, parsed) => panic!("read: {read:?}, parse: {parsed:?}"),
+    }
+    let Ok(mesh) = parsed else {
         return;
     };
+    assert!(!mesh.indices.is_empty(), "a mesh without faces");
     assert_eq!(
         mesh.normals.len(),
         mesh.vertices.len(),

@@ -251,6 +251,67 @@ impl DrawTarget for Recorder {
     }
 }
 
+/// A `DrawTarget` with any bounding box (of any size: it writes nothing) whose `fail_at`-th call
+/// (1-based) returns an error, the call's number: panics on any call after that one (a draw
+/// must stop at its target's first error) and counts the calls.
+pub struct Failing {
+    pub bounds: Rectangle,
+    pub fail_at: usize,
+    pub calls: usize,
+}
+
+impl Failing {
+    /// A target over `bounds` that fails its `fail_at`-th call.
+    pub fn new(bounds: Rectangle, fail_at: usize) -> Self {
+        Failing {
+            bounds,
+            fail_at,
+            calls: 0,
+        }
+    }
+
+    fn call(&mut self) -> Result<(), usize> {
+        assert!(
+            self.calls < self.fail_at,
+            "called again after the target's error (call {})",
+            self.fail_at
+        );
+        self.calls += 1;
+        if self.calls == self.fail_at {
+            Err(self.calls)
+        } else {
+            Ok(())
+        }
+    }
+}
+
+impl Dimensions for Failing {
+    fn bounding_box(&self) -> Rectangle {
+        self.bounds
+    }
+}
+
+impl DrawTarget for Failing {
+    type Color = Rgb888;
+    type Error = usize;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(&mut self, _: I) -> Result<(), usize> {
+        self.call()
+    }
+
+    fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(
+        &mut self,
+        _: &Rectangle,
+        _: I,
+    ) -> Result<(), usize> {
+        self.call()
+    }
+
+    fn fill_solid(&mut self, _: &Rectangle, _: Rgb888) -> Result<(), usize> {
+        self.call()
+    }
+}
+
 /// The pixels of `bounds` whose centres the triangle `v` (raw sub-pixel coordinates) covers,
 /// by the reference's exact rule.
 pub fn reference_coverage(v: [(i32, i32); 3], bounds: &Rectangle) -> Vec<(i32, i32)> {

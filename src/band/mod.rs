@@ -223,30 +223,126 @@ impl From<ScratchTooSmall> for BandError {
 impl core::fmt::Display for BandError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            BandError::ZeroRows => write!(f, "a band of zero rows"),
-            BandError::FrameTooLarge => write!(f, "the frame or a band buffer is too large"),
-            BandError::NoSuchBand { index, count } => {
-                write!(f, "band {index} of a layout of {count} bands")
-            }
-            BandError::ColorBuffer { needed, given } => {
-                write!(f, "a colour band buffer of {given} pixels, not {needed}")
-            }
-            BandError::DepthBuffer { needed, given } => {
-                write!(f, "a depth band buffer of {given} entries, not {needed}")
-            }
-            BandError::BinTooSmall { needed, given } => {
-                write!(f, "a bin of {given} entries; the frame needs {needed}")
-            }
-            BandError::BinLimit => write!(f, "more triangles or bands than a bin numbers"),
-            BandError::Scratch(e) => write!(
+            BandError::ZeroRows => write!(f, "a band of 0 rows: a band needs at least 1 row"),
+            BandError::FrameTooLarge => write!(
                 f,
-                "a vertex scratch of {} entries; the mesh needs {}",
-                e.given, e.needed
+                "a frame side or band height beyond i32::MAX pixels, or a band buffer \
+                 (width · rows) beyond usize::MAX entries"
             ),
-            BandError::OtherLayout => write!(f, "a band of another layout than the bin's"),
+            BandError::NoSuchBand { index, count } => write!(
+                f,
+                "band {index} asked for, but the layout has {count} bands (indices below {count})"
+            ),
+            BandError::ColorBuffer { needed, given } => write!(
+                f,
+                "a colour band buffer needs {needed} pixels (width · rows), given {given}"
+            ),
+            BandError::DepthBuffer { needed, given } => write!(
+                f,
+                "a depth band buffer needs {needed} entries (width · rows), given {given}"
+            ),
+            BandError::BinTooSmall { needed, given } => write!(
+                f,
+                "a bin needs {needed} entries (one per band and per triangle kept), given {given}"
+            ),
+            BandError::BinLimit => write!(
+                f,
+                "a bin numbers at most 2^31 triangles and 32768 bands, given more"
+            ),
+            BandError::Scratch(e) => e.fmt(f),
+            BandError::OtherLayout => write!(
+                f,
+                "a band of another layout (frame size or band height) than the bin's"
+            ),
         }
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for BandError {}
+impl core::error::Error for BandError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            BandError::Scratch(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::string::ToString;
+
+    use super::*;
+
+    /// Each error's message: what was needed and what was given (issue #32, item 2).
+    #[test]
+    fn messages() {
+        let cases = [
+            (
+                BandError::ZeroRows,
+                "a band of 0 rows: a band needs at least 1 row",
+            ),
+            (
+                BandError::FrameTooLarge,
+                "a frame side or band height beyond i32::MAX pixels, or a band buffer \
+                 (width · rows) beyond usize::MAX entries",
+            ),
+            (
+                BandError::NoSuchBand {
+                    index: 15,
+                    count: 15,
+                },
+                "band 15 asked for, but the layout has 15 bands (indices below 15)",
+            ),
+            (
+                BandError::ColorBuffer {
+                    needed: 5120,
+                    given: 5119,
+                },
+                "a colour band buffer needs 5120 pixels (width · rows), given 5119",
+            ),
+            (
+                BandError::DepthBuffer {
+                    needed: 5120,
+                    given: 0,
+                },
+                "a depth band buffer needs 5120 entries (width · rows), given 0",
+            ),
+            (
+                BandError::BinTooSmall {
+                    needed: 300,
+                    given: 20,
+                },
+                "a bin needs 300 entries (one per band and per triangle kept), given 20",
+            ),
+            (
+                BandError::BinLimit,
+                "a bin numbers at most 2^31 triangles and 32768 bands, given more",
+            ),
+            (
+                BandError::Scratch(ScratchTooSmall {
+                    needed: 42,
+                    given: 12,
+                }),
+                "a vertex scratch needs 42 entries (one per vertex of the mesh), given 12",
+            ),
+            (
+                BandError::OtherLayout,
+                "a band of another layout (frame size or band height) than the bin's",
+            ),
+        ];
+        for (error, message) in cases {
+            assert_eq!(error.to_string(), message);
+        }
+        // The scratch's error is the source of the band error that wraps it.
+        let scratch = ScratchTooSmall {
+            needed: 42,
+            given: 12,
+        };
+        let wrapped = BandError::Scratch(scratch);
+        let source = core::error::Error::source(&wrapped);
+        assert_eq!(source.map(|e| e.to_string()), Some(scratch.to_string()));
+        assert!(core::error::Error::source(&BandError::ZeroRows).is_none());
+    }
+}

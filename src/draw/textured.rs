@@ -285,7 +285,8 @@ where
 }
 
 /// The span shader of [`TexturedTriangle`]'s [`Drawable::draw`]: one `fill_contiguous` a run
-/// of at most [`RUN`] pixels. After an error the remaining spans are skipped, not drawn.
+/// of at most [`RUN`] pixels. After an error it has [stopped](SpanShader::stopped): the walk
+/// ends there.
 struct ToTarget<'d, 't, D: DrawTarget, S> {
     target: &'d mut D,
     texels: Texels<'t, S>,
@@ -323,6 +324,11 @@ where
             offset += len;
         }
     }
+
+    #[inline(always)]
+    fn stopped(&self) -> bool {
+        self.result.is_err()
+    }
 }
 
 /// One `fill_contiguous` of a run's sampled texels.
@@ -347,5 +353,73 @@ impl<D: DrawTarget> SampledLoop<D::Color> for Contiguous<'_, D> {
             color
         });
         self.target.fill_contiguous(&self.area, colors)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::Pixel;
+
+    use super::*;
+    use crate::raster::Counting;
+    use crate::texture::Rgb565Texels;
+
+    /// A target over 10⁹ pixels a side that fails every call, counting them.
+    struct Failing {
+        calls: u32,
+    }
+
+    impl Dimensions for Failing {
+        fn bounding_box(&self) -> Rectangle {
+            Rectangle::new(
+                Point::new(-600_000_000, -700_000_000),
+                Size::new(1_200_000_000, 1_400_000_000),
+            )
+        }
+    }
+
+    impl DrawTarget for Failing {
+        type Color = Rgb565;
+        type Error = u32;
+
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, _: I) -> Result<(), u32> {
+            self.calls += 1;
+            Err(self.calls)
+        }
+    }
+
+    /// After the target's first error `draw`'s shader has stopped and the walk hands it no
+    /// further span (issue #32, item 11): a triangle across the whole `Coord` range (its first
+    /// span alone is 4,096 runs) and a small one; the spans counted as the walk hands them over.
+    #[test]
+    fn a_failed_draw_walks_no_further() {
+        const FAR: i32 = (1 << 23) - 1;
+        static TEXELS: [u16; 4] = [0xf800, 0x07e0, 0x001f, 0xffff];
+        let texture = Texture::new(Rgb565Texels(&TEXELS), 2, 2).unwrap();
+        let v = |x: i32, y: i32| {
+            let (x, y) = (x as f32, y as f32);
+            TexturedVertex::new(x, y, x / 1000.0, y / 1000.0)
+        };
+        for vertices in [
+            [v(-FAR, -FAR), v(FAR, -FAR), v(0, FAR)],
+            [v(1, 1), v(60, 5), v(10, 50)],
+        ] {
+            let triangle: TexturedTriangle<'_, _, Rgb565> =
+                TexturedTriangle::new(vertices, &texture);
+            let mut target = Failing { calls: 0 };
+            let clip = target.bounding_box();
+            let (texels, attributes) = Texels::new(&texture, &vertices);
+            let shader = ToTarget {
+                target: &mut target,
+                texels,
+                result: Ok(()),
+            };
+            let mut counting = Counting::new(shader);
+            shade(triangle.positions(), &attributes, &clip, &mut counting);
+            assert_eq!(counting.shader.result, Err(1));
+            assert_eq!(counting.handed, 1);
+            assert_eq!(target.calls, 1);
+        }
     }
 }

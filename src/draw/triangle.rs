@@ -274,7 +274,7 @@ impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
 }
 
 /// The span shader of [`GouraudTriangle`]'s [`Drawable::draw`]: one `fill_contiguous` a span.
-/// After an error the remaining spans are skipped, not drawn.
+/// After an error it has [stopped](SpanShader::stopped): the walk ends there.
 struct ToTarget<'t, D: DrawTarget> {
     target: &'t mut D,
     result: Result<(), D::Error>,
@@ -295,6 +295,11 @@ impl<C: GouraudColor, D: DrawTarget<Color = C>> SpanShader<3> for ToTarget<'_, D
             let colors = SpanColors::<C>::new(start, steps, span.len());
             self.result = self.target.fill_contiguous(&area, colors);
         }
+    }
+
+    #[inline(always)]
+    fn stopped(&self) -> bool {
+        self.result.is_err()
     }
 }
 
@@ -459,7 +464,7 @@ impl<C: PixelColor> SpanShader<0> for SolidIntoSlice<'_, '_, C> {
 }
 
 /// The span shader of [`SolidTriangle`]'s [`Drawable::draw`]: one `fill_solid` a span. After an
-/// error the remaining spans are skipped, not drawn.
+/// error it has [stopped](SpanShader::stopped): the walk ends there.
 struct SolidToTarget<'t, D: DrawTarget> {
     target: &'t mut D,
     color: D::Color,
@@ -478,6 +483,11 @@ impl<D: DrawTarget> SpanShader<0> for SolidToTarget<'_, D> {
             let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
             self.result = self.target.fill_solid(&area, self.color);
         }
+    }
+
+    #[inline(always)]
+    fn stopped(&self) -> bool {
+        self.result.is_err()
     }
 }
 
@@ -714,6 +724,7 @@ impl<C: GouraudColor> SpanColors<C> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::Counting;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_graphics::Pixel;
 
@@ -721,11 +732,24 @@ mod tests {
     struct Failing {
         spans: u32,
         fail_at: u32,
+        area: Rectangle,
     }
 
-    impl OriginDimensions for Failing {
-        fn size(&self) -> Size {
-            Size::new(64, 64)
+    impl Failing {
+        /// 64 × 64 pixels.
+        fn new(fail_at: u32) -> Self {
+            let area = Rectangle::new(Point::zero(), Size::new(64, 64));
+            Failing {
+                spans: 0,
+                fail_at,
+                area,
+            }
+        }
+    }
+
+    impl Dimensions for Failing {
+        fn bounding_box(&self) -> Rectangle {
+            self.area
         }
     }
 
@@ -753,19 +777,76 @@ mod tests {
         let gouraud = GouraudTriangle::new(
             [0, 1, 2].map(|k| Vertex::new(points[k].0, points[k].1, colors[k])),
         );
-        let mut all = Failing {
-            spans: 0,
-            fail_at: 0,
-        };
+        let mut all = Failing::new(0);
         solid.draw(&mut all).unwrap();
         assert!(all.spans > 40);
         for fail_at in [1, 7, all.spans] {
-            let mut target = Failing { spans: 0, fail_at };
+            let mut target = Failing::new(fail_at);
             assert_eq!(solid.draw(&mut target), Err(fail_at));
             assert_eq!(target.spans, fail_at);
-            let mut target = Failing { spans: 0, fail_at };
+            let mut target = Failing::new(fail_at);
             assert_eq!(gouraud.draw(&mut target), Err(fail_at));
             assert_eq!(target.spans, fail_at);
+        }
+    }
+
+    /// After the target's first error `draw`'s shaders have stopped, and the walk hands them no
+    /// further span: into a target over 10⁹ pixels a side that fails its first call, with
+    /// triangles across the whole `Coord` range (exact planes; the Gouraud walk went on through
+    /// billions of chunks for 10 s and more, issue #32 item 11) and a small one. The spans are
+    /// counted as the walk hands them over (`tests/draw_errors.rs` has the user's view).
+    #[test]
+    fn a_failed_draw_walks_no_further() {
+        const FAR: i32 = (1 << 23) - 1;
+        let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));
+        let huge = Rectangle::new(
+            Point::new(-600_000_000, -700_000_000),
+            Size::new(1_200_000_000, 1_400_000_000),
+        );
+        let triangles = [
+            [c(-FAR, -FAR), c(FAR, -FAR), c(0, FAR)],
+            [c(-FAR, -FAR), c(FAR, -FAR / 2), c(-FAR / 3, FAR)],
+            [c(1, 1), c(60, 5), c(10, 50)],
+        ];
+        let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
+        for points in triangles {
+            let mut target = Failing {
+                area: huge,
+                ..Failing::new(1)
+            };
+            let shader = SolidToTarget {
+                target: &mut target,
+                color: Rgb565::RED,
+                result: Ok(()),
+            };
+            let mut counting = Counting::new(shader);
+            let attributes = Attributes::channels([[]; 3]);
+            shade(points, &attributes, &huge, &mut counting);
+            assert_eq!(counting.shader.result, Err(1), "solid {points:?}");
+            assert_eq!(counting.handed, 1, "solid {points:?}");
+            assert_eq!(target.spans, 1);
+
+            let gouraud = GouraudTriangle::new(
+                [0, 1, 2].map(|k| Vertex::new(points[k].0, points[k].1, colors[k])),
+            );
+            let mut target = Failing {
+                area: huge,
+                ..Failing::new(1)
+            };
+            let shader = ToTarget {
+                target: &mut target,
+                result: Ok(()),
+            };
+            let mut counting = Counting::new(shader);
+            shade(
+                gouraud.positions(),
+                &gouraud.channels(),
+                &huge,
+                &mut counting,
+            );
+            assert_eq!(counting.shader.result, Err(1), "Gouraud {points:?}");
+            assert_eq!(counting.handed, 1, "Gouraud {points:?}");
+            assert_eq!(target.spans, 1);
         }
     }
 }

@@ -287,6 +287,11 @@ impl<S: SpanShader<N>, const N: usize> SpanShader<N> for Local<S> {
     }
 
     #[inline(always)]
+    fn stopped(&self) -> bool {
+        self.shader.stopped()
+    }
+
+    #[inline(always)]
     fn scans_small(&self) -> bool {
         self.shader.scans_small()
     }

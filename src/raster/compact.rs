@@ -53,6 +53,18 @@ pub const LIMIT: i64 = 1 << 19;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TooLarge;
 
+impl core::fmt::Display for TooLarge {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "the compact path takes triangles under 2048 × 2048 pixels, given one 2048 pixels \
+             or more wide or tall (nothing drawn; `draw_into` takes any size)"
+        )
+    }
+}
+
+impl core::error::Error for TooLarge {}
+
 /// `(⌊n / d⌋, n mod d)` for `d > 0`, in 32 bits.
 #[inline]
 fn div_floor(n: i32, d: NonZeroU32) -> (i32, u32) {
@@ -323,9 +335,24 @@ impl CompactTriangle {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
+
+    use std::string::ToString;
+
     use embedded_graphics::prelude::*;
 
     use super::*;
+
+    /// The error's message: what the compact path takes and what it was given (issue #32,
+    /// item 2).
+    #[test]
+    fn too_large_message() {
+        assert_eq!(
+            TooLarge.to_string(),
+            "the compact path takes triangles under 2048 × 2048 pixels, given one 2048 pixels \
+             or more wide or tall (nothing drawn; `draw_into` takes any size)"
+        );
+    }
     use crate::raster::edge::TriangleSetup;
     use crate::raster::plane::exact::check_channel_planes;
     use crate::raster::plane::{Attributes, Planes};

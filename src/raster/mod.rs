@@ -41,5 +41,7 @@ pub(crate) mod walk;
 
 pub use compact::{TooLarge, LIMIT as COMPACT_LIMIT};
 pub use plane::{MAX_CHUNK, STEP_BITS};
+#[cfg(test)]
+pub(crate) use shade::Counting;
 pub(crate) use shade::{shade, shade_compact, SpanShader};
 pub use walk::{for_each_span, Span, Spans};

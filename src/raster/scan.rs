@@ -189,6 +189,9 @@ impl<const N: usize> SmallTriangle<N> {
                     values[k] = values[k].wrapping_add(dx[k].wrapping_mul(start));
                 }
                 shader.span(&steps, span, values);
+                if shader.stopped() {
+                    return;
+                }
             }
             for k in 0..N {
                 row_values[k] = row_values[k].wrapping_add(dy[k]);

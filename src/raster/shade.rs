@@ -7,6 +7,8 @@
 //! attributes at the span's first pixel. The drawables of `draw` are span shaders: a solid fill,
 //! the colour format's span loop into a slice, or `fill_contiguous` of any `DrawTarget`.
 
+use core::ops::ControlFlow;
+
 use embedded_graphics::primitives::Rectangle;
 
 use super::band::Band;
@@ -35,6 +37,15 @@ pub(crate) trait SpanShader<const N: usize> {
 
     /// One covered span; `start` holds the attributes at its first pixel.
     fn span(&mut self, steps: &Self::Steps, span: Span, start: [u32; N]);
+
+    /// Whether the shader takes no more spans (a `DrawTarget` returned an error): asked after
+    /// each span of the walk, the scan and the exact planes' chunks, and the triangle then ends
+    /// there, however many rows it has left. `false` (the default) for shaders that take every
+    /// span: the check then compiles to nothing where the shader is known.
+    #[inline(always)]
+    fn stopped(&self) -> bool {
+        false
+    }
 
     /// Whether triangles under [`SMALL`](super::scan::SMALL) pixels are scanned row by row
     /// instead of walked (the same spans, no divisions; see [`scan`](super::scan)). `false` (the
@@ -76,6 +87,40 @@ pub(crate) trait SpanShader<const N: usize> {
         _first: u32,
         _start: [u32; N],
     ) {
+    }
+}
+
+/// A [`SpanShader`] as the walks call it: a span and whether the walk goes on after it
+/// ([`SpanShader::stopped`]) in one call, which is also one call where the shader is behind a
+/// vtable (the Cortex-M0's walk, the general set-up's): for shaders that never stop, the answer
+/// is a constant inside it.
+pub(crate) trait SpanSink<const N: usize> {
+    /// The shader's [`Steps`](SpanShader::Steps).
+    type Steps;
+
+    /// [`SpanShader::prepare`].
+    fn begin(&mut self, step: [u32; N]) -> Self::Steps;
+
+    /// [`SpanShader::span`], then `Break` if the shader has stopped.
+    fn take(&mut self, steps: &Self::Steps, span: Span, start: [u32; N]) -> ControlFlow<()>;
+}
+
+impl<S: SpanShader<N>, const N: usize> SpanSink<N> for S {
+    type Steps = S::Steps;
+
+    #[inline(always)]
+    fn begin(&mut self, step: [u32; N]) -> S::Steps {
+        self.prepare(step)
+    }
+
+    #[inline(always)]
+    fn take(&mut self, steps: &S::Steps, span: Span, start: [u32; N]) -> ControlFlow<()> {
+        self.span(steps, span, start);
+        if self.stopped() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
     }
 }
 
@@ -147,7 +192,7 @@ fn shade_dyn<T, const N: usize>(
     v: [(Coord, Coord); 3],
     attributes: &Attributes<N>,
     clip: &Rectangle,
-    shader: &mut dyn SpanShader<N, Steps = T>,
+    shader: &mut dyn SpanSink<N, Steps = T>,
 ) {
     let exact;
     let (walk, planes) = match CompactTriangle::classify(v, clip).walk() {
@@ -210,28 +255,28 @@ fn shade_compact_triangle<const N: usize, S: SpanShader<N>>(
 /// Prepares `shader` for the planes' steps and hands it the spans of `walk` with the stepped
 /// planes' values at their first pixels.
 #[inline(always)]
-pub(super) fn fold_planes<const N: usize, S: SpanShader<N> + ?Sized>(
+pub(super) fn fold_planes<const N: usize, S: SpanSink<N> + ?Sized>(
     walk: Walk,
     planes: &Planes<N>,
     shader: &mut S,
 ) {
-    let steps = shader.prepare(planes.step());
+    let steps = shader.begin(planes.step());
     // The closures are inlined: each has a call site for every walk of this width, and LLVM
     // would rather call it than copy it, at a call's cost every span. Steps without data (solid
     // fills) are moved in: a reference to them would still be a pointer kept live across the
     // walk. Others stay in this frame and go by reference: the span loops read them from memory.
     if core::mem::size_of_val(&steps) == 0 {
-        walk.fold(
+        let _ = walk.try_fold(
             (),
             #[inline(always)]
-            move |(), span, column, row| shader.span(&steps, span, planes.at(column, row)),
+            move |(), span, column, row| shader.take(&steps, span, planes.at(column, row)),
         );
     } else {
         let steps = &steps;
-        walk.fold(
+        let _ = walk.try_fold(
             (),
             #[inline(always)]
-            move |(), span, column, row| shader.span(steps, span, planes.at(column, row)),
+            move |(), span, column, row| shader.take(steps, span, planes.at(column, row)),
         );
     }
 }
@@ -252,7 +297,7 @@ pub(super) fn shade_general<T, const N: usize>(
     attributes: &Attributes<N>,
     region: &Region,
     band: Option<Band>,
-    shader: &mut dyn SpanShader<N, Steps = T>,
+    shader: &mut dyn SpanSink<N, Steps = T>,
 ) {
     if let Some((walk, exact)) = general_set_up(v, attributes, region, band) {
         fold_general(walk, &GeneralPlanes::new(&exact, region), shader);
@@ -292,25 +337,25 @@ fn general_set_up<const N: usize>(
 fn fold_general<T, const N: usize>(
     walk: Walk,
     planes: &GeneralPlanes<N>,
-    shader: &mut dyn SpanShader<N, Steps = T>,
+    shader: &mut dyn SpanSink<N, Steps = T>,
 ) {
     if CORTEX_M {
-        let steps = shader.prepare(match planes {
+        let steps = shader.begin(match planes {
             GeneralPlanes::Stepped(p) => p.step(),
             GeneralPlanes::Exact(p) => p.step(),
         });
         let steps = &steps;
-        walk.fold((), |(), span, column, row| match planes {
-            GeneralPlanes::Stepped(p) => shader.span(steps, span, p.at(column, row)),
+        let _ = walk.try_fold((), |(), span, column, row| match planes {
+            GeneralPlanes::Stepped(p) => shader.take(steps, span, p.at(column, row)),
             GeneralPlanes::Exact(p) => shade_exact(p, steps, span, shader),
         });
     } else {
         match planes {
             GeneralPlanes::Stepped(p) => fold_planes(walk, p, shader),
             GeneralPlanes::Exact(p) => {
-                let steps = shader.prepare(p.step());
+                let steps = shader.begin(p.step());
                 let steps = &steps;
-                walk.fold((), |(), span, _, _| shade_exact(p, steps, span, shader));
+                let _ = walk.try_fold((), |(), span, _, _| shade_exact(p, steps, span, shader));
             }
         }
     }
@@ -318,15 +363,15 @@ fn fold_general<T, const N: usize>(
 
 /// A span of exact planes (regions over 2¹⁶ pixels across): in chunks of at most
 /// [`MAX_CHUNK`] pixels, every chunk started from the exact value, so the per-pixel steps add at
-/// most 2⁻¹³ LSB.
+/// most 2⁻¹³ LSB. `Break` once the shader has stopped, the rest of the span not handed over.
 #[cold]
 #[inline(never)]
 fn shade_exact<T, const N: usize>(
     planes: &ExactPlanes<N>,
     steps: &T,
     span: Span,
-    shader: &mut dyn SpanShader<N, Steps = T>,
-) {
+    shader: &mut dyn SpanSink<N, Steps = T>,
+) -> ControlFlow<()> {
     let mut offset = 0;
     while offset < span.len() {
         let len = (span.len() - offset).min(MAX_CHUNK);
@@ -337,7 +382,140 @@ fn shade_exact<T, const N: usize>(
             x_start,
             x_end: x_start.wrapping_add(len as i32),
         };
-        shader.span(steps, chunk, planes.at(x_start, span.y));
+        shader.take(steps, chunk, planes.at(x_start, span.y))?;
         offset += len;
+    }
+    ControlFlow::Continue(())
+}
+
+/// A shader as the walk sees it, counting the spans it is handed (the drawables' tests: after a
+/// target's error, none). The walk is cut after [`CAP`](Counting::CAP) spans whether `shader`
+/// stops or not: a shader that does not stop is then seen to take them, in no time.
+#[cfg(test)]
+pub(crate) struct Counting<S> {
+    pub(crate) shader: S,
+    pub(crate) handed: u32,
+}
+
+#[cfg(test)]
+impl<S> Counting<S> {
+    /// Spans after which the walk is cut.
+    pub(crate) const CAP: u32 = 10;
+
+    pub(crate) fn new(shader: S) -> Self {
+        Counting { shader, handed: 0 }
+    }
+}
+
+#[cfg(test)]
+impl<S: SpanShader<N>, const N: usize> SpanShader<N> for Counting<S> {
+    type Steps = S::Steps;
+
+    fn prepare(&mut self, step: [u32; N]) -> S::Steps {
+        self.shader.prepare(step)
+    }
+
+    fn span(&mut self, steps: &S::Steps, span: Span, start: [u32; N]) {
+        self.handed += 1;
+        self.shader.span(steps, span, start);
+    }
+
+    fn scans_small(&self) -> bool {
+        self.shader.scans_small()
+    }
+
+    fn stopped(&self) -> bool {
+        self.shader.stopped() || self.handed >= Self::CAP
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::prelude::{Point, Size};
+
+    use super::*;
+
+    /// A shader that has [stopped](SpanShader::stopped) once it has taken `limit` spans, and
+    /// counts every span it is handed.
+    struct Stopping {
+        limit: u32,
+        handed: u32,
+        scans: bool,
+    }
+
+    impl SpanShader<1> for Stopping {
+        type Steps = ();
+
+        fn prepare(&mut self, _: [u32; 1]) {}
+
+        fn span(&mut self, _: &(), _: Span, _: [u32; 1]) {
+            self.handed += 1;
+        }
+
+        fn scans_small(&self) -> bool {
+            self.scans
+        }
+
+        fn stopped(&self) -> bool {
+            self.handed >= self.limit
+        }
+    }
+
+    /// Spans handed to a shader that stops after `limit`.
+    fn handed(v: [(i32, i32); 3], clip: &Rectangle, limit: u32, scans: bool) -> u32 {
+        let v = v.map(|(x, y)| (Coord::from_num(x), Coord::from_num(y)));
+        let attributes = Attributes::channels([[0], [128], [255]]);
+        let mut shader = Stopping {
+            limit,
+            handed: 0,
+            scans,
+        };
+        shade(v, &attributes, clip, &mut shader);
+        shader.handed
+    }
+
+    /// 2²³ − 1 pixels: the ends of the `Coord` range.
+    const FAR: i32 = (1 << 23) - 1;
+
+    /// Once the shader has stopped, the walk hands it nothing more: small (scanned) triangles,
+    /// compact ones, general ones with stepped planes and with exact ones (spans cut into
+    /// chunks), into a clip of a few hundred pixels and one of over 10⁹ pixels a side — where
+    /// the whole walk would hand out billions of chunks (issue #32, item 11).
+    #[test]
+    fn a_stopped_shader_ends_the_walk() {
+        let screen = Rectangle::new(Point::new(-20, -10), Size::new(640, 480));
+        let huge = Rectangle::new(
+            Point::new(-600_000_000, -700_000_000),
+            Size::new(1_200_000_000, 1_400_000_000),
+        );
+        let triangles = [
+            // Small: scanned where the shader asks for it.
+            [(2, 1), (11, 4), (5, 12)],
+            // Compact.
+            [(3, 2), (400, 50), (90, 350)],
+            // General, stepped planes.
+            [(-3_000, -2_000), (3_000, -1_000), (0, 2_500)],
+            // General, exact planes over the huge clip (a region over 2¹⁶ pixels across); the
+            // second with a flat top, its first span cut into 4,096 chunks.
+            [(-FAR, -FAR), (FAR, -FAR / 2), (-FAR / 3, FAR)],
+            [(-FAR, -FAR), (FAR, -FAR), (0, FAR)],
+        ];
+        for (k, v) in triangles.into_iter().enumerate() {
+            for clip in [screen, huge] {
+                for scans in [false, true] {
+                    if k < 3 {
+                        // Without stopping: more spans than are taken below.
+                        assert!(handed(v, &clip, u32::MAX, scans) > 3, "{v:?}");
+                    }
+                    for limit in [1, 2, 3] {
+                        assert_eq!(
+                            handed(v, &clip, limit, scans),
+                            limit,
+                            "{v:?} in {clip:?}, scanned: {scans}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

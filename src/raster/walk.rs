@@ -32,7 +32,9 @@
 //! assert_eq!(pixels, 16);
 //! ```
 
+use core::convert::Infallible;
 use core::num::NonZeroU64;
+use core::ops::ControlFlow;
 
 use embedded_graphics::primitives::Rectangle;
 
@@ -293,6 +295,26 @@ impl Walk {
     /// span and its offsets from the region's first pixel: columns and rows.
     #[inline(always)]
     pub(crate) fn fold<B>(self, init: B, mut f: impl FnMut(B, Span, u32, u32) -> B) -> B {
+        let folded = self.try_fold(
+            init,
+            #[inline(always)]
+            |acc, span, column, row| {
+                ControlFlow::<Infallible, B>::Continue(f(acc, span, column, row))
+            },
+        );
+        match folded {
+            ControlFlow::Continue(acc) => acc,
+            ControlFlow::Break(never) => match never {},
+        }
+    }
+
+    /// [`fold`](Self::fold) that ends at the first `Break` of `f`, the rows after it not walked.
+    #[inline(always)]
+    pub(crate) fn try_fold<B, R>(
+        self,
+        init: B,
+        mut f: impl FnMut(B, Span, u32, u32) -> ControlFlow<R, B>,
+    ) -> ControlFlow<R, B> {
         let Walk {
             mut left,
             mut right,
@@ -319,7 +341,7 @@ impl Walk {
                         x_start: x0.wrapping_add(start),
                         x_end: x0.wrapping_add(end).wrapping_add(1),
                     };
-                    acc = f(acc, span, start as u32, row);
+                    acc = f(acc, span, start as u32, row)?;
                 }
                 row += 1;
                 left.advance::<false>();
@@ -335,7 +357,7 @@ impl Walk {
                 right = next;
             }
         }
-        acc
+        ControlFlow::Continue(acc)
     }
 
     /// The next covered span with its column and row offsets, or `None` after the last row.

@@ -828,3 +828,31 @@ fn push_array(s: &mut String, decl: &str, items: &[String]) {
     }
     *s += "];\n";
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The errors' messages: what was wrong with what was given (issue #32, item 2).
+    #[test]
+    fn convert_error_messages() {
+        let io = ConvertError::Io(io::Error::new(io::ErrorKind::NotFound, "no such file"));
+        assert_eq!(io.to_string(), "cannot read the image: no such file");
+        assert!(std::error::Error::source(&io).is_some());
+        let decode = ConvertError::Decode("bad signature".to_owned());
+        assert_eq!(
+            decode.to_string(),
+            "not a PNG image this decoder reads: bad signature"
+        );
+        let unsupported = ConvertError::Unsupported("4-bit grey".to_owned());
+        assert_eq!(
+            unsupported.to_string(),
+            "unsupported PNG output: 4-bit grey"
+        );
+        let unknown = ConvertError::UnknownFormat("rgb332".to_owned());
+        assert_eq!(
+            unknown.to_string(),
+            "unknown texel format `rgb332`: expected rgb565, rgb888, gray8, indexed8 or indexed4"
+        );
+    }
+}

@@ -49,11 +49,13 @@ impl core::fmt::Display for TextureError {
             ),
             TextureError::TooFewTexels { needed, held } => write!(
                 f,
-                "the texel storage holds {held} texels, the texture's size needs {needed}"
+                "the texture's size needs {needed} texels, the storage holds {held}"
             ),
         }
     }
 }
+
+impl core::error::Error for TextureError {}
 
 /// A texture: borrowed texels ([`TexelSource`]: Rgb565, Rgb888, Gray8, 4- and 8-bit indexed,
 /// any colour slice) with their size, a [`Wrap`] mode per axis and a [`Filter`].
@@ -229,4 +231,34 @@ pub(crate) fn bilinear_by<C: GouraudColor>(x: i32, y: i32, fetch: impl Fn(i32, i
         return C::from_channels([blend(0), 0, 0]);
     }
     C::from_channels([blend(0), blend(1), blend(2)])
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::string::ToString;
+
+    use super::*;
+
+    /// The errors' messages: what was needed and what was given (issue #32, item 2).
+    #[test]
+    fn texture_error_messages() {
+        let size = TextureError::Size {
+            width: 0,
+            height: 40_000,
+        };
+        assert_eq!(
+            size.to_string(),
+            "a texture of 0 × 40000 texels: each side must be 1 to 32768"
+        );
+        let few = TextureError::TooFewTexels {
+            needed: 64,
+            held: 63,
+        };
+        assert_eq!(
+            few.to_string(),
+            "the texture's size needs 64 texels, the storage holds 63"
+        );
+    }
 }

@@ -128,17 +128,18 @@ impl core::fmt::Display for MeshError {
                 vertices,
             } => write!(
                 f,
-                "mesh has {len} {array} for {vertices} vertices (need 0 or {vertices})"
+                "a mesh of {vertices} vertices needs 0 or {vertices} {array}, given {len}"
             ),
-            MeshError::Index { triangle, index } => {
-                write!(
-                    f,
-                    "triangle {triangle} refers to vertex {index}, which does not exist"
-                )
-            }
+            MeshError::Index { triangle, index } => write!(
+                f,
+                "triangle {triangle} refers to vertex {index}: indices must be below the number \
+                 of vertices"
+            ),
         }
     }
 }
+
+impl core::error::Error for MeshError {}
 
 /// Whether an optional per-vertex array of `len` suits `vertices` vertices.
 const fn fits(len: usize, vertices: usize) -> bool {
@@ -278,5 +279,36 @@ impl Bounds {
         let q = ((target << 18) + largest).div_euclid(2 * largest);
         let scale = Scalar::from_bits(q.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
         Mat4::scaling(scale) * self.centering()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::string::ToString;
+
+    use super::*;
+
+    /// The errors' messages: what was needed and what was given (issue #32, item 2).
+    #[test]
+    fn mesh_error_messages() {
+        let length = MeshError::Length {
+            array: "normals",
+            len: 11,
+            vertices: 12,
+        };
+        assert_eq!(
+            length.to_string(),
+            "a mesh of 12 vertices needs 0 or 12 normals, given 11"
+        );
+        let index = MeshError::Index {
+            triangle: 3,
+            index: 12,
+        };
+        assert_eq!(
+            index.to_string(),
+            "triangle 3 refers to vertex 12: indices must be below the number of vertices"
+        );
     }
 }

@@ -311,8 +311,12 @@ mod host {
     ///
     /// # Panics
     ///
-    /// If the result has more than 65536 vertices (`subdivisions > 6`).
+    /// If the result has more than 65536 vertices (`subdivisions > 6`), before building anything.
     pub fn icosphere(radius: f64, subdivisions: u32) -> MeshData {
+        assert!(
+            subdivisions <= 6,
+            "an icosphere of at most 65536 vertices has at most 6 subdivisions, not {subdivisions}"
+        );
         let t = (1.0 + 5f64.sqrt()) / 2.0;
         let mut points: Vec<[f64; 3]> = [
             [-1.0, t, 0.0],
@@ -386,7 +390,7 @@ mod host {
     ///
     /// # Panics
     ///
-    /// If `rings` or `sides` is below 3 or `rings · sides > 65536`.
+    /// If `rings` or `sides` is below 3 or `rings · sides > 65536`, before building anything.
     pub fn torus_knot(
         (p, q): (u32, u32),
         scale: f64,
@@ -394,10 +398,7 @@ mod host {
         rings: usize,
         sides: usize,
     ) -> MeshData {
-        assert!(
-            rings >= 3 && sides >= 3 && rings * sides <= 65536,
-            "a knot needs 3 × 3 to 65536 segments"
-        );
+        check_segments("a torus knot", rings, sides);
         let tau = core::f64::consts::TAU;
         let (p, q) = (f64::from(p), f64::from(q));
         let curve = |t: f64| {
@@ -459,12 +460,9 @@ mod host {
     ///
     /// # Panics
     ///
-    /// If `rings` or `sides` is below 3 or `rings · sides > 65536`.
+    /// If `rings` or `sides` is below 3 or `rings · sides > 65536`, before building anything.
     pub fn torus(major: f64, minor: f64, rings: usize, sides: usize) -> MeshData {
-        assert!(
-            rings >= 3 && sides >= 3,
-            "a torus needs at least 3 × 3 segments"
-        );
+        check_segments("a torus", rings, sides);
         let tau = core::f64::consts::TAU;
         let mut positions = Vec::with_capacity(rings * sides);
         let mut normals = Vec::with_capacity(rings * sides);
@@ -492,5 +490,17 @@ mod host {
             })
             .collect();
         MeshData::from_f64(&positions, &normals, &faces)
+    }
+
+    /// Panics unless a mesh of `rings × sides` vertices (`what`) has 3 × 3 to 65536 of them
+    /// (`u16` indices): before anything is built, the product checked (it may not fit `usize`).
+    fn check_segments(what: &str, rings: usize, sides: usize) {
+        let vertices = rings.checked_mul(sides);
+        assert!(
+            rings >= 3 && sides >= 3 && vertices.is_some_and(|n| n <= 65536),
+            "{what} needs at least 3 rings and 3 sides and at most 65536 vertices (rings · sides, \
+             for u16 indices), not {rings} × {sides} = {}",
+            vertices.map_or_else(|| String::from("more than usize::MAX"), |n| format!("{n}"))
+        );
     }
 }

@@ -177,6 +177,18 @@ pub struct ScratchTooSmall {
     pub given: usize,
 }
 
+impl core::fmt::Display for ScratchTooSmall {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "a vertex scratch needs {} entries (one per vertex of the mesh), given {}",
+            self.needed, self.given
+        )
+    }
+}
+
+impl core::error::Error for ScratchTooSmall {}
+
 impl Pipeline {
     /// A pipeline drawing meshes placed by `model` through the camera `view_projection`
     /// (projection · view) into `viewport`, culling back faces. Normals are transformed by
@@ -1528,4 +1540,26 @@ fn face_normal(model: &[Vec3; 3]) -> Vec3 {
 #[inline(always)]
 fn at_face<'i, T>(items: &'i [T], idx: &[usize; 3]) -> Option<[&'i T; 3]> {
     Some([items.get(idx[0])?, items.get(idx[1])?, items.get(idx[2])?])
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::string::ToString;
+
+    use super::*;
+
+    /// The error's message: what was needed and what was given (issue #32, item 2).
+    #[test]
+    fn scratch_too_small_message() {
+        let e = ScratchTooSmall {
+            needed: 2191,
+            given: 2190,
+        };
+        assert_eq!(
+            e.to_string(),
+            "a vertex scratch needs 2191 entries (one per vertex of the mesh), given 2190"
+        );
+    }
 }
