@@ -168,6 +168,17 @@ fn vertices_3d(corners: &[(i32, i32); 3], width: i32, depth: u16) -> [TexturedSc
     })
 }
 
+/// A xorshift32 generator from `seed` (not 0): the checks' random inputs, the same on every
+/// board and the host.
+fn xorshift(mut state: u32) -> impl FnMut() -> u32 {
+    move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    }
+}
+
 /// Random triangles for [`check`].
 const CHECK_TRIANGLES: u32 = 300;
 
@@ -177,13 +188,7 @@ const CHECK_TRIANGLES: u32 = 300;
 /// the caller clears).
 fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     let (w, h) = (fb.size().width as i32, fb.size().height as i32);
-    let mut state = 0x2545_f491_u32;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state
-    };
+    let mut next = xorshift(0x2545_f491_u32);
     let shapes = [(64, 64), (256, 16), (1, 4096), (8, 2), (16, 256)];
     for k in 0..CHECK_TRIANGLES {
         let (tw, th) = shapes[(k % shapes.len() as u32) as usize];
@@ -221,13 +226,7 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
     let size = fb.framebuffer().size();
     let clip = Rectangle::new(Point::zero(), size);
     let (w, h) = (size.width as i32, size.height as i32);
-    let mut state = 0x9e37_79b9_u32;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state
-    };
+    let mut next = xorshift(0x9e37_79b9_u32);
     let shapes = [(64, 64), (256, 16), (1, 4096), (8, 2), (16, 256), (48, 64)];
     for k in 0..CHECK_TRIANGLES {
         let (tw, th) = shapes[(k % shapes.len() as u32) as usize];
