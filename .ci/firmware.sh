@@ -16,10 +16,16 @@
 # Then the 3D frame (fw_mesh_bench) and band rendering (fw_band on the M4, the micro:bit
 # showcase fw_band_microbit), each checked against the host's frame.
 #
+# Every build denies warnings (the host's and the firmware's).
+#
 # Environment: FIRMWARE_TIMEOUT (seconds per QEMU run, default 600).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_TERM_COLOR=never
+
+# `-D warnings` joined to every target's rustflags, those of .cargo/config.toml (the link flags)
+# included, which RUSTFLAGS would replace; builds that set RUSTFLAGS add it there.
+deny=(--config "target.'cfg(all())'.rustflags = ['-D', 'warnings']")
 
 REPORT=target/firmware-bench.md
 TIMEOUT="${FIRMWARE_TIMEOUT:-600}"
@@ -156,13 +162,13 @@ check_scene() {
 }
 
 echo "--- host checksums (cargo run --release --example fw_scene)"
-EXPECTED=$(cargo run --quiet --release --example fw_scene)
+EXPECTED=$(cargo run "${deny[@]}" --quiet --release --example fw_scene)
 printf '%s\n' "$EXPECTED"
 [ "$(printf '%s\n' "$EXPECTED" | grep -c '^scene ')" -ge 2 ] || fail "no host checksums"
-TEXTURE_EXPECTED=$(cargo run --quiet --release --example fw_texture_bench | grep '^texture ')
+TEXTURE_EXPECTED=$(cargo run "${deny[@]}" --quiet --release --example fw_texture_bench | grep '^texture ')
 [ "$(printf '%s\n' "$TEXTURE_EXPECTED" | grep -c '^texture ')" -ge 2 ] || fail "no host texture checksums"
 echo "--- host textured frames (cargo run --release --example fw_nopanic_textures)"
-TEXTURES=$(cargo run --quiet --release --example fw_nopanic_textures)
+TEXTURES=$(cargo run "${deny[@]}" --quiet --release --example fw_nopanic_textures)
 printf '%s\n' "$TEXTURES"
 [ "$(printf '%s\n' "$TEXTURES" | grep -c '^textures ')" -eq 3 ] || fail "no host textured frames"
 
@@ -186,10 +192,10 @@ for board in "${BOARDS[@]}"; do
     echo "--- $machine ($cpu, $target)"
     examples=(--example fw_scene --example fw_bench --example fw_texture_bench)
     for e in "${SIZE_EXAMPLES[@]}"; do examples+=(--example "$e"); done
-    cargo build --quiet --release --target "$target" "${examples[@]}"
+    cargo build "${deny[@]}" --quiet --release --target "$target" "${examples[@]}"
 
     log=$(mktemp)
-    if ! cargo build --quiet --release --target "$target" --example fw_nopanic \
+    if ! cargo build "${deny[@]}" --quiet --release --target "$target" --example fw_nopanic \
         --example fw_nopanic_textures 2>"$log"; then
         grep -E 'undefined symbol|referenced by|>>>|FLASH|RAM' "$log" >&2 || cat "$log" >&2
         rm -f "$log"
@@ -253,7 +259,7 @@ for level in s z; do
         read -r target machine cpu <<<"$board"
         dir="target/opt-level-$level"
         log=$(mktemp)
-        if ! CARGO_PROFILE_RELEASE_OPT_LEVEL=$level cargo build --quiet --release --target "$target" \
+        if ! CARGO_PROFILE_RELEASE_OPT_LEVEL=$level cargo build "${deny[@]}" --quiet --release --target "$target" \
             --target-dir "$dir" --example fw_nopanic --example fw_nopanic_textures 2>"$log"; then
             grep -E 'undefined symbol|referenced by|>>>|FLASH|RAM' "$log" >&2 || cat "$log" >&2
             rm -f "$log"
@@ -281,7 +287,7 @@ done
 # with the MPS2 memory layout (RUSTFLAGS replaces the micro:bit link flags of .cargo/config.toml):
 # ARMv7-M executes the ARMv6-M instruction stream unchanged.
 echo "--- 3D frame (fw_mesh_bench)"
-FRAMES=$(cargo run --quiet --release --example fw_mesh_bench)
+FRAMES=$(cargo run "${deny[@]}" --quiet --release --example fw_mesh_bench)
 printf '%s\n' "$FRAMES"
 [ "$(printf '%s\n' "$FRAMES" | grep -c '^frame ')" -ge 4 ] || fail "no host frame lines"
 MESH_BOARDS=(
@@ -293,9 +299,9 @@ MESH_BOARDS=(
 for board in "${MESH_BOARDS[@]}"; do
     read -r target machine cpu dir <<<"$board"
     if [ "$dir" = target ]; then
-        cargo build --quiet --release --target "$target" --example fw_mesh_bench
+        cargo build "${deny[@]}" --quiet --release --target "$target" --example fw_mesh_bench
     else
-        RUSTFLAGS="-C link-arg=-Tlink.x" \
+        RUSTFLAGS="-C link-arg=-Tlink.x -D warnings" \
             cargo build --quiet --release --target "$target" --target-dir "$dir" --example fw_mesh_bench
     fi
     run_elf "$machine" "$cpu" "$dir/$target/release/examples/fw_mesh_bench" "fw_mesh_bench ($target)"
@@ -338,9 +344,9 @@ done
 # of the colours and depths the display stand-in received) must equal the host's for the frame
 # drawn whole; the host runs check the bands too.
 echo "--- band rendering (fw_band, fw_band_microbit)"
-BAND_LINE=$(cargo run --quiet --release --example fw_band)
+BAND_LINE=$(cargo run "${deny[@]}" --quiet --release --example fw_band)
 [ "$(printf '%s\n' "$BAND_LINE" | grep -c '^bands ')" -eq 1 ] || fail "no host bands line"
-[ "$(cargo run --quiet --release --example fw_band_microbit)" = "$BAND_LINE" ] ||
+[ "$(cargo run "${deny[@]}" --quiet --release --example fw_band_microbit)" = "$BAND_LINE" ] ||
     fail "the host's micro:bit bands line differs from the frame drawn whole"
 printf '%s\n' "$BAND_LINE"
 check_bands() {
@@ -352,7 +358,7 @@ check_bands() {
         fail "$what: bands differ from the frame drawn whole:\n$got"
     echo "  ok: $what: $count band renderings equal the frame drawn whole"
 }
-cargo build --quiet --release --target thumbv7em-none-eabihf --example fw_band
+cargo build "${deny[@]}" --quiet --release --target thumbv7em-none-eabihf --example fw_band
 run_ok thumbv7em-none-eabihf mps2-an386 cortex-m4 fw_band
 output=$OUTPUT
 check_bands "fw_band on mps2-an386" "$output" 12
@@ -364,7 +370,7 @@ awk -v o="$over" -v l="$BAND_BIN_OVERHEAD_LIMIT" 'BEGIN { exit !(o <= l) }' ||
 echo "  ok: bin, 16-row bands: +$over % over the whole frame (limit $BAND_BIN_OVERHEAD_LIMIT %)"
 { echo "Board: mps2-an386."; printf '%s\n\n' "$(printf '%s\n' "$output" | grep -v '^bands ')"; } >>"$bench"
 
-if ! cargo build --quiet --release --target thumbv6m-none-eabi --example fw_band_microbit 2>"$bench.log"; then
+if ! cargo build "${deny[@]}" --quiet --release --target thumbv6m-none-eabi --example fw_band_microbit 2>"$bench.log"; then
     grep -E 'undefined symbol|referenced by|>>>|RAM|FLASH|overflow' "$bench.log" >&2 || cat "$bench.log" >&2
     fail "fw_band_microbit does not link: a panic path in the band renderer or 3D pipeline, or" \
         "it does not fit the micro:bit's memory"

@@ -22,6 +22,9 @@ if ! cargo fuzz --version 2>/dev/null | grep -qF "$CARGO_FUZZ_VERSION"; then
     cargo install cargo-fuzz --version "$CARGO_FUZZ_VERSION" --locked
 fi
 cargo fuzz --version
+# Warnings denied in the crate and the fuzz targets: cargo-fuzz appends RUSTFLAGS to its own
+# flags (dependencies from crates.io have their lints capped).
+export RUSTFLAGS="${RUSTFLAGS:+$RUSTFLAGS }-D warnings"
 
 cargo fmt --check
 started=$(date +%s)

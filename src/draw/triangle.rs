@@ -223,6 +223,9 @@ impl<C: GouraudColor> Drawable for GouraudTriangle<C> {
 /// slice, and its masked rows of eight pixels for tiny triangles (x86-64) when `rows`.
 struct IntoSlice<'f, 'a, C> {
     framebuffer: &'f mut SliceFramebuffer<'a, C>,
+    /// Read by `row_width` only, which the walks ask on x86-64 alone (Rust 1.85 sees the field
+    /// as never read elsewhere).
+    #[cfg_attr(not(sse2_rows), allow(dead_code))]
     rows: bool,
 }
 

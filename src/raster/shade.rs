@@ -41,7 +41,9 @@ pub(crate) trait SpanShader<const N: usize> {
     /// Whether the shader takes no more spans (a `DrawTarget` returned an error): asked after
     /// each span of the walk, the scan and the exact planes' chunks, and the triangle then ends
     /// there, however many rows it has left. `false` (the default) for shaders that take every
-    /// span: the check then compiles to nothing where the shader is known.
+    /// span: the check then compiles to nothing where the shader is known (behind a vtable, a
+    /// test of the answer [`SpanSink::take`] returns). Not asked between the rows of lanes of
+    /// [`masked_row`](Self::masked_row) (tiny triangles, under 8 rows, into framebuffers).
     #[inline(always)]
     fn stopped(&self) -> bool {
         false
