@@ -23,10 +23,11 @@ use embedded_raster::band::{
     BandError, BandLayout, BandOutput, BinEntry, Callback, ColorBand, ColorBands, DepthBand,
     DepthBands, MeshBin, ToDisplay, Triangle, TriangleBin,
 };
+use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
 use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
 use embedded_raster::three_d::{
-    Angle, Cull, DepthTarget, Light, Mat4, Material, Mesh, Pipeline, ProjectedVertex, Scalar,
-    Shading, Vec3,
+    Angle, Cull, DepthTarget, DrawStats, Light, LightSource, Lights, Mat4, Material, Mesh,
+    Pipeline, ProjectedVertex, Scalar, Shading, Specular, TexturedMaterial, Vec3,
 };
 use embedded_raster::{
     Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
@@ -35,6 +36,10 @@ use embedded_raster::{
 #[allow(dead_code)]
 #[path = "../examples/common/scene3d.rs"]
 mod scene3d;
+
+#[allow(dead_code)]
+#[path = "../examples/common/textured3d.rs"]
+mod textured3d;
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -552,6 +557,244 @@ fn meshes_with_every_shading_and_clipping_are_the_whole_frame() {
         }
     }
     assert!(clipped > 20, "{clipped} faces clipped");
+}
+
+/// `mesh` with the textured `material` through `pipeline` into a frame of `size` in `C`: drawn
+/// whole with `draw_textured_mesh_with`, then through a `MeshBin::new_textured` in bands of each
+/// of `heights` rows, top to bottom and then some again out of order: each band the whole
+/// frame's colours and depths there, the bin's counts the frame's. The frame's counts.
+fn check_textured_bin<S, C>(
+    what: &str,
+    size: Size,
+    pipeline: &Pipeline,
+    mesh: &Mesh<'_>,
+    material: &TexturedMaterial<'_, S>,
+    heights: &[u32],
+) -> DrawStats
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color> + From<Rgb888> + core::fmt::Debug,
+{
+    let (w, h) = (size.width, size.height);
+    let background = C::from(Rgb888::new(3, 60, 90));
+    let n = (w * h) as usize;
+    let (mut want_colors, mut want_depth) = (vec![background; n], vec![0u16; n]);
+    let mut scratch = vec![ProjectedVertex::EMPTY; mesh.vertices.len()];
+    let mut target = DepthTarget::new(&mut want_colors, &mut want_depth, w, h).unwrap();
+    target.clear(background);
+    let stats = pipeline
+        .draw_textured_mesh_with(mesh, material, &mut target, &mut scratch)
+        .unwrap();
+    for &rows in heights {
+        let layout = BandLayout::new(size, rows).unwrap();
+        let count = layout.count();
+        let mut storage = vec![BinEntry::EMPTY; count as usize + mesh.indices.len()];
+        let mut bin = MeshBin::new_textured(
+            pipeline,
+            mesh,
+            material,
+            &layout,
+            &mut scratch,
+            &mut storage,
+        )
+        .unwrap();
+        assert_eq!(bin.stats(), stats, "{what}, {rows}-row bands: the counts");
+        assert!(bin.len() <= stats.drawn as usize, "{what}: {}", bin.len());
+        let mut order: Vec<u32> = (0..count).collect();
+        order.extend((0..count).rev().step_by(3));
+        order.push(count / 2);
+        let (mut colors, mut depth) = (
+            vec![background; layout.buffer_len()],
+            vec![0u16; layout.buffer_len()],
+        );
+        for (k, &index) in order.iter().enumerate() {
+            let mut band = DepthBand::new(&mut colors, &mut depth, &layout, index).unwrap();
+            band.clear(background);
+            bin.draw(&mut band).unwrap();
+            let from = (index * rows * w) as usize;
+            let len = band.pixels().len();
+            let again = if k < count as usize { "" } else { ", again" };
+            let what = format!("{what}: {rows}-row band {index}{again}");
+            assert_eq!(
+                first_difference(&want_colors[from..from + len], band.pixels(), w),
+                None,
+                "colours, {what}"
+            );
+            assert_eq!(
+                first_difference(&want_depth[from..from + len], band.depth(), w),
+                None,
+                "depths, {what}"
+            );
+        }
+    }
+    stats
+}
+
+/// Textured meshes through a `MeshBin` (issue #28): spot with its texture in the bench frame
+/// (320×240) and close enough that the near plane clips it, every shading, nearest and bilinear
+/// Rgb565 texels and the 4-bit palette in flash, vertex colours, highlights and the pipeline's
+/// `Lights`, into Rgb565 and Rgb888, in bands of several heights: each band the frame drawn
+/// whole with `draw_textured_mesh_with`, pixels and depths; and its errors: a storage too
+/// short (the number needed), a band of another layout.
+#[test]
+fn textured_mesh_bins_are_the_whole_frame() {
+    let mut texels = vec![0u16; textured3d::TEXELS];
+    textured3d::expand(&mut texels);
+    let (tw, th) = (
+        textured3d::SPOT_TEXTURE_WIDTH,
+        textured3d::SPOT_TEXTURE_HEIGHT,
+    );
+    let nearest = Texture::new(Rgb565Texels(&texels), tw, th).unwrap();
+    let bilinear = nearest.with_filter(Filter::Bilinear);
+    let palette = Texture::new(textured3d::SPOT_TEXTURE, tw, th).unwrap();
+    let size = Size::new(scene3d::SIZE.0, scene3d::SIZE.1);
+    let spot: Mesh<'_> = textured3d::SPOT_TEXTURED;
+    let colors: Vec<Rgb888> = (0..spot.vertices.len() as u32)
+        .map(|k| Rgb888::new((k * 97) as u8, (k * 31 + 80) as u8, (k * 57 + 160) as u8))
+        .collect();
+    let tinted = spot.with_colors(&colors);
+    let frame = scene3d::pipeline(scene3d::Model::Spot);
+    // The camera 0.8 from spot's centre, the near plane at 0.5: its front is clipped.
+    let projection = Mat4::perspective(
+        Angle::from_degrees(70),
+        Scalar::from_num(4) / 3,
+        Scalar::from_num(0.5),
+        Scalar::from_num(8),
+    );
+    let view = Mat4::translation(Vec3::from_bits(0, 0, -52429));
+    let close = Pipeline::new(
+        Mat4::rotation_y(Angle::from_degrees(200)),
+        projection * view,
+        Rectangle::new(Point::new(-9, 5), Size::new(330, 220)),
+        frame.light,
+    );
+    let lights = Lights::new()
+        .with(LightSource::point(
+            Vec3::new(-0.8, 0.6, 1.2),
+            Scalar::from_num(1.2),
+            Scalar::from_num(2.5),
+        ))
+        .with(LightSource::directional(
+            Vec3::new(0.3, -1.0, 0.2),
+            Scalar::from_num(0.4),
+        ));
+    let shiny = Specular::new(Scalar::from_num(0.6), 16);
+
+    let gouraud = TexturedMaterial::new(&nearest, Shading::Gouraud);
+    let stats = check_textured_bin::<_, Rgb565>(
+        "nearest, Gouraud",
+        size,
+        &frame,
+        &spot,
+        &gouraud,
+        &[1, 5, 16, 240],
+    );
+    let flat = TexturedMaterial::new(&bilinear, Shading::Flat);
+    check_textured_bin::<_, Rgb888>("bilinear, flat", size, &frame, &spot, &flat, &[8, 33]);
+    let unlit = TexturedMaterial::new(&palette, Shading::Unlit);
+    let clipped = check_textured_bin::<_, Rgb565>(
+        "palette, unlit, clipped",
+        size,
+        &close,
+        &spot,
+        &unlit,
+        &[3, 16],
+    );
+    assert!(clipped.clipped > 10, "{clipped:?}");
+    let lit = frame.with_lights(lights);
+    let all = TexturedMaterial::new(&nearest, Shading::Gouraud)
+        .with_vertex_colors()
+        .with_specular(shiny);
+    check_textured_bin::<_, Rgb565>(
+        "Gouraud, colours, highlight, lights",
+        size,
+        &lit,
+        &tinted,
+        &all,
+        &[7, 16],
+    );
+    let close_lit = close.with_lights(lights);
+    let quadratic = TexturedMaterial::new(&bilinear, Shading::Quadratic).with_specular(shiny);
+    check_textured_bin::<_, Rgb888>(
+        "bilinear, quadratic, highlight, lights, clipped",
+        size,
+        &close_lit,
+        &spot,
+        &quadratic,
+        &[1, 12],
+    );
+    let flat_shiny = TexturedMaterial::new(&palette, Shading::Flat)
+        .with_vertex_colors()
+        .with_specular(shiny);
+    check_textured_bin::<_, Rgb565>(
+        "palette, flat, colours, highlight",
+        size,
+        &close,
+        &tinted,
+        &flat_shiny,
+        &[10],
+    );
+
+    // Errors before anything is drawn: a storage too short (the number needed), a scratch too
+    // short, a band of another layout.
+    let layout = BandLayout::new(size, 16).unwrap();
+    let mut scratch = vec![ProjectedVertex::EMPTY; spot.vertices.len()];
+    let mut storage = vec![BinEntry::EMPTY; 15 + spot.indices.len()];
+    let faces = MeshBin::<Rgb565, _>::new_textured(
+        &frame,
+        &spot,
+        &gouraud,
+        &layout,
+        &mut scratch,
+        &mut storage,
+    )
+    .unwrap()
+    .len();
+    assert!(
+        faces > 2000 && faces <= stats.drawn as usize,
+        "{faces} faces kept"
+    );
+    let mut short = vec![BinEntry::EMPTY; 15 + faces - 1];
+    let error = MeshBin::<Rgb565, _>::new_textured(
+        &frame,
+        &spot,
+        &gouraud,
+        &layout,
+        &mut scratch,
+        &mut short,
+    )
+    .unwrap_err();
+    assert_eq!(
+        error,
+        BandError::BinTooSmall {
+            needed: 15 + faces,
+            given: 15 + faces - 1
+        }
+    );
+    let mut storage = vec![BinEntry::EMPTY; 15 + faces];
+    let error = MeshBin::<Rgb565, _>::new_textured(
+        &frame,
+        &spot,
+        &gouraud,
+        &layout,
+        &mut scratch[..100],
+        &mut storage,
+    )
+    .unwrap_err();
+    assert!(matches!(error, BandError::Scratch(_)), "{error:?}");
+    let mut bin =
+        MeshBin::new_textured(&frame, &spot, &gouraud, &layout, &mut scratch, &mut storage)
+            .unwrap();
+    let other = BandLayout::new(size, 15).unwrap();
+    let (mut c, mut d) = (vec![Rgb565::BLACK; 320 * 15], vec![0; 320 * 15]);
+    let mut band = DepthBand::new(&mut c, &mut d, &other, 7).unwrap();
+    band.clear(Rgb565::BLACK);
+    assert_eq!(bin.draw(&mut band), Err(BandError::OtherLayout));
+    assert!(band.pixels().iter().all(|&p| p == Rgb565::BLACK));
+    assert!(band
+        .depth()
+        .iter()
+        .all(|&z| z == embedded_raster::three_d::DEPTH_CLEAR));
 }
 
 /// The bench scene's knot binned for the bands of `layout`.

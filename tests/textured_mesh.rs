@@ -1,5 +1,5 @@
 //! Textured meshes in the fixed-point 3D pipeline (`Pipeline::draw_textured_mesh`, its scratch
-//! form and the band renderer's) against an independent f64 reference.
+//! form and the band renderer's, with and without a `MeshBin`) against an independent f64 reference.
 //!
 //! The reference is the ray caster of tests/pipeline.rs (tests/support/raycast.rs): for every pixel
 //! it casts the ray through the pixel centre in eye space (f64 model-view from the same angles and
@@ -37,7 +37,7 @@
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
+use embedded_raster::band::{BandLayout, BinEntry, Callback, ColorBands, DepthBands, MeshBin};
 use embedded_raster::reference::texture::{nearest_texel, RefTexture, RefWrap};
 use embedded_raster::texture::{
     Filter, Rgb565Texels, Rgb888Texels, Solid, TexelSource, Texture, Wrap,
@@ -1651,26 +1651,54 @@ fn lit_texels_follow_lambert() {
 // Every path the same pixels
 // ---------------------------------------------------------------------------------------------
 
-/// `mesh` drawn with `material` in bands of `rows` rows (with a vertex scratch or not), the
-/// bands' colours and depths put together into one frame.
+/// How a band draws a textured mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// `DepthBand::draw_textured_mesh`: no bin, no scratch.
+    EachFace,
+    /// `DepthBand::draw_textured_mesh_with`: no bin, the vertices again per band.
+    Scratch,
+    /// `MeshBin::new_textured`: the faces binned once, each band drawing its own.
+    Bin,
+}
+
+/// `mesh` drawn with `material` in bands of `rows` rows (`mode`: with a vertex scratch or
+/// not, or through a bin whose counts must be `stats`), the bands' colours and depths put
+/// together into one frame.
 fn banded<S: TexelSource>(
     pipeline: &Pipeline,
     mesh: &Mesh<'_>,
     material: &TexturedMaterial<'_, S>,
     rows: u32,
-    scratch: Option<&mut [ProjectedVertex]>,
+    mode: Mode,
+    scratch: &mut [ProjectedVertex],
+    stats: DrawStats,
 ) -> Frame
 where
     Rgb888: From<S::Color>,
 {
     let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
+    let mut storage = vec![BinEntry::EMPTY; layout.count() as usize + mesh.indices.len()];
+    let mut bin_scratch = vec![ProjectedVertex::EMPTY; mesh.vertices.len()];
+    let mut bin = (mode == Mode::Bin).then(|| {
+        let bin = MeshBin::new_textured(
+            pipeline,
+            mesh,
+            material,
+            &layout,
+            &mut bin_scratch,
+            &mut storage,
+        )
+        .unwrap();
+        assert_eq!(bin.stats(), stats, "the bin's counts");
+        bin
+    });
     let mut colors = vec![Rgb888::BLACK; layout.buffer_len()];
     let mut depth = vec![0u16; layout.buffer_len()];
     let mut frame = Frame::new();
     let mut depths = vec![DEPTH_CLEAR; N];
     let mut bands =
         DepthBands::new(ColorBands::new(layout, &mut colors).unwrap(), &mut depth).unwrap();
-    let mut scratch = scratch;
     let mut sent = Callback(|area: &Rectangle, pixels: &[Rgb888]| {
         let start = (area.top_left.y as u32 * W) as usize;
         frame.px[start..start + pixels.len()].copy_from_slice(pixels);
@@ -1679,12 +1707,13 @@ where
     bands
         .render(&mut sent, |band| {
             band.clear(Rgb888::BLACK);
-            match scratch.as_deref_mut() {
-                Some(s) => {
-                    band.draw_textured_mesh_with(pipeline, mesh, material, s)
+            match (mode, bin.as_mut()) {
+                (Mode::Bin, Some(bin)) => bin.draw(band).unwrap(),
+                (Mode::Scratch, _) => {
+                    band.draw_textured_mesh_with(pipeline, mesh, material, scratch)
                         .unwrap();
                 }
-                None => {
+                _ => {
                     band.draw_textured_mesh(pipeline, mesh, material);
                 }
             }
@@ -1738,14 +1767,20 @@ where
         case.name
     );
     for rows in [1, 8, 16, 240] {
-        for with_scratch in [false, true] {
-            let s = with_scratch.then_some(&mut scratch[..]);
-            let bands = banded(&scene.pipeline, &mesh, &material, rows, s);
+        for mode in [Mode::EachFace, Mode::Scratch, Mode::Bin] {
+            let bands = banded(
+                &scene.pipeline,
+                &mesh,
+                &material,
+                rows,
+                mode,
+                &mut scratch,
+                stats,
+            );
             let at = (0..N).find(|&i| bands.px[i] != whole.px[i] || bands.z[i] != whole.z[i]);
             assert!(
                 at.is_none(),
-                "{} round {round} ({shading:?}): {rows}-row bands (scratch {with_scratch}) differ \
-                 at pixel {:?}",
+                "{} round {round} ({shading:?}): {rows}-row bands ({mode:?}) differ at pixel {:?}",
                 case.name,
                 at.map(|i| (i as u32 % W, i as u32 / W))
             );
@@ -1755,10 +1790,10 @@ where
 }
 
 /// Every way of drawing a textured mesh (every other round tinted by vertex colours, two in
-/// three highlighted) gives the
-/// same frame, bit for bit: `draw_textured_mesh`
-/// and `draw_textured_mesh_with` (a vertex scratch: the same stats too), and band rendering
-/// (`DepthBands` of 1, 8, 16 and 240 rows, each band drawn with and without a scratch) against
+/// three highlighted) gives the same frame, bit for bit: `draw_textured_mesh` and
+/// `draw_textured_mesh_with` (a vertex scratch: the same stats too), and band rendering
+/// (`DepthBands` of 1, 8, 16 and 240 rows, each band drawn with and without a scratch, and
+/// through a `MeshBin::new_textured` with the frame's stats) against
 /// the frame drawn whole — colours and depths, over the suite's poses (clipped and not), every
 /// shading, power-of-two and other textures, nearest and bilinear, a viewport partly off the
 /// target; and a scratch too short is an error that draws nothing.

@@ -27,9 +27,10 @@ use crate::color::GouraudColor;
 use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::edge::{first_centre_from, last_centre_to};
 use crate::raster::scan::{KeptWords, KEPT_WORDS};
+use crate::texture::TexelSource;
 use crate::three_d::{
-    fit_scratch, DrawStats, FaceSink, FaceTexture, Frame, Material, Mesh, Pipeline,
-    ProjectedVertex, TargetClip,
+    fit_scratch, DrawStats, FaceSink, FaceTexture, Frame, FrameTexture, Material, Mesh, NoTexture,
+    Pipeline, ProjectedVertex, TargetClip, TexturedMaterial,
 };
 use crate::Vec3;
 
@@ -554,6 +555,12 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
 /// only its faces. The pixels and depths are those of `draw_mesh_with` on the whole frame, and
 /// [`stats`](Self::stats) its counts.
 ///
+/// A textured mesh takes [`new_textured`](MeshBin::new_textured) (a [`TexturedMaterial`], any
+/// sampler, shading, vertex colours or highlight, and the pipeline's [`Lights`](crate::three_d::Lights)):
+/// the pixels and depths of [`Pipeline::draw_textured_mesh_with`], `T` being then the
+/// [`FrameTexture`] of the material's texels. Its faces crossing a band boundary are set up
+/// again in each band (the spare storage keeps set-ups of untextured Gouraud faces only).
+///
 /// # Examples
 ///
 /// ```
@@ -589,17 +596,17 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
 /// assert_ne!(display.get(32, 24), Some(Rgb565::BLACK));
 /// # Ok::<(), embedded_raster::band::BandError>(())
 /// ```
-pub struct MeshBin<'a, C> {
+pub struct MeshBin<'a, C, T = NoTexture> {
     lists: Lists<'a>,
     pipeline: &'a Pipeline,
-    frame: Frame<'a, C>,
+    frame: Frame<'a, C, AllRows, T>,
     mesh: Mesh<'a>,
     scratch: &'a [ProjectedVertex],
     layout: BandLayout,
     stats: DrawStats,
 }
 
-impl<C> core::fmt::Debug for MeshBin<'_, C> {
+impl<C, T> core::fmt::Debug for MeshBin<'_, C, T> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("MeshBin")
             .field("layout", &self.layout)
@@ -626,44 +633,9 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         scratch: &'a mut [ProjectedVertex],
         storage: &'a mut [BinEntry],
     ) -> Result<Self, BandError> {
-        let scratch = fit_scratch(mesh, scratch)?;
-        let lists = Lists::new(layout, storage)?;
-        let frame_rect = Rectangle::new(Point::zero(), layout.size());
-        let clip = TargetClip::of_frame(&pipeline.viewport, &frame_rect, AllRows);
-        let rows = clip.rect();
-        let frame = Frame::new(pipeline, mesh, material, clip);
-        frame.project(mesh, scratch);
-        let scratch = &*scratch;
-        let mut sink = Recorder {
-            lists,
-            rows: Rows::new(layout, &rows),
-        };
-        let stats = frame.scratch_faces(mesh, scratch, &mut sink);
-        sink.lists.finish()?;
-        Ok(MeshBin {
-            lists: sink.lists,
-            pipeline,
-            frame,
-            mesh: *mesh,
-            scratch,
-            layout: *layout,
-            stats,
+        build(pipeline, mesh, layout, scratch, storage, |clip| {
+            Frame::new(pipeline, mesh, material, clip)
         })
-    }
-
-    /// The frame's counts, as [`Pipeline::draw_mesh_with`] gives them.
-    pub fn stats(&self) -> DrawStats {
-        self.stats
-    }
-
-    /// Faces recorded.
-    pub fn len(&self) -> usize {
-        self.lists.len()
-    }
-
-    /// Whether no face is drawn.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     /// Fills `band`'s faces into it, in the mesh's order: the pixels and depths the whole frame
@@ -714,6 +686,161 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
         );
         Ok(())
     }
+}
+
+impl<C, T> MeshBin<'_, C, T> {
+    /// The frame's counts, as [`Pipeline::draw_mesh_with`] (or
+    /// [`Pipeline::draw_textured_mesh_with`]) gives them.
+    pub fn stats(&self) -> DrawStats {
+        self.stats
+    }
+
+    /// Faces recorded.
+    pub fn len(&self) -> usize {
+        self.lists.len()
+    }
+
+    /// Whether no face is drawn.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl<'a, C, S> MeshBin<'a, C, FrameTexture<'a, S>>
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    /// [`new`](MeshBin::new) for a textured material: the vertex and face stages of `mesh`
+    /// with `material` through `pipeline` for the frame of `layout`, as
+    /// [`Pipeline::draw_textured_mesh_with`] runs them (its vertices into `scratch`, one
+    /// [`ProjectedVertex`] per mesh vertex), its faces into `storage` (one entry per band and
+    /// per face kept; a textured face crossing into the next band is set up again there, so
+    /// entries beyond those are not used). The same errors as `new`, before anything is drawn.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::band::{BandError, BandLayout, BinEntry, ColorBands, DepthBands, MeshBin, ToDisplay};
+    /// use embedded_raster::texture::{Rgb565Texels, Texture};
+    /// use embedded_raster::three_d::{Angle, Light, Mat4, Mesh, Pipeline, ProjectedVertex, Shading};
+    /// use embedded_raster::three_d::{TexCoord, TexturedMaterial, Vec3};
+    ///
+    /// // A square of two triangles, a 2 × 2 texture over it, seen at an angle.
+    /// let v = |x: f32, y: f32| Vec3::new(x, y, 0.0);
+    /// let positions = [v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)];
+    /// let uvs = [TexCoord::new(0.0, 0.0), TexCoord::new(1.0, 0.0), TexCoord::new(1.0, 1.0),
+    ///     TexCoord::new(0.0, 1.0)];
+    /// let indices = [[0, 1, 2], [0, 2, 3]];
+    /// let mesh = Mesh::new(&positions, &[], &indices).with_uvs(&uvs);
+    /// static TEXELS: [u16; 4] = [0xf800, 0x07e0, 0x001f, 0xffff];
+    /// let texture = Texture::new(Rgb565Texels(&TEXELS), 2, 2).unwrap();
+    /// let material = TexturedMaterial::new(&texture, Shading::Gouraud);
+    ///
+    /// let layout = BandLayout::new(Size::new(64, 48), 8)?;
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 10)
+    ///     * Mat4::look_at(Vec3::new(0, -1, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+    /// let viewport = Rectangle::new(Point::zero(), layout.size());
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    ///
+    /// // Six bands and two faces. (The target's colour type is the bands' the bin draws
+    /// // into, named here as it draws none.)
+    /// let mut scratch = [ProjectedVertex::EMPTY; 4];
+    /// let mut too_small = [BinEntry::EMPTY; 7];
+    /// let error = MeshBin::<Rgb565, _>::new_textured(&pipeline, &mesh, &material, &layout,
+    ///     &mut scratch, &mut too_small).unwrap_err();
+    /// assert_eq!(error, BandError::BinTooSmall { needed: 8, given: 7 });
+    ///
+    /// let mut storage = [BinEntry::EMPTY; 6 + 2];
+    /// let mut bin = MeshBin::new_textured(&pipeline, &mesh, &material, &layout, &mut scratch,
+    ///     &mut storage)?;
+    /// assert_eq!(bin.stats().drawn, 2);
+    ///
+    /// let mut screen = [Rgb565::BLACK; 64 * 48];
+    /// let mut display = embedded_raster::SliceFramebuffer::new(&mut screen, 64, 48).unwrap();
+    /// let (mut colors, mut depth) = ([Rgb565::BLACK; 64 * 8], [0u16; 64 * 8]);
+    /// let mut bands = DepthBands::new(ColorBands::new(layout, &mut colors)?, &mut depth)?;
+    /// bands
+    ///     .render(&mut ToDisplay(&mut display), |band| {
+    ///         band.clear(Rgb565::BLACK);
+    ///         bin.draw(band).unwrap(); // the band is of the bin's layout
+    ///     })
+    ///     .unwrap();
+    /// assert_ne!(display.get(32, 24), Some(Rgb565::BLACK));
+    /// # Ok::<(), BandError>(())
+    /// ```
+    // Out of line: the frame's work once, and the same code whatever the caller.
+    #[inline(never)]
+    pub fn new_textured(
+        pipeline: &'a Pipeline,
+        mesh: &Mesh<'a>,
+        material: &TexturedMaterial<'a, S>,
+        layout: &BandLayout,
+        scratch: &'a mut [ProjectedVertex],
+        storage: &'a mut [BinEntry],
+    ) -> Result<Self, BandError> {
+        build(pipeline, mesh, layout, scratch, storage, |clip| {
+            Frame::textured(pipeline, mesh, material, clip)
+        })
+    }
+
+    /// Fills `band`'s faces into it, in the mesh's order: the pixels and depths the whole frame
+    /// drawn with [`Pipeline::draw_textured_mesh_with`] has there (each face crossing bands set
+    /// up again in each). Fastest when the bands are drawn top to bottom once;
+    /// `Err(OtherLayout)` (nothing drawn) for a band of another layout.
+    pub fn draw(&mut self, band: &mut DepthBand<'_, C>) -> Result<(), BandError> {
+        if band.layout() != &self.layout {
+            return Err(BandError::OtherLayout);
+        }
+        let frame = self.frame.with_clip(band.clip(self.pipeline));
+        let (target, placement) = band.parts();
+        let (mesh, scratch) = (&self.mesh, self.scratch);
+        self.lists.each(placement.index, |r, _, _, _| {
+            frame.refill(mesh, scratch, &r.face(), r.flag, target);
+        });
+        Ok(())
+    }
+}
+
+/// A [`MeshBin`] of the frame `make` gives for the rows of `layout` (the frame's clip): its
+/// vertices projected into `scratch`, its faces recorded in `storage`.
+#[inline(always)]
+fn build<'a, C, T>(
+    pipeline: &'a Pipeline,
+    mesh: &Mesh<'a>,
+    layout: &BandLayout,
+    scratch: &'a mut [ProjectedVertex],
+    storage: &'a mut [BinEntry],
+    make: impl FnOnce(TargetClip<AllRows>) -> Frame<'a, C, AllRows, T>,
+) -> Result<MeshBin<'a, C, T>, BandError>
+where
+    C: GouraudColor,
+    T: FaceTexture<C>,
+{
+    let scratch = fit_scratch(mesh, scratch)?;
+    let lists = Lists::new(layout, storage)?;
+    let frame_rect = Rectangle::new(Point::zero(), layout.size());
+    let clip = TargetClip::of_frame(&pipeline.viewport, &frame_rect, AllRows);
+    let rows = clip.rect();
+    let frame = make(clip);
+    frame.project(mesh, scratch);
+    let scratch = &*scratch;
+    let mut sink = Recorder {
+        lists,
+        rows: Rows::new(layout, &rows),
+    };
+    let stats = frame.scratch_faces(mesh, scratch, &mut sink);
+    sink.lists.finish()?;
+    Ok(MeshBin {
+        lists: sink.lists,
+        pipeline,
+        frame,
+        mesh: *mesh,
+        scratch,
+        layout: *layout,
+        stats,
+    })
 }
 
 /// The face stage's sink of a [`MeshBin`]: each face kept recorded with its bands.

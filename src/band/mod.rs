@@ -23,7 +23,9 @@
 //!   transform, before projection) — no memory but the band's. With a bin ([`TriangleBin`],
 //!   [`MeshBin`]: caller's storage of [`BinEntry`], 12 bytes per triangle kept and per band),
 //!   the triangles are transformed, culled and sorted into the bands they touch once per frame,
-//!   and each band draws only its own.
+//!   and each band draws only its own; a [`MeshBin`] takes a
+//!   [`Material`](crate::three_d::Material) ([`MeshBin::new`]) or a
+//!   [`TexturedMaterial`](crate::three_d::TexturedMaterial) ([`MeshBin::new_textured`]).
 //!
 //! Costs (Cortex-M4, the 3D bench knot at 320×240) are in `docs/benchmarks.md`.
 //!

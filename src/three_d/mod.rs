@@ -51,5 +51,8 @@ pub use shading::{
     draw_flat, draw_gouraud, draw_quadratic, shade, Material, QuadraticNormals, Shading,
 };
 pub(crate) use texturing::FaceTexture;
-pub use texturing::{draw_textured, draw_textured_lit, TexturedMaterial, TexturedScreenVertex};
+pub use texturing::{
+    draw_textured, draw_textured_lit, FrameTexture, NoTexture, TexturedMaterial,
+    TexturedScreenVertex,
+};
 pub use vertex::ProjectedVertex;

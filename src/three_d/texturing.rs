@@ -231,9 +231,10 @@ pub(crate) trait FaceTexture<C>: Copy {
     );
 }
 
-/// No texture: the draws of a [`Material`](super::Material).
+/// No texture: the draws of a [`Material`](super::Material) (the default texture type of a
+/// `band::MeshBin`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) struct NoTexture;
+pub struct NoTexture;
 
 impl<C> FaceTexture<C> for NoTexture {
     const TEXTURED: bool = false;
@@ -254,9 +255,10 @@ impl<C> FaceTexture<C> for NoTexture {
     }
 }
 
-/// A textured draw's texture and its sampler, decided once a draw.
+/// A textured draw's texture and its sampler, decided once a draw: the texture type of a
+/// `band::MeshBin` of a [`TexturedMaterial`] reading texels of `S` (`MeshBin::new_textured`).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct FrameTexture<'t, S> {
+pub struct FrameTexture<'t, S> {
     size: (u32, u32),
     sampler: Sampler<'t, S>,
 }
