@@ -36,7 +36,7 @@ BOARDS=(
     "thumbv7m-none-eabi mps2-an385 cortex-m3"
     "thumbv6m-none-eabi microbit cortex-m0"
 )
-SIZE_EXAMPLES=(fw_size_base fw_size_solid fw_size_gouraud fw_size_compact fw_size_textured)
+SIZE_EXAMPLES=(fw_size_base fw_size_solid fw_size_gouraud fw_size_compact fw_size_textured fw_size_textured3d)
 # Goals for the drawing code on thumbv6m (flash bytes over fw_size_base), enforced: the compact
 # Gouraud path (`draw_into_compact`, fw_size_compact) under 6 KiB, and the raster-core issue's
 # full range, Gouraud and solid through `draw` and `draw_into` (fw_size_gouraud +
