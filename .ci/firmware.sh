@@ -68,6 +68,14 @@ SPECULAR_TEXTURED_FRAME_LIMIT=9000000
 BAND_BIN_OVERHEAD_LIMIT=18
 MICROBIT_BAND_FRAME_LIMIT=160000000
 
+# Stack headroom on the micro:bit (16 KiB of RAM, most of it buffers, the stack below them
+# growing into the statics unchecked): the firmware run there paints its free stack at the start
+# and prints `stack high-water: N bytes of M` at the end (examples/common/stack.rs); M − N must be
+# at least this. Measured: fw_texture_bench 3,760 of 4,072 (312 spare: the tightest),
+# fw_band_microbit 4,576 of 6,128, fw_nopanic 5,676 of 8,796, fw_nopanic_textures 8,544 of
+# 14,172, fw_scene 1,588 of 10,224.
+STACK_HEADROOM=256
+
 # The firmware issue's targets, instructions per covered pixel on large triangles (enforced:
 # QEMU's instruction counts are deterministic for a given toolchain and source).
 declare -A SOLID_TARGET=([cortex-m4]=3)
@@ -145,6 +153,24 @@ check_textures() {
     echo "  ok: $what on $machine matches the host's textured frames (${kinds[*]})"
 }
 
+# Checks the `stack high-water: N bytes of M` line of `output` (`what` in messages): required on
+# the micro:bit, with at least STACK_HEADROOM bytes of M − N; reported on the other boards.
+check_stack() {
+    local what=$1 output=$2 machine=$3 line used size
+    line=$(printf '%s\n' "$output" | grep '^stack high-water: ' | tail -n 1 || true)
+    if [ -z "$line" ]; then
+        [ "$machine" != microbit ] || fail "$what on $machine printed no stack high-water line"
+        return 0
+    fi
+    read -r used size <<<"$(sed -E 's/^stack high-water: ([0-9]+) bytes of ([0-9]+)$/\1 \2/' <<<"$line")"
+    [[ "$used" =~ ^[0-9]+$ && "$size" =~ ^[0-9]+$ ]] || fail "$what on $machine: bad line '$line'"
+    if [ "$machine" = microbit ]; then
+        [ $((size - used)) -ge "$STACK_HEADROOM" ] ||
+            fail "$what on $machine: stack high-water $used bytes of $size, under $STACK_HEADROOM bytes spare"
+    fi
+    echo "  ok: $what on $machine: stack high-water $used bytes of $size ($((size - used)) spare)"
+}
+
 # Runs `example` and checks its exit status and its checksum line against the host's.
 check_scene() {
     local target=$1 machine=$2 cpu=$3 example=$4 output line size want
@@ -159,6 +185,7 @@ check_scene() {
     [ -n "$want" ] || fail "the host printed no checksum for size $size"
     [ "$line" = "$want" ] || fail "$example on $machine: '$line', host: '$want'"
     echo "  ok: $example on $machine matches the host ($line)"
+    check_stack "$example" "$output" "$machine"
 }
 
 echo "--- host checksums (cargo run --release --example fw_scene)"
@@ -214,6 +241,7 @@ for board in "${BOARDS[@]}"; do
     check_scene "$target" "$machine" "$cpu" fw_nopanic
     run_ok "$target" "$machine" "$cpu" fw_nopanic_textures
     check_textures fw_nopanic_textures "$OUTPUT" "$machine"
+    check_stack fw_nopanic_textures "$OUTPUT" "$machine"
 
     run_ok "$target" "$machine" "$cpu" fw_bench
     output=$OUTPUT
@@ -226,7 +254,8 @@ for board in "${BOARDS[@]}"; do
 
     run_ok "$target" "$machine" "$cpu" fw_texture_bench
     output=$OUTPUT
-    printf '%s\n\n' "$(printf '%s\n' "$output" | grep -v '^texture ')" >>"$bench"
+    printf '%s\n\n' "$(printf '%s\n' "$output" | grep -v '^texture \|^stack high-water')" >>"$bench"
+    check_stack fw_texture_bench "$output" "$machine"
     got=$(printf '%s\n' "$output" | grep '^texture ' || true)
     size=$(printf '%s\n' "$got" | head -n 1 | cut -d' ' -f2)
     want=$(printf '%s\n' "$TEXTURE_EXPECTED" | grep "^texture $size " || true)
@@ -275,9 +304,11 @@ for level in s z; do
         [ -n "$line" ] && [ "$line" = "$want" ] ||
             fail "fw_nopanic at opt-level $level on $machine: '$line', host: '$want'"
         echo "  ok: fw_nopanic at opt-level $level links for $target and matches the host on $machine"
+        check_stack "fw_nopanic at opt-level $level" "$OUTPUT" "$machine"
         run_elf "$machine" "$cpu" "$dir/$target/release/examples/fw_nopanic_textures" \
             "fw_nopanic_textures at opt-level $level"
         check_textures "fw_nopanic_textures at opt-level $level" "$OUTPUT" "$machine"
+        check_stack "fw_nopanic_textures at opt-level $level" "$OUTPUT" "$machine"
     done
 done
 
@@ -378,12 +409,13 @@ fi
 run_ok thumbv6m-none-eabi microbit cortex-m0 fw_band_microbit
 output=$OUTPUT
 check_bands "fw_band_microbit on microbit" "$output" 1
+check_stack fw_band_microbit "$output" microbit
 frame=$(printf '%s\n' "$output" | grep -E '^\| [0-9]+ \|' | head -n 1 | cut -d'|' -f2 | tr -d ' ')
 [ -n "$frame" ] || fail "fw_band_microbit printed no frame figure"
 [ "$frame" -le "$MICROBIT_BAND_FRAME_LIMIT" ] ||
     fail "the micro:bit's band frame takes $frame instructions (limit $MICROBIT_BAND_FRAME_LIMIT)"
 echo "  ok: micro:bit knot frame in bands: $frame instructions (limit $MICROBIT_BAND_FRAME_LIMIT)"
-printf '%s\n\n' "$(printf '%s\n' "$output" | grep -v '^bands ')" >>"$bench"
+printf '%s\n\n' "$(printf '%s\n' "$output" | grep -v '^bands \|^stack high-water')" >>"$bench"
 rm -f "$bench.log"
 
 # ---- footprint --------------------------------------------------------------------------------

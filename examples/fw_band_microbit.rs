@@ -81,6 +81,7 @@ mod firmware {
     fn main() -> ! {
         static mut COLORS: [Rgb565; BAND] = [Rgb565::new(0, 0, 0); BAND];
         static mut DEPTH: [u16; BAND] = [0; BAND];
+        stack::paint_run();
 
         let Some(mut cp) = cortex_m::Peripherals::take() else {
             board::exit(false)
@@ -127,6 +128,7 @@ mod firmware {
         print(b" | ");
         decimal(u64::from(stack));
         print(b" |\n\n");
+        stack::report();
         board::exit(true)
     }
 }

@@ -39,6 +39,10 @@ mod nopanic;
 mod plain_print;
 
 #[cfg(target_os = "none")]
+#[path = "common/stack.rs"]
+mod stack;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use core::hint::black_box;
 
@@ -138,6 +142,7 @@ mod firmware {
         static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
         static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
         static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+        crate::stack::paint_run();
 
         // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
         let (width, height) = black_box(board::SIZE);
@@ -234,6 +239,7 @@ mod firmware {
             black_box(target.depth());
         }
 
+        crate::stack::report();
         board::exit(true)
     }
 }

@@ -30,6 +30,10 @@ mod nopanic;
 mod plain_print;
 
 #[cfg(target_os = "none")]
+#[path = "common/stack.rs"]
+mod stack;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use cortex_m_rt::entry;
     use embedded_graphics::pixelcolor::Rgb565;
@@ -70,6 +74,7 @@ mod firmware {
         static mut COLORS_3D: [Rgb565; PIXELS_3D] = [Rgb565::new(0, 0, 0); PIXELS_3D];
         static mut DEPTH_3D: [u16; PIXELS_3D] = [0; PIXELS_3D];
         static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+        crate::stack::paint_run();
 
         two_d();
         let checksum = texture_scene::render_3d(COLORS_3D, DEPTH_3D, SCRATCH);
@@ -80,6 +85,7 @@ mod firmware {
             let checksum = texture_scene::render_3d_mesh(COLORS_3D, DEPTH_3D);
             textures_line(b"3d-mesh", texture_scene::SIZE_3D, checksum);
         }
+        crate::stack::report();
         board::exit(true)
     }
 }

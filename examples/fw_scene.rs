@@ -27,6 +27,10 @@ mod board;
 mod report_panic;
 
 #[cfg(target_os = "none")]
+#[path = "common/stack.rs"]
+mod stack;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::hprintln;
@@ -44,6 +48,7 @@ mod firmware {
     #[entry]
     fn main() -> ! {
         static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        crate::stack::paint_run();
         let (width, height) = board::SIZE;
         let mut fb = SliceFramebuffer::new(PIXELS, width, height).expect("framebuffer size");
         scene::render(&mut fb);
@@ -54,6 +59,7 @@ mod firmware {
             checksum,
         };
         hprintln!("{}", line);
+        crate::stack::report();
         board::exit(true)
     }
 }

@@ -386,6 +386,10 @@ fn run_case(case: Case, fb: &mut DepthTarget<'_, Rgb565>, pass: u16) {
 }
 
 #[cfg(target_os = "none")]
+#[path = "common/stack.rs"]
+mod stack;
+
+#[cfg(target_os = "none")]
 mod firmware {
     use core::hint::black_box;
 
@@ -403,6 +407,7 @@ mod firmware {
     fn main() -> ! {
         static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
         static mut DEPTH: [u16; board::PIXELS] = [0; board::PIXELS];
+        crate::stack::paint_run();
         let (width, height) = board::SIZE;
         let Some(mut fb) = DepthTarget::new(PIXELS, DEPTH, width, height) else {
             board::exit(false)
@@ -474,6 +479,7 @@ mod firmware {
             pixels: fb.framebuffer().pixels(),
         };
         hprintln!("{}", line);
+        crate::stack::report();
         board::exit(true)
     }
 }
