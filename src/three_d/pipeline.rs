@@ -1158,6 +1158,14 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         bary: Option<[Bary; 3]>,
         target: &mut DepthTarget<'_, C>,
     ) {
+        // A textured frame's fill is `Textured`: the material fills are not compiled into its
+        // draws (a const test: an untextured frame's code is as without it).
+        if T::TEXTURED {
+            if let Fill::Textured(texturing) = &self.fill {
+                self.fill_textured(mesh, idx, model, v, bary, texturing, target);
+            }
+            return;
+        }
         let clip = &self.clip;
         let tri = v.map(|v| v.screen());
         match &self.fill {
@@ -1497,7 +1505,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                     .sum();
                 ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
             };
-            let textured = matches!(self.fill, Fill::Textured(..));
+            let textured = T::TEXTURED || matches!(self.fill, Fill::Textured(..));
             let v = [s0, s1, s2].map(|s| match textured {
                 true => ProjectedVertex::with_q(s.0, s.2),
                 false => ProjectedVertex::lit(s.0, level(&s.1)),
