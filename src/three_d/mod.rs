@@ -15,7 +15,8 @@
 //!   [`Shading`] and the depth-tested fills (flat, Gouraud, per-pixel lighting of quadratically
 //!   interpolated normals).
 //! * `texturing` — [`draw_textured`] and [`draw_textured_lit`]: textured, depth-tested fills with perspective-correct texel
-//!   coordinates.
+//!   coordinates; [`TexturedMaterial`]; [`NoTexture`] and [`FrameTexture`], the texture type
+//!   of a band renderer's mesh bin (untextured and textured).
 //! * `depth` — [`DepthTarget`]: a colour framebuffer with its z-buffer.
 //! * `band` — a band's rows as two clip-space planes: how a band's draw without a bin rejects
 //!   the faces outside it before projecting them (band rendering itself is the `band` module,
