@@ -10,7 +10,11 @@
 //! * 3D: the bench scene's knot (6,144 faces) at 320×240, and meshes with every shading, culling
 //!   mode and near-plane clipping on viewports that are not the frame (offset, partly outside
 //!   it), drawn with `Pipeline::draw_mesh_with`, against `DepthBand::draw_mesh` (no bin, no
-//!   scratch), `draw_mesh_with` (no bin) and the `MeshBin`, colours and depths.
+//!   scratch), `draw_mesh_with` (no bin) and the `MeshBin`, colours and depths;
+//! * textured meshes (spot with its texture, in the bench frame and clipped by the near plane,
+//!   every shading and sampler, vertex colours, highlights, `Lights`) drawn with
+//!   `Pipeline::draw_textured_mesh_with`, against a `MeshBin::new_textured` (tests/textured_mesh.rs
+//!   has the bin beside the bin-less band draws over its own suite of poses).
 //!
 //! And the renderers' contracts: one `fill_contiguous` of the band's rectangle per band, the
 //! double buffer's protocol (no buffer drawn into while it is being sent), errors before
