@@ -646,13 +646,13 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
             return Err(BandError::OtherLayout);
         }
         let frame = self.frame.with_clip(band.clip(self.pipeline));
+        if frame.levels().is_none() {
+            // Nothing kept set up.
+            return set_up_each(self, band);
+        }
         let (target, placement) = band.parts();
         let (mesh, scratch) = (&self.mesh, self.scratch);
         let Some(table) = frame.levels() else {
-            // Nothing kept set up: each face set up again in each band.
-            self.lists.each(placement.index, |r, _, _, _| {
-                frame.refill(mesh, scratch, &r.face(), r.flag, target);
-            });
             return Ok(());
         };
         // The refill inlined in the list's walk: a call per face otherwise.
@@ -790,17 +790,25 @@ where
     /// up again in each). Fastest when the bands are drawn top to bottom once;
     /// `Err(OtherLayout)` (nothing drawn) for a band of another layout.
     pub fn draw(&mut self, band: &mut DepthBand<'_, C>) -> Result<(), BandError> {
-        if band.layout() != &self.layout {
-            return Err(BandError::OtherLayout);
-        }
-        let frame = self.frame.with_clip(band.clip(self.pipeline));
-        let (target, placement) = band.parts();
-        let (mesh, scratch) = (&self.mesh, self.scratch);
-        self.lists.each(placement.index, |r, _, _, _| {
-            frame.refill(mesh, scratch, &r.face(), r.flag, target);
-        });
-        Ok(())
+        set_up_each(self, band)
     }
+}
+
+/// Fills `band`'s faces of `bin` into it, each set up again in each band it reaches.
+fn set_up_each<C: GouraudColor, T: FaceTexture<C>>(
+    bin: &mut MeshBin<'_, C, T>,
+    band: &mut DepthBand<'_, C>,
+) -> Result<(), BandError> {
+    if band.layout() != &bin.layout {
+        return Err(BandError::OtherLayout);
+    }
+    let frame = bin.frame.with_clip(band.clip(bin.pipeline));
+    let (target, placement) = band.parts();
+    let (mesh, scratch) = (&bin.mesh, bin.scratch);
+    bin.lists.each(placement.index, |r, _, _, _| {
+        frame.refill(mesh, scratch, &r.face(), r.flag, target);
+    });
+    Ok(())
 }
 
 /// A [`MeshBin`] of the frame `make` gives for the rows of `layout` (the frame's clip): its
