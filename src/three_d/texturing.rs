@@ -39,11 +39,17 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{DepthTarget, ScreenVertex};
+use super::light::{Highlight, Light, Specular};
+use super::math::Vec3;
 use super::math::{zip3_with, Scalar};
-use super::shading::{scale_channels, with_depth, TargetClip, DEPTH_SHIFT};
+use super::shading::{
+    highlighted_channels, pixel_terms, scale_channels, with_depth, QuadraticNormals, TargetClip,
+    DEPTH_SHIFT,
+};
 use super::vertex::Inverse;
 use crate::arch::{self, SIZE_OVER_SPEED};
 use crate::color::GouraudColor;
+use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
 use crate::raster::scan::SmallScan;
@@ -188,7 +194,7 @@ fn inverse_w(w: Scalar) -> u64 {
 
 /// How the light modulates a textured face's texels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum TexelLight {
+pub(crate) enum TexelLight<'p> {
     /// Not at all: the texels as they are.
     Full,
     /// By one level for the face (8.8 of the 0–255 scale).
@@ -206,6 +212,9 @@ pub(crate) enum TexelLight {
         /// Each vertex's specular term.
         speculars: [u16; 3],
     },
+    /// Per pixel: the face's quadratic normal field, evaluated at the perspective-correct
+    /// barycentrics, lit by one light (and a highlight); always interpolated perspective-correct.
+    Quadratic(&'p PixelLight),
 }
 
 /// A texture a frame draws its faces with: none (a material's colour), or a texture of some
@@ -227,7 +236,7 @@ pub(crate) trait FaceTexture<C>: Copy {
         vertices: [&ScreenVertex; 3],
         q: [Inverse; 3],
         texels: [[i32; 2]; 3],
-        light: TexelLight,
+        light: TexelLight<'_>,
     );
 }
 
@@ -249,7 +258,7 @@ impl<C> FaceTexture<C> for NoTexture {
         _: [&ScreenVertex; 3],
         _: [Inverse; 3],
         _: [[i32; 2]; 3],
-        _: TexelLight,
+        _: TexelLight<'_>,
     ) {
     }
 }
@@ -289,7 +298,7 @@ where
         vertices: [&ScreenVertex; 3],
         q: [Inverse; 3],
         texels: [[i32; 2]; 3],
-        light: TexelLight,
+        light: TexelLight<'_>,
     ) {
         fill_textured(target, clip, vertices, q, texels, self.sampler, light);
     }
@@ -396,12 +405,13 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
     q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
-    light: TexelLight,
+    light: TexelLight<'_>,
 ) where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
-    if nearly_affine(q, texels, &light, affine_level::<C>()) {
+    let quadratic = matches!(light, TexelLight::Quadratic(_));
+    if !quadratic && nearly_affine(q, texels, &light, affine_level::<C>()) {
         fill_screen_space(target, clip, screen, texels, sampler, light);
     } else {
         fill_perspective(target, clip, screen, q, texels, sampler, light);
@@ -420,7 +430,7 @@ fn fill_screen_space<S, C, R: RowWindow>(
     screen: [&ScreenVertex; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
-    light: TexelLight,
+    light: TexelLight<'_>,
 ) where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
@@ -483,6 +493,8 @@ fn fill_screen_space<S, C, R: RowWindow>(
             let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<4>);
             rows.shade(position, &a, &rect, fill);
         }
+        // Per-pixel light is always perspective-correct (`fill_textured` never brings it here).
+        TexelLight::Quadratic(_) => {}
     }
 }
 
@@ -496,7 +508,7 @@ fn fill_perspective<S, C, R: RowWindow>(
     q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
-    light: TexelLight,
+    light: TexelLight<'_>,
 ) where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
@@ -568,6 +580,15 @@ fn fill_perspective<S, C, R: RowWindow>(
             };
             clip.rows().shade(position, &attributes, &rect, fill);
         }
+        TexelLight::Quadratic(pixel) => {
+            let fill = TexturedFill {
+                target,
+                sampler,
+                coordinates,
+                light: PerPixel(pixel),
+            };
+            clip.rows().shade(position, &attributes, &rect, fill);
+        }
     }
 }
 
@@ -616,7 +637,7 @@ const fn affine_level<C: GouraudColor>() -> u64 {
 fn nearly_affine(
     q: [Inverse; 3],
     texels: [[i32; 2]; 3],
-    light: &TexelLight,
+    light: &TexelLight<'_>,
     affine_level: u64,
 ) -> bool {
     let Some((q, most)) = Inverse::common_scale(q) else {
@@ -652,6 +673,7 @@ fn nearly_affine(
             r.max(g).max(b).max(specular)
         }
         TexelLight::Full | TexelLight::Level(_) => return true,
+        TexelLight::Quadratic(_) => return false,
     };
     u64::from(levels) * ratio <= affine_level * twice
 }
@@ -1229,6 +1251,158 @@ fn lit_channels<C: GouraudColor, const K: usize>(base: [u8; 3], light: [u32; K])
         s(c1, m1, fraction(1)),
         s(c2, m2, fraction(2)),
     ])
+}
+
+/// The per-pixel light of a textured face with [`Shading::Quadratic`](super::Shading): its
+/// quadratic normal field as a polynomial in the face's perspective-correct barycentrics
+/// `λ₁`, `λ₂` (those of its vertices 1 and 2, `λ₀ = 1 − λ₁ − λ₂`),
+///
+/// `N = K₀ + K₁λ₁ + K₂λ₂ + K₃λ₁² + K₄λ₁λ₂ + K₅λ₂²`,
+///
+/// and the light (one directional light with its ambient term) and highlight it is lit by.
+/// Built once a face (a fan's triangle: the field restricted to it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PixelLight {
+    /// `K₀ … K₅` of each component, 16 fractional bits (at most 2²⁰ in magnitude: unit
+    /// nodes).
+    k: [[i32; 6]; 3],
+    /// The unit light direction and half vector, raw `I16F16` (within ±2¹⁶).
+    l: [i32; 3],
+    h: [i32; 3],
+    /// The light (its ambient term).
+    light: Light,
+    /// The highlight and its threshold, if any.
+    specular: Option<(Specular, u32)>,
+}
+
+impl PixelLight {
+    /// The light of the face whose normal field is `normals` (vertex `k` of the field the
+    /// face's vertex `k`), lit by `light` and `highlight` (its half vector in the normals'
+    /// space).
+    pub(crate) fn new(
+        normals: &QuadraticNormals,
+        light: &Light,
+        highlight: Option<&Highlight>,
+    ) -> Self {
+        let [n0, n1, n2] = normals.vertices().map(|v| v.to_bits());
+        let [m01, m12, m20] = normals.midpoints().map(|v| v.to_bits());
+        // With c₀ = 1 − λ₁ − λ₂, c₁ = λ₁, c₂ = λ₂ in Σ Nᵢcᵢ(2cᵢ − 1) + Σ 4N̂ᵢⱼcᵢcⱼ. Unit nodes
+        // (|component| ≤ 2¹⁶): every sum below 12·2¹⁶.
+        let unit = |v: [i32; 3]| v.map(|c| c.clamp(-(1 << 16), 1 << 16));
+        let [n0, n1, n2, m01, m12, m20] = [n0, n1, n2, m01, m12, m20].map(unit);
+        let k = |c: usize| -> [i32; 6] {
+            let at = |v: [i32; 3]| v.get(c).copied().unwrap_or(0);
+            let (n0, n1, n2) = (at(n0), at(n1), at(n2));
+            let (m01, m12, m20) = (at(m01), at(m12), at(m20));
+            [
+                n0,
+                -3 * n0 - n1 + 4 * m01,
+                -3 * n0 - n2 + 4 * m20,
+                2 * n0 + 2 * n1 - 4 * m01,
+                4 * n0 - 4 * m01 + 4 * m12 - 4 * m20,
+                2 * n0 + 2 * n2 - 4 * m20,
+            ]
+        };
+        let unit = |v: Vec3| unit(v.to_bits());
+        PixelLight {
+            k: [k(0), k(1), k(2)],
+            l: unit(light.direction()),
+            h: highlight.map_or([0; 3], |h| unit(h.half)),
+            light: *light,
+            specular: highlight.map(|h| (h.specular, h.threshold)),
+        }
+    }
+
+    /// The normal (28 fractional bits, wrapping: its components are below 8 in magnitude
+    /// inside the face) at `a = (λ₁, λ₂)` (16 fractional bits, at most 2¹⁶ each, as
+    /// [`lambdas`](perspective) gives them), and its first and second forward differences
+    /// along a run on which the barycentrics step by `d` (28 fractional bits, within ±2²⁸) a
+    /// pixel: the field is quadratic in the pixel along such a run, so that stepping the
+    /// value by the first difference and that by the second gives it exactly, up to the
+    /// differences' rounding (the first within 2⁻²⁴, the second 2⁻²⁶: below 2⁻¹⁹ after 16
+    /// pixels). 32-bit operands, their products 64 bits (one instruction on ARMv7-M).
+    #[inline(always)]
+    fn differences(&self, a: (Lambda, Lambda), d: (i32, i32)) -> ([i32; 3], [i32; 3], [i32; 3]) {
+        // 29 fractional bits: |a|, |d| ≤ 2²⁹.
+        let (a1, a2) = (
+            (a.0.min(1 << 16) << 13) as i32,
+            (a.1.min(1 << 16) << 13) as i32,
+        );
+        let (d1, d2) = (
+            d.0.clamp(-(1 << 28), 1 << 28) << 1,
+            d.1.clamp(-(1 << 28), 1 << 28) << 1,
+        );
+        let m = mul_i32_wide;
+        // Products back to 29 fractional bits: each below 3·2²⁹.
+        let w = |p: i64| (p >> 29) as i32;
+        let (a11, a12, a22) = (w(m(a1, a1)), w(m(a1, a2)), w(m(a2, a2)));
+        // N(a + d) − N(a), the quadratic part: (2a₁d₁ + d₁²), (a₁d₂ + a₂d₁ + d₁d₂), (2a₂d₂ + d₂²).
+        let s11 = w(2 * m(a1, d1) + m(d1, d1));
+        let s12 = w(m(a1, d2) + m(a2, d1) + m(d1, d2));
+        let s22 = w(2 * m(a2, d2) + m(d2, d2));
+        // The second difference's squares with 35 fractional bits (below 2³⁶).
+        let (q11, q12, q22) = (m(d1, d1) >> 23, m(d1, d2) >> 23, m(d2, d2) >> 23);
+        let round = |x: i64, shift: u32| (x.wrapping_add(1 << (shift - 1)) >> shift) as i32;
+        let component = |k: &[i32; 6]| {
+            let [k0, k1, k2, k3, k4, k5] = *k;
+            // 45 fractional bits (K: 16): each product below 2⁵¹.
+            let v = (i64::from(k0) << 29)
+                + m(k1, a1)
+                + m(k2, a2)
+                + m(k3, a11)
+                + m(k4, a12)
+                + m(k5, a22);
+            let f = m(k1, d1) + m(k2, d2) + m(k3, s11) + m(k4, s12) + m(k5, s22);
+            // 51 fractional bits: twice the quadratic form of d (each product below 2⁵⁷).
+            let g = 2 * (i64::from(k3) * q11 + i64::from(k4) * q12 + i64::from(k5) * q22);
+            (round(v, 17), round(f, 17), round(g, 23))
+        };
+        let [kx, ky, kz] = &self.k;
+        let (x, y, z) = (component(kx), component(ky), component(kz));
+        ([x.0, y.0, z.0], [x.1, y.1, z.1], [x.2, y.2, z.2])
+    }
+}
+
+/// Per-pixel light of the quadratic normal field ([`PixelLight`]): the normal and its first
+/// difference stepped along each chunk (28 fractional bits, wrapping), restarted from the
+/// perspective-correct barycentrics at each chunk's first pixel and the barycentrics' chord to
+/// its end; each pixel lit by its normal, renormalised.
+#[derive(Clone, Copy)]
+struct PerPixel<'p>(&'p PixelLight);
+
+impl SpanLight for PerPixel<'_> {
+    /// The normal and its first difference (a step: unused, and the second difference).
+    type Level = ([i32; 3], [i32; 3]);
+
+    #[inline(always)]
+    fn chunk(
+        &self,
+        start: (Lambda, Lambda),
+        end: (Lambda, Lambda),
+        over: u32,
+    ) -> (Self::Level, Self::Level) {
+        // The barycentrics' steps with 28 fractional bits (λ ≤ 2¹⁶: no overflow).
+        let d = |s: Lambda, e: Lambda| step_over((s << 12) as i32, (e << 12) as i32, over);
+        let d = (d(start.0, end.0), d(start.1, end.1));
+        let (value, first, second) = self.0.differences(start, d);
+        ((value, first), ([0; 3], second))
+    }
+
+    #[inline(always)]
+    fn apply<C: GouraudColor>(&self, texel: C, (n, _): Self::Level) -> C {
+        // 16 fractional bits, within ±2¹⁷ (the field stays near unit length).
+        let q = n.map(|v| (v.wrapping_add(1 << 11) >> 12).clamp(-(1 << 17) + 1, (1 << 17) - 1));
+        let light = self.0;
+        let highlight = light.specular.as_ref().map(|(s, t)| (&light.h, s, *t));
+        let (diffuse, specular) = pixel_terms(q, &light.l, highlight);
+        let level = light.light.level_of_diffuse(diffuse);
+        highlighted_channels::<C>(texel.channels(), level, specular)
+    }
+
+    #[inline(always)]
+    fn step((n, d1): Self::Level, (_, d2): Self::Level) -> Self::Level {
+        (add_each(n, d1), add_each(d1, d2))
+    }
 }
 
 /// The span shader of the textured fills: depth test, texel coordinates (and light level) from
