@@ -213,8 +213,9 @@ impl Pipeline {
     /// Every shading but per-pixel lighting lights with them as with the first light (flat: at
     /// the face's centroid with its normal; Gouraud: per vertex), and a material's
     /// [`Specular`](super::Specular) highlight shines for each. A
-    /// [`Shading::Quadratic`] material is lit per vertex (as [`Shading::Gouraud`]) while the
-    /// set lights anything: per-pixel lighting takes only the first light so far. A set that
+    /// [`Shading::Quadratic`] material (textured or not) is lit per vertex (as
+    /// [`Shading::Gouraud`]) while the set lights anything: per-pixel lighting takes only the
+    /// first light so far. A set that
     /// lights nothing (empty, or every source of intensity 0) draws as without it, at the same
     /// cost.
     pub fn with_lights(self, lights: Lights) -> Self {
