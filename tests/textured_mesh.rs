@@ -46,7 +46,8 @@ use embedded_raster::three_d::meshes::{icosphere, MeshData};
 use embedded_raster::three_d::{Angle, Scalar, TexCoord, Vec3};
 use embedded_raster::three_d::{Cull, DepthTarget, DrawStats, Mesh, Pipeline, DEPTH_CLEAR};
 use embedded_raster::three_d::{
-    Light, Material, ProjectedVertex, ScratchTooSmall, Shading, Specular, TexturedMaterial,
+    Light, LightSource, Lights, Material, ProjectedVertex, ScratchTooSmall, Shading, Specular,
+    TexturedMaterial,
 };
 
 #[path = "support/raycast.rs"]
@@ -1661,6 +1662,7 @@ fn quadratic_terms(
     b: [f64; 3],
     half: V,
     specular: (f64, i32),
+    extra: &[(V, f64)],
 ) -> (f64, f64) {
     let mid = |i: usize, j: usize| normalize([0, 1, 2].map(|c| normals[i][c] + normals[j][c]));
     let nodes = [
@@ -1682,11 +1684,21 @@ fn quadratic_terms(
     let n = normalize([0, 1, 2].map(|c| (0..6).map(|k| w[k] * nodes[k][c]).sum::<f64>()));
     let d = dot(n, scene.light);
     let level = scene.ambient + (1.0 - scene.ambient) * d.max(0.0);
-    let spec = match d > 0.0 {
+    let mut spec = match d > 0.0 {
         true => specular.0 * dot(n, half).max(0.0).powi(specular.1),
         false => 0.0,
     };
-    (level, spec)
+    // The pipeline's other lights (directional: unit direction and intensity), saturating.
+    let mut level = level;
+    for &(l, w) in extra {
+        let d = dot(n, l);
+        if d > 0.0 {
+            let h = normalize([l[0], l[1], l[2] + 1.0]);
+            level += w * d;
+            spec += w * specular.0 * dot(n, h).max(0.0).powi(specular.1);
+        }
+    }
+    (level.min(1.0), spec.min(1.0))
 }
 
 /// What a quadratic comparison found: pixels checked, the largest error and tolerance (LSB),
@@ -1730,6 +1742,7 @@ fn check_quadratic(
     scene: &Scene,
     mesh: &MeshData,
     specular: Specular,
+    extra: &[(V, f64)],
     q: &mut Quadratic,
 ) -> Frame {
     let bytes = constant_texels();
@@ -1750,7 +1763,7 @@ fn check_quadratic(
     let (verdicts, spans) = verdicts(scene, &faces);
     let texel = TEXEL.map(f64::from);
     let color = |b: [f64; 3], normals: &[V; 3]| {
-        let (l, s) = quadratic_terms(scene, normals, b, half, (strength, shininess));
+        let (l, s) = quadratic_terms(scene, normals, b, half, (strength, shininess), extra);
         texel.map(|t| (t * l + 255.0 * s).min(255.0))
     };
     for (p, verdict) in verdicts.into_iter().enumerate() {
@@ -1879,6 +1892,7 @@ fn quadratic_texels_are_lit_per_pixel() {
             &scene,
             &mesh,
             specular,
+            &[],
             &mut grazing,
         );
     }
@@ -1913,7 +1927,7 @@ fn quadratic_texels_are_lit_per_pixel() {
         let mesh = dome_floor(3.0, rng.range_f64(0.5, 0.9));
         let specular = Specular::new(fx(0.8), 24 + 8 * (n as u8 % 3));
         let name = format!("domed floor #{n}");
-        let frame = check_quadratic(&name, &scene, &mesh, specular, &mut inside);
+        let frame = check_quadratic(&name, &scene, &mesh, specular, &[], &mut inside);
         // An untextured mesh through a `Solid` texture of the same colour: the same pixels
         // (its per-pixel light and highlight those checked here).
         let solid = Texture::new(Solid(Rgb888::new(TEXEL[0], TEXEL[1], TEXEL[2])), 1, 1).unwrap();
@@ -1929,14 +1943,52 @@ fn quadratic_texels_are_lit_per_pixel() {
     assert!(inside.gouraud_off * 5 > inside.pixels, "{inside:?}");
     assert!(inside.gouraud_worst > 60.0, "{inside:?}");
 
+    // The same domes with two more directional lights (`Lights`), each lit and highlighted per
+    // pixel too.
+    let mut lights = Quadratic::default();
+    let mut rng = Rng(0x7e47_3d13);
+    for n in 0..4 {
+        let pose = Pose {
+            fov: 60,
+            near: 0.5,
+            far: 30.0,
+            yaw: degrees(rng.range_f64(-15.0, 15.0)),
+            pitch: degrees(rng.range_f64(-70.0, -45.0)),
+            position: [0.0, rng.range_f64(-0.5, 0.0), rng.range_f64(-6.0, -4.5)],
+            cull: Cull::None,
+        };
+        let mut scene = Scene::new(&pose, normalize([0.2, 0.6, 1.0]), 0.1);
+        let mut set = Lights::new();
+        let mut extra = Vec::new();
+        for _ in 0..2 {
+            let d = [
+                rng.range_f64(-1.0, 1.0),
+                rng.range_f64(-1.0, 1.0),
+                rng.range_f64(0.2, 1.0),
+            ];
+            let bits = Vec3::new(fx(d[0]), fx(d[1]), fx(d[2]));
+            let w = fx(rng.range_f64(0.2, 0.8));
+            set = set.with(LightSource::directional(bits, w));
+            extra.push((normalize(bits3(bits)), fl(w)));
+        }
+        scene.pipeline = scene.pipeline.with_lights(set);
+        let mesh = dome_floor(3.0, rng.range_f64(0.5, 0.9));
+        let specular = Specular::new(fx(0.6), 16);
+        let name = format!("domed floor with lights #{n}");
+        check_quadratic(&name, &scene, &mesh, specular, &extra, &mut lights);
+    }
+    println!("with two more directional lights: {lights:?}");
+    assert!(lights.pixels > 10_000, "{lights:?}");
+
     // The suite's meshes (floors, tori, patched icospheres; clipped faces drawn as fans, the
     // field restricted to each triangle) under random lights and highlights.
+    let mut rng = Rng(0x7e47_3d12);
     let (unclipped, clipped) = all_cases();
     let mut suite = Quadratic::default();
     for case in unclipped.iter().chain(&clipped) {
         let scene = random_lit_scene(case, &mut rng);
         let specular = Specular::new(fx(rng.range_f64(0.2, 1.0)), rng.below(48) as u8 + 1);
-        check_quadratic(&case.name, &scene, &case.mesh, specular, &mut suite);
+        check_quadratic(&case.name, &scene, &case.mesh, specular, &[], &mut suite);
     }
     println!("the suite's cases: {suite:?}");
     assert!(suite.pixels > 60_000, "{suite:?}");
@@ -2140,6 +2192,21 @@ fn per_pixel_paths_draw_the_same_pixels() {
     let (mut drawn, mut clipped_faces) = (0, 0);
     for (k, case) in unclipped.iter().chain(&clipped).enumerate() {
         let mut scene = Scene::new(&case.pose, LIGHT, 0.15);
+        // Every third case with more lights: a directional one and a point light near the
+        // mesh (its direction and falloff per face).
+        if k % 3 == 2 {
+            let set = Lights::new()
+                .with(LightSource::directional(
+                    Vec3::new(fx(-0.5), fx(0.3), fx(0.8)),
+                    fx(0.4),
+                ))
+                .with(LightSource::point(
+                    Vec3::new(fx(0.5), fx(1.0), fx(-3.0)),
+                    fx(0.8),
+                    fx(6.0),
+                ));
+            scene.pipeline = scene.pipeline.with_lights(set);
+        }
         if k % 4 == 3 {
             scene.pipeline.viewport = Rectangle::new(Point::new(-7, 3), Size::new(W + 20, H - 10));
         }

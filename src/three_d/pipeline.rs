@@ -213,9 +213,10 @@ impl Pipeline {
     /// Every shading but per-pixel lighting lights with them as with the first light (flat: at
     /// the face's centroid with its normal; Gouraud: per vertex), and a material's
     /// [`Specular`](super::Specular) highlight shines for each. A
-    /// [`Shading::Quadratic`] material (textured or not) is lit per vertex (as
-    /// [`Shading::Gouraud`]) while the set lights anything: per-pixel lighting takes only the
-    /// first light so far. A set that
+    /// [`Shading::Quadratic`] [`Material`] is lit per vertex (as [`Shading::Gouraud`]) while
+    /// the set lights anything: its per-pixel fill takes only the first light so far. A
+    /// quadratic [`TexturedMaterial`] is lit per pixel by all of them (point lights with their
+    /// direction and falloff at each face's centroid). A set that
     /// lights nothing (empty, or every source of intensity 0) draws as without it, at the same
     /// cost.
     pub fn with_lights(self, lights: Lights) -> Self {
@@ -497,8 +498,8 @@ enum Fill<C> {
     /// The frame's texture, lit by one level a face (`Flat`), the vertex levels (`Gouraud`)
     /// or not at all (`Unlit`); tinted by the mesh's vertex colours, and highlighted.
     Textured(Texturing),
-    /// The frame's texture lit per pixel by the quadratic normal field (`Quadratic` with the
-    /// pipeline's light alone, untinted), and highlighted per pixel.
+    /// The frame's texture lit per pixel by the quadratic normal field (`Quadratic`,
+    /// untinted), and highlighted per pixel.
     TexturedPixel(Texturing),
     /// A material with a highlight, lit with `Flat`, `Gouraud` or `Quadratic` shading.
     Specular(Shiny<C>),
@@ -675,11 +676,11 @@ where
             highlight,
             pixel,
         };
-        // Per-pixel light takes the first light only, untinted: with more lights, or the
-        // mesh's vertex colours, the vertices' levels (as `Gouraud`).
+        // Per-pixel light is untinted: with the mesh's vertex colours, the vertices' levels (as
+        // `Gouraud`).
         let tinted = material.vertex_colors && !mesh.colors.is_empty();
         let fill = match material.shading {
-            Shading::Quadratic if rig.is_none() && !tinted => Fill::TexturedPixel(texturing),
+            Shading::Quadratic if !tinted => Fill::TexturedPixel(texturing),
             _ => Fill::Textured(texturing),
         };
         Frame {
@@ -1377,7 +1378,12 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             None => normals,
             Some(bary) => normals.restricted(bary),
         };
-        let pixel = PixelLight::new(&normals, &self.pipeline.light, texturing.pixel.as_ref());
+        let sources = match &self.rig {
+            Some(rig) => rig.pixel_sources(&model()),
+            None => Default::default(),
+        };
+        let h = texturing.pixel.as_ref();
+        let pixel = PixelLight::new(&normals, &self.pipeline.light, h, sources);
         let light = TexelLight::Quadratic(&pixel);
         self.fill_texels(mesh, idx, v, bary, light, target);
     }
