@@ -81,17 +81,17 @@ mod firmware {
         let (width, height) = SIZE;
         let mut target = DepthTarget::new(COLORS, DEPTH, width, height).expect("buffers fit");
 
-        if option_env!("MESH_PROFILE") == Some("textured") {
-            // Profiling build: the textured nearest frame alone, a few times.
+        if let Some(kind) = option_env!("MESH_PROFILE").and_then(|p| p.strip_prefix("textured")) {
+            // Profiling build: a textured frame alone (`textured`: nearest; `textured-quadratic`:
+            // per pixel with the highlight), a few times.
+            let frame = match kind {
+                "-quadratic" => Textured::QuadraticSpecular,
+                _ => Textured::Nearest,
+            };
             textured3d::expand(TEXTURE);
             for _ in 0..4 {
                 let scratch = Some(&mut SCRATCH[..]);
-                black_box(textured3d::render(
-                    Textured::Nearest,
-                    TEXTURE,
-                    &mut target,
-                    scratch,
-                ));
+                black_box(textured3d::render(frame, TEXTURE, &mut target, scratch));
             }
             board::exit(true)
         }
@@ -195,7 +195,7 @@ mod firmware {
         }
         // The textured frames: counts and checksums untimed, then timed with the scratch.
         textured3d::expand(TEXTURE);
-        let mut textured = [None, None, None, None];
+        let mut textured = [None, None, None, None, None, None];
         for (k, frame) in Textured::ALL.into_iter().enumerate() {
             let stats = textured3d::render(frame, TEXTURE, &mut target, Some(&mut SCRATCH[..]));
             let covered = scene3d::covered(target.depth());
@@ -246,7 +246,7 @@ mod firmware {
             );
         }
         hprintln!(
-            "\n| spot textured (256×256 texture, Gouraud, perspective-correct) | drawn | covered px | instructions a frame |"
+            "\n| spot textured (256×256 texture, Gouraud or per pixel (quadratic), perspective-correct) | drawn | covered px | instructions a frame |"
         );
         hprintln!("|---|---:|---:|---:|");
         for (line, instructions) in textured.iter().flatten() {

@@ -46,7 +46,8 @@ use embedded_raster::three_d::meshes::{icosphere, MeshData};
 use embedded_raster::three_d::{Angle, Scalar, TexCoord, Vec3};
 use embedded_raster::three_d::{Cull, DepthTarget, DrawStats, Mesh, Pipeline, DEPTH_CLEAR};
 use embedded_raster::three_d::{
-    Light, Material, ProjectedVertex, ScratchTooSmall, Shading, Specular, TexturedMaterial,
+    Light, LightSource, Lights, Material, ProjectedVertex, ScratchTooSmall, Shading, Specular,
+    TexturedMaterial,
 };
 
 #[path = "support/raycast.rs"]
@@ -1648,6 +1649,352 @@ fn lit_texels_follow_lambert() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Per-pixel (quadratic) light on textured meshes
+// ---------------------------------------------------------------------------------------------
+
+/// The f64 light of the quadratic normal field of a face with unit world normals `normals` at
+/// barycentrics `b`: `N(b) = Σ Nᵢbᵢ(2bᵢ − 1) + Σ 4N̂ᵢⱼbᵢbⱼ`, `N̂ᵢⱼ = normalize(Nᵢ + Nⱼ)`,
+/// renormalised; its Lambert level `ambient + (1 − ambient)·max(0, n̂·l)` and Blinn-Phong term
+/// `strength · max(0, n̂·ĥ)^shininess` (0 where `n̂·l ≤ 0`).
+fn quadratic_terms(
+    scene: &Scene,
+    normals: &[V; 3],
+    b: [f64; 3],
+    half: V,
+    specular: (f64, i32),
+    extra: &[(V, f64)],
+) -> (f64, f64) {
+    let mid = |i: usize, j: usize| normalize([0, 1, 2].map(|c| normals[i][c] + normals[j][c]));
+    let nodes = [
+        normals[0],
+        normals[1],
+        normals[2],
+        mid(0, 1),
+        mid(1, 2),
+        mid(2, 0),
+    ];
+    let w = [
+        b[0] * (2.0 * b[0] - 1.0),
+        b[1] * (2.0 * b[1] - 1.0),
+        b[2] * (2.0 * b[2] - 1.0),
+        4.0 * b[0] * b[1],
+        4.0 * b[1] * b[2],
+        4.0 * b[2] * b[0],
+    ];
+    let n = normalize([0, 1, 2].map(|c| (0..6).map(|k| w[k] * nodes[k][c]).sum::<f64>()));
+    let d = dot(n, scene.light);
+    let level = scene.ambient + (1.0 - scene.ambient) * d.max(0.0);
+    let mut spec = match d > 0.0 {
+        true => specular.0 * dot(n, half).max(0.0).powi(specular.1),
+        false => 0.0,
+    };
+    // The pipeline's other lights (directional: unit direction and intensity), saturating.
+    let mut level = level;
+    for &(l, w) in extra {
+        let d = dot(n, l);
+        if d > 0.0 {
+            let h = normalize([l[0], l[1], l[2] + 1.0]);
+            level += w * d;
+            spec += w * specular.0 * dot(n, h).max(0.0).powi(specular.1);
+        }
+    }
+    (level.min(1.0), spec.min(1.0))
+}
+
+/// What a quadratic comparison found: pixels checked, the largest error and tolerance (LSB),
+/// the largest error beyond the tolerance, and how the per-vertex (Gouraud) draw of the same
+/// scene fares against the same reference and tolerance: its largest error, and the pixels
+/// where it exceeds the tolerance.
+#[derive(Debug, Default)]
+struct Quadratic {
+    pixels: u64,
+    worst: f64,
+    widest: f64,
+    beyond: f64,
+    /// The largest error at pixels whose tolerance is at most 2 LSB.
+    worst_tight: f64,
+    /// Channels more than 1 and 2 LSB off.
+    over_one: u64,
+    over_two: u64,
+    gouraud_worst: f64,
+    gouraud_off: u64,
+}
+
+/// The fixed-point evaluation's own error on a cosine (nodes rounded to `I16F16`, the field's
+/// coefficients and differences, the 16-bit normal and `inv_sqrt`): 2⁻¹³.
+const COSINE_ERROR: f64 = 1.0 / 8192.0;
+
+/// Draws `mesh` in `scene` textured with a constant texture, `Shading::Quadratic` with the
+/// highlight `specular` (per pixel), and `Shading::Gouraud` (the old fallback: per vertex), and
+/// checks every pixel the reference gives one face against `min(255, texel · L + 255 · S)`, `L`
+/// and `S` the f64 per-pixel level and highlight of the quadratic normal field at the ray's hit
+/// barycentrics (`quadratic_terms`).
+///
+/// Tolerance: the implementation's perspective barycentrics `λ₁`, `λ₂` are off the exact ones
+/// by at most `εₖ = δ + chord + steps + position` (`RefFace::delta` and `exact` with the
+/// barycentric as the attribute: the same bounds as the texel coordinates'); the colour may then
+/// be anything the f64 colour takes with `λ` moved by up to `±εₖ` (evaluated at the corners
+/// and the edges' midpoints of that box), plus 1 LSB (rounding) and the cosines' own error
+/// (`COSINE_ERROR`: `texel · η` on the level, `255 · strength · shininess · η` and the power's
+/// `shininess · 2⁻¹⁷` on the highlight).
+fn check_quadratic(
+    name: &str,
+    scene: &Scene,
+    mesh: &MeshData,
+    specular: Specular,
+    extra: &[(V, f64)],
+    q: &mut Quadratic,
+) -> Frame {
+    let bytes = constant_texels();
+    let texture = Texture::new(Rgb888Texels(&bytes), 4, 4).unwrap();
+    let (strength, shininess) = (fl(specular.strength()), i32::from(specular.shininess()));
+    let draw = |shading: Shading| {
+        let mut frame = Frame::new();
+        let material = TexturedMaterial::new(&texture, shading).with_specular(specular);
+        scene
+            .pipeline
+            .draw_textured_mesh(&mesh.as_mesh(), &material, &mut frame.target());
+        frame
+    };
+    let (quadratic, gouraud) = (draw(Shading::Quadratic), draw(Shading::Gouraud));
+    let half = normalize([scene.light[0], scene.light[1], scene.light[2] + 1.0]);
+    let world_normal = |n: Vec3| normalize(rotate(&scene.view.model_view, normalize(bits3(n))));
+    let faces = ref_faces(scene, mesh, (4, 4));
+    let (verdicts, spans) = verdicts(scene, &faces);
+    let texel = TEXEL.map(f64::from);
+    let color = |b: [f64; 3], normals: &[V; 3]| {
+        let (l, s) = quadratic_terms(scene, normals, b, half, (strength, shininess), extra);
+        texel.map(|t| (t * l + 255.0 * s).min(255.0))
+    };
+    for (p, verdict) in verdicts.into_iter().enumerate() {
+        let Verdict::Face { face, .. } = verdict else {
+            continue;
+        };
+        let (i, j) = ((p as u32 % W) as i32, (p as u32 / W) as i32);
+        let f = &faces[face];
+        let idx = mesh.indices[face].map(usize::from);
+        let normals = match mesh.normals.is_empty() {
+            false => idx.map(|v| world_normal(mesh.normals[v])),
+            true => {
+                let p = idx.map(|v| bits3(mesh.vertices[v]));
+                let n = normalize(cross(sub(p[1], p[0]), sub(p[2], p[0])));
+                [normalize(rotate(&scene.view.model_view, n)); 3]
+            }
+        };
+        let basis = |k: usize| {
+            let mut a = [0.0; 3];
+            a[k] = 1.0;
+            exact(scene, f, spans.of(face, j), a, (i, j), UNIT)
+        };
+        let (e1, e2) = (basis(1), basis(2));
+        let delta = f.delta(scene);
+        let (eps1, eps2) = (delta + e1.wiggle, delta + e2.wiggle);
+        let b = [1.0 - e1.value - e2.value, e1.value, e2.value];
+        let want = color(b, &normals);
+        let mut spread = [0.0f64; 3];
+        for s1 in [-1.0, -0.5, 0.0, 0.5, 1.0] {
+            for s2 in [-1.0, -0.5, 0.0, 0.5, 1.0] {
+                let (l1, l2) = (b[1] + s1 * eps1, b[2] + s2 * eps2);
+                let moved = color([1.0 - l1 - l2, l1, l2], &normals);
+                for k in 0..3 {
+                    spread[k] = spread[k].max((moved[k] - want[k]).abs());
+                }
+            }
+        }
+        let n = f64::from(shininess);
+        let highlight = 255.0 * (strength * n * COSINE_ERROR + n / 131_072.0);
+        let channels = |c: Rgb888| [c.r(), c.g(), c.b()].map(f64::from);
+        let (got, old) = (channels(quadratic.px[p]), channels(gouraud.px[p]));
+        for k in 0..3 {
+            let tol = 1.0 + spread[k] + texel[k] * COSINE_ERROR + highlight;
+            let d = (got[k] - want[k]).abs();
+            assert!(
+                d <= tol,
+                "{name}: pixel {i},{j} face {face} channel {k}: {}, exact {:.3} (tolerance \
+                 {tol:.3}, ε {eps1:.2e} {eps2:.2e})",
+                got[k],
+                want[k]
+            );
+            q.worst = q.worst.max(d);
+            q.widest = q.widest.max(tol);
+            q.beyond = q.beyond.max(d - tol);
+            if tol <= 2.0 {
+                q.worst_tight = q.worst_tight.max(d);
+            }
+            q.over_one += u64::from(d > 1.0);
+            q.over_two += u64::from(d > 2.0);
+            let g = (old[k] - want[k]).abs();
+            q.gouraud_worst = q.gouraud_worst.max(g);
+            if g > tol && k == 1 {
+                q.gouraud_off += 1;
+            }
+        }
+        q.pixels += 1;
+    }
+    quadratic
+}
+
+/// A floor quad (two faces) whose corner normals lean outwards by `lean` (a dome: the normal
+/// field is near the floor's own normal in the middle of the faces, far from it at the corners).
+fn dome_floor(half: f64, lean: f64) -> MeshData {
+    let mut mesh = floor(half, 1, 1.0);
+    mesh.normals = mesh
+        .vertices
+        .iter()
+        .map(|p| {
+            let v = bits3(*p);
+            let n = normalize([v[0] * lean / half, v[1] * lean / half, 1.0]);
+            Vec3::new(fx(n[0]), fx(n[1]), fx(n[2]))
+        })
+        .collect();
+    mesh
+}
+
+/// Textured meshes with `Shading::Quadratic` are lit per pixel, perspective-correct: on large
+/// faces at grazing angles with curved normals (the normal field's barycentrics corrected for
+/// perspective) and on faces whose highlight lies inside them (missed by per-vertex specular),
+/// every pixel within the tolerance of `check_quadratic` of the f64 per-pixel reference, and
+/// the per-vertex (Gouraud) draw of the same scenes — what `Quadratic` drew before — beyond it on
+/// many pixels.
+#[test]
+fn quadratic_texels_are_lit_per_pixel() {
+    let mut rng = Rng(0x7e47_3d11);
+    let mut grazing = Quadratic::default();
+    for n in 0..6 {
+        let mut mesh = floor(6.0, 1, 1.0);
+        let tilt = |x: f64, y: f64| {
+            let v = normalize([x, y, 1.0]);
+            Vec3::new(v[0], v[1], v[2])
+        };
+        mesh.normals = vec![
+            tilt(-1.2, -0.4),
+            tilt(1.0, -1.1),
+            tilt(-0.9, 1.3),
+            tilt(1.3, 0.8),
+        ];
+        let pose = Pose {
+            fov: 60,
+            near: 0.5,
+            far: 30.0,
+            yaw: degrees(rng.range_f64(-20.0, 20.0)),
+            pitch: degrees(-90.0 + rng.range_f64(1.0, 4.0)),
+            position: [
+                rng.range_f64(-0.5, 0.5),
+                rng.range_f64(-0.8, -0.3),
+                rng.range_f64(-9.0, -7.0),
+            ],
+            cull: Cull::None,
+        };
+        let scene = Scene::new(&pose, normalize([0.3, 1.0, 0.4]), 0.1);
+        let specular = Specular::new(fx(0.5), 8);
+        check_quadratic(
+            &format!("grazing floor #{n}"),
+            &scene,
+            &mesh,
+            specular,
+            &[],
+            &mut grazing,
+        );
+    }
+    println!("grazing floors: {grazing:?}");
+    assert!(grazing.pixels > 20_000, "{grazing:?}");
+    assert!(grazing.gouraud_off * 5 > grazing.pixels, "{grazing:?}");
+
+    // A domed floor tilted towards the camera, the light placed so that the half vector is the
+    // floor's own normal: the highlight peaks inside the faces, where no vertex sees it.
+    let mut inside = Quadratic::default();
+    for n in 0..6 {
+        let pitch = rng.range_f64(-70.0, -45.0);
+        let pose = Pose {
+            fov: 60,
+            near: 0.5,
+            far: 30.0,
+            yaw: degrees(rng.range_f64(-15.0, 15.0)),
+            pitch: degrees(pitch),
+            position: [
+                rng.range_f64(-0.3, 0.3),
+                rng.range_f64(-0.5, 0.0),
+                rng.range_f64(-6.0, -4.5),
+            ],
+            cull: Cull::None,
+        };
+        // The floor's normal in eye space, and the light reflecting the viewer (+z) about it.
+        let probe = Scene::new(&pose, [0.0, 0.0, 1.0], 0.0);
+        let up = normalize(rotate(&probe.view.model_view, [0.0, 0.0, 1.0]));
+        let k = 2.0 * up[2];
+        let light = normalize([k * up[0], k * up[1], k * up[2] - 1.0]);
+        let scene = Scene::new(&pose, light, 0.15);
+        let mesh = dome_floor(3.0, rng.range_f64(0.5, 0.9));
+        let specular = Specular::new(fx(0.8), 24 + 8 * (n as u8 % 3));
+        let name = format!("domed floor #{n}");
+        let frame = check_quadratic(&name, &scene, &mesh, specular, &[], &mut inside);
+        // An untextured mesh through a `Solid` texture of the same colour: the same pixels
+        // (its per-pixel light and highlight those checked here).
+        let solid = Texture::new(Solid(Rgb888::new(TEXEL[0], TEXEL[1], TEXEL[2])), 1, 1).unwrap();
+        let material = TexturedMaterial::new(&solid, Shading::Quadratic).with_specular(specular);
+        let mut plain = Frame::new();
+        scene
+            .pipeline
+            .draw_textured_mesh(&mesh.as_mesh(), &material, &mut plain.target());
+        assert!(plain == frame, "{name}: the Solid texture's pixels differ");
+    }
+    println!("highlights inside faces: {inside:?}");
+    assert!(inside.pixels > 20_000, "{inside:?}");
+    assert!(inside.gouraud_off * 5 > inside.pixels, "{inside:?}");
+    assert!(inside.gouraud_worst > 60.0, "{inside:?}");
+
+    // The same domes with two more directional lights (`Lights`), each lit and highlighted per
+    // pixel too.
+    let mut lights = Quadratic::default();
+    let mut rng = Rng(0x7e47_3d13);
+    for n in 0..4 {
+        let pose = Pose {
+            fov: 60,
+            near: 0.5,
+            far: 30.0,
+            yaw: degrees(rng.range_f64(-15.0, 15.0)),
+            pitch: degrees(rng.range_f64(-70.0, -45.0)),
+            position: [0.0, rng.range_f64(-0.5, 0.0), rng.range_f64(-6.0, -4.5)],
+            cull: Cull::None,
+        };
+        let mut scene = Scene::new(&pose, normalize([0.2, 0.6, 1.0]), 0.1);
+        let mut set = Lights::new();
+        let mut extra = Vec::new();
+        for _ in 0..2 {
+            let d = [
+                rng.range_f64(-1.0, 1.0),
+                rng.range_f64(-1.0, 1.0),
+                rng.range_f64(0.2, 1.0),
+            ];
+            let bits = Vec3::new(fx(d[0]), fx(d[1]), fx(d[2]));
+            let w = fx(rng.range_f64(0.2, 0.8));
+            set = set.with(LightSource::directional(bits, w));
+            extra.push((normalize(bits3(bits)), fl(w)));
+        }
+        scene.pipeline = scene.pipeline.with_lights(set);
+        let mesh = dome_floor(3.0, rng.range_f64(0.5, 0.9));
+        let specular = Specular::new(fx(0.6), 16);
+        let name = format!("domed floor with lights #{n}");
+        check_quadratic(&name, &scene, &mesh, specular, &extra, &mut lights);
+    }
+    println!("with two more directional lights: {lights:?}");
+    assert!(lights.pixels > 10_000, "{lights:?}");
+
+    // The suite's meshes (floors, tori, patched icospheres; clipped faces drawn as fans, the
+    // field restricted to each triangle) under random lights and highlights.
+    let mut rng = Rng(0x7e47_3d12);
+    let (unclipped, clipped) = all_cases();
+    let mut suite = Quadratic::default();
+    for case in unclipped.iter().chain(&clipped) {
+        let scene = random_lit_scene(case, &mut rng);
+        let specular = Specular::new(fx(rng.range_f64(0.2, 1.0)), rng.below(48) as u8 + 1);
+        check_quadratic(&case.name, &scene, &case.mesh, specular, &[], &mut suite);
+    }
+    println!("the suite's cases: {suite:?}");
+    assert!(suite.pixels > 60_000, "{suite:?}");
+}
+
+// ---------------------------------------------------------------------------------------------
 // Every path the same pixels
 // ---------------------------------------------------------------------------------------------
 
@@ -1858,6 +2205,61 @@ fn every_path_draws_the_same_pixels() {
         })
     );
     assert!(frame.z.iter().all(|&d| d == DEPTH_CLEAR), "nothing drawn");
+}
+
+/// Every way of drawing a textured mesh lit per pixel (`Shading::Quadratic`, untinted: lit by
+/// the quadratic normal field; two rounds in three highlighted per pixel) gives the same frame,
+/// bit for bit: `draw_textured_mesh`, `draw_textured_mesh_with` and band rendering (1, 8, 16
+/// and 240 rows, with and without a scratch), over the suite's poses (clipped faces drawn as
+/// fans), three textures and a viewport partly off the target.
+#[test]
+fn per_pixel_paths_draw_the_same_pixels() {
+    let (unclipped, clipped) = all_cases();
+    let coordinates = coordinate_texels();
+    let pow2 = Texture::new(Rgb888Texels(&coordinates), TEX, TEX).unwrap();
+    let solid = Texture::new(Solid(Rgb888::new(200, 150, 90)), 1, 1).unwrap();
+    let words: Vec<u16> = (0..64 * 32)
+        .map(|k| (k as u16).wrapping_mul(40_503))
+        .collect();
+    let rgb565 = Texture::new(Rgb565Texels(&words), 64, 32)
+        .unwrap()
+        .with_filter(Filter::Bilinear);
+    let (mut drawn, mut clipped_faces) = (0, 0);
+    for (k, case) in unclipped.iter().chain(&clipped).enumerate() {
+        let mut scene = Scene::new(&case.pose, LIGHT, 0.15);
+        // Every third case with more lights: a directional one and a point light near the
+        // mesh (its direction and falloff per face).
+        if k % 3 == 2 {
+            let set = Lights::new()
+                .with(LightSource::directional(
+                    Vec3::new(fx(-0.5), fx(0.3), fx(0.8)),
+                    fx(0.4),
+                ))
+                .with(LightSource::point(
+                    Vec3::new(fx(0.5), fx(1.0), fx(-3.0)),
+                    fx(0.8),
+                    fx(6.0),
+                ));
+            scene.pipeline = scene.pipeline.with_lights(set);
+        }
+        if k % 4 == 3 {
+            scene.pipeline.viewport = Rectangle::new(Point::new(-7, 3), Size::new(W + 20, H - 10));
+        }
+        // Even rounds: untinted; highlighted unless a multiple of 3.
+        let round = 2 * k;
+        let stats = match k % 3 {
+            0 => paths_round(case, &scene, &pow2, Shading::Quadratic, round),
+            1 => paths_round(case, &scene, &solid, Shading::Quadratic, round),
+            _ => paths_round(case, &scene, &rgb565, Shading::Quadratic, round),
+        };
+        drawn += stats.drawn;
+        clipped_faces += stats.clipped;
+    }
+    println!("{drawn} faces drawn, {clipped_faces} clipped");
+    assert!(
+        drawn > 5_000 && clipped_faces > 300,
+        "{drawn} {clipped_faces}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------

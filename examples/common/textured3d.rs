@@ -48,15 +48,21 @@ pub enum Textured {
     Palette,
     /// Rgb565 texels in RAM, nearest, with a Blinn-Phong highlight.
     Specular,
+    /// Rgb565 texels in RAM, nearest, lit per pixel (`Shading::Quadratic`).
+    Quadratic,
+    /// The same with the Blinn-Phong highlight per pixel.
+    QuadraticSpecular,
 }
 
 impl Textured {
     /// All, in report order.
-    pub const ALL: [Textured; 4] = [
+    pub const ALL: [Textured; 6] = [
         Textured::Nearest,
         Textured::Bilinear,
         Textured::Palette,
         Textured::Specular,
+        Textured::Quadratic,
+        Textured::QuadraticSpecular,
     ];
 
     /// The name in reports.
@@ -66,6 +72,16 @@ impl Textured {
             Textured::Bilinear => "spot-textured-bilinear",
             Textured::Palette => "spot-textured-palette",
             Textured::Specular => "spot-textured-specular",
+            Textured::Quadratic => "spot-textured-quadratic",
+            Textured::QuadraticSpecular => "spot-textured-quadratic-specular",
+        }
+    }
+
+    /// How the frame lights the texels.
+    fn shading(self) -> Shading {
+        match self {
+            Textured::Quadratic | Textured::QuadraticSpecular => Shading::Quadratic,
+            _ => Shading::Gouraud,
         }
     }
 }
@@ -90,7 +106,7 @@ pub fn render(
     target.clear(BACKGROUND);
     match frame {
         Textured::Palette => match Texture::new(SPOT_TEXTURE, w, h) {
-            Ok(texture) => draw(&texture, None, target, scratch),
+            Ok(texture) => draw(&texture, frame.shading(), None, target, scratch),
             Err(_) => DrawStats::default(),
         },
         _ => {
@@ -99,19 +115,24 @@ pub fn render(
                 _ => Filter::Nearest,
             };
             // Strength ½, shininess 24.
-            let specular = (frame == Textured::Specular)
-                .then(|| Specular::new(Scalar::from_bits(1 << 15), 24));
+            let shiny = matches!(frame, Textured::Specular | Textured::QuadraticSpecular);
+            let specular = shiny.then(|| Specular::new(Scalar::from_bits(1 << 15), 24));
             match Texture::new(Rgb565Texels(texels), w, h) {
-                Ok(texture) => draw(&texture.with_filter(filter), specular, target, scratch),
+                Ok(texture) => {
+                    let texture = texture.with_filter(filter);
+                    draw(&texture, frame.shading(), specular, target, scratch)
+                }
                 Err(_) => DrawStats::default(),
             }
         }
     }
 }
 
-/// Spot in the bench frame with `texture`, Gouraud-lit, highlighted by `specular` if given.
+/// Spot in the bench frame with `texture`, lit with `shading`, highlighted by `specular` if
+/// given.
 fn draw<S>(
     texture: &Texture<S>,
+    shading: Shading,
     specular: Option<Specular>,
     target: &mut DepthTarget<'_, Rgb565>,
     scratch: Option<&mut [ProjectedVertex]>,
@@ -121,7 +142,7 @@ where
     Rgb565: From<S::Color>,
 {
     let pipeline = pipeline(Model::Spot);
-    let mut material = TexturedMaterial::new(texture, Shading::Gouraud);
+    let mut material = TexturedMaterial::new(texture, shading);
     if let Some(specular) = specular {
         material = material.with_specular(specular);
     }

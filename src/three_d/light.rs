@@ -508,6 +508,60 @@ impl LightRig {
         self.terms(centroid, normal)
     }
 
+    /// The sources as per-pixel light reads them on the face `model` (model space), the first
+    /// `count` of the array: a directional light's direction, half vector and intensity; a
+    /// point light's direction, half vector and intensity × falloff at the face's centroid
+    /// (per face, not per pixel: an approximation on faces large beside their distance to the
+    /// light). Point lights out of range there are left out.
+    #[inline(never)]
+    pub(crate) fn pixel_sources(&self, model: &[Vec3; 3]) -> ([PixelSource; MAX_SOURCES], usize) {
+        let [a, b, c] = model.map(|p| p.to_bits().map(i64::from));
+        // sum/3 within a unit, as `face_terms`.
+        let third = |k: usize| {
+            let sum = i128::from(a[k] + b[k] + c[k]);
+            sat32(((sum * 0x5555_5556) >> 32) as i64)
+        };
+        let x = self.world(Vec3::from_bits(third(0), third(1), third(2)));
+        let mut out = [PixelSource::default(); MAX_SOURCES];
+        let mut count = 0;
+        for s in self.sources.iter().take(self.count) {
+            let source = if s.point {
+                let d: [i32; 3] =
+                    core::array::from_fn(|k| sat32(i64::from(s.vector[k]) - i64::from(x[k])));
+                let d2: u64 = d
+                    .iter()
+                    .map(|c| u64::from(c.unsigned_abs()).pow(2))
+                    .fold(0, u64::saturating_add);
+                let falloff = s.range.falloff(d2);
+                if falloff == 0 {
+                    continue;
+                }
+                let l = normalize_wide(d.map(i64::from)).to_bits();
+                let h = normalize_wide(core::array::from_fn(|k| {
+                    i64::from(l[k]) + i64::from(self.view[k])
+                }))
+                .to_bits();
+                let w = (u64::from(s.intensity) * u64::from(falloff) + (1 << 15)) >> 16;
+                PixelSource {
+                    l,
+                    h,
+                    weight: w as u32,
+                }
+            } else {
+                PixelSource {
+                    l: s.vector,
+                    h: s.half,
+                    weight: s.intensity,
+                }
+            };
+            if let Some(slot) = out.get_mut(count) {
+                *slot = source;
+                count += 1;
+            }
+        }
+        (out, count)
+    }
+
     /// [`terms`](Self::terms)' level as 8.8 of the 0–255 scale (the plain path's
     /// [`level`](Light::level) form).
     #[inline(never)]
@@ -577,6 +631,16 @@ impl LightRig {
         }
         (level.min(1 << 16), specular)
     }
+}
+
+/// A source of [`Lights`] as per-pixel light reads it ([`LightRig::pixel_sources`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct PixelSource {
+    /// The unit direction towards the light and the half vector (raw `I16F16`).
+    pub(crate) l: [i32; 3],
+    pub(crate) h: [i32; 3],
+    /// Intensity (times the falloff), 16 fractional bits, in `[0, 2¹⁸]`.
+    pub(crate) weight: u32,
 }
 
 /// A level with 16 fractional bits (in `[0, 2¹⁶]`) as 8.8 of the 0–255 scale, as

@@ -77,7 +77,9 @@ use super::light::{Highlight, Light, LightRig, Lights, Specular};
 use super::math::{normalize_wide, zip3_with, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
-use super::texturing::{FaceTexture, FrameTexture, NoTexture, TexelLight, TexturedMaterial};
+use super::texturing::{
+    FaceTexture, FrameTexture, NoTexture, PixelLight, TexelLight, TexturedMaterial,
+};
 use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, VertexStage};
 use crate::arch;
 use crate::color::GouraudColor;
@@ -211,8 +213,10 @@ impl Pipeline {
     /// Every shading but per-pixel lighting lights with them as with the first light (flat: at
     /// the face's centroid with its normal; Gouraud: per vertex), and a material's
     /// [`Specular`](super::Specular) highlight shines for each. A
-    /// [`Shading::Quadratic`] material is lit per vertex (as [`Shading::Gouraud`]) while the
-    /// set lights anything: per-pixel lighting takes only the first light so far. A set that
+    /// [`Shading::Quadratic`] [`Material`] is lit per vertex (as [`Shading::Gouraud`]) while
+    /// the set lights anything: its per-pixel fill takes only the first light so far. A
+    /// quadratic [`TexturedMaterial`] is lit per pixel by all of them (point lights with their
+    /// direction and falloff at each face's centroid). A set that
     /// lights nothing (empty, or every source of intensity 0) draws as without it, at the same
     /// cost.
     pub fn with_lights(self, lights: Lights) -> Self {
@@ -494,6 +498,9 @@ enum Fill<C> {
     /// The frame's texture, lit by one level a face (`Flat`), the vertex levels (`Gouraud`)
     /// or not at all (`Unlit`); tinted by the mesh's vertex colours, and highlighted.
     Textured(Texturing),
+    /// The frame's texture lit per pixel by the quadratic normal field (`Quadratic`,
+    /// untinted), and highlighted per pixel.
+    TexturedPixel(Texturing),
     /// A material with a highlight, lit with `Flat`, `Gouraud` or `Quadratic` shading.
     Specular(Shiny<C>),
 }
@@ -520,6 +527,8 @@ struct Texturing {
     tinted: bool,
     /// The highlight per vertex or face, its half vector in the normals' space.
     highlight: Option<VertexSpecular>,
+    /// The highlight per pixel (quadratic shading), its half vector in world space.
+    pixel: Option<Highlight>,
 }
 
 /// Where the face stage hands the faces it keeps: a target to fill them into now (a frame's, or a
@@ -658,23 +667,31 @@ where
         let specular = material
             .specular
             .filter(|s| material.shading != Shading::Unlit && s.strength().to_bits() > 0);
-        let highlight = specular.map(|specular| {
-            let h = Highlight::new(pipeline.half_vector(), specular);
-            light.specular(&pipeline.normal_matrix, &h)
-        });
+        let pixel = specular.map(|specular| Highlight::new(pipeline.half_vector(), specular));
+        let highlight = pixel.map(|h| light.specular(&pipeline.normal_matrix, &h));
+        let rig = pipeline.rig(specular);
+        let texturing = Texturing {
+            shading: material.shading,
+            tinted: material.vertex_colors,
+            highlight,
+            pixel,
+        };
+        // Per-pixel light is untinted: with the mesh's vertex colours, the vertices' levels (as
+        // `Gouraud`).
+        let tinted = material.vertex_colors && !mesh.colors.is_empty();
+        let fill = match material.shading {
+            Shading::Quadratic if !tinted => Fill::TexturedPixel(texturing),
+            _ => Fill::Textured(texturing),
+        };
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
             stage,
             light,
-            rig: pipeline.rig(specular),
+            rig,
             vertex_rig: false,
             clip,
-            fill: Fill::Textured(Texturing {
-                shading: material.shading,
-                tinted: material.vertex_colors,
-                highlight,
-            }),
+            fill,
             texture: FrameTexture::new(material.texture),
         }
     }
@@ -1161,8 +1178,14 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         // A textured frame's fill is `Textured`: the material fills are not compiled into its
         // draws (a const test: an untextured frame's code is as without it).
         if T::TEXTURED {
-            if let Fill::Textured(texturing) = &self.fill {
-                self.fill_textured(mesh, idx, model, v, bary, texturing, target);
+            match &self.fill {
+                Fill::Textured(texturing) => {
+                    self.fill_textured(mesh, idx, model, v, bary, texturing, target)
+                }
+                Fill::TexturedPixel(texturing) => {
+                    self.fill_textured_pixel(mesh, idx, model, v, bary, texturing, target)
+                }
+                _ => {}
             }
             return;
         }
@@ -1191,6 +1214,9 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             }
             Fill::Textured(texturing) => {
                 self.fill_textured(mesh, idx, model, v, bary, texturing, target)
+            }
+            Fill::TexturedPixel(texturing) => {
+                self.fill_textured_pixel(mesh, idx, model, v, bary, texturing, target)
             }
             Fill::Specular(shiny) => self.fill_specular(mesh, idx, model, v, bary, shiny, target),
         }
@@ -1342,6 +1368,52 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 }
             }
         };
+        self.fill_texels(mesh, idx, v, bary, light, target);
+    }
+
+    /// [`fill`](Self::fill) of a textured draw lit per pixel (out of line, as
+    /// [`fill_textured`](Self::fill_textured)): the face's quadratic normal field (restricted
+    /// to a fan's triangle), lit by the pipeline's light and highlight.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn fill_textured_pixel(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3],
+        v: [&ProjectedVertex; 3],
+        bary: Option<[Bary; 3]>,
+        texturing: &Texturing,
+        target: &mut DepthTarget<'_, C>,
+    ) {
+        // World normals are unit vectors already.
+        let normals = QuadraticNormals::of_unit(self.world_normals(mesh, idx, &model()));
+        let normals = match bary {
+            None => normals,
+            Some(bary) => normals.restricted(bary),
+        };
+        let sources = match &self.rig {
+            Some(rig) => rig.pixel_sources(&model()),
+            None => Default::default(),
+        };
+        let h = texturing.pixel.as_ref();
+        let pixel = PixelLight::new(&normals, &self.pipeline.light, h, sources);
+        let light = TexelLight::Quadratic(&pixel);
+        self.fill_texels(mesh, idx, v, bary, light, target);
+    }
+
+    /// The textured face's triangle `v` (a fan's at `bary`) filled with its texels lit by
+    /// `light`.
+    #[inline(always)]
+    fn fill_texels(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        v: [&ProjectedVertex; 3],
+        bary: Option<[Bary; 3]>,
+        light: TexelLight<'_>,
+        target: &mut DepthTarget<'_, C>,
+    ) {
         let texels = self.texels(mesh, idx);
         let texels = at_bary(bary, texels.map(|t| t.map(i64::from)));
         let texels = texels.map(|t| t.map(|c| c as i32));
@@ -1505,7 +1577,8 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                     .sum();
                 ((l + (1 << 29)) >> 30).clamp(0, i64::from(u16::MAX)) as u16
             };
-            let textured = T::TEXTURED || matches!(self.fill, Fill::Textured(..));
+            let textured =
+                T::TEXTURED || matches!(self.fill, Fill::Textured(..) | Fill::TexturedPixel(..));
             let v = [s0, s1, s2].map(|s| match textured {
                 true => ProjectedVertex::with_q(s.0, s.2),
                 false => ProjectedVertex::lit(s.0, level(&s.1)),

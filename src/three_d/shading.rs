@@ -164,7 +164,11 @@ impl QuadraticNormals {
     /// The field through unit vertex normals `n` (normalised here) with
     /// `N̂ᵢⱼ = normalize(Nᵢ + Nⱼ)` at the edge midpoints. Opposite normals give a zero midpoint.
     pub fn new(n: [Vec3; 3]) -> Self {
-        let n = n.map(Vec3::normalize);
+        Self::of_unit(n.map(Vec3::normalize))
+    }
+
+    /// [`new`](Self::new) of normals already of unit length (not normalised again).
+    pub(crate) fn of_unit(n: [Vec3; 3]) -> Self {
         let mid = |a: Vec3, b: Vec3| {
             let (a, b) = (a.to_bits(), b.to_bits());
             normalize_wide(zip_with(a, b, |a, b| i64::from(a) + i64::from(b)))
@@ -644,28 +648,8 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
             (v.wrapping_add(1 << (STEP_BITS - 17)) >> (STEP_BITS - 16))
                 .clamp(-(1 << 17) + 1, (1 << 17) - 1) as i32
         });
-        // Below 3·2³³ in magnitude: 32 fractional bits.
-        let dot = |a: &[i32; 3]| {
-            mul_i32_wide(q[0], a[0]) + mul_i32_wide(q[1], a[1]) + mul_i32_wide(q[2], a[2])
-        };
-        let towards = dot(&self.l);
-        let (diffuse, specular) = if towards <= 0 {
-            (0, 0)
-        } else {
-            let nn: u64 = q.iter().map(|v| u64::from(v.unsigned_abs()).pow(2)).sum();
-            let (r, sh) = inv_sqrt(nn);
-            // d/|q| with 16 fractional bits: (d/2⁴)·r/2^(sh−4), below 2³¹·2³¹.
-            let unit = |d: i64| {
-                if d <= 0 {
-                    return 0;
-                }
-                let shift = sh.saturating_sub(4);
-                let p = ((d >> 4) as u64) * u64::from(r) + (1 << shift.saturating_sub(1));
-                (p >> shift).min(1 << 16) as u32
-            };
-            let x = unit(dot(&self.h));
-            (unit(towards), self.specular.term_above(x, self.threshold))
-        };
+        let highlight = Some((&self.h, &self.specular, self.threshold));
+        let (diffuse, specular) = pixel_terms(q, &self.l, highlight);
         let level = self.lit.light.level_of_diffuse(diffuse);
         highlighted_channels::<C>(self.lit.base, level, specular)
     }
@@ -674,6 +658,44 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
     fn advance(&mut self) {
         DepthPixel::<C, 3>::advance(&mut self.lit);
     }
+}
+
+/// The diffuse cosine `max(0, n̂·l)` and the Blinn-Phong term `strength · max(0, n̂·ĥ)^shininess`
+/// (0 without a highlight, or where `n̂·l ≤ 0`), 16 fractional bits each, of the normal `q`
+/// (16 fractional bits, components within ±2¹⁷, any length but zero: renormalised here once by
+/// [`inv_sqrt`], no division) for the unit light direction `l` and, if any, the highlight's unit
+/// half vector `h` (raw `I16F16`, components within ±2¹⁶), its specular and threshold. Each
+/// cosine is within about 2⁻¹⁵ of the exact one of `q` (see [`Shiny`]).
+#[inline(always)]
+pub(super) fn pixel_terms(
+    q: [i32; 3],
+    l: &[i32; 3],
+    highlight: Option<(&[i32; 3], &Specular, u32)>,
+) -> (u32, u32) {
+    // Below 3·2³³ in magnitude: 32 fractional bits.
+    let dot = |a: &[i32; 3]| {
+        mul_i32_wide(q[0], a[0]) + mul_i32_wide(q[1], a[1]) + mul_i32_wide(q[2], a[2])
+    };
+    let towards = dot(l);
+    if towards <= 0 {
+        return (0, 0);
+    }
+    let nn: u64 = q.iter().map(|v| u64::from(v.unsigned_abs()).pow(2)).sum();
+    let (r, sh) = inv_sqrt(nn);
+    // d/|q| with 16 fractional bits: (d/2⁴)·r/2^(sh−4), below 2³¹·2³¹.
+    let unit = |d: i64| {
+        if d <= 0 {
+            return 0;
+        }
+        let shift = sh.saturating_sub(4);
+        let p = ((d >> 4) as u64) * u64::from(r) + (1 << shift.saturating_sub(1));
+        (p >> shift).min(1 << 16) as u32
+    };
+    let specular = match highlight {
+        Some((h, specular, threshold)) => specular.term_above(unit(dot(h)), threshold),
+        None => 0,
+    };
+    (unit(towards), specular)
 }
 
 /// `a += b` component by component, wrapping (no index, so no bounds check is left to panic
