@@ -694,10 +694,12 @@ core::arch::global_asm!(
     "push {{r4-r11, lr}}",
     // [sp]: the steps a pixel of the depth, x, y (shifted) and level; [sp, #16]: the block;
     // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]: the
-    // chunk's length's bits.
-    "sub sp, #40",
+    // chunk's length's bits; [sp, #40]: the span's pixels.
+    "sub sp, #44",
     "str r0, [sp, #16]",
     "str r1, [sp, #20]",
+    "ldr r1, [r0, #8]",
+    "str r1, [sp, #40]",
     "ldr r1, [r0, #92]",
     "str r1, [sp]",
     // The attributes at the span's first pixel.
@@ -749,7 +751,18 @@ core::arch::global_asm!(
     "it gt",
     "movgt r11, #4",
     "bic r11, r11, r11, asr #31",
+    // At most the trailing zeros of the chunk's offset from the span's first pixel (none
+    // for the first chunk): every chunk inside an aligned chunk of 16.
     "40:",
+    "ldr r1, [sp, #40]",
+    "subs r1, r1, r3",
+    "beq 41f",
+    "rbit r1, r1",
+    "clz r1, r1",
+    "cmp r11, r1",
+    "it hi",
+    "movhi r11, r1",
+    "41:",
     "str r11, [sp, #36]",
     // A chunk of 2^s pixels with more after it: its end values are the next chunk's first.
     "movs r1, #1",
@@ -921,7 +934,7 @@ core::arch::global_asm!(
     "ldr r3, [r0, #8]",
     "cmp r3, #0",
     "bne 1b",
-    "add sp, #40",
+    "add sp, #44",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_perspective_span_v7m, . - embedded_raster_perspective_span_v7m",
 );
