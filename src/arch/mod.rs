@@ -201,7 +201,8 @@ pub(crate) const PERSPECTIVE_SPAN: bool = cfg!(armv7m);
 /// One span of the perspective-correct textured fill for [`perspective_span`]: the integers of
 /// the portable loop (`three_d::texturing`'s `PerspectiveSpan` with the masked nearest sampler).
 ///
-/// The span is cut into chunks of 16 pixels (the last one shorter). At a chunk's ends the
+/// The span is cut into chunks as `raster::perspective::chunk_shift` gives their lengths from
+/// `chunk_room` (powers of two up to 16 pixels; the last one shorter). At a chunk's ends the
 /// perspective barycentrics `(λ₁, λ₂)` come from the three planes' values there as
 /// `raster::perspective::lambdas` finds them, and each attribute `(base, d₁, d₂)` is `base +
 /// ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ / 2¹⁶⌋` (wrapping); between them the attributes step by
@@ -236,6 +237,8 @@ pub struct PerspectiveSpan565<'a> {
     pub(crate) rows_mask: u32,
     /// `y`'s shift: the bits of a texture row.
     pub(crate) y_shift: u32,
+    /// The span's `raster::perspective::chunk_room`: each chunk's length from it.
+    pub(crate) chunk_room: i32,
 }
 
 /// [`perspective_span`] where there is none: draws nothing and says so.

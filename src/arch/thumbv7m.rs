@@ -563,9 +563,11 @@ struct PerspectiveBlock {
     /// 88, 92: the depth plane at the chunk's first pixel, its step.
     depth: u32,
     depth_step: u32,
+    /// 96: the span's `raster::perspective::chunk_room`.
+    chunk_room: i32,
 }
 
-const _: () = assert!(core::mem::size_of::<PerspectiveBlock>() == 96);
+const _: () = assert!(core::mem::size_of::<PerspectiveBlock>() == 100);
 
 /// The perspective barycentrics (r1, r2) from the planes' values r5-r7, as
 /// `raster::perspective::lambdas`: `q = max((r5 >> 16) − 128, 1)` (the margin off, saturating),
@@ -691,10 +693,13 @@ core::arch::global_asm!(
     "embedded_raster_perspective_span_v7m:",
     "push {{r4-r11, lr}}",
     // [sp]: the steps a pixel of the depth, x, y (shifted) and level; [sp, #16]: the block;
-    // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel.
-    "sub sp, #40",
+    // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]: the
+    // chunk's length's bits; [sp, #40]: the span's pixels.
+    "sub sp, #44",
     "str r0, [sp, #16]",
     "str r1, [sp, #20]",
+    "ldr r1, [r0, #8]",
+    "str r1, [sp, #40]",
     "ldr r1, [r0, #92]",
     "str r1, [sp]",
     // The attributes at the span's first pixel.
@@ -706,18 +711,73 @@ core::arch::global_asm!(
     corrected!("r6", "60", "64", "68"),
     "add r3, sp, #24",
     "stm r3, {{r4-r6}}",
-    // A chunk of 16 pixels with more after it: its end values are the next chunk's first.
+    // The chunk's length 2^s, as `raster::perspective::chunk_shift` picks it from the room
+    // (r12): 16 if the room is at least its `NO_LIMIT` (−640), else from the smaller q (r7) at the
+    // chunk's first pixel and min(16, left − 1) on, the margin off (saturating, at least 2¹⁶),
+    // by its sixteenth-logarithm. s in r11 and [sp, #36].
     "1:",
     "ldr r0, [sp, #16]",
     "ldr r3, [r0, #8]",
-    "subs r12, r3, #16",
+    "ldr r12, [r0, #96]",
+    "mov r11, #4",
+    "cmn r12, #640",
+    "bge 40f",
+    "ldr r5, [r0, #12]",
+    "ldr r6, [r0, #24]",
+    "subs r1, r3, #1",
+    "cmp r1, #16",
+    "it hi",
+    "movhi r1, #16",
+    "mla r7, r6, r1, r5",
+    "cmp r7, r5",
+    "it hi",
+    "movhi r7, r5",
+    "subs r7, r7, #0x800000",
+    "it lo",
+    "movlo r7, #0x10000",
+    "cmp r7, #0x10000",
+    "it lo",
+    "movlo r7, #0x10000",
+    "clz r1, r7",
+    "rsb r2, r1, #27",
+    "lsr r5, r7, r2",
+    "and r5, r5, #15",
+    "rsb r1, r1, #31",
+    "add r5, r5, r1, lsl #4",
+    "add r5, r5, r5, lsl #1",
+    "add r12, r12, r5",
+    "asr r11, r12, #5",
+    "cmp r11, #4",
+    "it gt",
+    "movgt r11, #4",
+    "bic r11, r11, r11, asr #31",
+    // At most the trailing zeros of the chunk's offset from the span's first pixel (none
+    // for the first chunk): every chunk inside an aligned chunk of 16.
+    "40:",
+    "ldr r1, [sp, #40]",
+    "subs r1, r1, r3",
+    "beq 41f",
+    "rbit r1, r1",
+    "clz r1, r1",
+    "cmp r11, r1",
+    "it hi",
+    "movhi r11, r1",
+    "41:",
+    "str r11, [sp, #36]",
+    // A chunk of 2^s pixels with more after it: its end values are the next chunk's first.
+    "movs r1, #1",
+    "lsl r1, r1, r11",
+    "subs r12, r3, r1",
     "bls 20f",
     "str r12, [r0, #8]",
     "add r4, r0, #12",
     "ldm r4, {{r5-r10}}",
-    "add r5, r5, r8, lsl #4",
-    "add r6, r6, r9, lsl #4",
-    "add r7, r7, r10, lsl #4",
+    "lsl r8, r8, r11",
+    "add r5, r5, r8",
+    "lsl r9, r9, r11",
+    "add r6, r6, r9",
+    "lsl r10, r10, r11",
+    "add r7, r7, r10",
     "stm r4, {{r5-r7}}",
     lambdas!(),
     corrected!("r4", "36", "40", "44"),
@@ -729,13 +789,15 @@ core::arch::global_asm!(
     "add r3, sp, #24",
     "ldm r3, {{r7-r9}}",
     "stm r3, {{r4-r6}}",
+    "ldr r3, [sp, #36]",
     "sub r4, r4, r7",
-    "asr r4, r4, #4",
+    "asr r4, r4, r3",
     "sub r5, r5, r8",
-    "asr r5, r5, #4",
+    "asr r5, r5, r3",
     "sub r6, r6, r9",
-    "asr r6, r6, #4",
-    "mov r10, #16",
+    "asr r6, r6, r3",
+    "mov r10, #1",
+    "lsl r10, r10, r3",
     "b 8f",
     // The last chunk: r3 = its pixels, r12 = `over` (one less: its end values are at its last
     // pixel).
@@ -872,7 +934,7 @@ core::arch::global_asm!(
     "ldr r3, [r0, #8]",
     "cmp r3, #0",
     "bne 1b",
-    "add sp, #40",
+    "add sp, #44",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_perspective_span_v7m, . - embedded_raster_perspective_span_v7m",
 );
@@ -927,6 +989,7 @@ pub(crate) fn perspective_span<C: Copy>(
         y_shift: span.y_shift,
         depth: span.depth.0,
         depth_step: span.depth.1,
+        chunk_room: span.chunk_room,
     };
     // SAFETY: `left` (at least one) is at most both buffers' lengths, which the function
     // writes the first `left` entries of, as 2-byte aligned `u16`s (`C` is a 2-byte colour whose

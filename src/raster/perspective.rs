@@ -16,7 +16,7 @@
 //! of its 16-bit scale, so `λ` is within about `1/q` of the exact ratio: `3·10⁻⁵` for `ρ = 1`,
 //! `6·10⁻⁴` for `ρ = 20`, plus the 2⁻¹⁵ of its fixed-point reciprocal.
 
-use super::arith::{div_rem_u32, leading_zeros_64, reciprocal_31};
+use super::arith::{div_rem_u32, leading_zeros_32, leading_zeros_64, mul_i32_wide, reciprocal_31};
 use super::plane::Attributes;
 use crate::arch::{HAS_DIVIDER, NO_LONG_MULTIPLY};
 use core::num::{NonZeroU16, NonZeroU32};
@@ -124,6 +124,21 @@ impl Corrected {
         [self.base, d(0), d(1)]
     }
 
+    /// A bound on `|a′·q²|` along a span (constant along it: `a·q` and `q` are linear), from
+    /// `kₖ = (dpₖ·q − pₖ·dq) / 2¹⁶` for its perspective planes' values `pₖ`, `q` (whole) and
+    /// steps `dpₖ`, `dq` (raw), each within `eₖ` of the exact value: `a·q = a₀·q + d₁·p₁ +
+    /// d₂·p₂`, so `a′·q² = d₁·(dp₁·q − p₁·dq) + d₂·(dp₂·q − p₂·dq)`, here over 2¹⁶, and
+    /// `|d₁|·e₁ + |d₂|·e₂` more.
+    #[inline(always)]
+    pub(crate) fn slope(&self, (k1, e1): (i32, u32), (k2, e2): (i32, u32)) -> u64 {
+        let [_, d1, d2] = self.parts();
+        let off = |d: i32, e: u32| u64::from(d.unsigned_abs()) * u64::from(e);
+        mul_i32_wide(d1, k1)
+            .saturating_add(mul_i32_wide(d2, k2))
+            .unsigned_abs()
+            .saturating_add(off(d1, e1) + off(d2, e2))
+    }
+
     /// `a₀ + ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ / 2¹⁶⌋` modulo 2³² (`λ` at most 2¹⁷).
     #[inline(always)]
     pub(crate) fn at(&self, (l1, l2): (Lambda, Lambda)) -> i32 {
@@ -148,9 +163,116 @@ impl Corrected {
     }
 }
 
-/// The pixels a span's corrected values are computed at: every [`CHUNK`] pixels from its first,
-/// and at its last; the values between are stepped from them.
-pub(crate) const CHUNK: u32 = 16;
+/// The longest chunk: a span's corrected values are computed every [`chunk_shift`]-chosen
+/// power of two of pixels up to this from its first, and at its last; the values between are
+/// stepped from them.
+pub(crate) const CHUNK: u32 = 1 << CHUNK_SHIFT;
+
+/// `CHUNK`'s bits.
+const CHUNK_SHIFT: u32 = 4;
+
+/// `16·log₂ v` rounded down (`v ≥ 1`): the bit length less one and the four bits after the
+/// leading one (`log₂(1 + f) ≥ f`). No division, no table.
+#[inline(always)]
+fn log16_down(v: u32) -> i32 {
+    let n = 32 - leading_zeros_32(v.max(1));
+    let fraction = if n > 5 { v >> (n - 5) } else { v << (5 - n) } & 15;
+    16 * (n as i32 - 1) + fraction as i32
+}
+
+/// `16·log₂ v` rounded up: [`log16_down`] plus one for the fraction's truncated bits and two
+/// for `log₂(1 + f) − f ≤ 0.087`.
+#[inline(always)]
+fn log16_up(v: u32) -> i32 {
+    log16_down(v) + 3
+}
+
+/// [`log16_up`] of a 64-bit value.
+#[inline(always)]
+fn log16_up_64(v: u64) -> i32 {
+    let high = (v >> 32) as u32;
+    if high == 0 {
+        log16_up(v as u32)
+    } else {
+        // The 32 bits from the leading one: the value over 2^shift, rounded down, so one more.
+        let shift = 32 - leading_zeros_32(high);
+        log16_up((v >> shift) as u32 + 1) + 16 * shift as i32
+    }
+}
+
+/// What [`Chunks`] needs to pick each chunk's length along a span whose perspective planes
+/// start at `values` and step by `step` a pixel, for an attribute that chords must keep within
+/// `tolerance` of its exact values and whose [`slope`](Corrected::slope) `slope` gives for the
+/// span's `(k₁, k₂)` (the largest over several attributes; 0 for none that varies): the chunk's
+/// length is the largest power of two `L` up to [`CHUNK`] with `32·log₂ L ≤ room + 48·log₂
+/// q_min` (`q_min` the smaller raw `q` at the chunk's first pixel and [`CHUNK`] pixels on, or the
+/// span's last), every chunk [`CHUNK`] long for a room of [`NO_LIMIT`] or more.
+///
+/// Along a chunk of `L` pixels from `q₀` to `q₁`, the perspective-correct value departs from
+/// the chord between its exact ends by `Δa·s(1 − s)(q₁ − q₀)/q(s)` at the fraction `s` of the
+/// way, at most `|Δa|·|Δq| / (4·q_min)` (q is linear along it). Its change a pixel is `a′ =
+/// K/q²` with `K` constant along the span (`slope` is `K/2¹⁶` with `q` whole and the steps raw),
+/// so the departure is at most `L²·|K|·|dq| / (4·q_min³)`: in raw units, within the tolerance
+/// when `2·log₂ L ≤ 2 + log₂ tolerance + 3·log₂ q_min − log₂ slope − log₂|dq| − 32` (`q_min`
+/// raw). The logarithms are taken to a sixteenth and rounded the safe way (no division). A span
+/// along which `q` is constant has exact chords: chunks of [`CHUNK`].
+#[inline(always)]
+pub(crate) fn chunk_room(
+    values: [u32; 3],
+    step: [u32; 3],
+    tolerance: u32,
+    slope: impl FnOnce((i32, u32), (i32, u32)) -> u64,
+) -> i32 {
+    let dq = step[0] as i32;
+    if dq == 0 {
+        return NO_LIMIT;
+    }
+    let whole = |v: u32| i64::from((v >> 16).saturating_sub(u32::from(MARGIN)));
+    let q = whole(values[0]);
+    let k = |k: usize| {
+        let dp = step[k] as i32;
+        let d = i64::from(dp) * q - whole(values[k]) * i64::from(dq);
+        // Below 2³² · 2¹⁶ + 2¹⁶ · 2³²: within i32 over 2¹⁶, clamped (never reached). The whole
+        // parts are each within one unit: the product within |dp| + |dq|, over 2¹⁶ (and the
+        // floor) within this error.
+        let error = (dp.unsigned_abs().saturating_add(dq.unsigned_abs()) >> 16) + 2;
+        (
+            (d >> 16).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32,
+            error,
+        )
+    };
+    let slope = slope(k(1), k(2));
+    if slope == 0 {
+        return NO_LIMIT;
+    }
+    32 + log16_down(tolerance) - log16_up_64(slope) - log16_up(dq.unsigned_abs()) - 512
+}
+
+/// A [`chunk_room`] for which every chunk is [`CHUNK`] pixels long (`q_min ≥ 2¹⁶`: its
+/// sixteenth-logarithm times three is at least 768).
+pub(crate) const NO_LIMIT: i32 = 128 - 768;
+
+/// The bits of the length of a chunk of a span with [`chunk_room`] `room` whose `q` plane is
+/// `q` at the chunk's first pixel and steps by `dq`, `left` pixels (at least one) from there to
+/// the span's end and `offset` from the span's first: at most the bits of the largest power of
+/// two dividing `offset`, so that every chunk lies inside the chunk of 16 from a multiple of 16
+/// (a chord over part of another is closer to the curve: the coordinates' chords are never
+/// further off than those of chunks of 16).
+#[inline(always)]
+pub(crate) fn chunk_shift(room: i32, q: u32, dq: u32, left: u32, offset: u32) -> u32 {
+    let aligned = if offset == 0 {
+        CHUNK_SHIFT
+    } else {
+        offset.trailing_zeros().min(CHUNK_SHIFT)
+    };
+    if room >= NO_LIMIT {
+        return aligned;
+    }
+    let end = q.wrapping_add(dq.wrapping_mul(left.saturating_sub(1).min(CHUNK)));
+    let margin = u32::from(MARGIN) << 16;
+    let q_min = q.min(end).saturating_sub(margin).max(1 << 16);
+    (((room + 3 * log16_down(q_min)) >> 5).clamp(0, CHUNK_SHIFT as i32) as u32).min(aligned)
+}
 
 /// `⌈2¹⁶ / n⌉` for the short last chunk of a span (`n` pixels between its computed ends).
 const INVERSE: [u32; CHUNK as usize] = {
@@ -164,7 +286,8 @@ const INVERSE: [u32; CHUNK as usize] = {
 };
 
 /// The per-pixel step of a value going from `a` to `b` over `n` pixels (1 to [`CHUNK`]):
-/// `(b − a) / n`, a shift for whole chunks, a product by [`INVERSE`] (within a unit) else.
+/// `(b − a) / n`, a shift for whole chunks, a product by [`INVERSE`] (within a unit) else —
+/// for a power of two the same floored quotient as the shift.
 #[inline(always)]
 pub(crate) fn step_over(a: i32, b: i32, n: u32) -> i32 {
     let d = b.wrapping_sub(a);
@@ -193,8 +316,8 @@ pub(crate) struct Chunk {
     pub(crate) over: u32,
 }
 
-/// The chunks of a span from the perspective planes' values at its first pixel: [`CHUNK`]
-/// pixels each, the last one shorter; one [`lambdas`] a chunk.
+/// The chunks of a span from the perspective planes' values at its first pixel: each of the
+/// length [`chunk_shift`] picks, the last one shorter; one [`lambdas`] a chunk.
 #[derive(Debug, Clone)]
 pub(crate) struct Chunks {
     /// The planes' values at the current chunk's first pixel.
@@ -202,18 +325,24 @@ pub(crate) struct Chunks {
     step: [u32; 3],
     at: (Lambda, Lambda),
     left: u32,
+    /// The span's [`chunk_room`].
+    room: i32,
+    /// Pixels from the span's first to the current chunk's.
+    offset: u32,
 }
 
 impl Chunks {
     /// The chunks of a span of `len` pixels whose perspective planes' values start at `values`
-    /// and step by `step` a pixel.
+    /// and step by `step` a pixel, with [`chunk_room`] `room`.
     #[inline(always)]
-    pub(crate) fn new(values: [u32; 3], step: [u32; 3], len: u32) -> Self {
+    pub(crate) fn new(values: [u32; 3], step: [u32; 3], len: u32, room: i32) -> Self {
         Chunks {
             values,
             step,
             at: lambdas(values),
             left: len,
+            room,
+            offset: 0,
         }
     }
 }
@@ -227,8 +356,16 @@ impl Iterator for Chunks {
             return None;
         }
         let start = self.at;
-        let (len, over) = if self.left > CHUNK {
-            (CHUNK, CHUNK)
+        let full = 1
+            << chunk_shift(
+                self.room,
+                self.values[0],
+                self.step[0],
+                self.left,
+                self.offset,
+            );
+        let (len, over) = if self.left > full {
+            (full, full)
         } else {
             (self.left, self.left - 1)
         };
@@ -238,6 +375,7 @@ impl Iterator for Chunks {
         self.values = values;
         self.at = end;
         self.left -= len;
+        self.offset = self.offset.wrapping_add(len);
         Some(Chunk {
             len,
             start,
@@ -274,6 +412,16 @@ mod tests {
                 "{x} {y} {n}"
             );
         }
+        for k in 0..=CHUNK_SHIFT {
+            for _ in 0..10_000 {
+                let (x, y) = (next() as i32, next() as i32);
+                assert_eq!(
+                    step_over(x, y, 1 << k),
+                    y.wrapping_sub(x) >> k,
+                    "{x} {y} {k}"
+                );
+            }
+        }
         for q in [1u32, 2, 3, 1000, 32_640, Q_MAX] {
             for p in [0, 1, q / 3, q / 2, q - 1, q] {
                 let v = |x: u32| (x + u32::from(MARGIN)) << 16;
@@ -284,6 +432,96 @@ mod tests {
                     "{p}/{q}: {l}"
                 );
             }
+        }
+    }
+
+    /// The chunk length `chunk_shift` picks keeps every attribute's chord (between exact
+    /// values at the chunk's ends) within the attribute's tolerance of the exact
+    /// perspective-correct values, on random spans whose `q` changes by up to 1:40 along them;
+    /// and it is not needlessly short: spans with steep `q` take short chunks, those with
+    /// constant `q` the longest.
+    #[test]
+    fn chunk_shift_keeps_chords_within_the_tolerance() {
+        let mut next = crate::random(0x9e47_0002);
+        let margin = f64::from(MARGIN);
+        let mut shifts = [0usize; CHUNK_SHIFT as usize + 1];
+        let mut worst: f64 = 0.0;
+        for n in 0..20_000 {
+            let len = 2 + (next() % 300) as u32;
+            let q_start = 1.0 + (next() % u64::from(Q_MAX)) as f64;
+            let ratio = (next() % 4000) as f64 / 100.0 + 1.0;
+            let q_end = if next() % 2 == 0 {
+                (q_start / ratio).max(1.0)
+            } else {
+                (q_start * ratio).min(f64::from(Q_MAX))
+            };
+            let q_end = if n % 10 == 0 { q_start } else { q_end };
+            let mut lambda = |_: ()| {
+                let a = (next() % 65_537) as f64 / 65_536.0;
+                let b = (next() % 65_537) as f64 / 65_536.0 * (1.0 - a);
+                [a, b]
+            };
+            let (ls, le) = (lambda(()), lambda(()));
+            // Plane values (8.24 of the 16-bit scale) at the first pixel and their steps.
+            let raw = |v: f64| ((v + margin) * 65_536.0).round() as u32;
+            let start = [raw(q_start), raw(ls[0] * q_start), raw(ls[1] * q_start)];
+            let end = [raw(q_end), raw(le[0] * q_end), raw(le[1] * q_end)];
+            let step: [u32; 3] = core::array::from_fn(|k| {
+                ((f64::from(end[k]) - f64::from(start[k])) / f64::from(len - 1)).round() as i64
+                    as u32
+            });
+            let attribute =
+                [next() as i32, next() as i32, next() as i32].map(|a| a >> (next() % 31));
+            let c = Corrected::new(attribute);
+            let tolerance = 1 + (next() % (1 << (next() % 16))) as u32;
+            let room = chunk_room(start, step, tolerance, |k1, k2| c.slope(k1, k2));
+            if step[0] == 0 || attribute[1] == attribute[0] && attribute[2] == attribute[0] {
+                assert!(room >= NO_LIMIT);
+            }
+            // The exact attribute at pixel x of the span, from the planes as the fill has them.
+            let [_, d1, d2] = c.parts().map(f64::from);
+            let exact = |x: u32| {
+                let v: [f64; 3] = core::array::from_fn(|k| {
+                    f64::from(start[k].wrapping_add(step[k].wrapping_mul(x))) / 65_536.0 - margin
+                });
+                (v[1] / v[0] * d1 + v[2] / v[0] * d2, v[0])
+            };
+            if exact(0).1 < 1.0 || exact(len - 1).1 < 1.0 {
+                continue;
+            }
+            let mut a = 0;
+            while a + 1 < len {
+                let q = start[0].wrapping_add(step[0].wrapping_mul(a));
+                let shift = chunk_shift(room, q, step[0], len - a, a);
+                shifts[shift as usize] += 1;
+                let b = (a + (1 << shift)).min(len - 1);
+                let (ea, eb) = (exact(a).0, exact(b).0);
+                for x in a..=b {
+                    let t = f64::from(x - a) / f64::from(b - a);
+                    let off = (ea + (eb - ea) * t - exact(x).0).abs() / f64::from(tolerance);
+                    worst = worst.max(off);
+                    assert!(
+                        off <= 1.0 + 1e-6,
+                        "span {start:?} {step:?} len {len}, attribute {attribute:?} tolerance {tolerance}: room {room}, shift {shift}, pixel {x} off by {off} tolerances"
+                    );
+                }
+                a = b;
+            }
+        }
+        // Every length taken somewhere; the bound is used, not vacuous.
+        assert!(shifts.iter().all(|&n| n > 100), "{shifts:?}");
+        assert!(worst > 0.25, "{worst}");
+        let mut v = 1u32;
+        while v < u32::MAX / 3 {
+            let exact = 16.0 * f64::from(v).log2();
+            assert!(
+                f64::from(log16_down(v)) <= exact && exact <= f64::from(log16_up(v)),
+                "{v}"
+            );
+            let wide = u64::from(v) << (v % 33) | u64::from(v % 7);
+            let exact = 16.0 * (wide as f64).log2();
+            assert!(exact <= f64::from(log16_up_64(wide)), "{wide}");
+            v = v * 3 / 2 + 1;
         }
     }
 

@@ -577,12 +577,7 @@ fn fill_perspective<S, C, R: RowWindow>(
     // One span loop for each kind of light.
     match light {
         TexelLight::Full if !SIZE_OVER_SPEED => {
-            let fill = TexturedFill {
-                target,
-                sampler,
-                coordinates,
-                light: Unlit,
-            };
+            let fill = TexturedFill::new(target, sampler, coordinates, Unlit);
             clip.rows().shade(position, &attributes, &rect, fill);
         }
         TexelLight::Full | TexelLight::Level(_) => {
@@ -590,31 +585,22 @@ fn fill_perspective<S, C, R: RowWindow>(
                 TexelLight::Level(level) => level_fraction(level),
                 _ => full,
             };
-            let fill = TexturedFill {
-                target,
-                sampler,
-                coordinates,
-                light: Constant(level),
-            };
+            let fill = TexturedFill::new(target, sampler, coordinates, Constant(level));
             clip.rows().shade(position, &attributes, &rect, fill);
         }
         TexelLight::Levels(levels) => {
-            let fill = TexturedFill {
+            let fill = TexturedFill::new(
                 target,
                 sampler,
                 coordinates,
-                light: Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
-            };
+                Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
+            );
             clip.rows().shade(position, &attributes, &rect, fill);
         }
         TexelLight::Tints(tints) if !SIZE_OVER_SPEED => {
             let [r, g, b] = transpose(tints).map(corrected_levels);
-            let fill = TexturedFill {
-                target,
-                sampler,
-                coordinates,
-                light: CorrectedChannels([r, g, b]),
-            };
+            let fill =
+                TexturedFill::new(target, sampler, coordinates, CorrectedChannels([r, g, b]));
             clip.rows().shade(position, &attributes, &rect, fill);
         }
         TexelLight::Tints(tints) | TexelLight::Shiny { tints, .. } => {
@@ -623,12 +609,12 @@ fn fill_perspective<S, C, R: RowWindow>(
                 _ => [0; 3],
             };
             let [r, g, b] = transpose(tints).map(corrected_levels);
-            let fill = TexturedFill {
+            let fill = TexturedFill::new(
                 target,
                 sampler,
                 coordinates,
-                light: CorrectedChannels([r, g, b, corrected_levels(speculars)]),
-            };
+                CorrectedChannels([r, g, b, corrected_levels(speculars)]),
+            );
             clip.rows().shade(position, &attributes, &rect, fill);
         }
         TexelLight::Quadratic(pixel) => {
@@ -1039,6 +1025,13 @@ trait SpanLight: Copy {
     fn span_level(&self) -> Option<Option<[i32; 3]>> {
         None
     }
+
+    /// The largest [`slope`](Corrected::slope) of the light's 16-bit fractions along a span
+    /// with `(k₁, k₂)` (0 for a light that does not vary across a face).
+    #[inline(always)]
+    fn slope(&self, _: (i32, u32), _: (i32, u32)) -> u64 {
+        0
+    }
 }
 
 /// A light of the screen-space fill, its state read from the planes after the texel
@@ -1248,6 +1241,11 @@ impl SpanLight for Varying {
     fn span_level(&self) -> Option<Option<[i32; 3]>> {
         Some(Some(self.0.parts()))
     }
+
+    #[inline(always)]
+    fn slope(&self, k1: (i32, u32), k2: (i32, u32)) -> u64 {
+        self.0.slope(k1, k2)
+    }
 }
 
 /// The vertices' `K` channels (16-bit fractions: three tints, and a specular term with a
@@ -1281,6 +1279,11 @@ impl<const K: usize> SpanLight for CorrectedChannels<K> {
     #[inline(always)]
     fn step(light: [i32; K], by: [i32; K]) -> [i32; K] {
         add_each(light, by)
+    }
+
+    #[inline(always)]
+    fn slope(&self, k1: (i32, u32), k2: (i32, u32)) -> u64 {
+        self.0.iter().map(|c| c.slope(k1, k2)).fold(0, u64::max)
     }
 }
 
@@ -1472,13 +1475,32 @@ impl SpanLight for PerPixel<'_> {
 }
 
 /// The span shader of the textured fills: depth test, texel coordinates (and light level) from
-/// the perspective planes every [`CHUNK`](perspective::CHUNK) pixels, the texture sampled
-/// between.
+/// the perspective planes at the ends of chunks of up to [`CHUNK`](perspective::CHUNK) pixels
+/// (as long as their chords stay within the screen-space test's tolerances: 1/16 texel, a
+/// quarter of the target's finest step), the texture sampled between.
 struct TexturedFill<'t, 'a, 'x, C, S, L> {
     target: &'t mut DepthTarget<'a, C>,
     sampler: Sampler<'x, S>,
     coordinates: (Corrected, Corrected),
     light: L,
+}
+
+impl<'t, 'a, 'x, C: GouraudColor, S, L: SpanLight> TexturedFill<'t, 'a, 'x, C, S, L> {
+    /// The fill of `target` sampling with `sampler` at `coordinates`, lit by `light`.
+    #[inline(always)]
+    fn new(
+        target: &'t mut DepthTarget<'a, C>,
+        sampler: Sampler<'x, S>,
+        coordinates: (Corrected, Corrected),
+        light: L,
+    ) -> Self {
+        TexturedFill {
+            target,
+            sampler,
+            coordinates,
+            light,
+        }
+    }
 }
 
 impl<C, S, L> SpanShader<4> for TexturedFill<'_, '_, '_, C, S, L>
@@ -1502,16 +1524,26 @@ where
     }
 
     #[inline(always)]
-    fn span(&mut self, steps: &[u32; 4], span: Span, start: [u32; 4]) {
+    fn span(&mut self, &steps: &[u32; 4], span: Span, start: [u32; 4]) {
         let Some((colors, depths)) = self.target.clipped_spans_mut(span) else {
             return;
         };
+        // The light's chords kept within a quarter of the finest channel step of the exact
+        // levels (the coordinates' within the bound of chunks of 16: "Accuracy" above).
+        let light = self.light;
+        let ([_, dq, dp1, dp2], [_, q, p1, p2]) = (steps, start);
+        let room = perspective::chunk_room(
+            [q, p1, p2],
+            [dq, dp1, dp2],
+            affine_level::<C>() as u32,
+            |k1, k2| light.slope(k1, k2),
+        );
         // The target's span loop where it draws these texels and light (the same pixels).
         if arch::PERSPECTIVE_SPAN {
             // The sampler first: a bilinear face's spans stop at its kind.
             if let Some((texels, x_mask, rows_mask, y_shift)) = masked_565(&self.sampler) {
                 if let Some(level) = self.light.span_level() {
-                    let ([dz, dq, dp1, dp2], [z, q, p1, p2]) = (*steps, start);
+                    let ([dz, dq, dp1, dp2], [z, q, p1, p2]) = (steps, start);
                     let span = arch::PerspectiveSpan565 {
                         depth: (z, dz),
                         planes: [q, p1, p2],
@@ -1523,6 +1555,7 @@ where
                         x_mask,
                         rows_mask,
                         y_shift,
+                        chunk_room: room,
                     };
                     if C::perspective_span_565(colors, depths, &span) {
                         return;
@@ -1533,10 +1566,11 @@ where
         let run = PerspectiveSpan {
             colors,
             depths,
-            steps: *steps,
+            steps,
             start,
             coordinates: self.coordinates,
             light: self.light,
+            room,
         };
         self.sampler.run(run);
     }
@@ -1550,6 +1584,8 @@ struct PerspectiveSpan<'p, C, L> {
     start: [u32; 4],
     coordinates: (Corrected, Corrected),
     light: L,
+    /// The span's [`perspective::chunk_room`].
+    room: i32,
 }
 
 impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L> {
@@ -1564,7 +1600,7 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
         let (u, v) = self.coordinates;
         let len = colors.len().min(depths.len()) as u32;
         let mut at = None;
-        for chunk in Chunks::new([q, p1, p2], [dq, dp1, dp2], len) {
+        for chunk in Chunks::new([q, p1, p2], [dq, dp1, dp2], len, self.room) {
             let (x, mut y) = at.unwrap_or_else(|| (u.at(chunk.start), v.at(chunk.start)));
             let end = (u.at(chunk.end), v.at(chunk.end));
             let (dx, dy) = (
