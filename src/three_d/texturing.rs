@@ -2,9 +2,9 @@
 //!
 //! The raster core interpolates the depth and the three perspective planes
 //! ([`perspective`](crate::raster::perspective): `q ∝ 1/w` and the barycentrics times `q`);
-//! along each span the texel coordinates are computed exactly every 16 pixels and at the span's
-//! last pixel (one reciprocal each) and stepped in 16.16 texels between. The depth test and the
-//! texture's sampling are in the span loop.
+//! along each span the texel coordinates are computed exactly at the ends of chunks of up to
+//! 16 pixels and at the span's last pixel (one reciprocal each) and stepped in 16.16 texels
+//! between. The depth test and the texture's sampling are in the span loop.
 //!
 //! # Accuracy
 //!
@@ -13,20 +13,24 @@
 //! difference of the vertices' texel coordinates and `δ`, the error of the perspective
 //! barycentrics, is about `1/q_min + 2⁻¹⁵` (see [`perspective`](crate::raster::perspective):
 //! `6·10⁻⁴` for vertex depths in a ratio of 1:20). Between them the coordinates follow the chord,
-//! off the true curve by at most `L²/4 · |X′| · |q′|/q` for chunks of `L` pixels (`X′` the
+//! off the true curve by at most `L²/4 · |X′| · |q′|/q` for chunks of `L ≤ 16` pixels (`X′` the
 //! coordinate's rate and `q′/q` the relative change of `1/w` a pixel): with `L = 16`, below
 //! 1/16 texel where `|X′|·|q′/q|` is under 1/1024 (a texel a pixel where `w` changes by under a
 //! thousandth of itself a pixel); more on a floor seen at a grazing angle (measured: 0.4 texel
 //! at most on the tests' grazing floors, several texels where a face reaches the near plane,
 //! whose chords are long in texels).
 //!
-//! Light levels (and tints, highlights) are computed and stepped the same way, so the same
-//! chord bound holds for them in levels: `L²/4 · |ℓ′| · |q′|/q` for a level rate `ℓ′`. At the
-//! pixels where it is computed a colour is within 1 LSB of the texel times the exact level
-//! (tested: within 0.62 LSB of the texel times the level the chords give); between them the
-//! colour departs from the exact one by the chord's error — 1.5 LSB on the tests' rolled
-//! grazing floor, up to 58 LSB on small random faces whose `w` changes by 1:20 across a few
-//! pixels (`tests/perspective.rs`).
+//! Light levels (and tints, highlights) are computed and stepped the same way, and the chunks
+//! are short enough for their chords to stay within a quarter of the target's finest channel
+//! step of the exact levels: each chunk is the longest power of two up to 16 pixels for which
+//! the chord bound `L²·|K|·|dq| / (4·q_min³)` (`K = ℓ′·q²`, constant along a span) holds
+//! ([`chunk_shift`](crate::raster::perspective), sixteenth-logarithms, no division), and lies
+//! inside an aligned chunk of 16 (so the coordinates' chords are never longer than with chunks
+//! of 16). So every colour is within 1 LSB of the texel times the exact perspective-correct
+//! level (tested in `tests/perspective.rs` on random faces whose `w` changes by 1:20 across a
+//! few pixels, where chords of 16 pixels would be up to 58 LSB off, and on grazing floors:
+//! within 0.65 LSB). Steep faces pay for it with shorter chunks (`fw_texture_bench`'s lit
+//! triangles, `w` 1:3 across 128 pixels: chords of 16 would be 2.1 levels off, chunks of 8).
 //!
 //! A face whose `1/w` varies so little across it that screen-space interpolation departs from
 //! the perspective-correct values by at most 1/16 texel and a quarter of the target's finest
@@ -1476,8 +1480,8 @@ impl SpanLight for PerPixel<'_> {
 
 /// The span shader of the textured fills: depth test, texel coordinates (and light level) from
 /// the perspective planes at the ends of chunks of up to [`CHUNK`](perspective::CHUNK) pixels
-/// (as long as their chords stay within the screen-space test's tolerances: 1/16 texel, a
-/// quarter of the target's finest step), the texture sampled between.
+/// (short enough for the light's chords to stay within a quarter of the target's finest
+/// channel step), the texture sampled between.
 struct TexturedFill<'t, 'a, 'x, C, S, L> {
     target: &'t mut DepthTarget<'a, C>,
     sampler: Sampler<'x, S>,
