@@ -748,6 +748,36 @@ fn degrees(d: f64) -> Angle {
     Angle((d / 360.0 * 65536.0).round().rem_euclid(65536.0) as u16)
 }
 
+/// A floor quad with tilted corner normals (curved light across it), seen at a grazing angle
+/// from a random pose just above it.
+fn grazing_floor(rng: &mut Rng) -> (MeshData, Pose) {
+    let mut mesh = floor(6.0, 1, 1.0);
+    let tilt = |x: f64, y: f64| {
+        let v = normalize([x, y, 1.0]);
+        Vec3::new(v[0], v[1], v[2])
+    };
+    mesh.normals = vec![
+        tilt(-1.2, -0.4),
+        tilt(1.0, -1.1),
+        tilt(-0.9, 1.3),
+        tilt(1.3, 0.8),
+    ];
+    let pose = Pose {
+        fov: 60,
+        near: 0.5,
+        far: 30.0,
+        yaw: degrees(rng.range_f64(-20.0, 20.0)),
+        pitch: degrees(-90.0 + rng.range_f64(1.0, 4.0)),
+        position: [
+            rng.range_f64(-0.5, 0.5),
+            rng.range_f64(-0.8, -0.3),
+            rng.range_f64(-9.0, -7.0),
+        ],
+        cull: Cull::None,
+    };
+    (mesh, pose)
+}
+
 /// Floors seen at grazing angles (the camera 0.15 to 0.8 above a floor reaching 17 units
 /// away, tilted up to 3° towards it), tessellated finely and coarsely; tori and patched
 /// icospheres at random poses, all three cullings.
@@ -1524,30 +1554,7 @@ fn solid_textures_make_gouraud_perspective_correct() {
     let base = [white.r(), white.g(), white.b()].map(f64::from);
     let texture = Texture::new(Solid(white), 1, 1).unwrap();
     for n in 0..6 {
-        let mut mesh = floor(6.0, 1, 1.0);
-        let tilt = |x: f64, y: f64| {
-            let v = normalize([x, y, 1.0]);
-            Vec3::new(v[0], v[1], v[2])
-        };
-        mesh.normals = vec![
-            tilt(-1.2, -0.4),
-            tilt(1.0, -1.1),
-            tilt(-0.9, 1.3),
-            tilt(1.3, 0.8),
-        ];
-        let pose = Pose {
-            fov: 60,
-            near: 0.5,
-            far: 30.0,
-            yaw: degrees(rng.range_f64(-20.0, 20.0)),
-            pitch: degrees(-90.0 + rng.range_f64(1.0, 4.0)),
-            position: [
-                rng.range_f64(-0.5, 0.5),
-                rng.range_f64(-0.8, -0.3),
-                rng.range_f64(-9.0, -7.0),
-            ],
-            cull: Cull::None,
-        };
+        let (mesh, pose) = grazing_floor(&mut rng);
         let scene = Scene::new(&pose, normalize([0.3, 1.0, 0.4]), 0.1);
         let case = Case {
             name: format!("grazing floor #{n}"),
@@ -1861,30 +1868,7 @@ fn quadratic_texels_are_lit_per_pixel() {
     let mut rng = Rng(0x7e47_3d11);
     let mut grazing = Quadratic::default();
     for n in 0..6 {
-        let mut mesh = floor(6.0, 1, 1.0);
-        let tilt = |x: f64, y: f64| {
-            let v = normalize([x, y, 1.0]);
-            Vec3::new(v[0], v[1], v[2])
-        };
-        mesh.normals = vec![
-            tilt(-1.2, -0.4),
-            tilt(1.0, -1.1),
-            tilt(-0.9, 1.3),
-            tilt(1.3, 0.8),
-        ];
-        let pose = Pose {
-            fov: 60,
-            near: 0.5,
-            far: 30.0,
-            yaw: degrees(rng.range_f64(-20.0, 20.0)),
-            pitch: degrees(-90.0 + rng.range_f64(1.0, 4.0)),
-            position: [
-                rng.range_f64(-0.5, 0.5),
-                rng.range_f64(-0.8, -0.3),
-                rng.range_f64(-9.0, -7.0),
-            ],
-            cull: Cull::None,
-        };
+        let (mesh, pose) = grazing_floor(&mut rng);
         let scene = Scene::new(&pose, normalize([0.3, 1.0, 0.4]), 0.1);
         let specular = Specular::new(fx(0.5), 8);
         check_quadratic(

@@ -400,6 +400,23 @@ struct Prepared {
     range: Range,
 }
 
+impl Prepared {
+    /// A point light seen from `x` (raw world position): the unit direction towards it (raw)
+    /// and its falloff there, or `None` beyond its range.
+    #[inline(always)]
+    fn towards(&self, x: &[i32; 3]) -> Option<([i32; 3], u32)> {
+        let d: [i32; 3] =
+            core::array::from_fn(|k| sat32(i64::from(self.vector[k]) - i64::from(x[k])));
+        // Below 3·2⁶²: 32 fractional bits.
+        let d2: u64 = d
+            .iter()
+            .map(|c| u64::from(c.unsigned_abs()).pow(2))
+            .fold(0, u64::saturating_add);
+        let falloff = self.range.falloff(d2);
+        (falloff != 0).then(|| (normalize_wide(d.map(i64::from)).to_bits(), falloff))
+    }
+}
+
 impl LightRig {
     /// The lights of a draw: `None` if `lights` light nothing (the plain path draws it).
     /// `view` is the unit world-space direction towards the viewer, `specular` the
@@ -526,17 +543,9 @@ impl LightRig {
         let mut count = 0;
         for s in self.sources.iter().take(self.count) {
             let source = if s.point {
-                let d: [i32; 3] =
-                    core::array::from_fn(|k| sat32(i64::from(s.vector[k]) - i64::from(x[k])));
-                let d2: u64 = d
-                    .iter()
-                    .map(|c| u64::from(c.unsigned_abs()).pow(2))
-                    .fold(0, u64::saturating_add);
-                let falloff = s.range.falloff(d2);
-                if falloff == 0 {
+                let Some((l, falloff)) = s.towards(&x) else {
                     continue;
-                }
-                let l = normalize_wide(d.map(i64::from)).to_bits();
+                };
                 let h = normalize_wide(core::array::from_fn(|k| {
                     i64::from(l[k]) + i64::from(self.view[k])
                 }))
@@ -596,18 +605,9 @@ impl LightRig {
         let mut specular = if d > 0 { highlight(&self.half) } else { 0 };
         for s in self.sources.iter().take(self.count) {
             let (l, h, weight) = if s.point {
-                let d: [i32; 3] =
-                    core::array::from_fn(|k| sat32(i64::from(s.vector[k]) - i64::from(x[k])));
-                // Below 3·2⁶²: 32 fractional bits.
-                let d2: u64 = d
-                    .iter()
-                    .map(|c| u64::from(c.unsigned_abs()).pow(2))
-                    .fold(0, u64::saturating_add);
-                let falloff = s.range.falloff(d2);
-                if falloff == 0 {
+                let Some((l, falloff)) = s.towards(&x) else {
                     continue;
-                }
-                let l = normalize_wide(d.map(i64::from)).to_bits();
+                };
                 let h = match self.specular {
                     Some(_) => normalize_wide(core::array::from_fn(|k| {
                         i64::from(l[k]) + i64::from(self.view[k])
