@@ -216,7 +216,9 @@ fn log16_up_64(v: u64) -> i32 {
 /// when `2·log₂ L ≤ 2 + log₂ tolerance + 3·log₂ q_min − log₂ slope − log₂|dq| − 32` (`q_min`
 /// raw). The logarithms are taken to a sixteenth and rounded the safe way (no division). A span
 /// along which `q` is constant has exact chords: chunks of [`CHUNK`].
-#[inline(always)]
+// Out of line on ARMv6-M: its 64-bit arithmetic's frame is not the span loop's.
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
 pub(crate) fn chunk_room(
     values: [u32; 3],
     step: [u32; 3],

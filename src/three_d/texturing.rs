@@ -628,9 +628,28 @@ fn fill_perspective<S, C, R: RowWindow>(
                 coordinates,
                 light: PerPixel(pixel),
             };
-            clip.rows().shade(position, &attributes, &rect, fill);
+            shade_textured(clip, position, &attributes, &rect, fill);
         }
     }
+}
+
+/// The rows of a face drawn perspective-correct with the light `L`. Out of line on ARMv6-M:
+/// each kind of light's span loop has a frame of its own, not all of them in
+/// [`fill_perspective`]'s (a micro:bit's stack is 4 KB beside its buffers).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
+fn shade_textured<S, C, L, R: RowWindow>(
+    clip: &TargetClip<R>,
+    position: [(crate::Coord, crate::Coord); 3],
+    attributes: &crate::raster::plane::Attributes<4>,
+    rect: &Rectangle,
+    fill: TexturedFill<'_, '_, '_, C, S, L>,
+) where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+    L: SpanLight,
+{
+    clip.rows().shade(position, attributes, rect, fill);
 }
 
 /// Levels (8.8 of the 0–255 scale) at the vertices as 16-bit fractions corrected for
