@@ -91,7 +91,7 @@ declare -A TEXTURE_TARGET=([cortex-m4]=12 [cortex-m0]=22)
 # Perspective-correct nearest texturing, unlit and texture × Gouraud, on the Cortex-M4 (its
 # Thumb-2 span loop) and the M0 (the division-free reciprocal): the targets are 16 and
 # 20, 28 and 36 (out of reach with a depth test and 16-pixel chunks: docs/benchmarks.md); held
-# where they are (measured 25.29 and 46.51, 82.18 and 187.43: margins of 7-12 %). The lit
+# where they are (measured 25.29 and 46.50, 82.16 and 188.03: margins of 7-12 %). The lit
 # figures were 35.63 and 96.36 with chunks of 16 always: the bench's faces are steep (w 1:3
 # across 128 or 64 pixels), and the chunks that keep their levels within a quarter step of the
 # exact ones (colours within 1 LSB) are 8 and 4 pixels long there.
