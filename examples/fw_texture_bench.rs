@@ -185,7 +185,9 @@ const CHECK_TRIANGLES: u32 = 300;
 /// Untimed: [`CHECK_TRIANGLES`] random triangles over and around the screen with random texel
 /// coordinates (spreads from a fraction of a texel to 2¹⁵ texels, anywhere in the range), nearest,
 /// from the texels as textures of several power-of-two shapes, drawn into the framebuffer (which
-/// the caller clears).
+/// the caller clears). Out of line: its frame is not `main`'s, under [`check_3d`]'s deep draws
+/// (a micro:bit's stack is 4 KB).
+#[inline(never)]
 fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     let (w, h) = (fb.size().width as i32, fb.size().height as i32);
     let mut next = xorshift(0x2545_f491_u32);

@@ -16,6 +16,8 @@ pub(crate) mod x86_64;
 use core::num::NonZeroU32;
 
 #[cfg(armv6m)]
+pub(crate) use thumbv6m::depth_masked_nearest_565;
+#[cfg(armv6m)]
 pub(crate) use thumbv6m::masked_nearest_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
@@ -90,6 +92,24 @@ pub struct MaskedSpan565<'a> {
 pub(crate) fn masked_nearest_565(
     _pixels: &mut [embedded_graphics::pixelcolor::Rgb565],
     _span: &MaskedSpan565<'_>,
+) -> bool {
+    false
+}
+
+/// ARMv6-M: the pixels between two perspective-correct chunk ends of the 3D textured fill —
+/// depth-tested nearest texels of a power-of-two repeating texture of raw Rgb565 words into
+/// Rgb565 pixels, unlit — are one assembly loop ([`depth_masked_nearest_565`]); elsewhere the
+/// portable pixel loop (on ARMv7-M the whole span is [`perspective_span`]).
+pub(crate) const DEPTH_MASKED_565: bool = cfg!(armv6m);
+
+/// [`depth_masked_nearest_565`] where there is none: draws nothing and says so.
+#[cfg(not(armv6m))]
+#[inline(always)]
+pub(crate) fn depth_masked_nearest_565(
+    _pixels: &mut [embedded_graphics::pixelcolor::Rgb565],
+    _depths: &mut [u16],
+    _span: &MaskedSpan565<'_>,
+    _depth: (u32, u32),
 ) -> bool {
     false
 }

@@ -318,3 +318,173 @@ pub(crate) fn masked_nearest_565(pixels: &mut [Rgb565], span: &MaskedSpan565<'_>
     }
     true
 }
+
+/// One depth-tested pixel of the masked nearest loop at `[r0, #$offset]` (colour) and
+/// `[r1, #$offset]` (depth): r2 = x, r3 = y (scaled), r4 = 2·x_mask, r5 = 2·rows, r8 = the
+/// texels, r9 = z, r10 / r11 / r12 = the steps of x, y and z; r6, r7 are clobbered. Drawn where
+/// `z >> 16` is below the stored depth, compared as `z < depth << 16` (the same order for
+/// every `z` and 16-bit depth). The same number of instructions whatever the offset: the
+/// loop's computed jump counts on it.
+macro_rules! depth_masked_pixel {
+    ($offset:literal) => {
+        concat!(
+            "ldrh r6, [r1, #",
+            $offset,
+            "]\n",
+            "lsls r6, r6, #16\n",
+            "cmp r9, r6\n",
+            "bhs 5f\n",
+            "mov r6, r9\n",
+            "lsrs r6, r6, #16\n",
+            "strh r6, [r1, #",
+            $offset,
+            "]\n",
+            "asrs r6, r2, #15\n",
+            "ands r6, r4\n",
+            "asrs r7, r3, #15\n",
+            "ands r7, r5\n",
+            "orrs r6, r7\n",
+            "add r6, r8\n",
+            "ldrh r6, [r6]\n",
+            "strh r6, [r0, #",
+            $offset,
+            "]\n",
+            "5:\n",
+            "add r2, r10\n",
+            "add r3, r11\n",
+            "add r9, r12\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_depth_masked_565_v6m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_depth_masked_565_v6m",
+    ".hidden embedded_raster_depth_masked_565_v6m",
+    ".type embedded_raster_depth_masked_565_v6m,%function",
+    ".thumb_func",
+    // r0 = pixels, r1 = depths (both 2-byte aligned), r2 = pixel count, r3 = the walk: dx, dy,
+    // texels, z, dz, x, y, x_mask, rows.
+    "embedded_raster_depth_masked_565_v6m:",
+    "push {{r4-r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4-r7}}",
+    // lr = past the last pixel; nothing to draw for no pixels.
+    "lsls r2, r2, #1",
+    "beq 4f",
+    "adds r2, r0, r2",
+    "mov lr, r2",
+    "ldm r3!, {{r4, r5, r6, r7}}",
+    "mov r10, r4",
+    "mov r11, r5",
+    "mov r8, r6",
+    "mov r9, r7",
+    "ldm r3!, {{r4}}",
+    "mov r12, r4",
+    "ldm r3, {{r2, r3, r4, r5}}",
+    "lsls r4, r4, #1",
+    "lsls r5, r5, #1",
+    // Into the four-pixel loop at its pixel m = (−count) mod 4, both pointers m pixels back:
+    // r6 = 2m, a jump of 36m bytes (a pixel is eighteen 16-bit instructions) from the loop's
+    // start, which the PC reads as 4 bytes past the `add`.
+    "mov r6, lr",
+    "subs r6, r0, r6",
+    "movs r7, #6",
+    "ands r6, r7",
+    "subs r0, r0, r6",
+    "subs r1, r1, r6",
+    "lsls r7, r6, #4",
+    "lsls r6, r6, #1",
+    "adds r7, r7, r6",
+    "add pc, r7",
+    "nop",
+    "3:",
+    depth_masked_pixel!("0"),
+    depth_masked_pixel!("2"),
+    depth_masked_pixel!("4"),
+    depth_masked_pixel!("6"),
+    "adds r0, #8",
+    "adds r1, #8",
+    "cmp r0, lr",
+    "blo 3b",
+    "4:",
+    "pop {{r4-r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4-r7, pc}}",
+    ".size embedded_raster_depth_masked_565_v6m, . - embedded_raster_depth_masked_565_v6m",
+);
+
+extern "C" {
+    /// The depth-tested masked nearest loop above.
+    ///
+    /// # Safety
+    ///
+    /// `pixels` and `depths` must each be valid for reads and writes of `len` consecutive,
+    /// 2-byte aligned `u16`s, `walk` for reads of nine aligned `u32`s, and `texels` (its third
+    /// word) for reads of the `u16`s at every index `i ≤ rows | x_mask` (its last two words,
+    /// each below 2³⁰).
+    fn embedded_raster_depth_masked_565_v6m(
+        pixels: *mut u16,
+        depths: *mut u16,
+        len: usize,
+        walk: *const [u32; 9],
+    );
+}
+
+/// Draws the pixels of `span` (see [`MaskedSpan565`]) into `pixels` where they are nearer than
+/// `depths`: pixel `i`, at depth `(z + i·dz) >> 16` for `depth = (z, dz)` (wrapping), is drawn
+/// where that is below `depths[i]`, which it then replaces, with the raw word
+/// `texels[row | column]` of its coordinate, as the portable depth-tested loop draws it.
+/// `false` without drawing anything if a masked index could reach past the texels, so no input
+/// reads or writes out of bounds.
+#[inline(always)]
+pub(crate) fn depth_masked_nearest_565(
+    pixels: &mut [Rgb565],
+    depths: &mut [u16],
+    span: &MaskedSpan565<'_>,
+    (z, dz): (u32, u32),
+) -> bool {
+    // embedded-graphics' `Rgb565(RawU16(u16))`: one `u16`, whose raw bits are the colour's.
+    const { assert!(core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2) };
+    let last = span.rows | span.x_mask;
+    if last as usize >= span.texels.len() {
+        return false;
+    }
+    let walk = [
+        span.x.1 as u32,
+        span.y.1 as u32,
+        span.texels.as_ptr() as u32,
+        z,
+        dz,
+        span.x.0 as u32,
+        span.y.0 as u32,
+        span.x_mask,
+        span.rows,
+    ];
+    // SAFETY: the function reads and writes `min(pixels.len(), depths.len())` consecutive
+    // 2-byte aligned `u16`s from each slice's start, which are the slices' own (an `Rgb565` is
+    // one `u16`, any bits a colour; the first pass's accesses before the starts are jumped
+    // over, its pointers m pixels back only addresses), reads the nine words of `walk`, and
+    // reads texels at byte offsets `((y >> 15) & 2·rows) | ((x >> 15) & 2·x_mask)`: even and at
+    // most `2·last`, so the `u16` at index `last < texels.len()` or below (the masks are below
+    // `texels.len() < 2³⁰`, so doubling them does not overflow). It saves and restores every
+    // register the AAPCS asks it to.
+    unsafe {
+        embedded_raster_depth_masked_565_v6m(
+            pixels.as_mut_ptr().cast(),
+            depths.as_mut_ptr(),
+            pixels.len().min(depths.len()),
+            &walk,
+        );
+    }
+    true
+}

@@ -195,6 +195,23 @@ pub trait GouraudColor: PixelColor {
         let _ = (dst, span);
         false
     }
+
+    /// Draws the depth-tested pixels of a perspective-correct chunk of nearest Rgb565 texels
+    /// into `colors` and `depths`, the depth plane's value and step a pixel `depth`, by a loop of
+    /// the target's own, if this format has one there (Rgb565 on Cortex-M0); `false` without
+    /// writing anything where it has none (the default). Hidden: its argument's type cannot be
+    /// named outside the crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn fill_depth_masked_565(
+        colors: &mut [Self],
+        depths: &mut [u16],
+        span: &MaskedSpan565<'_>,
+        depth: (u32, u32),
+    ) -> bool {
+        let _ = (colors, depths, span, depth);
+        false
+    }
 }
 
 /// Per-pixel channel steps of a triangle, prepared for a colour format's span loop
@@ -337,6 +354,15 @@ macro_rules! rgb_color {
                 #[inline(always)]
                 fn fill_masked_565(dst: &mut [Self], span: &MaskedSpan565<'_>) -> bool {
                     $masked(dst, span)
+                }
+                #[inline(always)]
+                fn fill_depth_masked_565(
+                    colors: &mut [Self],
+                    depths: &mut [u16],
+                    span: &MaskedSpan565<'_>,
+                    depth: (u32, u32),
+                ) -> bool {
+                    crate::arch::depth_masked_nearest_565(colors, depths, span, depth)
                 }
             )?
         }

@@ -582,7 +582,7 @@ fn fill_perspective<S, C, R: RowWindow>(
     match light {
         TexelLight::Full if !SIZE_OVER_SPEED => {
             let fill = TexturedFill::new(target, sampler, coordinates, Unlit);
-            clip.rows().shade(position, &attributes, &rect, fill);
+            shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Full | TexelLight::Level(_) => {
             let level = match light {
@@ -590,7 +590,7 @@ fn fill_perspective<S, C, R: RowWindow>(
                 _ => full,
             };
             let fill = TexturedFill::new(target, sampler, coordinates, Constant(level));
-            clip.rows().shade(position, &attributes, &rect, fill);
+            shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Levels(levels) => {
             let fill = TexturedFill::new(
@@ -599,13 +599,13 @@ fn fill_perspective<S, C, R: RowWindow>(
                 coordinates,
                 Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
             );
-            clip.rows().shade(position, &attributes, &rect, fill);
+            shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Tints(tints) if !SIZE_OVER_SPEED => {
             let [r, g, b] = transpose(tints).map(corrected_levels);
             let fill =
                 TexturedFill::new(target, sampler, coordinates, CorrectedChannels([r, g, b]));
-            clip.rows().shade(position, &attributes, &rect, fill);
+            shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Tints(tints) | TexelLight::Shiny { tints, .. } => {
             let speculars = match light {
@@ -619,7 +619,7 @@ fn fill_perspective<S, C, R: RowWindow>(
                 coordinates,
                 CorrectedChannels([r, g, b, corrected_levels(speculars)]),
             );
-            clip.rows().shade(position, &attributes, &rect, fill);
+            shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Quadratic(pixel) => {
             let fill = TexturedFill {
@@ -1055,6 +1055,12 @@ trait SpanLight: Copy {
     fn slope(&self, _: (i32, u32), _: (i32, u32)) -> u64 {
         0
     }
+
+    /// Whether a lit texel is the texel itself at every pixel (no light, or a full level).
+    #[inline(always)]
+    fn plain(&self) -> bool {
+        false
+    }
 }
 
 /// A light of the screen-space fill, its state read from the planes after the texel
@@ -1091,6 +1097,11 @@ impl SpanLight for Unlit {
     fn span_level(&self) -> Option<Option<[i32; 3]>> {
         Some(None)
     }
+
+    #[inline(always)]
+    fn plain(&self) -> bool {
+        true
+    }
 }
 
 impl<const N: usize> PlaneLight<N> for Unlit {
@@ -1126,6 +1137,12 @@ impl SpanLight for Constant {
     #[inline(always)]
     fn span_level(&self) -> Option<Option<[i32; 3]>> {
         Some(Some([self.0 as i32, 0, 0]))
+    }
+
+    /// A full level: `(c·f + 2¹⁵) >> 16` is `c` for every 8-bit `c` at `f` = 2¹⁶ − 1 or 2¹⁶.
+    #[inline(always)]
+    fn plain(&self) -> bool {
+        matches!(self.0, 0xffff | 0x1_0000)
     }
 }
 
@@ -1586,6 +1603,12 @@ where
                 }
             }
         }
+        // The target's chunk loop where it draws these texels unlit (the same pixels).
+        let masked = if arch::DEPTH_MASKED_565 && self.light.plain() {
+            masked_565(&self.sampler)
+        } else {
+            None
+        };
         let run = PerspectiveSpan {
             colors,
             depths,
@@ -1594,6 +1617,7 @@ where
             coordinates: self.coordinates,
             light: self.light,
             room,
+            masked,
         };
         self.sampler.run(run);
     }
@@ -1609,6 +1633,9 @@ struct PerspectiveSpan<'p, C, L> {
     light: L,
     /// The span's [`perspective::chunk_room`].
     room: i32,
+    /// The texels, masks and row shift of [`masked_565`], where the target's chunk loop draws
+    /// the chunks' pixels.
+    masked: Option<(&'p [u16], u32, u32, u32)>,
 }
 
 impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L> {
@@ -1621,6 +1648,7 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
         let [dz, dq, dp1, dp2] = self.steps;
         let [mut z, q, p1, p2] = self.start;
         let (u, v) = self.coordinates;
+        let masked = self.masked.filter(|m| m.3 == y_shift);
         let len = colors.len().min(depths.len()) as u32;
         let mut at = None;
         for chunk in Chunks::new([q, p1, p2], [dq, dp1, dp2], len, self.room) {
@@ -1639,7 +1667,25 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
                 return;
             };
             let steps = (dz, dx, dy, dl);
-            z = chunk_pixels(c, d, (z, x, y, level), steps, &texel, light);
+            z = match masked {
+                Some((texels, x_mask, rows, _))
+                    if C::fill_depth_masked_565(
+                        c,
+                        d,
+                        &arch::MaskedSpan565 {
+                            texels,
+                            x: (x, dx),
+                            y: (y, dy),
+                            x_mask,
+                            rows,
+                        },
+                        (z, dz),
+                    ) =>
+                {
+                    z.wrapping_add(dz.wrapping_mul(chunk.len))
+                }
+                _ => chunk_pixels(c, d, (z, x, y, level), steps, &texel, light),
+            };
             (colors, depths) = (rest_c, rest_d);
             at = Some(end);
         }
