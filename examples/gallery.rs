@@ -3,14 +3,17 @@
 //! * `gouraud.png` — Gouraud triangles on a 320×240 Rgb565 screen, some crossing its edges;
 //! * `fan.png` — a fan of thin triangles around a sub-pixel centre, and next to it how often each
 //!   pixel was drawn (white once, red more than once, black never inside the fan);
-//! * `heatmap.png` — per-pixel colour error against the f64 reference, in LSB of Rgb888.
+//! * `heatmap.png` — per-pixel colour error against the f64 reference, in LSB of Rgb888, with
+//!   its legend below the map.
 //!
 //! Run with `cargo run --release --example gallery`.
 
 use embedded_graphics::{
+    mono_font::{ascii::FONT_5X8, MonoTextStyle},
     pixelcolor::{Rgb565, Rgb888},
     prelude::*,
     primitives::Rectangle,
+    text::{Alignment, Text},
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, Vertex};
@@ -187,29 +190,69 @@ fn heatmap() {
             max_err = max_err.max(e);
         });
     }
-    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(w, h));
+    // The map, and below it its legend: the colour scale from 0 to 1 LSB and the colour of
+    // pixels no triangle covers.
+    let legend = 22;
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(w, h + legend));
     for y in 0..h {
         for x in 0..w {
             let e = error[(y * w + x) as usize];
-            let color = if e.is_nan() {
-                Rgb888::new(24, 24, 24)
-            } else {
-                // 0 LSB: blue, 0.5 LSB: green, 1 LSB: red.
-                let t = (e.clamp(0.0, 1.0) * 510.0) as u32;
-                let (r, g, b) = if t < 255 {
-                    (0, t, 255 - t)
-                } else {
-                    (t - 255, 510 - t, 0)
-                };
-                Rgb888::new(r as u8, g as u8, b as u8)
-            };
-            Pixel(Point::new(x as i32, y as i32), color)
+            Pixel(Point::new(x as i32, y as i32), error_color(e))
                 .draw(&mut display)
                 .unwrap();
         }
     }
+    let text = MonoTextStyle::new(&FONT_5X8, Rgb888::WHITE);
+    let (bar_x, bar_w, bar_y) = (8, 90, h as i32 + 3);
+    for x in 0..=bar_w {
+        let color = error_color(f64::from(x) / f64::from(bar_w));
+        for y in 0..6 {
+            Pixel(Point::new(bar_x + x, bar_y + y), color)
+                .draw(&mut display)
+                .unwrap();
+        }
+    }
+    for (label, at) in [("0", 0), ("0.5", bar_w / 2), ("1 LSB", bar_w)] {
+        Text::with_alignment(
+            label,
+            Point::new(bar_x + at, bar_y + 14),
+            text,
+            Alignment::Center,
+        )
+        .draw(&mut display)
+        .unwrap();
+    }
+    let none = Rectangle::new(Point::new(bar_x + bar_w + 24, bar_y), Size::new(6, 6));
+    none.into_styled(embedded_graphics::primitives::PrimitiveStyle::with_fill(
+        error_color(f64::NAN),
+    ))
+    .draw(&mut display)
+    .unwrap();
+    Text::with_alignment(
+        "none",
+        Point::new(bar_x + bar_w + 33, bar_y + 6),
+        text,
+        Alignment::Left,
+    )
+    .draw(&mut display)
+    .unwrap();
     println!("heatmap: max error {max_err:.4} LSB (Rgb888) over 40 random triangles");
     save(&display, 3, "heatmap.png");
+}
+
+/// The heat map's colour of an error of `e` LSB: blue at 0, green at ½, red at 1 and above;
+/// dark grey for a pixel no triangle covers (`NaN`).
+fn error_color(e: f64) -> Rgb888 {
+    if e.is_nan() {
+        return Rgb888::new(24, 24, 24);
+    }
+    let t = (e.clamp(0.0, 1.0) * 510.0) as u32;
+    let (r, g, b) = if t < 255 {
+        (0, t, 255 - t)
+    } else {
+        (t - 255, 510 - t, 0)
+    };
+    Rgb888::new(r as u8, g as u8, b as u8)
 }
 
 fn main() {
