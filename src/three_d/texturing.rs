@@ -1028,14 +1028,14 @@ fn level_fraction(level: u16) -> u32 {
 trait SpanLight: Copy {
     /// The state at a pixel, and its step to the next.
     type Level: Copy;
-    /// The state at the first pixel of a chunk from `start` to `end` (perspective
-    /// barycentrics) over `over` pixels, and its step.
-    fn chunk(
-        &self,
-        start: (Lambda, Lambda),
-        end: (Lambda, Lambda),
-        over: u32,
-    ) -> (Self::Level, Self::Level);
+    /// The light's exact values at a chunk's end: found once, for the chunk that ends there
+    /// and the one that starts there.
+    type End: Copy;
+    /// The exact values at the perspective barycentrics `at`.
+    fn end(&self, at: (Lambda, Lambda)) -> Self::End;
+    /// The state at the first pixel of a chunk from the values `start` to `end` (its ends'
+    /// [`end`](Self::end)s) over `over` pixels, and its step.
+    fn chunk(&self, start: Self::End, end: Self::End, over: u32) -> (Self::Level, Self::Level);
     /// The texel lit at `level`.
     fn apply<C: GouraudColor>(&self, texel: C, level: Self::Level) -> C;
     /// `level` a pixel on.
@@ -1080,8 +1080,13 @@ struct Unlit;
 impl SpanLight for Unlit {
     type Level = ();
 
+    type End = ();
+
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ((), ()) {
+    fn end(&self, _: (Lambda, Lambda)) {}
+
+    #[inline(always)]
+    fn chunk(&self, _: (), _: (), _: u32) -> ((), ()) {
         ((), ())
     }
 
@@ -1120,8 +1125,13 @@ struct Constant(u32);
 impl SpanLight for Constant {
     type Level = ();
 
+    type End = ();
+
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ((), ()) {
+    fn end(&self, _: (Lambda, Lambda)) {}
+
+    #[inline(always)]
+    fn chunk(&self, _: (), _: (), _: u32) -> ((), ()) {
         ((), ())
     }
 
@@ -1167,8 +1177,13 @@ struct PlaneLevel;
 impl SpanLight for PlaneLevel {
     type Level = i32;
 
+    type End = ();
+
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> (i32, i32) {
+    fn end(&self, _: (Lambda, Lambda)) {}
+
+    #[inline(always)]
+    fn chunk(&self, _: (), _: (), _: u32) -> (i32, i32) {
         (0, 0)
     }
 
@@ -1201,8 +1216,13 @@ struct PlaneChannels<const K: usize>;
 impl<const K: usize> SpanLight for PlaneChannels<K> {
     type Level = [i32; K];
 
+    type End = ();
+
     #[inline(always)]
-    fn chunk(&self, _: (Lambda, Lambda), _: (Lambda, Lambda), _: u32) -> ([i32; K], [i32; K]) {
+    fn end(&self, _: (Lambda, Lambda)) {}
+
+    #[inline(always)]
+    fn chunk(&self, _: (), _: (), _: u32) -> ([i32; K], [i32; K]) {
         ([0; K], [0; K])
     }
 
@@ -1261,9 +1281,15 @@ struct Varying(Corrected);
 impl SpanLight for Varying {
     type Level = i32;
 
+    type End = i32;
+
     #[inline(always)]
-    fn chunk(&self, start: (Lambda, Lambda), end: (Lambda, Lambda), over: u32) -> (i32, i32) {
-        let (a, b) = (self.0.at(start), self.0.at(end));
+    fn end(&self, at: (Lambda, Lambda)) -> i32 {
+        self.0.at(at)
+    }
+
+    #[inline(always)]
+    fn chunk(&self, a: i32, b: i32, over: u32) -> (i32, i32) {
         (a, step_over(a, b, over))
     }
 
@@ -1295,6 +1321,16 @@ struct CorrectedChannels<const K: usize>([Corrected; K]);
 
 impl<const K: usize> SpanLight for CorrectedChannels<K> {
     type Level = [i32; K];
+
+    /// The barycentrics: the channels' values are found again at each end (kept from one
+    /// chunk to the next, three or four of them cost the loop more registers than the
+    /// products they save; the textured frames' perspective spans are short).
+    type End = (Lambda, Lambda);
+
+    #[inline(always)]
+    fn end(&self, at: (Lambda, Lambda)) -> (Lambda, Lambda) {
+        at
+    }
 
     #[inline(always)]
     fn chunk(
@@ -1473,6 +1509,13 @@ struct PerPixel<'p>(&'p PixelLight);
 impl SpanLight for PerPixel<'_> {
     /// The normal and its first difference (a step: unused, and the second difference).
     type Level = ([i32; 3], [i32; 3]);
+    /// The barycentrics themselves (the field is set up from them at each chunk's start).
+    type End = (Lambda, Lambda);
+
+    #[inline(always)]
+    fn end(&self, at: (Lambda, Lambda)) -> (Lambda, Lambda) {
+        at
+    }
 
     #[inline(always)]
     fn chunk(
@@ -1652,14 +1695,17 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
         let len = colors.len().min(depths.len()) as u32;
         let mut at = None;
         for chunk in Chunks::new([q, p1, p2], [dq, dp1, dp2], len, self.room) {
-            let (x, mut y) = at.unwrap_or_else(|| (u.at(chunk.start), v.at(chunk.start)));
-            let end = (u.at(chunk.end), v.at(chunk.end));
+            let (x, mut y, first) = at.unwrap_or_else(|| {
+                let start = chunk.start;
+                (u.at(start), v.at(start), light.end(start))
+            });
+            let end = (u.at(chunk.end), v.at(chunk.end), light.end(chunk.end));
             let (dx, dy) = (
                 step_over(x, end.0, chunk.over),
                 step_over(y, end.1, chunk.over) << y_shift,
             );
             y <<= y_shift;
-            let (level, dl) = light.chunk(chunk.start, chunk.end, chunk.over);
+            let (level, dl) = light.chunk(first, end.2, chunk.over);
             // The chunk's pixels as slices of their own: one counter for the loop.
             let n = chunk.len as usize;
             let (Some((c, rest_c)), Some((d, rest_d))) = (split(colors, n), split(depths, n))
