@@ -16,9 +16,11 @@
 //! of its 16-bit scale, so `λ` is within about `1/q` of the exact ratio: `3·10⁻⁵` for `ρ = 1`,
 //! `6·10⁻⁴` for `ρ = 20`, plus the 2⁻¹⁵ of its fixed-point reciprocal.
 
-use super::arith::{div_rem_u32, leading_zeros_32, leading_zeros_64, mul_i32_wide, reciprocal_31};
+use super::arith::{
+    div_rem_u32, leading_zeros_32, leading_zeros_64, mul_i32_wide, mul_u32_u33, reciprocal_31,
+};
 use super::plane::Attributes;
-use crate::arch::{HAS_DIVIDER, NO_LONG_MULTIPLY};
+use crate::arch::{HAS_DIVIDER, NO_CLZ, NO_LONG_MULTIPLY};
 use core::num::{NonZeroU16, NonZeroU32};
 
 /// Margin added to every vertex value, so that the planes' rounding error (under one unit)
@@ -132,7 +134,7 @@ impl Corrected {
     #[inline(always)]
     pub(crate) fn slope(&self, (k1, e1): (i32, u32), (k2, e2): (i32, u32)) -> u64 {
         let [_, d1, d2] = self.parts();
-        let off = |d: i32, e: u32| u64::from(d.unsigned_abs()) * u64::from(e);
+        let off = |d: i32, e: u32| mul_u32_u33(d.unsigned_abs(), u64::from(e));
         mul_i32_wide(d1, k1)
             .saturating_add(mul_i32_wide(d2, k2))
             .unsigned_abs()
@@ -229,11 +231,13 @@ pub(crate) fn chunk_room(
     if dq == 0 {
         return NO_LIMIT;
     }
-    let whole = |v: u32| i64::from((v >> 16).saturating_sub(u32::from(MARGIN)));
+    // Whole parts below 2¹⁶: 32-bit factors (products of 16-bit limbs where a 64-bit one would
+    // be a library call).
+    let whole = |v: u32| (v >> 16).saturating_sub(u32::from(MARGIN)) as i32;
     let q = whole(values[0]);
     let k = |k: usize| {
         let dp = step[k] as i32;
-        let d = i64::from(dp) * q - whole(values[k]) * i64::from(dq);
+        let d = mul_i32_wide(dp, q) - mul_i32_wide(whole(values[k]), dq);
         // Below 2³² · 2¹⁶ + 2¹⁶ · 2³²: within i32 over 2¹⁶, clamped (never reached). The whole
         // parts are each within one unit: the product within |dp| + |dq|, over 2¹⁶ (and the
         // floor) within this error.
@@ -262,18 +266,88 @@ pub(crate) const NO_LIMIT: i32 = 128 - 768;
 /// further off than those of chunks of 16).
 #[inline(always)]
 pub(crate) fn chunk_shift(room: i32, q: u32, dq: u32, left: u32, offset: u32) -> u32 {
-    let aligned = if offset == 0 {
-        CHUNK_SHIFT
-    } else {
-        offset.trailing_zeros().min(CHUNK_SHIFT)
-    };
+    let aligned = aligned_shift(offset);
     if room >= NO_LIMIT {
         return aligned;
     }
+    let q_min = chunk_q_min(q, dq, left);
+    (((room + 3 * log16_down(q_min)) >> 5).clamp(0, CHUNK_SHIFT as i32) as u32).min(aligned)
+}
+
+/// The bits of the largest power of two dividing `offset`, at most [`CHUNK_SHIFT`] (all of
+/// them for the span's first chunk): a byte of a table of the sixteen residues (a trailing-zero
+/// count is a software loop on ARMv6-M).
+#[inline(always)]
+fn aligned_shift(offset: u32) -> u32 {
+    const ALIGNED: [u8; CHUNK as usize] = {
+        let mut t = [CHUNK_SHIFT as u8; CHUNK as usize];
+        let mut n = 1;
+        while n < CHUNK as usize {
+            t[n] = n.trailing_zeros() as u8;
+            n += 1;
+        }
+        t
+    };
+    u32::from(ALIGNED[(offset % CHUNK) as usize])
+}
+
+/// The smaller raw `q` of a chunk's first pixel (`q`) and [`CHUNK`] pixels on (or the span's
+/// last, `left − 1` on), the margin off, at least 2¹⁶ (and below `u32::MAX`).
+#[inline(always)]
+fn chunk_q_min(q: u32, dq: u32, left: u32) -> u32 {
     let end = q.wrapping_add(dq.wrapping_mul(left.saturating_sub(1).min(CHUNK)));
     let margin = u32::from(MARGIN) << 16;
-    let q_min = q.min(end).saturating_sub(margin).max(1 << 16);
-    (((room + 3 * log16_down(q_min)) >> 5).clamp(0, CHUNK_SHIFT as i32) as u32).min(aligned)
+    q.min(end).saturating_sub(margin).max(1 << 16)
+}
+
+/// [`chunk_shift`]'s test as thresholds on the chunk's `q_min`, found once a span from its
+/// [`chunk_room`] `room` (below [`NO_LIMIT`]): threshold `s` is the least `q_min` at which a
+/// chunk of `2^(s + 1)` pixels is short enough — the least `v` with `room + 3·16·log₂ v ≥ 32·(s
+/// + 1)` in [`log16_down`]'s sixteenths — or `u32::MAX` where none is (`q_min` never reaches it).
+/// Where a sixteenth-logarithm needs a software leading-zero count (ARMv6-M), a chunk's length is
+/// then four comparisons: [`chunk_shift_by`].
+#[inline(always)]
+pub(crate) fn chunk_thresholds(room: i32) -> [u32; CHUNK_SHIFT as usize] {
+    core::array::from_fn(|s| {
+        // Positive below NO_LIMIT: the least sixteenth-logarithm m = ⌈need / 3⌉.
+        let need = 32 * (s as i32 + 1) - room;
+        let m = (need.max(0) + 2) / 3;
+        if m > 16 * 31 + 15 {
+            // Beyond every 32-bit value's.
+            u32::MAX
+        } else if m <= 16 * 16 {
+            // Every q_min (at least 2¹⁶) has at least this one.
+            0
+        } else {
+            // The least value with bit length n = m / 16 + 1 and the four bits after its leading
+            // one m mod 16 (bit lengths of 17 and more here).
+            (16 + (m % 16) as u32) << (m / 16 - 4)
+        }
+    })
+}
+
+/// [`chunk_shift`] from the span's [`chunk_thresholds`] `thresholds` (and its `room`): the same
+/// length.
+#[inline(always)]
+pub(crate) fn chunk_shift_by(
+    thresholds: &[u32; CHUNK_SHIFT as usize],
+    room: i32,
+    q: u32,
+    dq: u32,
+    left: u32,
+    offset: u32,
+) -> u32 {
+    let aligned = aligned_shift(offset);
+    if room >= NO_LIMIT {
+        return aligned;
+    }
+    let q_min = chunk_q_min(q, dq, left);
+    // The thresholds increase: the count of those reached is the longest length's bits.
+    let reached = thresholds
+        .iter()
+        .map(|&t| u32::from(q_min >= t))
+        .sum::<u32>();
+    reached.min(aligned)
 }
 
 /// `⌈2¹⁶ / n⌉` for the short last chunk of a span (`n` pixels between its computed ends).
@@ -329,6 +403,8 @@ pub(crate) struct Chunks {
     left: u32,
     /// The span's [`chunk_room`].
     room: i32,
+    /// Its [`chunk_thresholds`] where a chunk's length is found from them ([`NO_CLZ`]).
+    thresholds: [u32; CHUNK_SHIFT as usize],
     /// Pixels from the span's first to the current chunk's.
     offset: u32,
 }
@@ -344,6 +420,11 @@ impl Chunks {
             at: lambdas(values),
             left: len,
             room,
+            thresholds: if NO_CLZ && room < NO_LIMIT {
+                chunk_thresholds(room)
+            } else {
+                [0; CHUNK_SHIFT as usize]
+            },
             offset: 0,
         }
     }
@@ -358,14 +439,19 @@ impl Iterator for Chunks {
             return None;
         }
         let start = self.at;
+        let (room, q, dq, left, offset) = (
+            self.room,
+            self.values[0],
+            self.step[0],
+            self.left,
+            self.offset,
+        );
         let full = 1
-            << chunk_shift(
-                self.room,
-                self.values[0],
-                self.step[0],
-                self.left,
-                self.offset,
-            );
+            << if NO_CLZ {
+                chunk_shift_by(&self.thresholds, room, q, dq, left, offset)
+            } else {
+                chunk_shift(room, q, dq, left, offset)
+            };
         let (len, over) = if self.left > full {
             (full, full)
         } else {
@@ -434,6 +520,45 @@ mod tests {
                     "{p}/{q}: {l}"
                 );
             }
+        }
+    }
+
+    /// The thresholds found once a span give every chunk the length `chunk_shift` gives it
+    /// (rooms across `chunk_room`'s range, any `q` and step, first and later chunks).
+    #[test]
+    fn chunk_thresholds_give_the_same_lengths() {
+        let mut next = crate::random(0x9e47_0007);
+        let mut lengths = [0usize; CHUNK_SHIFT as usize + 1];
+        for n in 0..200_000 {
+            // Rooms as `chunk_room` gives them (about −2,100 up), and beyond NO_LIMIT.
+            let room = NO_LIMIT + 64 - (next() % 2_200) as i32;
+            let q = if n % 3 == 0 {
+                next() as u32
+            } else {
+                (next() as u32) >> (next() % 16)
+            };
+            let dq = (next() as u32) >> (next() % 32);
+            let (left, offset) = (1 + (next() % 40) as u32, (next() % 64) as u32);
+            let want = chunk_shift(room, q, dq, left, offset);
+            let thresholds = chunk_thresholds(room);
+            assert!(thresholds.windows(2).all(|t| t[0] <= t[1]), "{room}");
+            assert_eq!(
+                chunk_shift_by(&thresholds, room, q, dq, left, offset),
+                want,
+                "{room} {q} {dq} {left} {offset}"
+            );
+            lengths[want as usize] += 1;
+        }
+        // Every length taken, so that the comparison covers each threshold.
+        assert!(lengths.iter().all(|&n| n > 1_000), "{lengths:?}");
+        // The alignment: the largest power of two dividing the offset, at most CHUNK.
+        for offset in (0..5_000).chain((0..5_000).map(|_| next() as u32)) {
+            let want = if offset == 0 {
+                CHUNK_SHIFT
+            } else {
+                offset.trailing_zeros().min(CHUNK_SHIFT)
+            };
+            assert_eq!(aligned_shift(offset), want, "{offset}");
         }
     }
 
