@@ -186,6 +186,16 @@ pub(crate) unsafe fn span_565(
     unsafe { embedded_raster_565_span_v6m(pixels, len, values, steps) }
 }
 
+/// Whether the texels of `span` hold every index its masked loops form (`row | column ≤ rows |
+/// x_mask`), so that they read nothing past them. The loops write `Rgb565` pixels as the raw
+/// `u16`s they are.
+#[inline(always)]
+fn texels_cover(span: &MaskedSpan565<'_>) -> bool {
+    // embedded-graphics' `Rgb565(RawU16(u16))`: one `u16`, whose raw bits are the colour's.
+    const { assert!(core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2) };
+    ((span.rows | span.x_mask) as usize) < span.texels.len()
+}
+
 /// One pixel of the masked nearest loop, stored at `[r0, #$offset]`: r1 = x, r2 = y (scaled),
 /// r3 = 2·x_mask, r4 = 2·rows, r5 = the texels, r8 / r9 = the steps; r6, r7 are clobbered.
 macro_rules! masked_pixel {
@@ -285,11 +295,7 @@ extern "C" {
 /// reads or writes out of bounds.
 #[inline(always)]
 pub(crate) fn masked_nearest_565(pixels: &mut [Rgb565], span: &MaskedSpan565<'_>) -> bool {
-    // embedded-graphics' `Rgb565(RawU16(u16))`: one `u16`, whose raw bits are the colour's.
-    const { assert!(core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2) };
-    // Every index the loop forms is `row | column ≤ rows | x_mask`.
-    let last = span.rows | span.x_mask;
-    if last as usize >= span.texels.len() {
+    if !texels_cover(span) {
         return false;
     }
     let walk = [
@@ -304,8 +310,8 @@ pub(crate) fn masked_nearest_565(pixels: &mut [Rgb565], span: &MaskedSpan565<'_>
     // the slice's start, which are the slice's pixels (an `Rgb565` is one `u16`, any bits a
     // colour; the first pass's stores before the start are jumped over, its pointer m pixels
     // back only an address), and reads the six words of `walk` and texels at byte offsets
-    // `((y >> 15) & 2·rows) | ((x >> 15) & 2·x_mask)`: even and at most `2·last`, so the `u16`
-    // at index `last < texels.len()` or below (the masks are below `texels.len() < 2³⁰`, so
+    // `((y >> 15) & 2·rows) | ((x >> 15) & 2·x_mask)`: even and at most `2·(rows | x_mask)`, so the `u16`
+    // at index `rows | x_mask < texels.len()` or below (the masks are below `texels.len() < 2³⁰`, so
     // doubling them does not overflow). It saves and restores every register the AAPCS asks
     // it to.
     unsafe {
@@ -453,10 +459,7 @@ pub(crate) fn depth_masked_nearest_565(
     span: &MaskedSpan565<'_>,
     (z, dz): (u32, u32),
 ) -> bool {
-    // embedded-graphics' `Rgb565(RawU16(u16))`: one `u16`, whose raw bits are the colour's.
-    const { assert!(core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2) };
-    let last = span.rows | span.x_mask;
-    if last as usize >= span.texels.len() {
+    if !texels_cover(span) {
         return false;
     }
     let walk = [
@@ -475,7 +478,7 @@ pub(crate) fn depth_masked_nearest_565(
     // one `u16`, any bits a colour; the first pass's accesses before the starts are jumped
     // over, its pointers m pixels back only addresses), reads the nine words of `walk`, and
     // reads texels at byte offsets `((y >> 15) & 2·rows) | ((x >> 15) & 2·x_mask)`: even and at
-    // most `2·last`, so the `u16` at index `last < texels.len()` or below (the masks are below
+    // most `2·(rows | x_mask)`, so the `u16` at index `rows | x_mask < texels.len()` or below (the masks are below
     // `texels.len() < 2³⁰`, so doubling them does not overflow). It saves and restores every
     // register the AAPCS asks it to.
     unsafe {

@@ -275,21 +275,29 @@ pub(crate) fn chunk_shift(room: i32, q: u32, dq: u32, left: u32, offset: u32) ->
 }
 
 /// The bits of the largest power of two dividing `offset`, at most [`CHUNK_SHIFT`] (all of
-/// them for the span's first chunk): a byte of a table of the sixteen residues (a trailing-zero
-/// count is a software loop on ARMv6-M).
+/// them for the span's first chunk): where a trailing-zero count is a software loop (ARMv6-M),
+/// a byte of [`ALIGNED`].
 #[inline(always)]
 fn aligned_shift(offset: u32) -> u32 {
-    const ALIGNED: [u8; CHUNK as usize] = {
-        let mut t = [CHUNK_SHIFT as u8; CHUNK as usize];
-        let mut n = 1;
-        while n < CHUNK as usize {
-            t[n] = n.trailing_zeros() as u8;
-            n += 1;
-        }
-        t
-    };
-    u32::from(ALIGNED[(offset % CHUNK) as usize])
+    if NO_CLZ {
+        u32::from(ALIGNED[(offset % CHUNK) as usize])
+    } else if offset == 0 {
+        CHUNK_SHIFT
+    } else {
+        offset.trailing_zeros().min(CHUNK_SHIFT)
+    }
 }
+
+/// [`aligned_shift`] of each residue modulo [`CHUNK`].
+const ALIGNED: [u8; CHUNK as usize] = {
+    let mut t = [CHUNK_SHIFT as u8; CHUNK as usize];
+    let mut n = 1;
+    while n < CHUNK as usize {
+        t[n] = n.trailing_zeros() as u8;
+        n += 1;
+    }
+    t
+};
 
 /// The smaller raw `q` of a chunk's first pixel (`q`) and [`CHUNK`] pixels on (or the span's
 /// last, `left − 1` on), the margin off, at least 2¹⁶ (and below `u32::MAX`).
@@ -559,6 +567,11 @@ mod tests {
                 offset.trailing_zeros().min(CHUNK_SHIFT)
             };
             assert_eq!(aligned_shift(offset), want, "{offset}");
+            assert_eq!(
+                u32::from(ALIGNED[(offset % CHUNK) as usize]),
+                want,
+                "{offset}"
+            );
         }
     }
 
