@@ -222,10 +222,14 @@ pub(crate) fn bilinear_by<C: GouraudColor>(x: i32, y: i32, fetch: impl Fn(i32, i
     let c = |i, j| fetch(i, j).channels().map(u32::from);
     let (t00, t10, t01, t11) = (c(i, j), c(i1, j), c(i, j1), c(i1, j1));
     let blend = |k: usize| {
-        // Each row's blend below 2²⁰, the sum below 2³²: channels are at most 8 bits.
-        let top = t00[k] * (4096 - fx) + t10[k] * fx;
-        let bottom = t01[k] * (4096 - fx) + t11[k] * fx;
-        ((top * (4096 - fy) + bottom * fy + (1 << 23)) >> 24) as u8
+        // Each row's blend below 2²⁰, the sum below 2³²: channels are at most 8 bits. One
+        // product a blend, `a·(4096 − f) + b·f = a·4096 + (b − a)·f`, modulo 2³² (the same
+        // integer: the true value is below 2³²).
+        let lerp =
+            |a: u32, b: u32, f: u32| (a << 12).wrapping_add(b.wrapping_sub(a).wrapping_mul(f));
+        let top = lerp(t00[k], t10[k], fx);
+        let bottom = lerp(t01[k], t11[k], fx);
+        (lerp(top, bottom, fy).wrapping_add(1 << 23) >> 24) as u8
     };
     if C::CHANNELS == 1 {
         return C::from_channels([blend(0), 0, 0]);
