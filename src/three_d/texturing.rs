@@ -24,7 +24,8 @@
 //! are short enough for their chords to stay within a quarter of the target's finest channel
 //! step of the exact levels: each chunk is the longest power of two up to 16 pixels for which
 //! the chord bound `L²·|K|·|dq| / (4·q_min³)` (`K = ℓ′·q²`, constant along a span) holds
-//! ([`chunk_shift`](crate::raster::perspective), sixteenth-logarithms, no division), and lies
+//! ([`chunk_shift`](crate::raster::perspective), sixteenth-logarithms, no division; on ARMv6-M
+//! the same lengths from thresholds found once a span), and lies
 //! inside an aligned chunk of 16 (so the coordinates' chords are never longer than with chunks
 //! of 16). So every colour is within 1 LSB of the texel times the exact perspective-correct
 //! level (tested in `tests/perspective.rs` on random faces whose `w` changes by 1:20 across a
