@@ -129,7 +129,7 @@ pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
     Angle, Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline,
-    Scalar, Shading, Specular, TexCoord, TexturedMaterial, ToScalar, Vec3,
+    Scalar, Shading, Specular, TexCoord, TexturedMaterial, ToAngle, ToScalar, Vec3,
 };
 
 /// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
@@ -139,7 +139,7 @@ pub use three_d::{
 /// 2D: the triangles, their [`Vertex`] and [`TexturedVertex`], [`SliceFramebuffer`],
 /// [`Coord`] with [`ToCoord`] and the pixel placements, [`Texture`] with its [`Wrap`] and
 /// [`Filter`], and the [`GouraudColor`] bound. 3D: the pipeline, its mesh, target, light and
-/// material types (textured too), the maths types with [`ToScalar`] and
+/// material types (textured too), the maths types with [`ToScalar`], [`ToAngle`] and
 /// [`Degrees`](three_d::Degrees). [`Angle`] is not in it, because embedded-graphics' prelude has
 /// an `Angle` of its own: import `embedded_raster::Angle`.
 ///
@@ -165,7 +165,7 @@ pub mod prelude {
     pub use crate::three_d::{
         Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, LightSource, Lights, Mat4, Material,
         Mesh, Pipeline, Scalar, ScreenVertex, Shading, Specular, TexCoord, TexturedMaterial,
-        ToScalar, Vec3, Vec4,
+        ToAngle, ToScalar, Vec3, Vec4,
     };
 }
 

@@ -8,7 +8,7 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
 use crate::draw::{draw_rows, fill_row, SliceFramebuffer};
-use crate::fixed_point::Coord;
+use crate::fixed_point::{Coord, ToCoord};
 use crate::raster::Span;
 
 /// The z-buffer value of an empty pixel; nothing is ever drawn at this depth.
@@ -26,7 +26,6 @@ pub const DEPTH_FAR: u16 = u16::MAX - 1;
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-/// use embedded_raster::fixed_point::ToCoord;
 /// use embedded_raster::three_d::{draw_flat, DepthTarget, ScreenVertex, DEPTH_CLEAR};
 ///
 /// let (mut pixels, mut depth) = ([Rgb565::BLACK; 32 * 32], [0u16; 32 * 32]);
@@ -34,7 +33,7 @@ pub const DEPTH_FAR: u16 = u16::MAX - 1;
 /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
 /// assert!(target.depth().iter().all(|&d| d == DEPTH_CLEAR));
 ///
-/// let v = |x: f32, y: f32, z| ScreenVertex::new(x.to_coord(), y.to_coord(), z);
+/// let v = |x: f32, y: f32, z| ScreenVertex::new(x, y, z);
 /// let clip = target.bounding_box();
 /// draw_flat(&mut target, &clip, &[v(0.0, 0.0, 100), v(32.0, 0.0, 100), v(0.0, 32.0, 100)], Rgb565::RED);
 /// // Farther away: hidden where the red triangle is.
@@ -292,9 +291,15 @@ pub struct ScreenVertex {
 }
 
 impl ScreenVertex {
-    /// A vertex at `(x, y)` with `depth`.
-    pub const fn new(x: Coord, y: Coord, depth: u16) -> Self {
-        ScreenVertex { x, y, depth }
+    /// A vertex at `(x, y)` with `depth`: floats or [`Coord`]s ([`ToCoord`]), e.g.
+    /// `ScreenVertex::new(10.5, 3.0, 1000)`. For `const` data write the fields (all public).
+    #[inline(always)]
+    pub fn new(x: impl ToCoord, y: impl ToCoord, depth: u16) -> Self {
+        ScreenVertex {
+            x: x.to_coord(),
+            y: y.to_coord(),
+            depth,
+        }
     }
 
     /// The position as a coordinate pair.

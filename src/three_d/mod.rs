@@ -42,7 +42,8 @@ mod vertex;
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use light::{Light, LightSource, Lights, Specular};
 pub use math::{
-    inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToScalar, Vec3, Vec4, SCALAR_BITS,
+    inv_sqrt, normalize_wide, Angle, Degrees, Mat4, Scalar, ToAngle, ToScalar, Vec3, Vec4,
+    SCALAR_BITS,
 };
 pub use mesh::{Bounds, Mesh, MeshError, TexCoord};
 pub(crate) use pipeline::{fit_scratch, FaceSink, Frame};

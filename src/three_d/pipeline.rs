@@ -60,7 +60,7 @@
 //! );
 //! let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 //! let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
-//! let light = Light::new(Vec3::from_bits(0, 0, 65536), Scalar::from_num(0.2));
+//! let light = Light::new(Vec3::new(0, 0, 1), 0.2);
 //! let pipeline = Pipeline::new(Mat4::IDENTITY, projection * view, viewport, light);
 //! let stats = pipeline.draw_mesh(&mesh, &Material::new(Rgb565::WHITE, Shading::Flat), &mut target);
 //! assert_eq!(stats.drawn, 1);
