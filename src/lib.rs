@@ -56,7 +56,8 @@
 //!
 //! # Errors
 //!
-//! Every error type — [`band::BandError`], [`three_d::MeshError`], [`three_d::ScratchTooSmall`],
+//! Every error type — [`FramebufferError`], [`band::BandError`], [`three_d::MeshError`],
+//! [`three_d::ScratchTooSmall`],
 //! [`texture::TextureError`], [`raster::TooLarge`], and on the host `three_d::obj`'s and
 //! `texture::convert`'s — implements [`core::fmt::Display`], with a message that says what was
 //! needed and what was given, and [`core::error::Error`] (`std::error::Error`): `?` takes them
@@ -122,8 +123,8 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle,
-    TexturedVertex, Vertex,
+    FramebufferError, GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors,
+    TexturedTriangle, TexturedVertex, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};

@@ -218,7 +218,7 @@ impl<'a, C: PixelColor> ColorBand<'a, C> {
         check_buffer(layout, pixels.len(), false)?;
         let width = layout.size().width;
         let pixels = SliceFramebuffer::new(pixels, width, placement.height())
-            .ok_or(BandError::FrameTooLarge)?;
+            .map_err(|_| BandError::FrameTooLarge)?;
         Ok(ColorBand { pixels, placement })
     }
 
@@ -406,7 +406,7 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         check_buffer(layout, depth.len(), true)?;
         let width = layout.size().width;
         let target = DepthTarget::new(color, depth, width, placement.height())
-            .ok_or(BandError::FrameTooLarge)?;
+            .map_err(|_| BandError::FrameTooLarge)?;
         Ok(DepthBand { target, placement })
     }
 
@@ -449,7 +449,7 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
                 self.placement.height(),
             )
             // The target's own buffer, of its size: never empty.
-            .unwrap_or_else(SliceFramebuffer::empty),
+            .unwrap_or_else(|_| SliceFramebuffer::empty()),
             placement: self.placement,
         }
     }
