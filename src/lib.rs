@@ -30,7 +30,9 @@
 //! are exact on their pixels) for regions up to 2¹⁶ pixels (`width + height`) and restarted
 //! from exact values every 4096 pixels beyond that, so the 1-LSB bound holds everywhere.
 //!
-//! # Example
+//! # Examples
+//!
+//! ## 2D: triangles on any `DrawTarget`
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
@@ -51,8 +53,45 @@
 //! # Ok::<(), core::convert::Infallible>(())
 //! ```
 //!
-//! The README has a 3D example; [`three_d`] describes the pipeline, [`fixed_point`] how to
-//! build coordinates from floats, pixel indices and embedded-graphics `Point`s.
+//! ## 3D: a lit mesh with a z-buffer
+//!
+//! The icosphere stored in flash, turned 30° and lit from the upper left with 15% ambient,
+//! Gouraud-shaded into a 64×48 framebuffer with its 16-bit z-buffer:
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+//! use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+//! use embedded_raster::three_d::DEPTH_CLEAR;
+//! use embedded_raster::{Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+//!
+//! let (mut pixels, mut depth) = ([Rgb565::BLACK; 64 * 48], [0u16; 64 * 48]);
+//! let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 48)?;
+//!
+//! let projection = Mat4::perspective(Angle::from_degrees(50), 64.0 / 48.0, 0.5, 20);
+//! let view = Mat4::look_at(Vec3::new(0, 0, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+//! let model = Mat4::rotation_y(Angle::from_degrees(30));
+//! let light = Light::new(Vec3::new(-1, 1, 1), 0.15);
+//! let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
+//! let pipeline = Pipeline::new(model, projection * view, viewport, light);
+//!
+//! let material = Material::new(Rgb565::CSS_ORANGE, Shading::Gouraud);
+//! let stats = pipeline.draw_mesh(&ICOSPHERE, &material, &mut target);
+//! assert_eq!(stats.drawn + stats.culled, 80); // every face drawn, or culled facing away
+//!
+//! // The sphere covers the middle (in front of the cleared depth), not the corners ...
+//! assert!(target.depth_at(32, 24).unwrap() < DEPTH_CLEAR);
+//! assert_eq!(target.framebuffer().get(0, 0), Some(Rgb565::BLACK));
+//! // ... and is brighter towards the light (upper left) than away from it.
+//! let green = |x, y| target.framebuffer().get(x, y).unwrap().g();
+//! assert!(green(25, 17) > green(39, 31));
+//!
+//! target.clear(Rgb565::BLACK); // the next frame: colour and depth
+//! # Ok::<(), embedded_raster::FramebufferError>(())
+//! ```
+//!
+//! [`three_d`] describes the pipeline and turns an OBJ file's text into a picture;
+//! [`band`] draws the same in bands of a few rows; [`fixed_point`] builds coordinates from
+//! floats, pixel indices and embedded-graphics `Point`s.
 //!
 //! # Errors
 //!
