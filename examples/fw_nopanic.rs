@@ -99,9 +99,9 @@ mod firmware {
         let mut rgb888_pixels = [Rgb888::new(0, 0, 0); SMALL_PIXELS];
         let mut gray8_pixels = [Gray8::new(0); SMALL_PIXELS];
         let mut binary_pixels = [BinaryColor::Off; SMALL_PIXELS];
-        let mut rgb888 = SliceFramebuffer::new(&mut rgb888_pixels, sw, sh);
-        let mut gray8 = SliceFramebuffer::new(&mut gray8_pixels, sw, sh);
-        let mut binary = SliceFramebuffer::new(&mut binary_pixels, sw, sh);
+        let mut rgb888 = SliceFramebuffer::new(&mut rgb888_pixels, sw, sh).ok();
+        let mut gray8 = SliceFramebuffer::new(&mut gray8_pixels, sw, sh).ok();
+        let mut binary = SliceFramebuffer::new(&mut binary_pixels, sw, sh).ok();
         let mut spans = 0u32;
         scene::for_each_shape(sw, sh, |shape| {
             let shape = black_box(shape);
@@ -146,7 +146,7 @@ mod firmware {
 
         // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
         let (width, height) = black_box(board::SIZE);
-        let Some(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
+        let Ok(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
             board::exit(false)
         };
         scene::render(&mut fb);
@@ -185,7 +185,7 @@ mod firmware {
         // culling, with and without the vertex scratch.
         // Its colours in the scene's framebuffer, done with (RAM for the stack on the micro:bit).
         let colors_3d = fb.pixels_mut().get_mut(..SMALL_PIXELS).unwrap_or_default();
-        if let Some(mut target) = DepthTarget::new(colors_3d, DEPTH_3D, sw, sh) {
+        if let Ok(mut target) = DepthTarget::new(colors_3d, DEPTH_3D, sw, sh) {
             let projection = black_box(Mat4::perspective(
                 Angle::from_degrees(60),
                 Scalar::from_bits(98_304),

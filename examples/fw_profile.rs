@@ -88,7 +88,7 @@ mod firmware {
     fn main() -> ! {
         static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::BLACK; board::PIXELS];
         let (w, h) = board::SIZE;
-        if let Some(mut fb) = SliceFramebuffer::new(PIXELS, w, h) {
+        if let Ok(mut fb) = SliceFramebuffer::new(PIXELS, w, h) {
             draw(&mut fb);
         }
         board::exit(true)
@@ -103,7 +103,7 @@ mod firmware {
 #[cfg(not(target_os = "none"))]
 fn main() {
     let mut pixels = [Rgb565::BLACK; 128 * 96];
-    if let Some(mut fb) = SliceFramebuffer::new(&mut pixels, 128, 96) {
+    if let Ok(mut fb) = SliceFramebuffer::new(&mut pixels, 128, 96) {
         draw(&mut fb);
     }
     println!("{PROFILE}");

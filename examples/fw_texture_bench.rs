@@ -411,7 +411,7 @@ mod firmware {
         static mut DEPTH: [u16; board::PIXELS] = [0; board::PIXELS];
         crate::stack::paint_run();
         let (width, height) = board::SIZE;
-        let Some(mut fb) = DepthTarget::new(PIXELS, DEPTH, width, height) else {
+        let Ok(mut fb) = DepthTarget::new(PIXELS, DEPTH, width, height) else {
             board::exit(false)
         };
         let mut cp = cortex_m::Peripherals::take().expect("core peripherals");

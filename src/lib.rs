@@ -30,7 +30,9 @@
 //! are exact on their pixels) for regions up to 2¹⁶ pixels (`width + height`) and restarted
 //! from exact values every 4096 pixels beyond that, so the 1-LSB bound holds everywhere.
 //!
-//! # Example
+//! # Examples
+//!
+//! ## 2D: triangles on any `DrawTarget`
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
@@ -51,12 +53,50 @@
 //! # Ok::<(), core::convert::Infallible>(())
 //! ```
 //!
-//! The README has a 3D example; [`three_d`] describes the pipeline, [`fixed_point`] how to
-//! build coordinates from floats, pixel indices and embedded-graphics `Point`s.
+//! ## 3D: a lit mesh with a z-buffer
+//!
+//! The icosphere stored in flash, turned 30° and lit from the upper left with 15% ambient,
+//! Gouraud-shaded into a 64×48 framebuffer with its 16-bit z-buffer:
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+//! use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+//! use embedded_raster::three_d::DEPTH_CLEAR;
+//! use embedded_raster::{Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+//!
+//! let (mut pixels, mut depth) = ([Rgb565::BLACK; 64 * 48], [0u16; 64 * 48]);
+//! let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 48)?;
+//!
+//! let projection = Mat4::perspective(Angle::from_degrees(50), 64.0 / 48.0, 0.5, 20);
+//! let view = Mat4::look_at(Vec3::new(0, 0, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+//! let model = Mat4::rotation_y(Angle::from_degrees(30));
+//! let light = Light::new(Vec3::new(-1, 1, 1), 0.15);
+//! let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
+//! let pipeline = Pipeline::new(model, projection * view, viewport, light);
+//!
+//! let material = Material::new(Rgb565::CSS_ORANGE, Shading::Gouraud);
+//! let stats = pipeline.draw_mesh(&ICOSPHERE, &material, &mut target);
+//! assert_eq!(stats.drawn + stats.culled, 80); // every face drawn, or culled facing away
+//!
+//! // The sphere covers the middle (in front of the cleared depth), not the corners ...
+//! assert!(target.depth_at(32, 24).unwrap() < DEPTH_CLEAR);
+//! assert_eq!(target.framebuffer().get(0, 0), Some(Rgb565::BLACK));
+//! // ... and is brighter towards the light (upper left) than away from it.
+//! let green = |x, y| target.framebuffer().get(x, y).unwrap().g();
+//! assert!(green(25, 17) > green(39, 31));
+//!
+//! target.clear(Rgb565::BLACK); // the next frame: colour and depth
+//! # Ok::<(), embedded_raster::FramebufferError>(())
+//! ```
+//!
+//! [`three_d`] describes the pipeline and turns an OBJ file's text into a picture;
+//! [`band`] draws the same in bands of a few rows; [`fixed_point`] builds coordinates from
+//! floats, pixel indices and embedded-graphics `Point`s.
 //!
 //! # Errors
 //!
-//! Every error type — [`band::BandError`], [`three_d::MeshError`], [`three_d::ScratchTooSmall`],
+//! Every error type — [`FramebufferError`], [`band::BandError`], [`three_d::MeshError`],
+//! [`three_d::ScratchTooSmall`],
 //! [`texture::TextureError`], [`raster::TooLarge`], and on the host `three_d::obj`'s and
 //! `texture::convert`'s — implements [`core::fmt::Display`], with a message that says what was
 //! needed and what was given, and [`core::error::Error`] (`std::error::Error`): `?` takes them
@@ -122,14 +162,14 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle,
-    TexturedVertex, Vertex,
+    FramebufferError, GouraudTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors,
+    TexturedTriangle, TexturedVertex, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
     Angle, Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline,
-    Scalar, Shading, Specular, TexCoord, TexturedMaterial, ToScalar, Vec3,
+    Scalar, Shading, Specular, TexCoord, TexturedMaterial, ToAngle, ToScalar, Vec3,
 };
 
 /// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
@@ -139,7 +179,7 @@ pub use three_d::{
 /// 2D: the triangles, their [`Vertex`] and [`TexturedVertex`], [`SliceFramebuffer`],
 /// [`Coord`] with [`ToCoord`] and the pixel placements, [`Texture`] with its [`Wrap`] and
 /// [`Filter`], and the [`GouraudColor`] bound. 3D: the pipeline, its mesh, target, light and
-/// material types (textured too), the maths types with [`ToScalar`] and
+/// material types (textured too), the maths types with [`ToScalar`], [`ToAngle`] and
 /// [`Degrees`](three_d::Degrees). [`Angle`] is not in it, because embedded-graphics' prelude has
 /// an `Angle` of its own: import `embedded_raster::Angle`.
 ///
@@ -165,7 +205,7 @@ pub mod prelude {
     pub use crate::three_d::{
         Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, LightSource, Lights, Mat4, Material,
         Mesh, Pipeline, Scalar, ScreenVertex, Shading, Specular, TexCoord, TexturedMaterial,
-        ToScalar, Vec3, Vec4,
+        ToAngle, ToScalar, Vec3, Vec4,
     };
 }
 

@@ -54,6 +54,24 @@ fn texture_error() {
 }
 
 #[test]
+fn framebuffer_error() {
+    let mut pixels = [Rgb565::BLACK; 100];
+    let (message, _) = through_box(SliceFramebuffer::new(&mut pixels, 320, 16));
+    assert_eq!(
+        message,
+        "a colour buffer needs 5120 pixels (width · height), given 100"
+    );
+    let mut depth = [0u16; 99];
+    let (message, _) = through_box(DepthTarget::new(&mut pixels, &mut depth, 10, 10));
+    assert_eq!(
+        message,
+        "a depth buffer needs 100 entries (width · height), given 99"
+    );
+    let (message, _) = through_box(SliceFramebuffer::new(&mut pixels, 1, 1 << 31));
+    assert!(message.starts_with("a framebuffer of 1 × 2147483648 pixels: each side must be"));
+}
+
+#[test]
 fn band_error() {
     let (message, _) = through_box(BandLayout::new(Size::new(320, 240), 0));
     assert_eq!(message, "a band of 0 rows: a band needs at least 1 row");

@@ -578,3 +578,59 @@ fn vertex_scratch_gives_the_same_frame() {
     );
     assert!(z_b.iter().all(|&d| d == DEPTH_CLEAR), "nothing drawn");
 }
+
+/// A face with an index past the vertices is skipped and counted as `invalid`, apart from the
+/// zero-area faces counted as `degenerate` (issue #32, item 7): with and without a vertex
+/// scratch, and binned for bands.
+#[test]
+fn out_of_range_faces_are_invalid_not_degenerate() {
+    use embedded_raster::band::{BandLayout, BinEntry, MeshBin};
+    use embedded_raster::three_d::ProjectedVertex;
+
+    let vertices = [
+        Vec3::new(-1, -1, 0),
+        Vec3::new(1, -1, 0),
+        Vec3::new(0, 1, 0),
+    ];
+    // One face drawn, one of zero area, two with an index out of range (3, u16::MAX).
+    let indices = [[0, 1, 2], [0, 0, 1], [0, 1, 3], [u16::MAX, 1, 2]];
+    let mesh = Mesh::new(&vertices, &[], &indices);
+    assert!(mesh.validate().is_err());
+
+    let (w, h) = (32, 24);
+    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
+    let camera = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 20)
+        * Mat4::translation(Vec3::new(0, 0, -3));
+    let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    let material = Material::new(Rgb888::WHITE, Shading::Gouraud);
+    let want = |stats: embedded_raster::three_d::DrawStats| {
+        assert_eq!(
+            (stats.drawn, stats.degenerate, stats.invalid),
+            (1, 1, 2),
+            "{stats:?}"
+        );
+    };
+
+    let (mut pixels, mut depth) = (vec![Rgb888::BLACK; 32 * 24], vec![0u16; 32 * 24]);
+    let mut target = DepthTarget::new(&mut pixels, &mut depth, w, h).unwrap();
+    want(pipeline.draw_mesh(&mesh, &material, &mut target));
+    let mut scratch = [ProjectedVertex::default(); 3];
+    want(
+        pipeline
+            .draw_mesh_with(&mesh, &material, &mut target, &mut scratch)
+            .unwrap(),
+    );
+
+    let layout = BandLayout::new(Size::new(w, h), 8).unwrap();
+    let mut storage = [BinEntry::EMPTY; 64];
+    let bin = MeshBin::new(
+        &pipeline,
+        &mesh,
+        &material,
+        &layout,
+        &mut scratch,
+        &mut storage,
+    )
+    .unwrap();
+    want(bin.stats());
+}

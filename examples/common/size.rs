@@ -42,7 +42,7 @@ pub fn run(draw: fn(&mut SliceFramebuffer<'_, Rgb565>)) -> ! {
     // SAFETY: the only reference to PIXELS, taken once.
     let pixels = unsafe { &mut *core::ptr::addr_of_mut!(PIXELS) };
     let (width, height) = black_box(board::SIZE);
-    if let Some(mut fb) = SliceFramebuffer::new(pixels, width, height) {
+    if let Ok(mut fb) = SliceFramebuffer::new(pixels, width, height) {
         let _ = fb.clear(black_box(Rgb565::BLACK));
         draw(&mut fb);
         black_box(fb.pixels());
@@ -64,7 +64,7 @@ pub fn run_depth(draw: fn(&mut DepthTarget<'_, Rgb565>)) -> ! {
         )
     };
     let (width, height) = black_box(board::SIZE);
-    if let Some(mut target) = DepthTarget::new(pixels, depth, width, height) {
+    if let Ok(mut target) = DepthTarget::new(pixels, depth, width, height) {
         target.clear(black_box(Rgb565::BLACK));
         draw(&mut target);
         black_box(target.framebuffer().pixels());

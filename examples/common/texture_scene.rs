@@ -207,7 +207,7 @@ fn draw_2d(fb: &mut SliceFramebuffer<'_, Rgb565>, texture: &Tex, random: &mut Ra
 /// FNV-1a.
 pub fn render_2d(pixels: &mut [Rgb565]) -> u32 {
     let (w, h) = black_box(SIZE_2D);
-    let Some(mut fb) = SliceFramebuffer::new(pixels, w, h) else {
+    let Ok(mut fb) = SliceFramebuffer::new(pixels, w, h) else {
         return 0;
     };
     let _ = fb.clear(black_box(Rgb565::new(3, 7, 3)));
@@ -315,7 +315,7 @@ fn render(
     draws: &[Draw],
 ) -> u32 {
     let (w, h) = black_box(SIZE_3D);
-    let Some(mut target) = DepthTarget::new(colors, depths, w, h) else {
+    let Ok(mut target) = DepthTarget::new(colors, depths, w, h) else {
         return 0;
     };
     let mut pipeline = floor_pipeline();

@@ -46,7 +46,7 @@ fuzz_target!(|text: &str| {
         &mut target,
     );
     assert_eq!(
-        (stats.drawn + stats.rejected + stats.culled + stats.degenerate) as usize,
+        (stats.drawn + stats.rejected + stats.culled + stats.degenerate + stats.invalid) as usize,
         mesh.indices.len()
     );
 });

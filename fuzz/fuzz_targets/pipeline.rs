@@ -115,7 +115,7 @@ fn run<C: GouraudColor>(
     ][usize::from(input.shading % 4)];
     let stats = pipeline.draw_mesh(mesh, &Material::new(color, shading), &mut target);
     assert_eq!(
-        stats.drawn + stats.rejected + stats.culled + stats.degenerate,
+        stats.drawn + stats.rejected + stats.culled + stats.degenerate + stats.invalid,
         mesh.indices.len() as u32,
         "faces not counted once: {stats:?}"
     );

@@ -53,7 +53,7 @@
 //!     Scalar::from_num(0.5), Scalar::from_num(20));
 //! let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 //! let viewport = Rectangle::new(Point::zero(), layout.size());
-//! let light = Light::new(Vec3::from_bits(0, 0, 65536), Scalar::from_num(0.2));
+//! let light = Light::new(Vec3::new(0, 0, 1), 0.2);
 //! let pipeline = Pipeline::new(Mat4::IDENTITY, projection * view, viewport, light);
 //! let material = Material::new(Rgb565::WHITE, Shading::Gouraud);
 //! let c = |x: i32, y: i32| (Coord::from_num(x), Coord::from_num(y));

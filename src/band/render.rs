@@ -35,6 +35,36 @@ pub trait BandOutput<C> {
 /// Any embedded-graphics [`DrawTarget`] as a band output: each band is one `fill_contiguous`
 /// of its rectangle, which display drivers turn into one window and one pixel stream (SPI
 /// drivers of the ILI9341, ST7789 and their kin do).
+///
+/// # Examples
+///
+/// A frame of 16 × 12 pixels in bands of 4 rows into a display (here a
+/// [`SliceFramebuffer`](crate::SliceFramebuffer); a display driver's error would come back
+/// from `render`):
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// use embedded_raster::band::{BandLayout, ColorBands, ToDisplay};
+/// use embedded_raster::{SliceFramebuffer, SolidTriangle};
+///
+/// let mut screen = [Rgb565::BLACK; 16 * 12];
+/// let mut display = SliceFramebuffer::new(&mut screen, 16, 12)?;
+///
+/// let layout = BandLayout::new(Size::new(16, 12), 4)?;
+/// let mut band_pixels = [Rgb565::BLACK; 16 * 4];
+/// let mut bands = ColorBands::new(layout, &mut band_pixels)?;
+/// let triangle = SolidTriangle::new([(0.0, 0.0), (16.0, 0.0), (0.0, 12.0)], Rgb565::GREEN);
+/// bands
+///     .render(&mut ToDisplay(&mut display), |band| {
+///         band.clear(Rgb565::BLUE);
+///         band.draw(&triangle);
+///     })
+///     .unwrap(); // a SliceFramebuffer's error: `Infallible`
+///
+/// assert_eq!(display.get(1, 1), Some(Rgb565::GREEN));
+/// assert_eq!(display.get(15, 11), Some(Rgb565::BLUE));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug)]
 pub struct ToDisplay<'d, D>(pub &'d mut D);
 
@@ -48,6 +78,39 @@ impl<D: DrawTarget> BandOutput<D::Color> for ToDisplay<'_, D> {
 
 /// A closure as a band output, called with each band's rectangle and pixels (for DMA, or a
 /// checksum); `wait` returns at once.
+///
+/// # Examples
+///
+/// The bands of a 16 × 10 frame in bands of 4 rows (the last one 2 rows), as a transfer
+/// would take them; an `Err` from the closure stops the frame and comes back from `render`:
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
+/// use embedded_raster::band::{BandLayout, Callback, ColorBands};
+///
+/// let layout = BandLayout::new(Size::new(16, 10), 4)?;
+/// let mut band_pixels = [Gray8::BLACK; 16 * 4];
+/// let mut bands = ColorBands::new(layout, &mut band_pixels)?;
+///
+/// let mut sent = Vec::new();
+/// let mut output = Callback(|area: &Rectangle, pixels: &[Gray8]| {
+///     sent.push((area.top_left.y, area.size.height, pixels.len()));
+///     Ok::<(), ()>(())
+/// });
+/// bands.render(&mut output, |band| band.clear(Gray8::WHITE)).unwrap();
+/// assert_eq!(sent, [(0, 4, 64), (4, 4, 64), (8, 2, 32)]);
+///
+/// // The output's error ends the frame: nothing more is drawn or sent.
+/// let mut calls = 0;
+/// let mut failing = Callback(|_: &Rectangle, _: &[Gray8]| {
+///     calls += 1;
+///     Err("the display went away")
+/// });
+/// let result = bands.render(&mut failing, |band| band.clear(Gray8::WHITE));
+/// assert_eq!(result, Err("the display went away"));
+/// assert_eq!(calls, 1);
+/// # Ok::<(), embedded_raster::band::BandError>(())
+/// ```
 #[derive(Debug)]
 pub struct Callback<F>(pub F);
 

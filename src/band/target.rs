@@ -218,7 +218,7 @@ impl<'a, C: PixelColor> ColorBand<'a, C> {
         check_buffer(layout, pixels.len(), false)?;
         let width = layout.size().width;
         let pixels = SliceFramebuffer::new(pixels, width, placement.height())
-            .ok_or(BandError::FrameTooLarge)?;
+            .map_err(|_| BandError::FrameTooLarge)?;
         Ok(ColorBand { pixels, placement })
     }
 
@@ -360,7 +360,7 @@ impl<C: PixelColor> DrawTarget for ColorBand<'_, C> {
 ///     Scalar::from_num(0.5), Scalar::from_num(20));
 /// let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 /// let viewport = Rectangle::new(Point::zero(), layout.size());
-/// let light = Light::new(Vec3::from_bits(0, 0, 65536), Scalar::from_num(0.2));
+/// let light = Light::new(Vec3::new(0, 0, 1), 0.2);
 /// let pipeline = Pipeline::new(Mat4::rotation_y(Angle::from_degrees(30)), projection * view, viewport, light);
 /// let material = Material::new(Rgb565::WHITE, Shading::Gouraud);
 ///
@@ -406,7 +406,7 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         check_buffer(layout, depth.len(), true)?;
         let width = layout.size().width;
         let target = DepthTarget::new(color, depth, width, placement.height())
-            .ok_or(BandError::FrameTooLarge)?;
+            .map_err(|_| BandError::FrameTooLarge)?;
         Ok(DepthBand { target, placement })
     }
 
@@ -449,7 +449,7 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
                 self.placement.height(),
             )
             // The target's own buffer, of its size: never empty.
-            .unwrap_or_else(SliceFramebuffer::empty),
+            .unwrap_or_else(|_| SliceFramebuffer::empty()),
             placement: self.placement,
         }
     }

@@ -55,6 +55,80 @@ pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
     }
 }
 
+/// Why [`SliceFramebuffer::new`] or [`DepthTarget::new`](crate::DepthTarget::new) refused its
+/// buffers: what they need and what they were given.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_raster::draw::FramebufferError;
+/// use embedded_raster::SliceFramebuffer;
+///
+/// let mut pixels = [Rgb565::new(0, 0, 0); 100];
+/// let error = SliceFramebuffer::new(&mut pixels, 320, 240).unwrap_err();
+/// assert_eq!(error, FramebufferError::ColorBuffer { needed: 76_800, given: 100 });
+/// assert_eq!(error.to_string(), "a colour buffer needs 76800 pixels (width · height), given 100");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FramebufferError {
+    /// A side beyond `i32::MAX` pixels (positions are `i32`), or `width · height` beyond
+    /// `usize::MAX`.
+    TooLarge {
+        /// The width given.
+        width: u32,
+        /// The height given.
+        height: u32,
+    },
+    /// A colour buffer shorter than `width · height` pixels (a longer one is fine: the frame
+    /// takes its first `width · height`).
+    ColorBuffer {
+        /// Pixels the frame needs: `width · height`.
+        needed: usize,
+        /// Pixels given.
+        given: usize,
+    },
+    /// A depth buffer shorter than `width · height` entries (a longer one is fine).
+    DepthBuffer {
+        /// Entries the frame needs: `width · height`.
+        needed: usize,
+        /// Entries given.
+        given: usize,
+    },
+}
+
+impl core::fmt::Display for FramebufferError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FramebufferError::TooLarge { width, height } => write!(
+                f,
+                "a framebuffer of {width} × {height} pixels: each side must be at most \
+                 i32::MAX (2147483647) pixels and width · height at most usize::MAX"
+            ),
+            FramebufferError::ColorBuffer { needed, given } => write!(
+                f,
+                "a colour buffer needs {needed} pixels (width · height), given {given}"
+            ),
+            FramebufferError::DepthBuffer { needed, given } => write!(
+                f,
+                "a depth buffer needs {needed} entries (width · height), given {given}"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for FramebufferError {}
+
+/// The number of pixels of a `width × height` frame: an error if a side does not fit an `i32`
+/// position or the product a `usize`.
+pub(crate) fn frame_len(width: u32, height: u32) -> Result<usize, FramebufferError> {
+    let too_large = FramebufferError::TooLarge { width, height };
+    if width > i32::MAX as u32 || height > i32::MAX as u32 {
+        return Err(too_large);
+    }
+    (width as usize)
+        .checked_mul(height as usize)
+        .ok_or(too_large)
+}
+
 /// A `width × height` framebuffer stored row-major in a borrowed slice of colours.
 ///
 /// A `DrawTarget` whose span fills are slice writes, the target of the triangles' `draw_into`
@@ -74,8 +148,9 @@ pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
 ///     .draw(&mut fb)?;
 /// assert_eq!(fb.get(5, 4), Some(Rgb565::GREEN));
 /// assert_eq!(fb.pixels().len(), 32 * 24);
-/// // Too short a slice is an error, not a silent crop.
-/// assert!(SliceFramebuffer::new(&mut [Rgb565::BLACK; 10], 4, 4).is_none());
+/// // Too short a slice is an error that says so, not a silent crop.
+/// let error = SliceFramebuffer::new(&mut [Rgb565::BLACK; 10], 4, 4).unwrap_err();
+/// assert_eq!(error.to_string(), "a colour buffer needs 16 pixels (width · height), given 10");
 /// # Ok::<(), core::convert::Infallible>(())
 /// ```
 ///
@@ -108,15 +183,20 @@ pub struct SliceFramebuffer<'a, C> {
 }
 
 impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
-    /// Wraps `pixels` (row-major, at least `width · height` long) or returns `None` if too short
-    /// or if a dimension does not fit an `i32` coordinate.
-    pub fn new(pixels: &'a mut [C], width: u32, height: u32) -> Option<Self> {
-        let len = (width as usize).checked_mul(height as usize)?;
-        if width > i32::MAX as u32 || height > i32::MAX as u32 || pixels.len() < len {
-            return None;
-        }
-        let pixels = pixels.get_mut(..len)?;
-        Some(SliceFramebuffer {
+    /// Wraps `pixels` (row-major, at least `width · height` long; a longer slice's first
+    /// `width · height` pixels).
+    ///
+    /// # Errors
+    ///
+    /// [`FramebufferError::ColorBuffer`] if `pixels` is too short (with the length needed and
+    /// given), [`FramebufferError::TooLarge`] if a side does not fit an `i32` coordinate.
+    pub fn new(pixels: &'a mut [C], width: u32, height: u32) -> Result<Self, FramebufferError> {
+        let len = frame_len(width, height)?;
+        let given = pixels.len();
+        let pixels = pixels
+            .get_mut(..len)
+            .ok_or(FramebufferError::ColorBuffer { needed: len, given })?;
+        Ok(SliceFramebuffer {
             pixels,
             width,
             height,
@@ -373,7 +453,71 @@ mod tests {
         .unwrap();
         let luma: [u8; 12] = core::array::from_fn(|i| px[i].luma());
         assert_eq!(luma, [0, 0, 0, 255, 3, 4, 0, 0, 7, 8, 0, 0]);
-        assert!(SliceFramebuffer::new(&mut [Gray8::BLACK; 5], 2, 3).is_none());
+        assert_eq!(
+            SliceFramebuffer::new(&mut [Gray8::BLACK; 5], 2, 3).err(),
+            Some(FramebufferError::ColorBuffer {
+                needed: 6,
+                given: 5
+            })
+        );
+    }
+
+    /// Each error's message says what was needed and what was given (issue #32, item 3), and
+    /// `new` returns the error that applies.
+    #[test]
+    fn error_messages() {
+        extern crate std;
+        use std::string::ToString;
+
+        let cases = [
+            (
+                FramebufferError::ColorBuffer {
+                    needed: 5120,
+                    given: 100,
+                },
+                "a colour buffer needs 5120 pixels (width · height), given 100",
+            ),
+            (
+                FramebufferError::DepthBuffer {
+                    needed: 5120,
+                    given: 4800,
+                },
+                "a depth buffer needs 5120 entries (width · height), given 4800",
+            ),
+            (
+                FramebufferError::TooLarge {
+                    width: 1 << 31,
+                    height: 1,
+                },
+                "a framebuffer of 2147483648 × 1 pixels: each side must be at most i32::MAX \
+                 (2147483647) pixels and width · height at most usize::MAX",
+            ),
+        ];
+        for (error, message) in cases {
+            assert_eq!(error.to_string(), message);
+            let _: &dyn core::error::Error = &error;
+        }
+
+        let mut px = [Gray8::BLACK; 12];
+        // Too large, whatever the buffer: a side beyond i32::MAX.
+        assert_eq!(
+            SliceFramebuffer::new(&mut px, 1 << 31, 0).err(),
+            Some(FramebufferError::TooLarge {
+                width: 1 << 31,
+                height: 0
+            })
+        );
+        assert_eq!(
+            SliceFramebuffer::new(&mut px, 0, u32::MAX).err(),
+            Some(FramebufferError::TooLarge {
+                width: 0,
+                height: u32::MAX
+            })
+        );
+        // A longer buffer is fine: the frame is its first width · height pixels.
+        let fb = SliceFramebuffer::new(&mut px, 2, 5).unwrap();
+        assert_eq!(fb.pixels().len(), 10);
+        assert!(SliceFramebuffer::new(&mut px, 0, 0).is_ok());
     }
 
     /// The one-row fills of `SIZE_OVER_SPEED` targets (one clipped row) write what the other

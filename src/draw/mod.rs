@@ -13,8 +13,9 @@ mod png_file;
 mod textured;
 mod triangle;
 
+pub(crate) use framebuffer::frame_len;
 pub(crate) use framebuffer::skip_colors;
-pub use framebuffer::{fill_row, SliceFramebuffer};
+pub use framebuffer::{fill_row, FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;

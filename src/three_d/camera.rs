@@ -2,9 +2,9 @@
 //! and the normal matrix — all in integer arithmetic.
 //!
 //! Conventions are OpenGL's: right-handed world, the camera looks down its −z axis with +y up,
-//! and projections map the visible volume to `−w ≤ x, y, z ≤ w`. Angles are [`Angle`]s, so
-//! fractional degrees are `Angle::from_degrees(52.5)`; distances and planes take any
-//! [`ToScalar`] (`f32`, `f64`, integers, [`Scalar`]).
+//! and projections map the visible volume to `−w ≤ x, y, z ≤ w`. Angles take any [`ToAngle`]:
+//! an [`Angle`] (`Angle::from_degrees(52.5)` for fractional degrees) or embedded-graphics'
+//! `Angle`; distances and planes take any [`ToScalar`] (`f32`, `f64`, integers, [`Scalar`]).
 //!
 //! ```
 //! use embedded_raster::three_d::{Angle, Mat4, Vec3};
@@ -22,7 +22,9 @@
 //!     .all(|(a, b)| (a - b).abs() <= 2));
 //! ```
 
-use super::math::{div_raw, div_round, normalize_wide, sat32, Angle, Mat4, Scalar, ToScalar, Vec3};
+use super::math::{
+    div_raw, div_round, normalize_wide, sat32, Angle, Mat4, Scalar, ToAngle, ToScalar, Vec3,
+};
 
 impl Mat4 {
     /// An OpenGL-style perspective projection: the camera looks down −z, `fov_y` is the full
@@ -31,11 +33,12 @@ impl Mat4 {
     /// `−w ≤ x, y, z ≤ w`; `z = −w` on the near plane. Entries are rounded once from exact
     /// quotients of the fixed-point inputs and saturate (a `near` of 0 gives no depth range).
     pub fn perspective(
-        fov_y: Angle,
+        fov_y: impl ToAngle,
         aspect: impl ToScalar,
         near: impl ToScalar,
         far: impl ToScalar,
     ) -> Self {
+        let fov_y = fov_y.to_angle();
         let (aspect, near, far) = (aspect.to_scalar(), near.to_scalar(), far.to_scalar());
         // cot(θ/2) = (1 + cos θ) / sin θ: no rounding of the half angle.
         let f = div_raw((Scalar::ONE + fov_y.cos()).to_bits(), fov_y.sin().to_bits());
@@ -149,7 +152,13 @@ impl Mat4 {
     /// assert_eq!(view.transform_point(Vec3::ZERO).to_bits(), [0, 0, -5 << 16, 1 << 16]);
     /// assert_eq!(view.transform_vector(Vec3::new(1, 0, 0)), Vec3::new(0, 0, 1));
     /// ```
-    pub fn orbit(target: Vec3, distance: impl ToScalar, yaw: Angle, pitch: Angle) -> Self {
+    pub fn orbit(
+        target: Vec3,
+        distance: impl ToScalar,
+        yaw: impl ToAngle,
+        pitch: impl ToAngle,
+    ) -> Self {
+        let (yaw, pitch) = (yaw.to_angle(), pitch.to_angle());
         // View = T(0, 0, −distance) · Rx(pitch) · Ry(−yaw) · T(−target): the inverse of placing
         // the camera at target + Ry(yaw)·Rx(−pitch)·(0, 0, distance).
         let turn = Mat4::rotation_x(pitch) * Mat4::rotation_y(Angle(yaw.0.wrapping_neg()));

@@ -7,8 +7,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::draw::{draw_rows, fill_row, SliceFramebuffer};
-use crate::fixed_point::Coord;
+use crate::draw::{draw_rows, fill_row, frame_len, FramebufferError, SliceFramebuffer};
+use crate::fixed_point::{Coord, ToCoord};
 use crate::raster::Span;
 
 /// The z-buffer value of an empty pixel; nothing is ever drawn at this depth.
@@ -26,7 +26,6 @@ pub const DEPTH_FAR: u16 = u16::MAX - 1;
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-/// use embedded_raster::fixed_point::ToCoord;
 /// use embedded_raster::three_d::{draw_flat, DepthTarget, ScreenVertex, DEPTH_CLEAR};
 ///
 /// let (mut pixels, mut depth) = ([Rgb565::BLACK; 32 * 32], [0u16; 32 * 32]);
@@ -34,7 +33,7 @@ pub const DEPTH_FAR: u16 = u16::MAX - 1;
 /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
 /// assert!(target.depth().iter().all(|&d| d == DEPTH_CLEAR));
 ///
-/// let v = |x: f32, y: f32, z| ScreenVertex::new(x.to_coord(), y.to_coord(), z);
+/// let v = |x: f32, y: f32, z| ScreenVertex::new(x, y, z);
 /// let clip = target.bounding_box();
 /// draw_flat(&mut target, &clip, &[v(0.0, 0.0, 100), v(32.0, 0.0, 100), v(0.0, 32.0, 100)], Rgb565::RED);
 /// // Farther away: hidden where the red triangle is.
@@ -54,14 +53,34 @@ pub struct DepthTarget<'a, C> {
 }
 
 impl<'a, C: PixelColor> DepthTarget<'a, C> {
-    /// Wraps row-major `width × height` colour and depth buffers, or `None` if either is too
-    /// short, and resets the depth buffer to [`DEPTH_CLEAR`] (the colours are kept). Each frame
-    /// after the first starts with [`clear`](Self::clear) (colour and depth) or
-    /// [`clear_depth`](Self::clear_depth).
-    pub fn new(color: &'a mut [C], depth: &'a mut [u16], width: u32, height: u32) -> Option<Self> {
+    /// Wraps row-major `width × height` colour and depth buffers (each at least
+    /// `width · height` long) and resets the depth buffer to [`DEPTH_CLEAR`] (the colours are
+    /// kept). Each frame after the first starts with [`clear`](Self::clear) (colour and depth)
+    /// or [`clear_depth`](Self::clear_depth).
+    ///
+    /// # Errors
+    ///
+    /// [`FramebufferError::ColorBuffer`] or [`FramebufferError::DepthBuffer`] if a buffer is too
+    /// short (with the length needed and given), [`FramebufferError::TooLarge`] if a side does
+    /// not fit an `i32` coordinate.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb565;
+    /// use embedded_raster::DepthTarget;
+    ///
+    /// let (mut pixels, mut depth) = ([Rgb565::new(0, 0, 0); 64 * 48], [0u16; 64 * 47]);
+    /// let error = DepthTarget::new(&mut pixels, &mut depth, 64, 48).unwrap_err();
+    /// assert_eq!(error.to_string(), "a depth buffer needs 3072 entries (width · height), given 3008");
+    /// ```
+    pub fn new(
+        color: &'a mut [C],
+        depth: &'a mut [u16],
+        width: u32,
+        height: u32,
+    ) -> Result<Self, FramebufferError> {
         let mut target = Self::new_uncleared(color, depth, width, height)?;
         target.clear_depth();
-        Some(target)
+        Ok(target)
     }
 
     /// Like [`new`](Self::new), but keeps whatever the depth buffer holds: for continuing a frame
@@ -73,11 +92,14 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
         depth: &'a mut [u16],
         width: u32,
         height: u32,
-    ) -> Option<Self> {
-        let len = (width as usize).checked_mul(height as usize)?;
+    ) -> Result<Self, FramebufferError> {
         let color = SliceFramebuffer::new(color, width, height)?;
-        let depth = depth.get_mut(..len)?;
-        Some(DepthTarget {
+        let len = frame_len(width, height)?;
+        let given = depth.len();
+        let depth = depth
+            .get_mut(..len)
+            .ok_or(FramebufferError::DepthBuffer { needed: len, given })?;
+        Ok(DepthTarget {
             color,
             depth,
             width,
@@ -292,9 +314,15 @@ pub struct ScreenVertex {
 }
 
 impl ScreenVertex {
-    /// A vertex at `(x, y)` with `depth`.
-    pub const fn new(x: Coord, y: Coord, depth: u16) -> Self {
-        ScreenVertex { x, y, depth }
+    /// A vertex at `(x, y)` with `depth`: floats or [`Coord`]s ([`ToCoord`]), e.g.
+    /// `ScreenVertex::new(10.5, 3.0, 1000)`. For `const` data write the fields (all public).
+    #[inline(always)]
+    pub fn new(x: impl ToCoord, y: impl ToCoord, depth: u16) -> Self {
+        ScreenVertex {
+            x: x.to_coord(),
+            y: y.to_coord(),
+            depth,
+        }
     }
 
     /// The position as a coordinate pair.
@@ -307,6 +335,38 @@ impl ScreenVertex {
 mod tests {
     use super::*;
     use embedded_graphics::pixelcolor::Gray8;
+
+    /// A short buffer is an error naming which buffer and the lengths needed and given
+    /// (issue #32, item 3); the colour buffer is checked first.
+    #[test]
+    fn short_buffers_are_errors() {
+        let (mut px, mut z) = ([Gray8::BLACK; 12], [7u16; 12]);
+        assert_eq!(
+            DepthTarget::new(&mut px, &mut z[..11], 4, 3).err(),
+            Some(FramebufferError::DepthBuffer {
+                needed: 12,
+                given: 11
+            })
+        );
+        assert_eq!(
+            DepthTarget::new_uncleared(&mut px[..5], &mut z[..11], 4, 3).err(),
+            Some(FramebufferError::ColorBuffer {
+                needed: 12,
+                given: 5
+            })
+        );
+        assert_eq!(
+            DepthTarget::new(&mut px, &mut z, 4, 1 << 31).err(),
+            Some(FramebufferError::TooLarge {
+                width: 4,
+                height: 1 << 31
+            })
+        );
+        // A refused target leaves the depth buffer as it was.
+        assert!(z.iter().all(|&d| d == 7));
+        assert!(DepthTarget::new(&mut px, &mut z, 4, 3).is_ok());
+        assert!(z.iter().all(|&d| d == DEPTH_CLEAR));
+    }
 
     /// Rows past the last read nothing. (Before, the row alone was unchecked: on 32-bit targets
     /// `y · width` wrapped, so row 2³⁰ of a 4-pixel-wide target read row 0.)

@@ -2,7 +2,7 @@
 //! [`Lights::MAX`] more directional and point lights ([`Lights`], [`LightSource`]). The vertex
 //! stage lights vertices with them and the fills shade pixels with them, so they sit below both.
 
-use super::math::{normalize_wide, sat32, Mat4, Scalar, Vec3};
+use super::math::{normalize_wide, sat32, Mat4, Scalar, ToScalar, Vec3};
 use crate::raster::arith::{leading_zeros_64, mul_i32_wide, reciprocal_63};
 
 /// A directional light with an ambient term.
@@ -11,6 +11,25 @@ use crate::raster::arith::{leading_zeros_64, mul_i32_wide, reciprocal_63};
 /// pipeline takes one ([`Pipeline::light`](super::Pipeline::light)), and up to three more
 /// directional and point lights in a [`Lights`] set; `Light::new(Vec3::ZERO, ambient)` is the
 /// ambient term alone.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_raster::three_d::{Light, Scalar, Vec3};
+///
+/// // From the viewer's side (+z), with 15% ambient: the level is a float, an integer or a
+/// // `Scalar` (any `ToScalar`), like `Vec3::new`'s components.
+/// let direction = Vec3::new(0, 0, 2);
+/// let light = Light::new(direction, 0.15);
+/// assert_eq!(light.direction(), Vec3::new(0, 0, 1));
+/// assert_eq!(light.ambient(), Scalar::from_num(0.15));
+/// // Facing the light: fully lit; edge-on or facing away: the ambient level alone.
+/// assert_eq!(light.level(Vec3::new(0, 0, 1)), Scalar::ONE);
+/// assert_eq!(light.level(Vec3::new(1, 0, 0)), light.ambient());
+/// assert_eq!(light.level(Vec3::new(0, 0, -1)), light.ambient());
+/// // Levels are clamped to [0, 1].
+/// assert_eq!(Light::new(direction, 2).ambient(), Scalar::ONE);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Light {
     /// Unit vector from the surface towards the light (same space as the normals).
@@ -28,10 +47,10 @@ impl Default for Light {
 impl Light {
     /// A light shining from `direction` (normalised here) with the given ambient level (clamped
     /// to `[0, 1]`).
-    pub fn new(direction: Vec3, ambient: Scalar) -> Self {
+    pub fn new(direction: Vec3, ambient: impl ToScalar) -> Self {
         Light {
             direction: direction.normalize(),
-            ambient: ambient.clamp(Scalar::ZERO, Scalar::ONE),
+            ambient: ambient.to_scalar().clamp(Scalar::ZERO, Scalar::ONE),
         }
     }
 
@@ -110,7 +129,7 @@ enum Kind {
 /// ```
 /// use embedded_raster::three_d::{LightSource, Scalar, Vec3};
 ///
-/// let lamp = LightSource::point(Vec3::new(0, 2, 0), Scalar::from_num(0.8), Scalar::from_num(4));
+/// let lamp = LightSource::point(Vec3::new(0, 2, 0), 0.8, 4);
 /// assert_eq!(lamp.position(), Some(Vec3::new(0, 2, 0)));
 /// // Half the range away: (1 − ¼)² = 0.5625 (of the intensity, 0.8).
 /// let a = lamp.falloff(Scalar::from_num(2) * Scalar::from_num(2));
@@ -118,7 +137,7 @@ enum Kind {
 /// // At and beyond the range: nothing.
 /// assert_eq!(lamp.falloff(Scalar::from_num(16)), Scalar::ZERO);
 ///
-/// let sun = LightSource::directional(Vec3::new(0, 0, 3), Scalar::from_num(0.5));
+/// let sun = LightSource::directional(Vec3::new(0, 0, 3), 0.5);
 /// assert_eq!(sun.direction(), Some(Vec3::new(0, 0, 1)));
 /// assert_eq!(sun.falloff(Scalar::from_num(100)), Scalar::ONE);
 /// ```
@@ -136,11 +155,13 @@ pub struct LightSource {
 impl LightSource {
     /// A directional light shining from `direction` (normalised here; the zero vector lights
     /// nothing) with `intensity` (clamped to `[0, 4]`).
-    pub fn directional(direction: Vec3, intensity: Scalar) -> Self {
+    pub fn directional(direction: Vec3, intensity: impl ToScalar) -> Self {
         LightSource {
             kind: Kind::Directional,
             vector: direction.normalize(),
-            intensity: intensity.clamp(Scalar::ZERO, Scalar::from_bits(MAX_INTENSITY)),
+            intensity: intensity
+                .to_scalar()
+                .clamp(Scalar::ZERO, Scalar::from_bits(MAX_INTENSITY)),
             range: Scalar::ZERO,
         }
     }
@@ -148,12 +169,14 @@ impl LightSource {
     /// A point light at `position` (world space) with `intensity` (clamped to `[0, 4]`),
     /// reaching surfaces closer than `range` (clamped to `[0, 32768)`) with the falloff
     /// [`falloff`](Self::falloff).
-    pub fn point(position: Vec3, intensity: Scalar, range: Scalar) -> Self {
+    pub fn point(position: Vec3, intensity: impl ToScalar, range: impl ToScalar) -> Self {
         LightSource {
             kind: Kind::Point,
             vector: position,
-            intensity: intensity.clamp(Scalar::ZERO, Scalar::from_bits(MAX_INTENSITY)),
-            range: range.max(Scalar::ZERO),
+            intensity: intensity
+                .to_scalar()
+                .clamp(Scalar::ZERO, Scalar::from_bits(MAX_INTENSITY)),
+            range: range.to_scalar().max(Scalar::ZERO),
         }
     }
 
@@ -204,25 +227,25 @@ impl LightSource {
 /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
 /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
 /// use embedded_raster::three_d::{Angle, DepthTarget, Light, LightSource, Lights, Mat4};
-/// use embedded_raster::three_d::{Material, Pipeline, Scalar, Shading, Specular, Vec3};
+/// use embedded_raster::three_d::{Material, Pipeline, Shading, Specular, Vec3};
 ///
 /// let lights = Lights::new()
-///     .with(LightSource::point(Vec3::new(2, 1, 2), Scalar::ONE, Scalar::from_num(5)))
-///     .with(LightSource::directional(Vec3::new(-1, 0, 0), Scalar::from_num(0.3)));
+///     .with(LightSource::point(Vec3::new(2, 1, 2), 1, 5))
+///     .with(LightSource::directional(Vec3::new(-1, 0, 0), 0.3));
 /// assert_eq!(lights.sources().len(), 2);
 ///
 /// let camera = Mat4::perspective(Angle::from_degrees(50), 1, 0.5, 20)
 ///     * Mat4::look_at(Vec3::new(0, 0, 4), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
 /// let viewport = Rectangle::new(Point::zero(), Size::new(48, 48));
 /// // Only the ambient term from the first light: its direction is zero.
-/// let light = Light::new(Vec3::ZERO, Scalar::from_num(0.1));
+/// let light = Light::new(Vec3::ZERO, 0.1);
 /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, light).with_lights(lights);
 ///
 /// let (mut px, mut z) = ([Rgb565::BLACK; 48 * 48], [0u16; 48 * 48]);
 /// let mut target = DepthTarget::new(&mut px, &mut z, 48, 48).unwrap();
 /// target.clear(Rgb565::BLACK);
 /// let shiny = Material::new(Rgb565::new(20, 40, 20), Shading::Gouraud)
-///     .with_specular(Specular::new(Scalar::from_num(0.6), 16));
+///     .with_specular(Specular::new(0.6, 16));
 /// let stats = pipeline.draw_mesh(&ICOSPHERE, &shiny, &mut target);
 /// assert!(stats.drawn > 0);
 /// ```
@@ -670,7 +693,7 @@ fn to_255(level: u32) -> u16 {
 /// use embedded_graphics::pixelcolor::Rgb565;
 /// use embedded_raster::three_d::{Material, Scalar, Shading, Specular};
 ///
-/// let shiny = Specular::new(Scalar::from_num(0.5), 32);
+/// let shiny = Specular::new(0.5, 32);
 /// let material = Material::new(Rgb565::new(20, 10, 4), Shading::Quadratic).with_specular(shiny);
 /// assert_eq!(material.specular, Some(shiny));
 ///
@@ -692,9 +715,9 @@ pub struct Specular {
 impl Specular {
     /// A highlight of `strength` (clamped to `[0, 1]`) and exponent `shininess` (typically 8 to
     /// 128; 0 lights every surface facing the light by `strength`).
-    pub fn new(strength: Scalar, shininess: u8) -> Self {
+    pub fn new(strength: impl ToScalar, shininess: u8) -> Self {
         Specular {
-            strength: strength.clamp(Scalar::ZERO, Scalar::ONE),
+            strength: strength.to_scalar().clamp(Scalar::ZERO, Scalar::ONE),
             shininess,
         }
     }

@@ -16,8 +16,10 @@
 //!
 //! Constructors take any [`ToScalar`]: `f32`, `f64` (rounded to the nearest 2⁻¹⁶, saturated to
 //! ±32768, NaN as 0), integers up to 32 bits (saturated) and `Scalar` itself, so
-//! `Vec3::new(1.0, -0.5, 2)` works. [`Angle::from_degrees`] takes integer or fractional degrees
-//! ([`Degrees`]); [`Angle::from_radians`] takes `f32`/`f64`. Float conversions are calls you
+//! `Vec3::new(1.0, -0.5, 2)` and `Light::new(direction, 0.15)` work. [`Angle::from_degrees`]
+//! takes integer or fractional degrees ([`Degrees`]); [`Angle::from_radians`] takes
+//! `f32`/`f64`; the rotations and camera matrices take any [`ToAngle`] (an [`Angle`] or
+//! embedded-graphics' `Angle`). Float conversions are calls you
 //! make (in software floating point on a Cortex-M0, linked only if used), never part of drawing;
 //! the integer forms use no floats. `Scalar` is the `fixed` crate's `I16F16`: `from_num`,
 //! `saturating_from_num`, `to_num::<f32>()`, `from_bits`, and arithmetic with `Scalar`s and
@@ -112,6 +114,55 @@ integer_to_scalar!(i8, i16, i32, u8, u16, u32);
 pub trait Degrees: Copy {
     /// The angle, rounded to the nearest 1/65536 turn.
     fn to_angle(self) -> Angle;
+}
+
+/// A value the rotations and camera matrices take as an angle ([`Mat4::rotation_y`],
+/// [`Mat4::perspective`](crate::three_d::Mat4::perspective), [`Mat4::orbit`]): an [`Angle`], or
+/// embedded-graphics' `Angle` (`30.0.deg()` with `embedded_graphics::prelude::*` in scope;
+/// converted through its radians, in floats, when the matrix is built).
+///
+/// A bare number is not an angle: its unit is a choice, so write
+/// [`Angle::from_degrees`]`(30)` (integer or fractional degrees, [`Degrees`]) or
+/// [`Angle::from_radians`]`(0.5)`.
+///
+/// ```
+/// use embedded_graphics::prelude::*;
+/// use embedded_raster::three_d::{Angle, Mat4};
+///
+/// let ours = Mat4::rotation_y(embedded_raster::Angle::from_degrees(90));
+/// // embedded-graphics' prelude brings its own `Angle` and the `.deg()` of `AngleUnit`.
+/// assert_eq!(Mat4::rotation_y(90.0.deg()), ours);
+/// assert_eq!(Mat4::rotation_y(Angle::from_degrees(90.0)), ours);
+/// ```
+///
+/// A number does not compile as an angle (degrees or radians?):
+///
+/// ```compile_fail
+/// use embedded_raster::three_d::Mat4;
+///
+/// let turned = Mat4::rotation_y(90);
+/// ```
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not an angle",
+    label = "expected an `Angle`",
+    note = "a number has no unit: write `Angle::from_degrees(30)` (integer or fractional degrees) or `Angle::from_radians(0.5)`"
+)]
+pub trait ToAngle: Copy {
+    /// The angle, rounded to the nearest 1/65536 turn.
+    fn to_angle(self) -> Angle;
+}
+
+impl ToAngle for Angle {
+    #[inline(always)]
+    fn to_angle(self) -> Angle {
+        self
+    }
+}
+
+impl ToAngle for embedded_graphics::geometry::Angle {
+    fn to_angle(self) -> Angle {
+        Angle::from_radians(self.to_radians())
+    }
 }
 
 /// `round(n / d)` turns of 65536 steps, wrapped to `u16`; `d > 0`, `|n| < 2⁶²` (64-bit: no
@@ -549,14 +600,26 @@ pub struct Vec4 {
 }
 
 impl Vec4 {
-    /// A vector from its components.
-    pub const fn new(x: Scalar, y: Scalar, z: Scalar, w: Scalar) -> Self {
-        Vec4 { x, y, z, w }
+    /// A vector from its components: floats, integers or [`Scalar`]s ([`ToScalar`]), e.g.
+    /// `Vec4::new(1.0, -0.5, 2, 1)`. For `const` data use [`from_bits`](Self::from_bits).
+    #[inline(always)]
+    pub fn new(x: impl ToScalar, y: impl ToScalar, z: impl ToScalar, w: impl ToScalar) -> Self {
+        Vec4 {
+            x: x.to_scalar(),
+            y: y.to_scalar(),
+            z: z.to_scalar(),
+            w: w.to_scalar(),
+        }
     }
 
     /// The point `p` with `w = 1`.
     pub const fn from_point(p: Vec3) -> Self {
-        Vec4::new(p.x, p.y, p.z, Scalar::ONE)
+        Vec4 {
+            x: p.x,
+            y: p.y,
+            z: p.z,
+            w: Scalar::ONE,
+        }
     }
 
     /// The raw components `[x, y, z, w]`.
@@ -571,12 +634,12 @@ impl Vec4 {
 
     /// A vector from raw `I16F16` components `[x, y, z, w]`.
     pub const fn from_bits(v: [i32; 4]) -> Self {
-        Vec4::new(
-            Scalar::from_bits(v[0]),
-            Scalar::from_bits(v[1]),
-            Scalar::from_bits(v[2]),
-            Scalar::from_bits(v[3]),
-        )
+        Vec4 {
+            x: Scalar::from_bits(v[0]),
+            y: Scalar::from_bits(v[1]),
+            z: Scalar::from_bits(v[2]),
+            w: Scalar::from_bits(v[3]),
+        }
     }
 }
 
@@ -642,7 +705,8 @@ impl Mat4 {
     }
 
     /// A rotation by `a` about the x axis (y towards z).
-    pub fn rotation_x(a: Angle) -> Self {
+    pub fn rotation_x(a: impl ToAngle) -> Self {
+        let a = a.to_angle();
         let (s, c) = (a.sin(), a.cos());
         let mut m = Mat4::IDENTITY;
         m.rows[1][1] = c;
@@ -653,7 +717,8 @@ impl Mat4 {
     }
 
     /// A rotation by `a` about the y axis (z towards x).
-    pub fn rotation_y(a: Angle) -> Self {
+    pub fn rotation_y(a: impl ToAngle) -> Self {
+        let a = a.to_angle();
         let (s, c) = (a.sin(), a.cos());
         let mut m = Mat4::IDENTITY;
         m.rows[0][0] = c;
@@ -664,7 +729,8 @@ impl Mat4 {
     }
 
     /// A rotation by `a` about the z axis (x towards y).
-    pub fn rotation_z(a: Angle) -> Self {
+    pub fn rotation_z(a: impl ToAngle) -> Self {
+        let a = a.to_angle();
         let (s, c) = (a.sin(), a.cos());
         let mut m = Mat4::IDENTITY;
         m.rows[0][0] = c;

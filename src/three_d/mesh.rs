@@ -47,7 +47,8 @@ impl TexCoord {
 /// or exactly as long as `vertices`, and every index refers to a vertex: [`Mesh::validate`]
 /// reports the first violation as a [`MeshError`] (it is a `const fn`, so a `const` mesh can be
 /// checked at compile time). Drawing never panics on an inconsistent mesh: a missing normal is
-/// taken from the face, a triangle with an index out of range is skipped. Front faces are counter-clockwise seen from
+/// taken from the face, a triangle with an index out of range is skipped (and counted in
+/// [`DrawStats::invalid`](super::DrawStats::invalid)). Front faces are counter-clockwise seen from
 /// outside (right-handed: the face normal `(v1 − v0) × (v2 − v0)` points out).
 ///
 /// Colours are [`Rgb888`] whatever the target's format, so one mesh in flash serves every

@@ -36,6 +36,37 @@ mod host {
     /// An owned mesh on the host: the arrays of a [`Mesh`], in `Vec`s.
     ///
     /// `normals`, `colors` and `uvs` are each empty or one per vertex, as in [`Mesh`].
+    ///
+    /// # Examples
+    ///
+    /// Generated ([`icosphere`], [`torus`], [`torus_knot`]), read from OBJ text
+    /// ([`obj::parse`](crate::three_d::obj::parse)) or written field by field; drawn through
+    /// [`as_mesh`](Self::as_mesh), or turned into `static` arrays for firmware:
+    ///
+    /// ```
+    /// use embedded_raster::three_d::meshes::{icosphere, MeshData};
+    /// use embedded_raster::three_d::Vec3;
+    ///
+    /// let sphere = icosphere(1.0, 1);
+    /// assert_eq!((sphere.vertices.len(), sphere.indices.len()), (42, 80));
+    ///
+    /// // A 2 × 2 square off the origin, two triangles, no normals (the pipeline uses the
+    /// // faces' own).
+    /// let mut square = MeshData {
+    ///     vertices: vec![Vec3::new(1, 1, 0), Vec3::new(3, 1, 0), Vec3::new(3, 3, 0), Vec3::new(1, 3, 0)],
+    ///     indices: vec![[0, 1, 2], [0, 2, 3]],
+    ///     ..MeshData::default()
+    /// };
+    /// square.validate()?;
+    /// square.recenter();
+    /// assert_eq!(square.vertices[0], Vec3::new(-1, -1, 0));
+    /// assert_eq!(square.as_mesh().indices.len(), 2);
+    ///
+    /// let source = square.to_rust_source("SQUARE", "embedded_raster");
+    /// assert!(source.contains("pub static SQUARE: Mesh<'static> ="));
+    /// assert!(source.contains("pub static SQUARE_INDICES: [[u16; 3]; 2] = ["));
+    /// # Ok::<(), embedded_raster::three_d::MeshError>(())
+    /// ```
     #[derive(Debug, Clone, PartialEq, Eq, Default)]
     pub struct MeshData {
         /// Positions.

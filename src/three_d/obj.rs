@@ -216,6 +216,33 @@ impl Default for ParseOptions {
 /// The first line that is not valid OBJ (a number or index that is not one, an index out of
 /// range, a face of fewer than 3 vertices), more than 65536 distinct vertices (the line of the
 /// face that brings the 65537th), or no faces at all (line 0).
+///
+/// # Examples
+///
+/// ```
+/// use embedded_raster::three_d::{obj, Vec3};
+///
+/// // A unit square in the xy plane as one polygon (fanned into two triangles), with a normal
+/// // for all four corners and 1-based and negative (from the end) references.
+/// let text = "\
+/// v 0 0 0
+/// v 1 0 0
+/// v 1 1 0
+/// v 0 1 0
+/// vn 0 0 1
+/// f 1//1 2//1 -2//1 -1//1
+/// ";
+/// let square = obj::parse(text)?;
+/// assert_eq!(square.indices, vec![[0, 1, 2], [0, 2, 3]]);
+/// assert_eq!(square.vertices[2], Vec3::new(1, 1, 0));
+/// assert_eq!(square.normals, vec![Vec3::new(0, 0, 1); 4]);
+///
+/// // Errors name the line and what is wrong with it.
+/// let error = obj::parse("v 0 0 0\nv 1 0 zero\n").unwrap_err();
+/// assert_eq!(error.line, 2);
+/// assert!(error.to_string().starts_with("line 2: "), "{error}");
+/// # Ok::<(), obj::ObjError>(())
+/// ```
 pub fn parse(src: &str) -> Result<MeshData, ObjError> {
     parse_with(src, ParseOptions::default())
 }

@@ -60,7 +60,7 @@
 //! );
 //! let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 //! let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
-//! let light = Light::new(Vec3::from_bits(0, 0, 65536), Scalar::from_num(0.2));
+//! let light = Light::new(Vec3::new(0, 0, 1), 0.2);
 //! let pipeline = Pipeline::new(Mat4::IDENTITY, projection * view, viewport, light);
 //! let stats = pipeline.draw_mesh(&mesh, &Material::new(Rgb565::WHITE, Shading::Flat), &mut target);
 //! assert_eq!(stats.drawn, 1);
@@ -100,7 +100,9 @@ pub enum Cull {
     Front,
 }
 
-/// What happened to the triangles of a [`Pipeline::draw_mesh`] call.
+/// What happened to the triangles of a [`Pipeline::draw_mesh`] call: each is counted once, in
+/// `drawn`, `rejected`, `culled`, `degenerate` or `invalid` (`clipped` counts again some of
+/// those drawn or rejected).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct DrawStats {
     /// Triangles handed to the fill (whether or not any pixel passed the depth test).
@@ -111,8 +113,11 @@ pub struct DrawStats {
     pub rejected: u32,
     /// Back- (or front-) facing triangles skipped.
     pub culled: u32,
-    /// Triangles with zero screen area or an index out of range.
+    /// Triangles with zero screen area.
     pub degenerate: u32,
+    /// Triangles skipped for an index past the mesh's vertices: a mesh that
+    /// [`Mesh::validate`] rejects (a corrupt or mis-generated index array, not geometry).
+    pub invalid: u32,
 }
 
 /// Doubled signed area of a screen triangle in squared sub-pixel units (positive when clockwise
@@ -817,7 +822,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         for (k, face) in mesh.indices.iter().enumerate() {
             let idx = face.map(usize::from);
             let Some([a, b, c]) = at_face(mesh.vertices, &idx) else {
-                stats.degenerate += 1;
+                stats.invalid += 1;
                 continue;
             };
             let model = [*a, *b, *c];
@@ -889,7 +894,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 scratch.get(idx[1]),
                 scratch.get(idx[2]),
             ) else {
-                stats.degenerate += 1;
+                stats.invalid += 1;
                 continue;
             };
             // Only flat shading, faces without normals and clipping need the positions again:

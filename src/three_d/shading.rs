@@ -90,6 +90,48 @@ pub enum Shading {
 }
 
 /// A surface colour and how it is lit.
+///
+/// # Examples
+///
+/// One triangle facing the camera, drawn in three materials under a light from the side
+/// (edge-on to the triangle: lit materials get the ambient level alone, a quarter):
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+/// use embedded_raster::three_d::{Angle, DepthTarget, Light, Mat4, Material, Mesh, Pipeline};
+/// use embedded_raster::three_d::{Shading, Specular, Vec3};
+///
+/// static VERTICES: [Vec3; 3] = [
+///     Vec3::from_bits(-65536, -65536, 0),
+///     Vec3::from_bits(65536, -65536, 0),
+///     Vec3::from_bits(0, 65536, 0),
+/// ];
+/// static NORMALS: [Vec3; 3] = [Vec3::from_bits(0, 0, 65536); 3];
+/// let triangle = Mesh::new(&VERTICES, &NORMALS, &[[0, 1, 2]]);
+///
+/// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20)
+///     * Mat4::translation(Vec3::new(0, 0, -3));
+/// let viewport = Rectangle::new(Point::zero(), Size::new(16, 16));
+/// let light = Light::new(Vec3::new(1, 0, 0), 0.25);
+/// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, light);
+/// let centre = |material: Material<Rgb565>| {
+///     let (mut pixels, mut depth) = ([Rgb565::BLACK; 16 * 16], [0u16; 16 * 16]);
+///     let mut target = DepthTarget::new(&mut pixels, &mut depth, 16, 16).unwrap();
+///     pipeline.draw_mesh(&triangle, &material, &mut target);
+///     target.framebuffer().get(8, 8).unwrap()
+/// };
+///
+/// // Unlit: the colour itself. Lit: a quarter of it, each channel rounded.
+/// assert_eq!(centre(Material::new(Rgb565::WHITE, Shading::Unlit)), Rgb565::WHITE);
+/// assert_eq!(centre(Material::new(Rgb565::WHITE, Shading::Flat)), Rgb565::new(8, 16, 8));
+/// assert_eq!(centre(Material::new(Rgb565::WHITE, Shading::Gouraud)), Rgb565::new(8, 16, 8));
+///
+/// // `new` is a `const fn`: materials can live in flash. `with_specular` adds a highlight
+/// // ([`Specular`] has an example).
+/// const PAINT: Material<Rgb565> = Material::new(Rgb565::CSS_ORANGE, Shading::Quadratic);
+/// let shiny = PAINT.with_specular(Specular::new(0.5, 32));
+/// assert_eq!(shiny.specular.map(|s| s.shininess()), Some(32));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Material<C> {
     /// Colour of a fully lit surface.

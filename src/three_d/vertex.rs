@@ -52,7 +52,11 @@ pub struct ProjectedVertex {
 impl ProjectedVertex {
     /// An entry for a scratch array: `[ProjectedVertex::EMPTY; N]`.
     pub const EMPTY: ProjectedVertex = ProjectedVertex {
-        screen: ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0),
+        screen: ScreenVertex {
+            x: Coord::ZERO,
+            y: Coord::ZERO,
+            depth: 0,
+        },
         level: 0,
         code: 0,
         q_shift: 0,
