@@ -113,12 +113,14 @@ fn main() -> ! {
         };
         let material = TexturedMaterial::new(&texture, Shading::Gouraud);
         let (width, height) = black_box(board::SIZE);
-        let projection = Mat4::perspective(
+        let Some(projection) = Mat4::perspective(
             black_box(Angle::from_degrees(60)),
             black_box(Scalar::from_bits(87_381)), // 4 / 3
             black_box(Scalar::from_bits(1 << 15)),
             black_box(Scalar::from_bits(20 << 16)),
-        );
+        ) else {
+            return;
+        };
         let view = Mat4::translation(black_box(Vec3::from_bits(0, 0, -4 * ONE)));
         let model = Mat4::rotation_y(black_box(Angle::from_degrees(30)))
             * Mat4::rotation_x(black_box(Angle::from_degrees(20)));

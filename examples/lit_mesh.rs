@@ -50,7 +50,7 @@ fn draw_panel(
         Size::new(PANEL_W, PANEL_H),
     );
     let aspect = Scalar::from_num(PANEL_W) / Scalar::from_num(PANEL_H);
-    let projection = Mat4::perspective(Angle::from_degrees(40), aspect, s(0.5), s(20.0));
+    let projection = Mat4::perspective(Angle::from_degrees(40), aspect, s(0.5), s(20.0)).unwrap();
     let view = Mat4::translation(Vec3::new(s(0.0), s(0.0), s(-distance)));
     // World-space light from the upper left, slightly in front.
     let light = Light::new(Vec3::new(s(-0.5), s(0.7), s(0.6)), s(0.12));

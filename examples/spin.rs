@@ -32,7 +32,7 @@ fn draw(
     color: Rgb888,
 ) {
     let viewport = Rectangle::new(Point::new((column * W / 2) as i32, 0), Size::new(W / 2, H));
-    let projection = Mat4::perspective(Angle::from_degrees(40), s(1.0), s(0.5), s(20.0));
+    let projection = Mat4::perspective(Angle::from_degrees(40), s(1.0), s(0.5), s(20.0)).unwrap();
     let view = Mat4::translation(Vec3::new(s(0.0), s(0.0), s(-4.2)));
     let model = Mat4::rotation_y(Angle::from_degrees(frame * 2))
         * Mat4::rotation_x(Angle::from_degrees(frame * 3 - 60));

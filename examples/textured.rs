@@ -66,7 +66,8 @@ fn spot_pipeline(scale: u32) -> Pipeline {
         Scalar::from_num(w) / Scalar::from_num(h),
         Scalar::from_bits(1 << 15),
         Scalar::from_num(8),
-    );
+    )
+    .unwrap();
     let view = Mat4::translation(Vec3::from_bits(0, 0, -(5 << 16) / 2));
     let light = Light::new(
         Vec3::from_bits(-26214, 39322, 45875),

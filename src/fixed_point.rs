@@ -11,7 +11,9 @@
 //!
 //! * **Floats**: the constructors take any [`ToCoord`] (`f32`, `f64` or `Coord`), so
 //!   `Vertex::new(10.25, 3.0, color)` works; `x.to_coord()` converts one number. Conversion
-//!   rounds to the nearest 1/256 pixel, saturates beyond the range and maps NaN to 0. It is a
+//!   rounds to the nearest 1/256 pixel, saturates beyond the range and maps NaN to 0;
+//!   [`ToCoord::try_to_coord`] is the checked form (`None` for NaN, infinities and values beyond
+//!   the range: [converting floats](crate#converting-floats)). It is a
 //!   conversion you call, never part of drawing: on a Cortex-M0 it runs in software floating point
 //!   (and is linked only if used).
 //! * **Integer pixel positions** need a placement, so integers are not [`ToCoord`]:
@@ -51,6 +53,17 @@ pub type Coord = fixed::types::I24F8;
 
 /// A number that converts to a [`Coord`]: `f32` and `f64` (rounded to the nearest 1/256 pixel,
 /// saturated to the `Coord` range, NaN as 0) and `Coord` itself.
+/// [`try_to_coord`](Self::try_to_coord) is the checked form: `None` for NaN, an infinity or a
+/// value beyond the range ([converting floats](crate#converting-floats)).
+///
+/// ```
+/// use embedded_raster::{Coord, ToCoord};
+///
+/// assert_eq!(f32::NAN.to_coord(), Coord::ZERO);
+/// assert_eq!(f32::NAN.try_to_coord(), None);
+/// assert_eq!(1e30.try_to_coord(), None);
+/// assert_eq!(10.25.try_to_coord(), Some(Coord::from_num(10.25)));
+/// ```
 ///
 /// Integers are deliberately not `ToCoord`: an integer is a pixel index, and whether it means
 /// the pixel's centre or its corner is a choice ([`pixel_centre`], [`pixel_corner`]).
@@ -60,8 +73,15 @@ pub type Coord = fixed::types::I24F8;
     note = "an integer is a pixel index: place it with `fixed_point::pixel_centre(i)` (the embedded-graphics placement) or `pixel_corner(i)`, `Vertex::at_pixel_centre(point, color)`, or write a float (`10.0`)"
 )]
 pub trait ToCoord: Copy {
-    /// The coordinate.
+    /// The coordinate: rounded to the nearest 1/256 pixel, saturated to the range, NaN as 0.
     fn to_coord(self) -> Coord;
+
+    /// The coordinate, or `None` if the value has none: NaN, an infinity, or beyond the `Coord`
+    /// range (after rounding to the nearest 1/256 pixel). The default is
+    /// `Some(self.to_coord())`.
+    fn try_to_coord(self) -> Option<Coord> {
+        Some(self.to_coord())
+    }
 }
 
 impl ToCoord for Coord {
@@ -75,6 +95,10 @@ impl ToCoord for f32 {
     fn to_coord(self) -> Coord {
         f64::from(self).to_coord()
     }
+
+    fn try_to_coord(self) -> Option<Coord> {
+        f64::from(self).try_to_coord()
+    }
 }
 
 impl ToCoord for f64 {
@@ -86,6 +110,11 @@ impl ToCoord for f64 {
             // arithmetic.
             Coord::saturating_from_num(self)
         }
+    }
+
+    fn try_to_coord(self) -> Option<Coord> {
+        // `None` for NaN, infinities and overflow.
+        Coord::checked_from_num(self)
     }
 }
 
@@ -114,6 +143,54 @@ pub fn pixel_corner(i: i32) -> Coord {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The checked form: `None` for NaN, infinities and values beyond the range (after rounding),
+    /// otherwise exactly the saturating form's value.
+    #[test]
+    fn checked_floats() {
+        extern crate std;
+        let max = f64::from(i32::MAX) / 256.0;
+        let min = f64::from(i32::MIN) / 256.0;
+        for v in [
+            f64::NAN,
+            -f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e30,
+            -1e300,
+            8_388_608.0,       // 2²³: one beyond the largest
+            max + 1.0 / 512.0, // rounds up past the largest (a tie, to even: 2²³)
+            min - 1.0,         // below the smallest
+            f64::from(f32::MAX),
+        ] {
+            assert_eq!(v.try_to_coord(), None, "{v}");
+            assert_eq!((v as f32).try_to_coord(), None, "{v} as f32");
+        }
+        for (v, bits) in [
+            (0.0, 0),
+            (-0.0, 0),
+            (10.25, 10 * 256 + 64),
+            (-10.25, -(10 * 256 + 64)),
+            (1.0 / 512.0, 0), // a tie: to even, as the saturating form
+            (3.0 / 512.0, 2),
+            (max, i32::MAX),
+            (min, i32::MIN),
+            (f64::MIN_POSITIVE, 0),
+        ] {
+            assert_eq!(v.try_to_coord().map(Coord::to_bits), Some(bits), "{v}");
+            assert_eq!(v.try_to_coord(), Some(v.to_coord()), "{v}");
+        }
+        assert_eq!(0.75f32.try_to_coord().map(Coord::to_bits), Some(192));
+        assert_eq!(Coord::MAX.try_to_coord(), Some(Coord::MAX));
+        // In range, the checked form is the saturating one.
+        let mut next = crate::random(11);
+        for _ in 0..10_000 {
+            let v = ((next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * 8_388_000.0;
+            assert_eq!(v.try_to_coord(), Some(v.to_coord()), "{v}");
+            let f = v as f32;
+            assert_eq!(f.try_to_coord(), Some(f.to_coord()), "{f}");
+        }
+    }
 
     #[test]
     fn floats_round_and_saturate() {

@@ -67,7 +67,7 @@
 //! let (mut pixels, mut depth) = ([Rgb565::BLACK; 64 * 48], [0u16; 64 * 48]);
 //! let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 48)?;
 //!
-//! let projection = Mat4::perspective(Angle::from_degrees(50), 64.0 / 48.0, 0.5, 20);
+//! let projection = Mat4::perspective(Angle::from_degrees(50), 64.0 / 48.0, 0.5, 20).unwrap();
 //! let view = Mat4::look_at(Vec3::new(0, 0, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
 //! let model = Mat4::rotation_y(Angle::from_degrees(30));
 //! let light = Light::new(Vec3::new(-1, 1, 1), 0.15);
@@ -92,6 +92,39 @@
 //! [`three_d`] describes the pipeline and turns an OBJ file's text into a picture;
 //! [`band`] draws the same in bands of a few rows; [`fixed_point`] builds coordinates from
 //! floats, pixel indices and embedded-graphics `Point`s.
+//!
+//! # Converting floats
+//!
+//! Floats become fixed point only in conversions you call; none is part of drawing. Each has a
+//! saturating form, which never fails, and a checked form, which returns `None` where the
+//! saturating one would have to make a value up:
+//!
+//! | conversion | NaN | ±infinity | finite beyond the range | checked form |
+//! |---|---|---|---|---|
+//! | [`ToCoord::to_coord`] (`f32`, `f64` to [`Coord`]: the 2D vertices) | 0 | [`Coord::MAX`] / [`Coord::MIN`] | saturates to `Coord::MAX` / `MIN` (±2²³ px) | [`ToCoord::try_to_coord`] |
+//! | [`ToScalar::to_scalar`] (`f32`, `f64` to [`Scalar`]: the 3D vectors, distances, light and material values) | 0 | `Scalar::MAX` / `MIN` | saturates to ±32768 | [`ToScalar::try_to_scalar`] |
+//! | [`Angle::from_degrees`] (`f32`, `f64` degrees) | 0° | 0° | none: angles wrap | [`Angle::try_from_degrees`], [`Degrees::try_to_angle`](three_d::Degrees::try_to_angle) |
+//! | [`Angle::from_radians`] | 0° | 0° | none: angles wrap | [`Angle::try_from_radians`] |
+//! | [`ToAngle::to_angle`] of embedded-graphics' `Angle` (through its radians) | 0° | 0° | none: angles wrap | [`ToAngle::try_to_angle`] |
+//!
+//! Integers convert without floats: to a `Scalar` saturating beyond ±32768 (`try_to_scalar`
+//! gives `None` there), to degrees exactly. The saturating forms round to the nearest step
+//! (ties to even); the checked ones round the same way and fail only where the table says.
+//! [`Mat4::perspective`] takes its aspect and planes through the checked form, so a NaN there
+//! is `None`, not a projection of nothing.
+//!
+//! ```
+//! use embedded_raster::{Angle, Coord, Scalar, ToCoord, ToScalar};
+//!
+//! assert_eq!(f32::NAN.to_coord(), Coord::ZERO); // a NaN vertex lands on 0 ...
+//! assert_eq!(f32::NAN.try_to_coord(), None); // ... unless you ask
+//! assert_eq!(f64::NEG_INFINITY.to_scalar(), Scalar::MIN);
+//! assert_eq!(f64::NEG_INFINITY.try_to_scalar(), None);
+//! assert_eq!(40_000.0.try_to_scalar(), None); // beyond ±32768
+//! assert_eq!(40_000.try_to_scalar(), None);
+//! assert_eq!(Angle::try_from_degrees(f32::NAN), None);
+//! assert_eq!(Angle::try_from_degrees(450.0), Some(Angle::QUARTER));
+//! ```
 //!
 //! # Errors
 //!
@@ -192,7 +225,7 @@ pub use three_d::{
 /// let mut fb = SliceFramebuffer::new(&mut pixels, 8, 8).unwrap();
 /// SolidTriangle::new([(0.0, 0.0), (8.0, 0.0), (0.0, 8.0)], Rgb565::RED).draw_into(&mut fb);
 /// let view = Mat4::look_at(Vec3::new(0, 0, 5), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-/// let camera = Mat4::perspective(Angle::from_degrees(52.5), 1, 0.5, 20) * view;
+/// let camera = Mat4::perspective(Angle::from_degrees(52.5), 1, 0.5, 20).unwrap() * view;
 /// # let _ = camera;
 /// ```
 pub mod prelude {

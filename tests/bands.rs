@@ -509,7 +509,8 @@ fn meshes_with_every_shading_and_clipping_are_the_whole_frame() {
                 aspect,
                 Scalar::from_num(0.5),
                 Scalar::from_num(12),
-            );
+            )
+            .unwrap();
             // Near enough that the torus crosses the near plane in some poses.
             let distance = 1 + rng.below(3) as i32;
             let view = Mat4::translation(Vec3::from_bits(0, 0, -(distance << 16) - (1 << 15)));
@@ -664,7 +665,8 @@ fn textured_mesh_bins_are_the_whole_frame() {
         Scalar::from_num(4) / 3,
         Scalar::from_num(0.5),
         Scalar::from_num(8),
-    );
+    )
+    .unwrap();
     let view = Mat4::translation(Vec3::from_bits(0, 0, -52429));
     let close = Pipeline::new(
         Mat4::rotation_y(Angle::from_degrees(200)),

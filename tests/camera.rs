@@ -89,7 +89,8 @@ fn random_matrix(rng: &mut Rng, case: usize) -> Mat4 {
         // Projection · view.
         _ => {
             let fov = Angle::from_degrees(rng.range_f64(20.0, 120.0));
-            let p = Mat4::perspective(fov, rng.range_f64(0.5, 2.5), rng.range_f64(0.1, 2.0), 90);
+            let p = Mat4::perspective(fov, rng.range_f64(0.5, 2.5), rng.range_f64(0.1, 2.0), 90)
+                .unwrap();
             let v = Mat4::orbit(
                 Vec3::ZERO,
                 rng.range_f64(1.0, 20.0),
@@ -296,7 +297,7 @@ fn projections_match_gl() {
         let aspect = Scalar::from_num(rng.range_f64(0.25, 4.0));
         let near = Scalar::from_num(rng.range_f64(0.05, 5.0));
         let far = near + Scalar::from_num(rng.range_f64(1.0, 500.0));
-        let got = Mat4::perspective(fov, aspect, near, far);
+        let got = Mat4::perspective(fov, aspect, near, far).unwrap();
         let theta = f64::from(fov.0) / 65536.0 * std::f64::consts::TAU;
         let f = 1.0 / (theta / 2.0).tan();
         let (a, n, fa) = (
@@ -344,8 +345,9 @@ fn projections_match_gl() {
     }
 }
 
-/// Any inputs give a matrix without overflowing (a fuzzed near and far of 2¹⁵ each used to
-/// overflow the product `2·n·f` in debug builds).
+/// Any inputs give a matrix or `None` without overflowing (a fuzzed near and far of 2¹⁵ each
+/// used to overflow the product `2·n·f` in debug builds); `Some` exactly for a field of view in
+/// (0, 180°), a positive aspect and `0 < near < far`.
 #[test]
 fn perspective_takes_extreme_distances() {
     use embedded_raster::three_d::{Angle, Mat4, Scalar};
@@ -358,11 +360,89 @@ fn perspective_takes_extreme_distances() {
     ];
     for near in extremes {
         for far in extremes {
-            for fov in [Angle::ZERO, Angle::HALF, Angle::from_degrees(60)] {
-                let m = Mat4::perspective(fov, Scalar::MAX, near, far).to_bits();
-                // w = −z whatever the distances.
-                assert_eq!(m[3], [0, 0, -(1 << 16), 0]);
+            for fov in [
+                Angle::ZERO,
+                Angle(1),
+                Angle::HALF,
+                Angle(32767),
+                Angle::from_degrees(60),
+            ] {
+                for aspect in extremes {
+                    let valid = fov.0 > 0
+                        && fov.0 < 32768
+                        && aspect > Scalar::ZERO
+                        && near > Scalar::ZERO
+                        && far > near;
+                    let got = Mat4::perspective(fov, aspect, near, far);
+                    assert_eq!(got.is_some(), valid, "{fov:?} {aspect} {near} {far}");
+                    if let Some(m) = got {
+                        // w = −z whatever the distances.
+                        assert_eq!(m.to_bits()[3], [0, 0, -(1 << 16), 0]);
+                    }
+                }
             }
         }
     }
+}
+
+/// A projection that would show nothing is `None` (issue #32, item 7): no field of view, one of
+/// 180° or more (a negative one wraps to more than 180°), an aspect, near plane or depth range
+/// that is not positive, or a number a `Scalar` cannot hold.
+#[test]
+fn perspective_rejects_what_shows_nothing() {
+    use embedded_raster::three_d::{Angle, Mat4};
+    let fov = Angle::from_degrees(60);
+    let valid = Mat4::perspective(fov, 4.0 / 3.0, 0.5, 20.0);
+    assert!(valid.is_some());
+    let bad_fovs = [
+        Angle::ZERO,
+        Angle::from_degrees(180),
+        Angle::from_degrees(270),
+        Angle::from_degrees(-30),
+        Angle(u16::MAX),
+    ];
+    for bad in bad_fovs {
+        assert_eq!(
+            Mat4::perspective(bad, 4.0 / 3.0, 0.5, 20.0),
+            None,
+            "{bad:?}"
+        );
+    }
+    assert!(Mat4::perspective(Angle::from_degrees(179.99), 4.0 / 3.0, 0.5, 20.0).is_some());
+    assert!(Mat4::perspective(Angle(1), 4.0 / 3.0, 0.5, 20.0).is_some());
+    // embedded-graphics' angle of NaN radians.
+    let nan = embedded_graphics::geometry::Angle::from_radians(f32::NAN);
+    assert_eq!(Mat4::perspective(nan, 1.0, 0.5, 20.0), None);
+    for aspect in [0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e9] {
+        assert_eq!(
+            Mat4::perspective(fov, aspect, 0.5, 20.0),
+            None,
+            "aspect {aspect}"
+        );
+    }
+    for (near, far) in [
+        (0.5, 0.5),
+        (2.0, 1.0),
+        (0.0, 20.0),
+        (-0.5, 20.0),
+        (-2.0, -1.0),
+        (f64::NAN, 20.0),
+        (0.5, f64::NAN),
+        (0.5, f64::INFINITY),
+        (f64::NEG_INFINITY, 20.0),
+        (0.5, 1e6),
+    ] {
+        assert_eq!(
+            Mat4::perspective(fov, 1.0, near, far),
+            None,
+            "near {near} far {far}"
+        );
+    }
+    assert_eq!(Mat4::perspective(fov, 1, 0, 20), None);
+    assert_eq!(Mat4::perspective(fov, 1, 1, 40_000), None);
+    // Valid limits: the smallest positive near, far just beyond it, the largest far and aspect.
+    use embedded_raster::three_d::Scalar;
+    assert!(Mat4::perspective(fov, Scalar::DELTA, Scalar::DELTA, Scalar::DELTA * 2).is_some());
+    assert!(Mat4::perspective(fov, Scalar::MAX, 0.5, Scalar::MAX).is_some());
+    assert!(Mat4::perspective(fov, 1.0f32, 0.5f32, 32767.0f32).is_some());
 }

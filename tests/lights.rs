@@ -164,7 +164,8 @@ fn to_model(s: &LightSource) -> model::Source {
 fn scene(model_matrix: Mat4, inverse_transpose: bool, specular: Option<Specular>) -> Scene {
     let eye = [0.7, 0.9, 2.6];
     let view = Mat4::look_at(Vec3::from(eye), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-    let projection = Mat4::perspective(Angle::from_degrees(50), W as f64 / H as f64, 0.5, 20.0);
+    let projection =
+        Mat4::perspective(Angle::from_degrees(50), W as f64 / H as f64, 0.5, 20.0).unwrap();
     let (light, set, sources) = lights();
     let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
     let pipeline = if inverse_transpose {
@@ -462,7 +463,7 @@ fn every_path_draws_the_same_lights() {
     let mut clipped = 0;
     for round in 0..12 {
         let shading = [Shading::Flat, Shading::Gouraud, Shading::Quadratic][round % 3];
-        let projection = Mat4::perspective(Angle::from_degrees(70), 1.4, 0.5, 12.0);
+        let projection = Mat4::perspective(Angle::from_degrees(70), 1.4, 0.5, 12.0).unwrap();
         let distance = 1 + rng.below(3) as i32;
         let view = Mat4::translation(Vec3::from_bits(0, 0, -(distance << 16) - (1 << 15)));
         let model =

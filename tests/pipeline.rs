@@ -441,7 +441,10 @@ fn extreme_inputs_do_not_panic() {
                     fx(rng.range_f64(-2.0, 4.0)),
                     fx(rng.range_f64(-1.0, 1.0)),
                     fx(rng.range_f64(-5.0, 50.0)),
-                ) * Mat4::translation(Vec3::from_bits(pick(rng), pick(rng), pick(rng)))
+                )
+                // Parameters that show nothing have no projection: a raw matrix instead.
+                .unwrap_or_else(|| Mat4::from_bits([[0; 4]; 4].map(|r| r.map(|_: i32| pick(rng)))))
+                    * Mat4::translation(Vec3::from_bits(pick(rng), pick(rng), pick(rng)))
                     * Mat4::rotation_x(rng.angle())
             }
         };
@@ -599,7 +602,7 @@ fn out_of_range_faces_are_invalid_not_degenerate() {
 
     let (w, h) = (32, 24);
     let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
-    let camera = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 20)
+    let camera = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 20).unwrap()
         * Mat4::translation(Vec3::new(0, 0, -3));
     let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
     let material = Material::new(Rgb888::WHITE, Shading::Gouraud);

@@ -104,7 +104,8 @@ const H: u32 = 120;
 fn scene(model: Mat4, inverse_transpose: bool) -> Scene {
     let eye = [0.7, 0.9, 2.6];
     let view = Mat4::look_at(Vec3::from(eye), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-    let projection = Mat4::perspective(Angle::from_degrees(50), W as f64 / H as f64, 0.5, 20.0);
+    let projection =
+        Mat4::perspective(Angle::from_degrees(50), W as f64 / H as f64, 0.5, 20.0).unwrap();
     let light = [-0.6, 0.9, 0.7];
     let ambient = 0.12;
     let l = Light::new(Vec3::from(light), Scalar::from_num(ambient));
@@ -423,7 +424,7 @@ fn view_direction_points_at_the_camera() {
             * Mat4::rotation_z(Angle(rng.next() as u16))
             * Mat4::scaling(Scalar::from_num(rng.range_f64(0.5, 2.0)));
         for (k, projection) in [
-            Mat4::perspective(Angle::from_degrees(60), 1.3, 0.5, 30.0),
+            Mat4::perspective(Angle::from_degrees(60), 1.3, 0.5, 30.0).unwrap(),
             Mat4::orthographic(-3.0, 3.0, -2.0, 2.0, 0.5, 30.0),
         ]
         .into_iter()
@@ -458,7 +459,7 @@ fn every_path_draws_the_same_highlights() {
     let mut clipped = 0;
     for round in 0..9 {
         let shading = [Shading::Flat, Shading::Gouraud, Shading::Quadratic][round % 3];
-        let projection = Mat4::perspective(Angle::from_degrees(70), 1.4, 0.5, 12.0);
+        let projection = Mat4::perspective(Angle::from_degrees(70), 1.4, 0.5, 12.0).unwrap();
         let distance = 1 + rng.below(3) as i32;
         let view = Mat4::translation(Vec3::from_bits(0, 0, -(distance << 16) - (1 << 15)));
         let model =

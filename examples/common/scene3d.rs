@@ -144,7 +144,10 @@ fn posed(pose: Mat4) -> Pipeline {
         Scalar::from_num(w) / Scalar::from_num(h),
         Scalar::from_bits(1 << 15),
         Scalar::from_num(8),
-    );
+    )
+    // Constants that make a projection: never `None`. A fallback, not a panic path, for the
+    // firmware (a zero matrix would draw nothing, which the frame checksums would catch).
+    .unwrap_or(Mat4::from_bits([[0; 4]; 4]));
     let view = Mat4::translation(Vec3::from_bits(0, 0, -(5 << 16) / 2));
     let light = Light::new(
         Vec3::from_bits(-26214, 39322, 45875),

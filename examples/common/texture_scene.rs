@@ -220,13 +220,13 @@ pub fn render_2d(pixels: &mut [Rgb565]) -> u32 {
 
 /// The floor's camera and light (opaque), `FLOOR` leaning away to the horizon.
 #[inline(never)]
-fn floor_pipeline() -> Pipeline {
+fn floor_pipeline() -> Option<Pipeline> {
     let projection = black_box(Mat4::perspective(
         Angle::from_degrees(60),
         Scalar::from_bits(98_304),
         Scalar::from_bits(1 << 15),
         Scalar::from_bits(20 << 16),
-    ));
+    ))?;
     let model = black_box(Mat4::rotation_y(Angle::from_degrees(20)));
     let view = black_box(Mat4::rotation_x(Angle::from_degrees(10)));
     let viewport = black_box(Rectangle::new(Point::new(-1, 0), Size::new(26, 15)));
@@ -234,7 +234,7 @@ fn floor_pipeline() -> Pipeline {
         black_box(Vec3::from_bits(1 << 15, 1 << 16, 1 << 16)),
         black_box(Scalar::from_bits(1 << 13)),
     );
-    Pipeline::new(model, projection * view, viewport, light)
+    Some(Pipeline::new(model, projection * view, viewport, light))
 }
 
 /// One draw of a 3D frame into `target` (the floor with a pipeline and material, or a screen
@@ -318,7 +318,9 @@ fn render(
     let Ok(mut target) = DepthTarget::new(colors, depths, w, h) else {
         return 0;
     };
-    let mut pipeline = floor_pipeline();
+    let Some(mut pipeline) = floor_pipeline() else {
+        return 0;
+    };
     let shadings = [
         Shading::Unlit,
         Shading::Flat,

@@ -49,7 +49,8 @@ impl Matrix {
                 scale,
             } => {
                 let s = |v: Int| Scalar::from_bits(v.get());
-                Mat4::perspective(Angle(fov), s(aspect), s(near), s(far))
+                // Parameters that show nothing have no projection (`None`): the identity then.
+                Mat4::perspective(Angle(fov), s(aspect), s(near), s(far)).unwrap_or(Mat4::IDENTITY)
                     * Mat4::translation(Vec3::from_bits(
                         shift[0].get(),
                         shift[1].get(),

@@ -572,7 +572,7 @@ impl<'b, 't, T> TriangleBin<'b, 't, T> {
 ///
 /// let layout = BandLayout::new(Size::new(64, 48), 8)?;
 /// let projection = Mat4::perspective(Angle::from_degrees(60), Scalar::from_num(4) / 3,
-///     Scalar::from_num(0.5), Scalar::from_num(20));
+///     Scalar::from_num(0.5), Scalar::from_num(20)).unwrap();
 /// let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 /// let viewport = Rectangle::new(Point::zero(), layout.size());
 /// let pipeline = Pipeline::new(Mat4::IDENTITY, projection * view, viewport, Light::default());
@@ -739,7 +739,7 @@ where
     /// let material = TexturedMaterial::new(&texture, Shading::Gouraud);
     ///
     /// let layout = BandLayout::new(Size::new(64, 48), 8)?;
-    /// let camera = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 10)
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 10).unwrap()
     ///     * Mat4::look_at(Vec3::new(0, -1, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
     /// let viewport = Rectangle::new(Point::zero(), layout.size());
     /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());

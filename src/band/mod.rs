@@ -50,7 +50,7 @@
 //!
 //! let layout = BandLayout::new(Size::new(64, 48), 16)?;
 //! let projection = Mat4::perspective(Angle::from_degrees(60), Scalar::from_num(4) / 3,
-//!     Scalar::from_num(0.5), Scalar::from_num(20));
+//!     Scalar::from_num(0.5), Scalar::from_num(20)).unwrap();
 //! let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 //! let viewport = Rectangle::new(Point::zero(), layout.size());
 //! let light = Light::new(Vec3::new(0, 0, 1), 0.2);

@@ -268,7 +268,7 @@ impl<'a, C: PixelColor> ColorBands<'a, C> {
 ///
 /// let layout = BandLayout::new(Size::new(48, 32), 4)?;
 /// let projection = Mat4::perspective(Angle::from_degrees(60), Scalar::from_num(1.5),
-///     Scalar::from_num(0.5), Scalar::from_num(20));
+///     Scalar::from_num(0.5), Scalar::from_num(20)).unwrap();
 /// let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 /// let viewport = Rectangle::new(Point::zero(), layout.size());
 /// let pipeline = Pipeline::new(Mat4::rotation_x(Angle::from_degrees(50)), projection * view,

@@ -9,7 +9,7 @@
 //! ```
 //! use embedded_raster::three_d::{Angle, Mat4, Vec3};
 //!
-//! let projection = Mat4::perspective(Angle::from_degrees(52.5), 4.0 / 3.0, 0.5, 50.0);
+//! let projection = Mat4::perspective(Angle::from_degrees(52.5), 4.0 / 3.0, 0.5, 50.0).unwrap();
 //! let view = Mat4::look_at(Vec3::new(0, 2, 6), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
 //! let camera = projection * view;
 //! // The point looked at lands in the middle of the screen (normalised device coordinates).
@@ -31,15 +31,43 @@ impl Mat4 {
     /// vertical field of view (`Angle::from_degrees(52.5)` for fractional degrees), `aspect` is
     /// width / height, and `near < far` are positive distances. Visible points end up with
     /// `−w ≤ x, y, z ≤ w`; `z = −w` on the near plane. Entries are rounded once from exact
-    /// quotients of the fixed-point inputs and saturate (a `near` of 0 gives no depth range).
+    /// quotients of the fixed-point inputs and saturate.
+    ///
+    /// `None` if the projection would show nothing: a field of view of 0 or of 180° or more (an
+    /// [`Angle`] wraps, so −30° is 330°), an aspect that is not positive, a `near` that is not
+    /// positive or a `far` not beyond `near`, or a number a [`Scalar`] cannot hold (NaN, an
+    /// infinity or beyond ±32768: [`ToScalar::try_to_scalar`]; see
+    /// [converting floats](crate#converting-floats)).
+    ///
+    /// ```
+    /// use embedded_raster::three_d::{Angle, Mat4};
+    ///
+    /// let projection = Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 50.0);
+    /// assert!(projection.is_some());
+    /// // Nothing would be visible: no field of view, a flat screen, a depth range of zero.
+    /// assert_eq!(Mat4::perspective(Angle::ZERO, 4.0 / 3.0, 0.5, 50.0), None);
+    /// assert_eq!(Mat4::perspective(Angle::from_degrees(60), 0.0, 0.5, 50.0), None);
+    /// assert_eq!(Mat4::perspective(Angle::from_degrees(60), 4.0 / 3.0, 0.5, 0.5), None);
+    /// assert_eq!(Mat4::perspective(Angle::from_degrees(60), f32::NAN, 0.5, 50.0), None);
+    /// ```
     pub fn perspective(
         fov_y: impl ToAngle,
         aspect: impl ToScalar,
         near: impl ToScalar,
         far: impl ToScalar,
-    ) -> Self {
-        let fov_y = fov_y.to_angle();
-        let (aspect, near, far) = (aspect.to_scalar(), near.to_scalar(), far.to_scalar());
+    ) -> Option<Self> {
+        let fov_y = fov_y.try_to_angle()?;
+        let aspect = aspect.try_to_scalar()?;
+        let (near, far) = (near.try_to_scalar()?, far.try_to_scalar()?);
+        // 0 < fov < 180° (half a turn is 32768 steps), 0 < aspect, 0 < near < far.
+        if fov_y.0 == 0
+            || fov_y.0 >= 1 << 15
+            || aspect <= Scalar::ZERO
+            || near <= Scalar::ZERO
+            || far <= near
+        {
+            return None;
+        }
         // cot(θ/2) = (1 + cos θ) / sin θ: no rounding of the half angle.
         let f = div_raw((Scalar::ONE + fov_y.cos()).to_bits(), fov_y.sin().to_bits());
         let (n, fa) = (i64::from(near.to_bits()), i64::from(far.to_bits()));
@@ -51,7 +79,7 @@ impl Mat4 {
         // 2·n·f / (n − f): the product has 32 fractional bits, the quotient 16.
         m.rows[2][3] = Scalar::from_bits(div_round((n * fa).saturating_mul(2), d));
         m.rows[3][2] = -Scalar::ONE;
-        m
+        Some(m)
     }
 
     /// An OpenGL-style orthographic projection (`glOrtho`) of the box `left..right`,

@@ -234,7 +234,7 @@ impl LightSource {
 ///     .with(LightSource::directional(Vec3::new(-1, 0, 0), 0.3));
 /// assert_eq!(lights.sources().len(), 2);
 ///
-/// let camera = Mat4::perspective(Angle::from_degrees(50), 1, 0.5, 20)
+/// let camera = Mat4::perspective(Angle::from_degrees(50), 1, 0.5, 20).unwrap()
 ///     * Mat4::look_at(Vec3::new(0, 0, 4), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
 /// let viewport = Rectangle::new(Point::zero(), Size::new(48, 48));
 /// // Only the ambient term from the first light: its direction is zero.

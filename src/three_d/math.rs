@@ -15,7 +15,8 @@
 //! # From what you have
 //!
 //! Constructors take any [`ToScalar`]: `f32`, `f64` (rounded to the nearest 2⁻¹⁶, saturated to
-//! ±32768, NaN as 0), integers up to 32 bits (saturated) and `Scalar` itself, so
+//! ±32768, NaN as 0: see [converting floats](crate#converting-floats) for the checked
+//! forms), integers up to 32 bits (saturated) and `Scalar` itself, so
 //! `Vec3::new(1.0, -0.5, 2)` and `Light::new(direction, 0.15)` work. [`Angle::from_degrees`]
 //! takes integer or fractional degrees ([`Degrees`]); [`Angle::from_radians`] takes
 //! `f32`/`f64`; the rotations and camera matrices take any [`ToAngle`] (an [`Angle`] or
@@ -55,7 +56,9 @@ pub const SCALAR_BITS: u32 = 16;
 
 /// A number that converts to a [`Scalar`]: `f32` and `f64` (rounded to the nearest 2⁻¹⁶,
 /// saturated to the `Scalar` range, NaN as 0), `i8`–`i32` and `u8`–`u32` (saturated), and
-/// `Scalar` itself.
+/// `Scalar` itself. [`try_to_scalar`](Self::try_to_scalar) is the checked form: `None` for
+/// NaN, an infinity or a value beyond the range. How every conversion treats NaN and
+/// infinities: [converting floats](crate#converting-floats).
 ///
 /// ```
 /// use embedded_raster::three_d::{Scalar, ToScalar};
@@ -63,14 +66,24 @@ pub const SCALAR_BITS: u32 = 16;
 /// assert_eq!(0.5f32.to_scalar() * 2, Scalar::ONE);
 /// assert_eq!(3.to_scalar(), Scalar::from_num(3));
 /// assert_eq!(1e9.to_scalar(), Scalar::MAX);
+/// assert_eq!(1e9.try_to_scalar(), None);
+/// assert_eq!(f32::NAN.to_scalar(), Scalar::ZERO);
+/// assert_eq!(f32::NAN.try_to_scalar(), None);
+/// assert_eq!(0.25.try_to_scalar(), Some(Scalar::from_num(0.25)));
 /// ```
 #[diagnostic::on_unimplemented(
     message = "`{Self}` does not convert to a fixed-point `Scalar`",
     label = "expected a float, an integer or a `Scalar`"
 )]
 pub trait ToScalar: Copy {
-    /// The scalar.
+    /// The scalar: rounded to the nearest 2⁻¹⁶, saturated to the range, NaN as 0.
     fn to_scalar(self) -> Scalar;
+
+    /// The scalar, or `None` if the value has none: NaN, an infinity, or beyond the `Scalar`
+    /// range (after rounding to the nearest 2⁻¹⁶). The default is `Some(self.to_scalar())`.
+    fn try_to_scalar(self) -> Option<Scalar> {
+        Some(self.to_scalar())
+    }
 }
 
 impl ToScalar for Scalar {
@@ -89,11 +102,20 @@ impl ToScalar for f64 {
             Scalar::saturating_from_num(self)
         }
     }
+
+    fn try_to_scalar(self) -> Option<Scalar> {
+        // `None` for NaN, infinities and overflow.
+        Scalar::checked_from_num(self)
+    }
 }
 
 impl ToScalar for f32 {
     fn to_scalar(self) -> Scalar {
         f64::from(self).to_scalar()
+    }
+
+    fn try_to_scalar(self) -> Option<Scalar> {
+        f64::from(self).try_to_scalar()
     }
 }
 
@@ -104,16 +126,29 @@ macro_rules! integer_to_scalar {
             fn to_scalar(self) -> Scalar {
                 Scalar::saturating_from_num(self)
             }
+
+            #[inline]
+            fn try_to_scalar(self) -> Option<Scalar> {
+                Scalar::checked_from_num(self)
+            }
         }
     )*};
 }
 integer_to_scalar!(i8, i16, i32, u8, u16, u32);
 
 /// A number of degrees [`Angle::from_degrees`] takes: integers up to 32 bits (exact, no floats),
-/// [`Scalar`] (exact rational rounding, no floats), `f32` and `f64` (NaN and infinities as 0°).
+/// [`Scalar`] (exact rational rounding, no floats), `f32` and `f64` (NaN and infinities as 0°;
+/// [`try_to_angle`](Self::try_to_angle) and [`Angle::try_from_degrees`] give `None` for them
+/// instead: [converting floats](crate#converting-floats)).
 pub trait Degrees: Copy {
     /// The angle, rounded to the nearest 1/65536 turn.
     fn to_angle(self) -> Angle;
+
+    /// The angle, or `None` for NaN and infinities (every other value has one: angles wrap).
+    /// The default is `Some(self.to_angle())`.
+    fn try_to_angle(self) -> Option<Angle> {
+        Some(self.to_angle())
+    }
 }
 
 /// A value the rotations and camera matrices take as an angle ([`Mat4::rotation_y`],
@@ -148,8 +183,15 @@ pub trait Degrees: Copy {
     note = "a number has no unit: write `Angle::from_degrees(30)` (integer or fractional degrees) or `Angle::from_radians(0.5)`"
 )]
 pub trait ToAngle: Copy {
-    /// The angle, rounded to the nearest 1/65536 turn.
+    /// The angle, rounded to the nearest 1/65536 turn (embedded-graphics' `Angle` of NaN or
+    /// infinite radians as 0: [converting floats](crate#converting-floats)).
     fn to_angle(self) -> Angle;
+
+    /// The angle, or `None` for embedded-graphics' `Angle` of NaN or infinite radians. The
+    /// default is `Some(self.to_angle())`.
+    fn try_to_angle(self) -> Option<Angle> {
+        Some(self.to_angle())
+    }
 }
 
 impl ToAngle for Angle {
@@ -162,6 +204,10 @@ impl ToAngle for Angle {
 impl ToAngle for embedded_graphics::geometry::Angle {
     fn to_angle(self) -> Angle {
         Angle::from_radians(self.to_radians())
+    }
+
+    fn try_to_angle(self) -> Option<Angle> {
+        Angle::try_from_radians(self.to_radians())
     }
 }
 
@@ -193,11 +239,19 @@ impl Degrees for f64 {
     fn to_angle(self) -> Angle {
         float_turns(self / 360.0)
     }
+
+    fn try_to_angle(self) -> Option<Angle> {
+        self.is_finite().then(|| self.to_angle())
+    }
 }
 
 impl Degrees for f32 {
     fn to_angle(self) -> Angle {
         f64::from(self).to_angle()
+    }
+
+    fn try_to_angle(self) -> Option<Angle> {
+        f64::from(self).try_to_angle()
     }
 }
 
@@ -295,7 +349,8 @@ impl Angle {
     /// The angle of `degrees`: an integer (`Angle::from_degrees(90)`, exact arithmetic),
     /// fractional degrees as a float (`Angle::from_degrees(22.5)`) or a [`Scalar`]; rounded to
     /// the nearest 1/65536 turn and wrapped around the circle. Floats that are not finite give
-    /// `Angle::ZERO`; `f64` degrees keep their precision to about ±10¹¹ degrees.
+    /// `Angle::ZERO` ([`try_from_degrees`](Self::try_from_degrees) gives `None`:
+    /// [converting floats](crate#converting-floats)); `f64` degrees keep their precision to about ±10¹¹ degrees.
     ///
     /// ```
     /// use embedded_raster::three_d::{Angle, Scalar};
@@ -310,9 +365,37 @@ impl Angle {
     }
 
     /// The angle of `radians` (`f32` or `f64`), rounded to the nearest 1/65536 turn; not finite
-    /// gives `Angle::ZERO`.
+    /// gives `Angle::ZERO` ([`try_from_radians`](Self::try_from_radians) gives `None`:
+    /// [converting floats](crate#converting-floats)).
     pub fn from_radians(radians: impl Into<f64>) -> Angle {
         float_turns(radians.into() / core::f64::consts::TAU)
+    }
+
+    /// The angle of `radians`, or `None` if it is NaN or infinite.
+    ///
+    /// ```
+    /// use embedded_raster::three_d::Angle;
+    ///
+    /// assert_eq!(Angle::try_from_radians(core::f64::consts::PI), Some(Angle::HALF));
+    /// assert_eq!(Angle::try_from_radians(f32::NAN), None);
+    /// assert_eq!(Angle::from_radians(f32::NAN), Angle::ZERO);
+    /// ```
+    pub fn try_from_radians(radians: impl Into<f64>) -> Option<Angle> {
+        let radians = radians.into();
+        radians.is_finite().then(|| Angle::from_radians(radians))
+    }
+
+    /// The angle of `degrees`, or `None` for a float that is NaN or infinite (integers and
+    /// [`Scalar`]s always have one).
+    ///
+    /// ```
+    /// use embedded_raster::three_d::Angle;
+    ///
+    /// assert_eq!(Angle::try_from_degrees(90.0), Some(Angle::from_degrees(90)));
+    /// assert_eq!(Angle::try_from_degrees(f64::INFINITY), None);
+    /// ```
+    pub fn try_from_degrees(degrees: impl Degrees) -> Option<Angle> {
+        degrees.try_to_angle()
     }
 
     /// This angle in degrees, in `[0, 360)`.
@@ -809,6 +892,100 @@ impl Mul<Vec4> for Mat4 {
 mod tests {
     extern crate std;
     use super::*;
+
+    /// The checked conversions: `None` for NaN, infinities and (for scalars) values beyond the
+    /// range after rounding; otherwise the saturating conversion's value.
+    #[test]
+    fn checked_conversions() {
+        let max = f64::from(i32::MAX) / 65536.0;
+        let min = f64::from(i32::MIN) / 65536.0;
+        for v in [
+            f64::NAN,
+            -f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            32768.0,
+            max + 1.0 / 131_072.0, // a tie above the largest: rounds (to even) to 2¹⁵
+            min - 1.0,
+            -1e300,
+            f64::from(f32::MAX),
+        ] {
+            assert_eq!(v.try_to_scalar(), None, "{v}");
+            assert_eq!((v as f32).try_to_scalar(), None, "{v} as f32");
+        }
+        assert_eq!(f64::NAN.to_scalar(), Scalar::ZERO);
+        assert_eq!(f64::INFINITY.to_scalar(), Scalar::MAX);
+        assert_eq!(f64::NEG_INFINITY.to_scalar(), Scalar::MIN);
+        for (v, bits) in [
+            (0.0, 0),
+            (-0.0, 0),
+            (0.5, 32768),
+            (-2.25, -(2 * 65536 + 16384)),
+            (max, i32::MAX),
+            (min, i32::MIN),
+            (1.0 / 131_072.0, 0), // a tie: to even
+        ] {
+            assert_eq!(v.try_to_scalar().map(Scalar::to_bits), Some(bits), "{v}");
+            assert_eq!(v.try_to_scalar(), Some(v.to_scalar()), "{v}");
+        }
+        let mut next = crate::random(5);
+        for _ in 0..10_000 {
+            let v = ((next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * 32767.0;
+            assert_eq!(v.try_to_scalar(), Some(v.to_scalar()), "{v}");
+            let f = v as f32;
+            assert_eq!(f.try_to_scalar(), Some(f.to_scalar()), "{f}");
+        }
+        // Integers: exact in range, `None` beyond.
+        assert_eq!(32767i32.try_to_scalar(), Some(Scalar::from_num(32767)));
+        assert_eq!((-32768i32).try_to_scalar(), Some(Scalar::MIN));
+        assert_eq!(32768i32.try_to_scalar(), None);
+        assert_eq!((-32769i32).try_to_scalar(), None);
+        assert_eq!(32768u32.try_to_scalar(), None);
+        assert_eq!(u16::MAX.try_to_scalar(), None);
+        assert_eq!(i16::MIN.try_to_scalar(), Some(Scalar::MIN));
+        assert_eq!(255u8.try_to_scalar(), Some(Scalar::from_num(255)));
+        assert_eq!(Scalar::MAX.try_to_scalar(), Some(Scalar::MAX));
+
+        // Angles: `None` only for floats that are not finite.
+        for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(Angle::try_from_degrees(v), None, "{v}");
+            assert_eq!(Angle::try_from_degrees(v as f32), None, "{v}");
+            assert_eq!(Angle::try_from_radians(v), None, "{v}");
+            assert_eq!(Angle::try_from_radians(v as f32), None, "{v}");
+            assert_eq!(Angle::from_degrees(v), Angle::ZERO);
+            assert_eq!(Angle::from_radians(v), Angle::ZERO);
+            let eg = embedded_graphics::geometry::Angle::from_radians(v as f32);
+            assert_eq!(eg.try_to_angle(), None, "{v}");
+            assert_eq!(eg.to_angle(), Angle::ZERO);
+        }
+        for v in [0.0, 90.0, -270.0, 22.5, 1e9, -1e12, f64::MAX] {
+            assert_eq!(
+                Angle::try_from_degrees(v),
+                Some(Angle::from_degrees(v)),
+                "{v}"
+            );
+            assert_eq!(
+                Angle::try_from_radians(v),
+                Some(Angle::from_radians(v)),
+                "{v}"
+            );
+            if (v as f32).is_finite() {
+                let eg = embedded_graphics::geometry::Angle::from_radians(v as f32);
+                assert_eq!(eg.try_to_angle(), Some(eg.to_angle()), "{v}");
+            }
+        }
+        assert_eq!(Angle::try_from_degrees(-270.0), Some(Angle::QUARTER));
+        assert_eq!(
+            Angle::try_from_degrees(i32::MIN),
+            Some(Angle::from_degrees(i32::MIN))
+        );
+        let degrees = Scalar::from_num(120);
+        assert_eq!(
+            Angle::try_from_degrees(degrees),
+            Some(Angle::from_degrees(120))
+        );
+        assert_eq!(Angle::HALF.try_to_angle(), Some(Angle::HALF));
+    }
 
     #[test]
     fn sine_and_cosine_within_one_lsb() {

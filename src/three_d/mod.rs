@@ -63,7 +63,7 @@
 //! let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 16)?;
 //! // Pixels twice as tall as wide, as the characters below are: an aspect of 32 / (2 · 16).
 //! let (eye, looked_at) = (Vec3::new(0.0, 1.5, 4.5), Vec3::new(0.0, -0.1, 0.0));
-//! let camera = Mat4::perspective(Angle::from_degrees(40), 1, 0.5, 20)
+//! let camera = Mat4::perspective(Angle::from_degrees(40), 1, 0.5, 20).unwrap()
 //!     * Mat4::look_at(eye, looked_at, Vec3::new(0, 1, 0)).unwrap();
 //! let viewport = Rectangle::new(Point::zero(), Size::new(32, 16));
 //! let pipeline = Pipeline::new(model, camera, viewport, Light::new(Vec3::new(-1, 1, 1), 0.2));

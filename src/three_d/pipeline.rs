@@ -57,7 +57,7 @@
 //!     Scalar::from_num(4) / 3,
 //!     Scalar::from_num(0.5),
 //!     Scalar::from_num(20),
-//! );
+//! ).unwrap();
 //! let view = Mat4::translation(Vec3::from_bits(0, 0, -3 << 16));
 //! let viewport = Rectangle::new(Point::zero(), Size::new(64, 48));
 //! let light = Light::new(Vec3::new(0, 0, 1), 0.2);
@@ -138,7 +138,7 @@ pub fn signed_area2(v: [(Coord, Coord); 3]) -> i128 {
 ///
 /// let (mut pixels, mut depth) = ([Rgb888::BLACK; 64 * 64], [0u16; 64 * 64]);
 /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 64).unwrap();
-/// let camera = Mat4::perspective(Angle::from_degrees(45), 1, 0.5, 20)
+/// let camera = Mat4::perspective(Angle::from_degrees(45), 1, 0.5, 20).unwrap()
 ///     * Mat4::orbit(Vec3::ZERO, 4, Angle::from_degrees(20), Angle::from_degrees(35.5));
 /// let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
 /// let mut pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
@@ -296,7 +296,7 @@ impl Pipeline {
     /// use embedded_raster::three_d::{Angle, Light, Mat4, Pipeline, Vec3};
     ///
     /// let view = Mat4::look_at(Vec3::new(3, 0, 0), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20) * view;
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20).unwrap() * view;
     /// # let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
     /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
     /// assert_eq!(pipeline.view_direction(), Vec3::new(1, 0, 0)); // towards the eye on +x
@@ -421,7 +421,7 @@ impl Pipeline {
     ///
     /// let (mut px, mut z) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
     /// let mut target = DepthTarget::new(&mut px, &mut z, 64, 64).unwrap();
-    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 10)
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 10).unwrap()
     ///     * Mat4::look_at(Vec3::new(0, 0, 3), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
     /// let viewport = Rectangle::new(Point::zero(), Size::new(64, 64));
     /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());

@@ -109,7 +109,7 @@ pub enum Shading {
 /// static NORMALS: [Vec3; 3] = [Vec3::from_bits(0, 0, 65536); 3];
 /// let triangle = Mesh::new(&VERTICES, &NORMALS, &[[0, 1, 2]]);
 ///
-/// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20)
+/// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20).unwrap()
 ///     * Mat4::translation(Vec3::new(0, 0, -3));
 /// let viewport = Rectangle::new(Point::zero(), Size::new(16, 16));
 /// let light = Light::new(Vec3::new(1, 0, 0), 0.25);

@@ -111,7 +111,7 @@ impl View {
     ) -> View {
         let aspect = f64::from(viewport.size.width) / f64::from(viewport.size.height);
         let (n, f) = (fl(fx(near)), fl(fx(far)));
-        let projection = Mat4::perspective(fov, fx(aspect), fx(near), fx(far));
+        let projection = Mat4::perspective(fov, fx(aspect), fx(near), fx(far)).unwrap();
         let model = Mat4::translation(Vec3::new(fx(position[0]), fx(position[1]), fx(position[2])))
             * Mat4::rotation_y(yaw)
             * Mat4::rotation_x(pitch);
