@@ -113,6 +113,14 @@
 //! [`Mat4::perspective`] takes its aspect and planes through the checked form, so a NaN there
 //! is `None`, not a projection of nothing.
 //!
+//! On the host (feature `std`): `three_d::meshes::scalar` and `vec3`, and so
+//! `MeshData::from_f64` and the mesh generators, convert as `to_scalar` does (NaN as 0,
+//! infinities and values beyond ±32768 saturate); `three_d::obj::parse` rejects a number that is
+//! NaN or infinite (`nan`, `inf` in the file) with an error naming its line, and saturates
+//! finite positions beyond the range. The conversions back to floats (`Vec3::to_f32`,
+//! `to_f64`, `Angle::to_degrees_f32`, the `fixed` crate's `to_num`) are exact or rounded and
+//! never give NaN or an infinity.
+//!
 //! ```
 //! use embedded_raster::{Angle, Coord, Scalar, ToCoord, ToScalar};
 //!

@@ -81,13 +81,24 @@ mod host {
         pub uvs: Vec<TexCoord>,
     }
 
-    /// The nearest `I16F16` to `v` (saturating).
+    /// The nearest `I16F16` to `v` (saturating; NaN as 0, as
+    /// [`ToScalar::to_scalar`](crate::three_d::ToScalar::to_scalar) does:
+    /// [converting floats](crate#converting-floats)).
+    ///
+    /// ```
+    /// use embedded_raster::three_d::{meshes::scalar, Scalar};
+    ///
+    /// assert_eq!(scalar(0.5), Scalar::from_num(0.5));
+    /// assert_eq!(scalar(f64::NAN), Scalar::ZERO);
+    /// assert_eq!(scalar(f64::INFINITY), Scalar::MAX);
+    /// assert_eq!(scalar(-1e9), Scalar::MIN);
+    /// ```
     pub fn scalar(v: f64) -> Scalar {
         let raw = (v * 65536.0).round();
         Scalar::from_bits(raw.clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as i32)
     }
 
-    /// The nearest fixed-point vector.
+    /// The nearest fixed-point vector (as [`scalar`]: NaN as 0, saturating).
     pub fn vec3(v: [f64; 3]) -> Vec3 {
         Vec3::new(scalar(v[0]), scalar(v[1]), scalar(v[2]))
     }
