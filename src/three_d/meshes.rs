@@ -39,8 +39,8 @@ mod host {
     ///
     /// # Examples
     ///
-    /// Generated ([`icosphere`], [`torus`], [`torus_knot`]), read from OBJ text
-    /// ([`obj::parse`](crate::three_d::obj::parse)) or written field by field; drawn through
+    /// Generated ([`icosphere`], [`torus`], [`torus_knot`]), read from OBJ text (the `obj`
+    /// module's `parse`) or written field by field; drawn through
     /// [`as_mesh`](Self::as_mesh), or turned into `static` arrays for firmware:
     ///
     /// ```
