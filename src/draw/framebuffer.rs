@@ -119,7 +119,7 @@ impl core::error::Error for FramebufferError {}
 
 /// The number of pixels of a `width × height` frame: an error if a side does not fit an `i32`
 /// position or the product a `usize`.
-pub(crate) fn frame_len(width: u32, height: u32) -> Result<usize, FramebufferError> {
+fn frame_len(width: u32, height: u32) -> Result<usize, FramebufferError> {
     let too_large = FramebufferError::TooLarge { width, height };
     if width > i32::MAX as u32 || height > i32::MAX as u32 {
         return Err(too_large);

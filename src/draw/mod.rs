@@ -13,7 +13,6 @@ mod png_file;
 mod textured;
 mod triangle;
 
-pub(crate) use framebuffer::frame_len;
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{fill_row, FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;

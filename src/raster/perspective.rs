@@ -266,12 +266,27 @@ pub(crate) const NO_LIMIT: i32 = 128 - 768;
 /// further off than those of chunks of 16).
 #[inline(always)]
 pub(crate) fn chunk_shift(room: i32, q: u32, dq: u32, left: u32, offset: u32) -> u32 {
+    chunk_shift_from(room, q, dq, left, offset, |q_min| {
+        ((room + 3 * log16_down(q_min)) >> 5).clamp(0, CHUNK_SHIFT as i32) as u32
+    })
+}
+
+/// The chunk's length's bits as [`chunk_shift`] bounds them, with `bits` giving the longest the
+/// light's chords allow from the chunk's `q_min` (asked only for a room below [`NO_LIMIT`]).
+#[inline(always)]
+fn chunk_shift_from(
+    room: i32,
+    q: u32,
+    dq: u32,
+    left: u32,
+    offset: u32,
+    bits: impl FnOnce(u32) -> u32,
+) -> u32 {
     let aligned = aligned_shift(offset);
     if room >= NO_LIMIT {
         return aligned;
     }
-    let q_min = chunk_q_min(q, dq, left);
-    (((room + 3 * log16_down(q_min)) >> 5).clamp(0, CHUNK_SHIFT as i32) as u32).min(aligned)
+    bits(chunk_q_min(q, dq, left)).min(aligned)
 }
 
 /// The bits of the largest power of two dividing `offset`, at most [`CHUNK_SHIFT`] (all of
@@ -345,17 +360,10 @@ pub(crate) fn chunk_shift_by(
     left: u32,
     offset: u32,
 ) -> u32 {
-    let aligned = aligned_shift(offset);
-    if room >= NO_LIMIT {
-        return aligned;
-    }
-    let q_min = chunk_q_min(q, dq, left);
     // The thresholds increase: the count of those reached is the longest length's bits.
-    let reached = thresholds
-        .iter()
-        .map(|&t| u32::from(q_min >= t))
-        .sum::<u32>();
-    reached.min(aligned)
+    chunk_shift_from(room, q, dq, left, offset, |q_min| {
+        thresholds.iter().map(|&t| u32::from(q_min >= t)).sum()
+    })
 }
 
 /// `⌈2¹⁶ / n⌉` for the short last chunk of a span (`n` pixels between its computed ends).

@@ -7,7 +7,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::draw::{draw_rows, fill_row, frame_len, FramebufferError, SliceFramebuffer};
+use crate::draw::{draw_rows, fill_row, FramebufferError, SliceFramebuffer};
 use crate::fixed_point::{Coord, ToCoord};
 use crate::raster::Span;
 
@@ -94,7 +94,8 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
         height: u32,
     ) -> Result<Self, FramebufferError> {
         let color = SliceFramebuffer::new(color, width, height)?;
-        let len = frame_len(width, height)?;
+        // The frame's pixels, which the colour buffer was cut to.
+        let len = color.pixels().len();
         let given = depth.len();
         let depth = depth
             .get_mut(..len)
