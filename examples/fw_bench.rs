@@ -175,16 +175,26 @@ enum Renderer {
     SolidDrawInto,
     GouraudDraw,
     GouraudDrawInto,
+    /// `SolidTriangle::with_opacity(OPACITY).draw_into`: a constant colour blended.
+    OpacityDrawInto,
+    /// `GouraudTriangle::with_alpha(ALPHAS).draw_into`: an alpha per vertex.
+    AlphaDrawInto,
     EgTriangle,
 }
 
-const RENDERERS: [Renderer; 5] = [
+const RENDERERS: [Renderer; 7] = [
     Renderer::SolidDraw,
     Renderer::SolidDrawInto,
     Renderer::GouraudDraw,
     Renderer::GouraudDrawInto,
+    Renderer::OpacityDrawInto,
+    Renderer::AlphaDrawInto,
     Renderer::EgTriangle,
 ];
+
+/// The translucent renderers' opacity and alphas per vertex.
+const OPACITY: u8 = 160;
+const ALPHAS: [u8; 3] = [255, 96, 160];
 
 impl Renderer {
     fn name(self) -> &'static str {
@@ -193,6 +203,8 @@ impl Renderer {
             Renderer::SolidDrawInto => "SolidTriangle::draw_into",
             Renderer::GouraudDraw => "GouraudTriangle::draw",
             Renderer::GouraudDrawInto => "GouraudTriangle::draw_into",
+            Renderer::OpacityDrawInto => "SolidTriangle::with_opacity draw_into",
+            Renderer::AlphaDrawInto => "GouraudTriangle::with_alpha draw_into",
             Renderer::EgTriangle => "e-g Triangle (fill)",
         }
     }
@@ -203,6 +215,16 @@ impl Renderer {
         let _ = match self {
             Renderer::SolidDraw | Renderer::SolidDrawInto => t.solid().draw(target),
             Renderer::GouraudDraw | Renderer::GouraudDrawInto => t.gouraud().draw(target),
+            Renderer::OpacityDrawInto => t
+                .solid()
+                .with_opacity(OPACITY)
+                .over(Rgb565::BLACK)
+                .draw(target),
+            Renderer::AlphaDrawInto => t
+                .gouraud()
+                .with_alpha(ALPHAS)
+                .over(Rgb565::BLACK)
+                .draw(target),
             Renderer::EgTriangle => t
                 .eg()
                 .into_styled(PrimitiveStyle::with_fill(t.colors[0]))
@@ -289,6 +311,16 @@ mod firmware {
             Renderer::GouraudDrawInto => {
                 for t in set.triangles() {
                     t.gouraud().draw_into(fb);
+                }
+            }
+            Renderer::OpacityDrawInto => {
+                for t in set.triangles() {
+                    t.solid().with_opacity(OPACITY).draw_into(fb);
+                }
+            }
+            Renderer::AlphaDrawInto => {
+                for t in set.triangles() {
+                    t.gouraud().with_alpha(ALPHAS).draw_into(fb);
                 }
             }
             Renderer::EgTriangle => {

@@ -8,7 +8,7 @@ use embedded_graphics::Pixel;
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
-    skip_colors, GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle,
+    skip_colors, GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle, Translucent,
 };
 use crate::raster::band::Band;
 use crate::rect;
@@ -115,6 +115,28 @@ where
 
     fn rows(&self) -> Option<(i32, i32)> {
         rows_of(self.vertices.map(|v| v.y))
+    }
+}
+
+impl<C: GouraudColor> BandDrawable<C> for Translucent<SolidTriangle<C>> {
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let clip = band.frame();
+        self.draw_rows(&mut band.pixels, &clip, &band.placement.rows);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        rows_of(self.shape().points.map(|p| p.1))
+    }
+}
+
+impl<C: GouraudColor> BandDrawable<C> for Translucent<GouraudTriangle<C>> {
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let clip = band.frame();
+        self.draw_rows(&mut band.pixels, &clip, &band.placement.rows);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        rows_of(self.shape().vertices.map(|v| v.y))
     }
 }
 

@@ -18,6 +18,7 @@
 
 use core::convert::Infallible;
 
+use embedded_graphics::image::GetPixel;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
@@ -328,6 +329,16 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
             return None;
         }
         self.pixels.get_mut(start..start + len as usize)
+    }
+}
+
+/// Reads a pixel (`None` outside): what [`Translucent::draw_reading`](crate::Translucent) and
+/// other readers of a display need.
+impl<C: PixelColor> GetPixel for SliceFramebuffer<'_, C> {
+    type Color = C;
+
+    fn pixel(&self, p: Point) -> Option<C> {
+        self.get(p.x, p.y)
     }
 }
 

@@ -11,6 +11,7 @@ mod image;
 #[cfg(feature = "png")]
 mod png_file;
 mod textured;
+mod translucent;
 mod triangle;
 
 pub(crate) use framebuffer::skip_colors;
@@ -19,4 +20,5 @@ pub(crate) use image::draw_rows;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
 pub use textured::{TexturedTriangle, TexturedVertex};
+pub use translucent::{OnBackground, Translucent};
 pub use triangle::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};

@@ -1,0 +1,269 @@
+//! Source-over blending in a colour format's own channel depth.
+//!
+//! An opacity is an 8-bit alpha `a` (0 transparent, 255 opaque), used as the weight
+//! `w = a + (a >> 7)` of 256ths ([`weight`]); a channel `s` over a channel `d` is
+//!
+//! ```text
+//! ⌊(s·w + d·(256 − w) + 128) / 256⌋
+//! ```
+//!
+//! in the channel's own depth (5 and 6 bits for Rgb565, 8 for Rgb888 and Gray8, …). The weight
+//! is within 127/65280 < 1/514 of `a/255`, so a blended channel is within ½ + MAX/514 < 1 LSB of
+//! the exact `s·a/255 + d·(1 − a/255)` for channels of up to 8 bits (`MAX ≤ 255`): opacity 255
+//! leaves the source, 0 the destination.
+//!
+//! One channel is one multiply: with `s` and `d` in the high and low halves of a word and
+//! `256 − w` and `w` in those of another, the middle 16 bits of their 32-bit product are
+//! `s·w + d·(256 − w)` (`d·w < 2¹⁶` never carries into them; `s·(256 − w)` falls beyond bit 31).
+//! A constant colour at a constant opacity ([`BlendSource`]) needs one multiply a channel of the
+//! destination only; the 5-6-5 formats blend two pixels' channels in one word.
+
+use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
+
+use super::GouraudColor;
+
+/// The weight of an 8-bit alpha in 256ths: `a + (a >> 7)`, 0 for 0 and 256 for 255.
+#[inline(always)]
+pub(crate) const fn weight(alpha: u8) -> u32 {
+    let a = alpha as u32;
+    a + (a >> 7)
+}
+
+/// The weights `256 − w` (high half) and `w` (low half) of one blend, for [`blend_channel`].
+#[inline(always)]
+pub(crate) const fn weights(w: u32) -> u32 {
+    ((256 - w) << 16) | w
+}
+
+/// Channel `s` over channel `d` (each below 256) with [`weights`] `ww`:
+/// `⌊(s·w + d·(256 − w) + 128) / 256⌋` in one multiply.
+#[inline(always)]
+pub(crate) const fn blend_channel(s: u32, d: u32, ww: u32) -> u32 {
+    (((s << 16) | d).wrapping_mul(ww).wrapping_add(128 << 16) >> 24) & 0xFF
+}
+
+/// The channels of `src` over those of `dst` at weight `w` ([`weight`]), the definition every
+/// blend of a format gives ([`GouraudColor::blend`]).
+#[inline(always)]
+pub(crate) fn blend_channels(src: [u8; 3], dst: [u8; 3], w: u32) -> [u8; 3] {
+    let ww = weights(w);
+    core::array::from_fn(|k| blend_channel(u32::from(src[k]), u32::from(dst[k]), ww) as u8)
+}
+
+/// A colour at an opacity, prepared once for blending over many pixels
+/// ([`GouraudColor::blend_solid`]): `s·w + 128` of each channel and the destination's weight
+/// `256 − w`.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use embedded_raster::color::BlendSource;
+/// use embedded_raster::GouraudColor;
+///
+/// let mut row = [Rgb565::BLUE; 4];
+/// Rgb565::blend_solid(&mut row, &BlendSource::new(Rgb565::RED, 128));
+/// assert_eq!(row[0], Rgb565::new(16, 0, 15)); // half red over blue, per channel
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BlendSource {
+    /// `s·w + 128` of each channel, in channel order.
+    pre: [u32; 3],
+    /// `256 − w`.
+    keep: u32,
+}
+
+impl BlendSource {
+    /// `color` at opacity `alpha` (0 transparent, 255 opaque).
+    #[inline]
+    pub fn new<C: GouraudColor>(color: C, alpha: u8) -> Self {
+        let w = weight(alpha);
+        BlendSource {
+            pre: color.channels().map(|s| u32::from(s) * w + 128),
+            keep: 256 - w,
+        }
+    }
+
+    /// The blended channels over the destination channels `d`.
+    #[inline(always)]
+    fn over(&self, d: [u8; 3]) -> [u8; 3] {
+        core::array::from_fn(|k| ((self.pre[k] + u32::from(d[k]) * self.keep) >> 8) as u8)
+    }
+
+    /// Whether the source leaves every pixel as it is (opacity 0).
+    #[inline(always)]
+    pub fn is_transparent(&self) -> bool {
+        self.keep == 256
+    }
+}
+
+/// Rounding offset of the transparency plane of per-vertex alpha ([`premultiplied_attributes`]):
+/// 2⁻⁸ of a unit keeps its stepped value above zero (its error is below 2⁻⁹) without carrying.
+pub(crate) const TRANSPARENCY_HALF: u32 = 1 << 16;
+
+/// Planes of a triangle with an alpha per vertex: each colour channel premultiplied by its
+/// vertex's alpha (`s·a/255`, 8.8 fixed point rounded) and the transparency `255 − a`, which
+/// [`blend_premultiplied`] blends with.
+#[inline(always)]
+pub(crate) fn premultiplied_values(channels: [u8; 3], alpha: u8) -> [u16; 4] {
+    let a = u32::from(alpha);
+    let p = channels.map(|s| ((u32::from(s) * a * 256 + 127) / 255) as u16);
+    [p[0], p[1], p[2], ((255 - a) << 8) as u16]
+}
+
+/// A pixel of per-vertex alpha over `d`: `p` the premultiplied channel planes' values there
+/// ([`STEP_BITS`] fractional bits, +½ included), `t` the transparency plane's
+/// ([`TRANSPARENCY_HALF`] included). Each channel is `⌊p + d·t/255⌋` (the +½ in `p` rounds),
+/// `t/255` to 16 fractional bits: within ½ LSB + 2⁻⁷ of the exact blend of the interpolated
+/// premultiplied colour.
+///
+/// [`STEP_BITS`]: super::STEP_BITS
+#[inline(always)]
+pub(crate) fn blend_premultiplied<C: GouraudColor>(p: [u32; 3], t: u32, d: C) -> C {
+    // t < 255·2²⁴ + 2¹⁷: (t >> 9)·257 < 2³¹; the factor is t/255 in 0.16, at most 2¹⁶ + 1.
+    let factor = ((t >> 9) * 257) >> 15;
+    let d = d.channels();
+    // The sum is the blended channel (at most 255.5) in 8.24; its terms wrap back into it.
+    C::from_channels(core::array::from_fn(|k| {
+        (p[k].wrapping_add((u32::from(d[k]) * factor) << 8) >> 24) as u8
+    }))
+}
+
+/// [`GouraudColor::blend_solid`] by channels: the definition, for every format.
+#[inline(always)]
+pub(crate) fn blend_solid_by_channels<C: GouraudColor>(dst: &mut [C], source: &BlendSource) {
+    for px in dst {
+        *px = C::from_channels(source.over(px.channels()));
+    }
+}
+
+/// Two 5-6-5 pixels (the right one in the high half of `d`) under the channels' `pre` values of
+/// [`BlendSource`] in raw order (top, middle, bottom field), each in both halves of its word.
+/// Every lane of a product stays below 2¹⁶ (`63·256 + 128`), so the halves never carry into
+/// each other and each is [`BlendSource::over`]'s integer.
+#[inline(always)]
+fn blend_pair_565(d: u32, pre: [u32; 3], keep: u32) -> u32 {
+    let top = ((d >> 11) & 0x001F_001F) * keep + pre[0];
+    let middle = ((d >> 5) & 0x003F_003F) * keep + pre[1];
+    let bottom = (d & 0x001F_001F) * keep + pre[2];
+    (((top >> 8) & 0x001F_001F) << 11)
+        | (((middle >> 8) & 0x003F_003F) << 5)
+        | ((bottom >> 8) & 0x001F_001F)
+}
+
+/// [`GouraudColor::blend_solid`] for the 5-6-5 formats whose raw value holds channels `order`
+/// (top, middle, bottom field): two pixels a word ([`blend_pair_565`]), the same integers as
+/// [`blend_solid_by_channels`].
+#[inline(always)]
+pub(crate) fn blend_solid_565<C: Copy + From<RawU16> + Into<RawU16>>(
+    dst: &mut [C],
+    source: &BlendSource,
+    order: [usize; 3],
+) {
+    let pre = order.map(|k| {
+        source
+            .pre
+            .get(k)
+            .copied()
+            .unwrap_or(0)
+            .wrapping_mul(0x1_0001)
+    });
+    let keep = source.keep;
+    let raw_of = |c: C| u32::from(c.into().into_inner());
+    let mut rest = dst;
+    while let [a, b, tail @ ..] = rest {
+        let blended = blend_pair_565(raw_of(*a) | (raw_of(*b) << 16), pre, keep);
+        *a = C::from(RawU16::new(blended as u16));
+        *b = C::from(RawU16::new((blended >> 16) as u16));
+        rest = tail;
+    }
+    if let [last] = rest {
+        *last = C::from(RawU16::new(blend_pair_565(raw_of(*last), pre, keep) as u16));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::pixelcolor::{Bgr565, Gray8, Rgb565, Rgb888};
+
+    use super::*;
+
+    /// Every channel value, destination and alpha against the exact blend, and the one-multiply
+    /// form against the plain one.
+    #[test]
+    fn channel_blend_is_within_one_lsb_of_the_exact_blend() {
+        for max in [1u32, 3, 15, 31, 63, 255] {
+            let mut worst = 0.0f64;
+            for a in 0..=255u8 {
+                let (w, alpha) = (weight(a), f64::from(a) / 255.0);
+                for s in 0..=max {
+                    for d in 0..=max {
+                        let got = blend_channel(s, d, weights(w));
+                        assert_eq!(got, (s * w + d * (256 - w) + 128) >> 8);
+                        let exact = f64::from(s) * alpha + f64::from(d) * (1.0 - alpha);
+                        worst = worst.max((f64::from(got) - exact).abs());
+                    }
+                }
+                assert_eq!(blend_channel(max, 0, weights(weight(255))), max);
+                assert_eq!(blend_channel(max, 0, weights(weight(0))), 0);
+            }
+            assert!(worst < 1.0, "{max}: {worst}");
+        }
+    }
+
+    #[test]
+    fn source_over_is_the_channel_blend() {
+        for a in [0u8, 1, 77, 127, 128, 200, 254, 255] {
+            for (s, d) in [(0u8, 255u8), (255, 0), (17, 240), (128, 128)] {
+                let source = BlendSource::new(Rgb888::new(s, d, s / 2), a);
+                let mut px = [Rgb888::new(d, s, d / 3)];
+                blend_solid_by_channels(&mut px, &source);
+                let want = blend_channels([s, d, s / 2], [d, s, d / 3], weight(a));
+                assert_eq!(px[0].channels(), want);
+            }
+            let mut gray = [Gray8::new(10)];
+            blend_solid_by_channels(&mut gray, &BlendSource::new(Gray8::new(250), a));
+            assert_eq!(
+                gray[0].channels(),
+                blend_channels([250, 0, 0], [10, 0, 0], weight(a))
+            );
+        }
+    }
+
+    /// The packed loop against the per-channel definition for every alpha, many colours and
+    /// every destination pair position (odd and even lengths).
+    #[test]
+    fn packed_565_blend_is_the_channel_blend() {
+        fn check<C: GouraudColor + Copy + From<RawU16> + Into<RawU16> + core::fmt::Debug>(
+            order: [usize; 3],
+        ) {
+            let mut seed = 0x1234_5678u32;
+            let mut next = || {
+                seed ^= seed << 13;
+                seed ^= seed >> 17;
+                seed ^= seed << 5;
+                seed
+            };
+            for a in 0..=255u8 {
+                let color = C::from(RawU16::new(next() as u16));
+                let mut packed: [C; 7] =
+                    core::array::from_fn(|_| C::from(RawU16::new(next() as u16)));
+                let mut plain = packed;
+                let source = BlendSource::new(color, a);
+                blend_solid_565(&mut packed, &source, order);
+                blend_solid_by_channels(&mut plain, &source);
+                assert_eq!(packed, plain, "alpha {a}");
+                let mut odd = [plain[0]; 1];
+                blend_solid_565(&mut odd, &source, order);
+                assert_eq!(
+                    odd[0],
+                    C::from_channels(blend_channels(
+                        color.channels(),
+                        plain[0].channels(),
+                        weight(a)
+                    ))
+                );
+            }
+        }
+        check::<Rgb565>([0, 1, 2]);
+        check::<Bgr565>([2, 1, 0]);
+    }
+}

@@ -1,0 +1,359 @@
+//! Translucent triangles against an f64 reference, and every way of drawing them alike.
+//!
+//! * An opacity: every covered pixel within 1 LSB of the exact `s·a/255 + d·(1 − a/255)`, every
+//!   other pixel untouched (coverage from the reference's exact rule).
+//! * An alpha per vertex: within 1 LSB of `P + d·(1 − α)` for the barycentric premultiplied
+//!   colour `P = Σ bₖ sₖ aₖ/255` and alpha `α = Σ bₖ aₖ/255` at the pixel centre.
+//! * `draw_into`, `draw_reading` (through `GetPixel`), `over` a background colour (into a
+//!   framebuffer and into a target with nothing but `draw_iter`) and bands of every height give
+//!   the same pixels.
+//!
+//! Triangles from sub-pixel to far beyond the target, over random backgrounds, in 5-6-5, 6-6-6,
+//! 8-8-8 and grey formats.
+
+use std::fmt::Debug;
+
+use embedded_graphics::image::GetPixel;
+use embedded_graphics::pixelcolor::{Bgr565, Gray4, Gray8, Rgb565, Rgb666, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::Pixel;
+use embedded_raster::band::{BandLayout, ColorBand};
+use embedded_raster::reference;
+use embedded_raster::{
+    Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
+};
+
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
+#[path = "support/raw_points.rs"]
+mod raw_points;
+use raw_points::{extreme, sliver, Screen, MAX, MIN};
+
+const W: u32 = 61;
+const H: u32 = 37;
+
+/// A random triangle for the target, raw sub-pixel coordinates.
+fn triangle(rng: &mut Rng) -> [(i32, i32); 3] {
+    let (wi, hi) = (i64::from(W), i64::from(H));
+    let screen = Screen::new(wi, hi);
+    let v: [(i64, i64); 3] = match rng.below(7) {
+        0 => screen.cluster(rng, 2, (1, 300)),
+        1 | 2 => screen.cluster(rng, 4, (128, 256 * 12)),
+        3 => [(); 3].map(|_| screen.point_xy(rng, (wi / 2 + 2, hi / 2 + 2))),
+        4 => [(); 3].map(|_| screen.point_xy(rng, (10 * wi, 10 * hi))),
+        5 => {
+            let a = screen.point(rng, 1);
+            [
+                a,
+                (extreme(rng), extreme(rng)),
+                (extreme(rng), extreme(rng)),
+            ]
+        }
+        _ => {
+            let a = screen.point(rng, 8);
+            sliver(rng, a, 28)
+        }
+    };
+    v.map(|(x, y)| (x.clamp(MIN, MAX) as i32, y.clamp(MIN, MAX) as i32))
+}
+
+fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
+    v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
+}
+
+fn color<C: GouraudColor>(rng: &mut Rng) -> C {
+    C::from_channels(core::array::from_fn(|k| match rng.below(5) {
+        0 => 0,
+        1 => C::MAX[k],
+        _ => rng.below(u64::from(C::MAX[k]) + 1) as u8,
+    }))
+}
+
+fn alpha(rng: &mut Rng) -> u8 {
+    match rng.below(6) {
+        0 => 0,
+        1 => 255,
+        _ => rng.below(256) as u8,
+    }
+}
+
+fn background<C: GouraudColor>(rng: &mut Rng) -> Vec<C> {
+    (0..W * H).map(|_| color(rng)).collect()
+}
+
+/// Checks every pixel of `after` (drawn over `before`): covered ones within 1 LSB of `exact`
+/// (channels in the format's units), the others unchanged. Returns the largest error.
+fn check<C: GouraudColor + Debug>(
+    v: [(i32, i32); 3],
+    before: &[C],
+    after: &[C],
+    exact: impl Fn(i32, i32, [u8; 3]) -> [f64; 3],
+    what: &str,
+) -> f64 {
+    let mut worst = 0.0f64;
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let i = (y as u32 * W + x as u32) as usize;
+            if !reference::covers(v, x, y) {
+                assert_eq!(
+                    after[i], before[i],
+                    "{what}: pixel ({x}, {y}) outside {v:?} drawn"
+                );
+                continue;
+            }
+            let want = exact(x, y, before[i].channels());
+            let got = after[i].channels();
+            for k in 0..C::CHANNELS {
+                let error = (f64::from(got[k]) - want[k]).abs();
+                worst = worst.max(error);
+                assert!(
+                    error < 1.0,
+                    "{what}: pixel ({x}, {y}) of {v:?}, channel {k}: {} against {}, under {:?}",
+                    got[k],
+                    want[k],
+                    before[i]
+                );
+            }
+        }
+    }
+    worst
+}
+
+fn opacity_against_f64<C: GouraudColor + Debug>(seed: u64, count: usize) -> f64 {
+    let mut rng = Rng(seed);
+    let mut worst = 0.0f64;
+    for _ in 0..count {
+        let v = triangle(&mut rng);
+        let (s, a) = (color::<C>(&mut rng), alpha(&mut rng));
+        let before = background::<C>(&mut rng);
+        let mut after = before.clone();
+        let mut fb = SliceFramebuffer::new(&mut after, W, H).unwrap();
+        SolidTriangle::new(coords(v), s)
+            .with_opacity(a)
+            .draw_into(&mut fb);
+        let alpha = f64::from(a) / 255.0;
+        let s = s.channels();
+        worst = worst.max(check(
+            v,
+            &before,
+            &after,
+            |_, _, d| {
+                core::array::from_fn(|k| f64::from(s[k]) * alpha + f64::from(d[k]) * (1.0 - alpha))
+            },
+            std::any::type_name::<C>(),
+        ));
+    }
+    worst
+}
+
+fn vertex_alpha_against_f64<C: GouraudColor + Debug>(seed: u64, count: usize) -> f64 {
+    let mut rng = Rng(seed);
+    let mut worst = 0.0f64;
+    for _ in 0..count {
+        let v = triangle(&mut rng);
+        let colors: [C; 3] = core::array::from_fn(|_| color(&mut rng));
+        let alphas: [u8; 3] = core::array::from_fn(|_| alpha(&mut rng));
+        let before = background::<C>(&mut rng);
+        let mut after = before.clone();
+        let mut fb = SliceFramebuffer::new(&mut after, W, H).unwrap();
+        let c = coords(v);
+        let vertices = core::array::from_fn(|k| Vertex::new(c[k].0, c[k].1, colors[k]));
+        GouraudTriangle::new(vertices)
+            .with_alpha(alphas)
+            .draw_into(&mut fb);
+        // Premultiplied channels, and the alpha, per vertex.
+        let premultiplied: [[f64; 3]; 3] = core::array::from_fn(|k| {
+            let a = f64::from(alphas[k]) / 255.0;
+            colors[k].channels().map(|s| f64::from(s) * a)
+        });
+        let a = alphas.map(|a| [f64::from(a) / 255.0; 3]);
+        worst = worst.max(check(
+            v,
+            &before,
+            &after,
+            |x, y, d| {
+                let p = reference::interpolate(v, premultiplied, x, y).unwrap();
+                let alpha = reference::interpolate(v, a, x, y).unwrap()[0];
+                core::array::from_fn(|k| p[k] + f64::from(d[k]) * (1.0 - alpha))
+            },
+            std::any::type_name::<C>(),
+        ));
+    }
+    worst
+}
+
+#[test]
+fn opacity_is_within_one_lsb_of_the_f64_blend() {
+    let worst = [
+        opacity_against_f64::<Rgb565>(1, 400),
+        opacity_against_f64::<Bgr565>(2, 200),
+        opacity_against_f64::<Rgb666>(3, 200),
+        opacity_against_f64::<Rgb888>(4, 400),
+        opacity_against_f64::<Gray8>(5, 200),
+        opacity_against_f64::<Gray4>(6, 200),
+    ];
+    println!("largest error (LSB): {worst:?}");
+}
+
+#[test]
+fn vertex_alpha_is_within_one_lsb_of_the_f64_blend() {
+    let worst = [
+        vertex_alpha_against_f64::<Rgb565>(11, 400),
+        vertex_alpha_against_f64::<Bgr565>(12, 200),
+        vertex_alpha_against_f64::<Rgb666>(13, 200),
+        vertex_alpha_against_f64::<Rgb888>(14, 400),
+        vertex_alpha_against_f64::<Gray8>(15, 200),
+        vertex_alpha_against_f64::<Gray4>(16, 200),
+    ];
+    println!("largest error (LSB): {worst:?}");
+}
+
+/// A target with nothing but `draw_iter`.
+struct PixelTarget<C>(Vec<C>);
+
+impl<C: PixelColor> OriginDimensions for PixelTarget<C> {
+    fn size(&self) -> Size {
+        Size::new(W, H)
+    }
+}
+
+impl<C: PixelColor> DrawTarget for PixelTarget<C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            if p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H {
+                self.0[(p.y as u32 * W + p.x as u32) as usize] = c;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<C: PixelColor> GetPixel for PixelTarget<C> {
+    type Color = C;
+
+    fn pixel(&self, p: Point) -> Option<C> {
+        let inside = p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H;
+        inside.then(|| self.0[(p.y as u32 * W + p.x as u32) as usize])
+    }
+}
+
+/// Draws `draw_into`'s pixels every other way and compares.
+fn same_pixels<C, T>(
+    triangle: &T,
+    under: &[C],
+    into: impl Fn(&T, &mut SliceFramebuffer<'_, C>),
+    reading: impl Fn(&T, &mut PixelTarget<C>),
+    over: impl Fn(&T, C, &mut PixelTarget<C>),
+    uniform: C,
+) where
+    C: GouraudColor + Debug,
+    T: embedded_raster::band::BandDrawable<C>,
+{
+    let mut want = under.to_vec();
+    into(
+        triangle,
+        &mut SliceFramebuffer::new(&mut want, W, H).unwrap(),
+    );
+
+    let mut target = PixelTarget(under.to_vec());
+    reading(triangle, &mut target);
+    assert_eq!(target.0, want, "draw_reading");
+
+    for rows in [1, 2, 3, 7, 16, H] {
+        let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
+        let mut buffer = vec![uniform; layout.buffer_len()];
+        for index in 0..layout.count() {
+            let start = (layout.band(index).unwrap().top_left.y as u32 * W) as usize;
+            let len = (layout.band(index).unwrap().size.height * W) as usize;
+            buffer[..len].copy_from_slice(&under[start..start + len]);
+            let mut band = ColorBand::new(&mut buffer, &layout, index).unwrap();
+            band.draw(triangle);
+            assert_eq!(
+                band.pixels(),
+                &want[start..start + len],
+                "band of {rows} rows, {index}"
+            );
+        }
+    }
+
+    // Over a uniform background: `over` into a framebuffer and a `draw_iter` target.
+    let plain = vec![uniform; (W * H) as usize];
+    let mut want = plain.clone();
+    into(
+        triangle,
+        &mut SliceFramebuffer::new(&mut want, W, H).unwrap(),
+    );
+    let mut target = PixelTarget(plain.clone());
+    over(triangle, uniform, &mut target);
+    assert_eq!(target.0, want, "over a background colour");
+}
+
+fn paths_agree<C: GouraudColor + Debug>(seed: u64, count: usize) {
+    let mut rng = Rng(seed);
+    for _ in 0..count {
+        let v = coords(triangle(&mut rng));
+        let under = background::<C>(&mut rng);
+        let uniform = color::<C>(&mut rng);
+        let solid = SolidTriangle::new(v, color::<C>(&mut rng)).with_opacity(alpha(&mut rng));
+        same_pixels(
+            &solid,
+            &under,
+            |t, fb| t.draw_into(fb),
+            |t, target| t.draw_reading(target).unwrap(),
+            |t, bg, target| t.over(bg).draw(target).unwrap(),
+            uniform,
+        );
+        let vertices = core::array::from_fn(|k| Vertex::new(v[k].0, v[k].1, color::<C>(&mut rng)));
+        let alphas = core::array::from_fn(|_| alpha(&mut rng));
+        let faded = GouraudTriangle::new(vertices).with_alpha(alphas);
+        same_pixels(
+            &faded,
+            &under,
+            |t, fb| t.draw_into(fb),
+            |t, target| t.draw_reading(target).unwrap(),
+            |t, bg, target| t.over(bg).draw(target).unwrap(),
+            uniform,
+        );
+    }
+}
+
+#[test]
+fn every_path_gives_the_same_pixels() {
+    paths_agree::<Rgb565>(21, 300);
+    paths_agree::<Rgb888>(22, 200);
+    paths_agree::<Gray8>(23, 100);
+}
+
+/// Opacity 255 is the opaque triangle, opacity 0 and alpha 0 everywhere draw nothing.
+#[test]
+fn opaque_and_transparent_ends() {
+    let mut rng = Rng(31);
+    for _ in 0..300 {
+        let v = coords(triangle(&mut rng));
+        let s: Rgb565 = color(&mut rng);
+        let under = background::<Rgb565>(&mut rng);
+        let (mut opaque, mut full) = (under.clone(), under.clone());
+        SolidTriangle::new(v, s).draw_into(&mut SliceFramebuffer::new(&mut opaque, W, H).unwrap());
+        let solid = SolidTriangle::new(v, s);
+        solid
+            .with_opacity(255)
+            .draw_into(&mut SliceFramebuffer::new(&mut full, W, H).unwrap());
+        assert_eq!(full, opaque);
+        let mut none = under.clone();
+        solid
+            .with_opacity(0)
+            .draw_into(&mut SliceFramebuffer::new(&mut none, W, H).unwrap());
+        let vertices = core::array::from_fn(|k| Vertex::new(v[k].0, v[k].1, s));
+        let faded = GouraudTriangle::new(vertices).with_alpha([0; 3]);
+        faded.draw_into(&mut SliceFramebuffer::new(&mut none, W, H).unwrap());
+        assert_eq!(none, under);
+    }
+}
