@@ -179,16 +179,19 @@ enum Renderer {
     OpacityDrawInto,
     /// `GouraudTriangle::with_alpha(ALPHAS).draw_into`: an alpha per vertex.
     AlphaDrawInto,
+    /// `SolidTriangle::anti_aliased().draw_into`: edges blended with their exact coverage.
+    AntiAliasedDrawInto,
     EgTriangle,
 }
 
-const RENDERERS: [Renderer; 7] = [
+const RENDERERS: [Renderer; 8] = [
     Renderer::SolidDraw,
     Renderer::SolidDrawInto,
     Renderer::GouraudDraw,
     Renderer::GouraudDrawInto,
     Renderer::OpacityDrawInto,
     Renderer::AlphaDrawInto,
+    Renderer::AntiAliasedDrawInto,
     Renderer::EgTriangle,
 ];
 
@@ -205,6 +208,7 @@ impl Renderer {
             Renderer::GouraudDrawInto => "GouraudTriangle::draw_into",
             Renderer::OpacityDrawInto => "SolidTriangle::with_opacity draw_into",
             Renderer::AlphaDrawInto => "GouraudTriangle::with_alpha draw_into",
+            Renderer::AntiAliasedDrawInto => "SolidTriangle::anti_aliased draw_into",
             Renderer::EgTriangle => "e-g Triangle (fill)",
         }
     }
@@ -225,6 +229,9 @@ impl Renderer {
                 .with_alpha(ALPHAS)
                 .over(Rgb565::BLACK)
                 .draw(target),
+            Renderer::AntiAliasedDrawInto => {
+                t.solid().anti_aliased().over(Rgb565::BLACK).draw(target)
+            }
             Renderer::EgTriangle => t
                 .eg()
                 .into_styled(PrimitiveStyle::with_fill(t.colors[0]))
@@ -321,6 +328,11 @@ mod firmware {
             Renderer::AlphaDrawInto => {
                 for t in set.triangles() {
                     t.gouraud().with_alpha(ALPHAS).draw_into(fb);
+                }
+            }
+            Renderer::AntiAliasedDrawInto => {
+                for t in set.triangles() {
+                    t.solid().anti_aliased().draw_into(fb);
                 }
             }
             Renderer::EgTriangle => {

@@ -20,7 +20,7 @@ use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, Vertex};
 
 // The f64 reference, compiled in directly so that the example needs no cargo feature
 // (it is `embedded_raster::reference` with the `reference` feature).
-#[allow(dead_code)]
+#[allow(dead_code, unused_imports)]
 #[path = "../src/reference/mod.rs"]
 mod reference;
 

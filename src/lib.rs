@@ -203,8 +203,8 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    FramebufferError, GouraudTriangle, OnBackground, ShadedSpans, SliceFramebuffer, SolidTriangle,
-    SpanColors, TexturedTriangle, TexturedVertex, Translucent, Vertex,
+    AntiAliased, FramebufferError, GouraudTriangle, OnBackground, ShadedSpans, SliceFramebuffer,
+    SolidTriangle, SpanColors, TexturedTriangle, TexturedVertex, Translucent, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};

@@ -8,7 +8,8 @@ use embedded_graphics::Pixel;
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
-    skip_colors, GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle, Translucent,
+    skip_colors, AntiAliased, GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle,
+    Translucent,
 };
 use crate::raster::band::Band;
 use crate::rect;
@@ -115,6 +116,20 @@ where
 
     fn rows(&self) -> Option<(i32, i32)> {
         rows_of(self.vertices.map(|v| v.y))
+    }
+}
+
+impl<C: GouraudColor> BandDrawable<C> for AntiAliased<SolidTriangle<C>> {
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let rect = band.rect();
+        self.draw_rows(&mut band.pixels, &rect, rect.top_left.y);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        // Every row whose squares meet the band between the lowest and highest vertex.
+        let y = self.shape().points.map(|p| p.1.to_bits());
+        let (top, bottom) = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
+        (top < bottom).then(|| (top >> 8, (bottom - 1) >> 8))
     }
 }
 

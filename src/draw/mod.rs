@@ -6,6 +6,7 @@
 //! an `ImageDrawable` (blit it to any `DrawTarget` with `Image`) and, with the `png` feature,
 //! saves itself as a PNG file.
 
+mod antialias;
 mod framebuffer;
 mod image;
 #[cfg(feature = "png")]
@@ -14,6 +15,7 @@ mod textured;
 mod translucent;
 mod triangle;
 
+pub use antialias::AntiAliased;
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{fill_row, FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;

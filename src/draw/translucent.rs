@@ -100,11 +100,8 @@ impl<T> Translucent<T> {
 
     /// This triangle over a background of one colour: a [`Drawable`] for any `DrawTarget`, the
     /// pixels [`draw_into`](Self::draw_into) gives over a framebuffer of that colour.
-    pub fn over<C>(self, background: C) -> OnBackground<T, C> {
-        OnBackground {
-            triangle: self,
-            background,
-        }
+    pub fn over<C>(self, background: C) -> OnBackground<Self, C> {
+        OnBackground::new(self, background)
     }
 }
 
@@ -130,12 +127,26 @@ impl<C: GouraudColor> GouraudTriangle<C> {
     }
 }
 
-/// A [`Translucent`] triangle over a known background colour ([`Translucent::over`]): a
-/// [`Drawable`] for any `DrawTarget`.
+/// A shape that blends over what is under it ([`Translucent`], [`AntiAliased`]) over a known
+/// background colour (their `over`): a [`Drawable`] for any `DrawTarget`.
+///
+/// [`AntiAliased`]: crate::AntiAliased
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct OnBackground<T, C> {
-    triangle: Translucent<T>,
+    shape: T,
     background: C,
+}
+
+impl<T, C> OnBackground<T, C> {
+    /// `shape` over `background`.
+    pub(crate) fn new(shape: T, background: C) -> Self {
+        OnBackground { shape, background }
+    }
+
+    /// The shape and the background.
+    pub(crate) fn parts(&self) -> (&T, &C) {
+        (&self.shape, &self.background)
+    }
 }
 
 /// How a translucent shape's spans are coloured: what the three shaders below share.
@@ -461,7 +472,7 @@ macro_rules! translucent_draws {
             }
         }
 
-        impl<C: GouraudColor> Drawable for OnBackground<$shape<C>, C> {
+        impl<C: GouraudColor> Drawable for OnBackground<Translucent<$shape<C>>, C> {
             type Color = C;
             type Output = ();
 
@@ -470,7 +481,7 @@ macro_rules! translucent_draws {
                 D: DrawTarget<Color = C>,
             {
                 let clip = target.bounding_box();
-                let (positions, attributes, source) = Blendable::<C, $n>::parts(&self.triangle);
+                let (positions, attributes, source) = Blendable::<C, $n>::parts(&self.shape);
                 let mut shader = BlendOver {
                     target,
                     background: self.background,

@@ -30,6 +30,7 @@
 pub(crate) mod arith;
 pub(crate) mod band;
 pub(crate) mod compact;
+pub(crate) mod coverage;
 pub(crate) mod edge;
 pub(crate) mod perspective;
 pub(crate) mod plane;

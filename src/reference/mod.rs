@@ -49,8 +49,11 @@
 
 use core::cmp::Ordering;
 
+mod area;
 pub mod lights;
 pub mod texture;
+
+pub use area::pixel_area;
 
 /// Sub-pixel units per pixel.
 const ONE: i64 = 256;

@@ -1,0 +1,220 @@
+//! Anti-aliased triangles: each pixel the triangle covers in part blended with the area it
+//! covers.
+//!
+//! [`SolidTriangle::anti_aliased`] makes an [`AntiAliased`] triangle. Its wholly covered pixels
+//! are the plain fill; every pixel it covers in part is its colour blended over the pixel
+//! ([`GouraudColor::blend`]) at the alpha of the exact area of the pixel square inside it
+//! (rounded to 8 bits; the area from the exact edge functions, within 2⁻⁹ of a pixel: see
+//! `raster::coverage`). Like a [`Translucent`] triangle it needs the pixels it blends over:
+//! [`AntiAliased::draw_into`] a [`SliceFramebuffer`] and bands read them,
+//! [`AntiAliased::draw_reading`] reads any [`GetPixel`] target, and [`AntiAliased::over`] a
+//! known background colour draws into any `DrawTarget`; all give the same pixels.
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::image::GetPixel;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::Pixel;
+
+use super::framebuffer::{fill_row, SliceFramebuffer};
+use super::translucent::OnBackground;
+use super::triangle::SolidTriangle;
+use crate::color::GouraudColor;
+use crate::raster::coverage::{cover, CoverageSink, FULL};
+
+#[cfg(doc)]
+use super::translucent::Translucent;
+
+/// The 8-bit alpha of a coverage (16 fractional bits), rounded.
+#[inline(always)]
+fn alpha_of(coverage: u32) -> u8 {
+    ((coverage.min(FULL) * 255 + (1 << 15)) >> 16) as u8
+}
+
+/// A triangle with anti-aliased edges ([`SolidTriangle::anti_aliased`]): pixels it covers in part
+/// blended with the area it covers.
+///
+/// Each triangle is blended on its own: where two anti-aliased triangles share an edge, the
+/// pixels along it are covered `a + b·(1 − a)` rather than whole (a seam a few percent darker
+/// or lighter). Draw shapes that share edges without anti-aliasing inside and anti-aliased only at
+/// their outline.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// use embedded_raster::{SliceFramebuffer, SolidTriangle};
+///
+/// let mut pixels = [Rgb565::BLACK; 16 * 16];
+/// let mut fb = SliceFramebuffer::new(&mut pixels, 16, 16).unwrap();
+/// // A half-plane through the pixels' diagonals: (0,0)–(16,16) and beyond.
+/// let triangle = SolidTriangle::new([(0.0, 0.0), (16.0, 16.0), (0.0, 16.0)], Rgb565::WHITE);
+/// triangle.anti_aliased().draw_into(&mut fb);
+/// assert_eq!(fb.get(0, 5), Some(Rgb565::WHITE)); // wholly inside
+/// assert_eq!(fb.get(5, 5), Some(Rgb565::new(16, 32, 16))); // half covered
+/// assert_eq!(fb.get(6, 5), Some(Rgb565::BLACK)); // outside
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AntiAliased<T> {
+    shape: T,
+}
+
+impl<T> AntiAliased<T> {
+    /// The aliased triangle.
+    pub fn shape(&self) -> &T {
+        &self.shape
+    }
+
+    /// This triangle over a background of one colour: a [`Drawable`] for any `DrawTarget`, the
+    /// pixels [`draw_into`](AntiAliased::draw_into) gives over a framebuffer of that colour.
+    pub fn over<C>(self, background: C) -> OnBackground<Self, C> {
+        OnBackground::new(self, background)
+    }
+}
+
+impl<C: GouraudColor> SolidTriangle<C> {
+    /// This triangle with anti-aliased edges ([`AntiAliased`]).
+    pub fn anti_aliased(self) -> AntiAliased<Self> {
+        AntiAliased { shape: self }
+    }
+}
+
+/// Anti-aliased coverage into a framebuffer (or a band's rows, `top` its first frame row).
+struct IntoSlice<'f, 'a, C> {
+    framebuffer: &'f mut SliceFramebuffer<'a, C>,
+    color: C,
+    top: i32,
+}
+
+impl<C: GouraudColor> CoverageSink for IntoSlice<'_, '_, C> {
+    #[inline]
+    fn full(&mut self, y: i32, x0: i32, x1: i32) {
+        if let Some(row) = self.framebuffer.clipped_span_mut(y - self.top, x0, x1) {
+            fill_row(row, self.color);
+        }
+    }
+
+    #[inline]
+    fn partial(&mut self, x: i32, y: i32, coverage: u32) {
+        if let Some([px]) = self.framebuffer.clipped_span_mut(y - self.top, x, x + 1) {
+            *px = self.color.blend(*px, alpha_of(coverage));
+        }
+    }
+}
+
+/// Anti-aliased coverage over a background colour, into any target.
+struct Over<'t, D: DrawTarget> {
+    target: &'t mut D,
+    color: D::Color,
+    background: D::Color,
+    result: Result<(), D::Error>,
+}
+
+impl<C: GouraudColor, D: DrawTarget<Color = C>> CoverageSink for Over<'_, D> {
+    fn full(&mut self, y: i32, x0: i32, x1: i32) {
+        if self.result.is_ok() {
+            let area = Rectangle::new(Point::new(x0, y), Size::new(x1.abs_diff(x0), 1));
+            self.result = self.target.fill_solid(&area, self.color);
+        }
+    }
+
+    fn partial(&mut self, x: i32, y: i32, coverage: u32) {
+        if self.result.is_ok() {
+            let color = self.color.blend(self.background, alpha_of(coverage));
+            self.result = self
+                .target
+                .draw_iter(core::iter::once(Pixel(Point::new(x, y), color)));
+        }
+    }
+}
+
+/// Anti-aliased coverage into a target it reads through [`GetPixel`].
+struct Reading<'t, D: DrawTarget> {
+    target: &'t mut D,
+    color: D::Color,
+    result: Result<(), D::Error>,
+}
+
+impl<C, D> CoverageSink for Reading<'_, D>
+where
+    C: GouraudColor,
+    D: DrawTarget<Color = C> + GetPixel<Color = C>,
+{
+    fn full(&mut self, y: i32, x0: i32, x1: i32) {
+        if self.result.is_ok() {
+            let area = Rectangle::new(Point::new(x0, y), Size::new(x1.abs_diff(x0), 1));
+            self.result = self.target.fill_solid(&area, self.color);
+        }
+    }
+
+    fn partial(&mut self, x: i32, y: i32, coverage: u32) {
+        let p = Point::new(x, y);
+        if let (true, Some(under)) = (self.result.is_ok(), self.target.pixel(p)) {
+            let color = self.color.blend(under, alpha_of(coverage));
+            self.result = self.target.draw_iter(core::iter::once(Pixel(p, color)));
+        }
+    }
+}
+
+impl<C: GouraudColor> AntiAliased<SolidTriangle<C>> {
+    /// Draws the triangle into a [`SliceFramebuffer`], blending the pixels it covers in part
+    /// over the framebuffer's: the pixels of every other path.
+    pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, C>) {
+        let clip = framebuffer.bounding_box();
+        self.draw_rows(framebuffer, &clip, 0);
+    }
+
+    /// Draws the triangle into `target`, reading the pixels it blends over through
+    /// [`GetPixel`] (a pixel it cannot read is left alone): the pixels
+    /// [`draw_into`](Self::draw_into) gives.
+    pub fn draw_reading<D>(&self, target: &mut D) -> Result<(), D::Error>
+    where
+        D: DrawTarget<Color = C> + GetPixel<Color = C>,
+    {
+        let clip = target.bounding_box();
+        let mut sink = Reading {
+            target,
+            color: self.shape.color,
+            result: Ok(()),
+        };
+        cover(self.shape.points, &clip, &mut sink);
+        sink.result
+    }
+
+    /// Draws the frame rows `clip` covers into `framebuffer`, whose first row is frame row
+    /// `top` (a band's buffer): the pixels [`draw_into`](Self::draw_into) gives those rows.
+    pub(crate) fn draw_rows(
+        &self,
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+        clip: &Rectangle,
+        top: i32,
+    ) {
+        let mut sink = IntoSlice {
+            framebuffer,
+            color: self.shape.color,
+            top,
+        };
+        cover(self.shape.points, clip, &mut sink);
+    }
+}
+
+impl<C: GouraudColor> Drawable for OnBackground<AntiAliased<SolidTriangle<C>>, C> {
+    type Color = C;
+    type Output = ();
+
+    fn draw<D>(&self, target: &mut D) -> Result<(), D::Error>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        let clip = target.bounding_box();
+        let (shape, background) = self.parts();
+        let mut sink = Over {
+            target,
+            color: shape.shape.color,
+            background: *background,
+            result: Ok(()),
+        };
+        cover(shape.shape.points, &clip, &mut sink);
+        sink.result
+    }
+}

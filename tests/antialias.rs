@@ -1,0 +1,203 @@
+//! Anti-aliased triangles against the exact area of each pixel square inside them.
+//!
+//! White over black in `Gray8` makes each pixel's value the alpha its coverage was blended with
+//! (checked below for every alpha), so every pixel of random triangles — sub-pixel to far
+//! beyond the target, slivers, vertices anywhere in the `Coord` range — is compared with
+//! `255 ×` the `f64` polygon clip of `reference::pixel_area`: within 1/255 everywhere and ½/255 on
+//! average over the pixels cut by an edge (the issue asks for 2/255 and 1/255); pixels the triangle does not reach stay untouched
+//! and pixels wholly inside are the plain fill. Then every path (`draw_into`, `draw_reading`,
+//! `over` a background, bands of every height) gives the same pixels.
+
+use embedded_graphics::image::GetPixel;
+use embedded_graphics::pixelcolor::{Gray8, Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::Pixel;
+use embedded_raster::band::{BandDrawable, BandLayout, ColorBand};
+use embedded_raster::reference;
+use embedded_raster::{Coord, GouraudColor, SliceFramebuffer, SolidTriangle};
+
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
+#[path = "support/raw_points.rs"]
+mod raw_points;
+use raw_points::{extreme, sliver, Screen, MAX, MIN};
+
+const W: u32 = 53;
+const H: u32 = 41;
+
+fn triangle(rng: &mut Rng) -> [(i32, i32); 3] {
+    let (wi, hi) = (i64::from(W), i64::from(H));
+    let screen = Screen::new(wi, hi);
+    let v: [(i64, i64); 3] = match rng.below(8) {
+        0 => screen.cluster(rng, 2, (1, 300)),
+        1 | 2 => screen.cluster(rng, 4, (128, 256 * 12)),
+        3 => [(); 3].map(|_| screen.point_xy(rng, (wi / 2 + 2, hi / 2 + 2))),
+        4 => [(); 3].map(|_| screen.point_xy(rng, (10 * wi, 10 * hi))),
+        5 => {
+            let a = screen.point(rng, 1);
+            [
+                a,
+                (extreme(rng), extreme(rng)),
+                (extreme(rng), extreme(rng)),
+            ]
+        }
+        6 => [(); 3].map(|_| screen.snapped_per_axis(rng, 6)),
+        _ => {
+            let a = screen.point(rng, 8);
+            sliver(rng, a, 28)
+        }
+    };
+    v.map(|(x, y)| (x.clamp(MIN, MAX) as i32, y.clamp(MIN, MAX) as i32))
+}
+
+fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
+    v.map(|(x, y)| (Coord::from_bits(x), Coord::from_bits(y)))
+}
+
+/// White at alpha `a` over black in Gray8 is `a`: the drawn value is the alpha.
+#[test]
+fn white_over_black_is_the_alpha() {
+    for a in 0..=255u8 {
+        assert_eq!(Gray8::WHITE.blend(Gray8::BLACK, a), Gray8::new(a));
+    }
+}
+
+#[test]
+fn coverage_is_within_two_levels_of_the_exact_area() {
+    let mut rng = Rng(7);
+    let (mut worst, mut sum, mut edge_pixels) = (0.0f64, 0.0f64, 0u64);
+    for n in 0..3000 {
+        let v = triangle(&mut rng);
+        let mut pixels = vec![Gray8::BLACK; (W * H) as usize];
+        let mut fb = SliceFramebuffer::new(&mut pixels, W, H).unwrap();
+        SolidTriangle::new(coords(v), Gray8::WHITE)
+            .anti_aliased()
+            .draw_into(&mut fb);
+        for y in 0..H as i32 {
+            for x in 0..W as i32 {
+                let area = reference::pixel_area(v, x, y);
+                let got = f64::from(fb.get(x, y).unwrap().luma());
+                if area == 0.0 || area == 1.0 {
+                    assert_eq!(got, area * 255.0, "triangle {n} {v:?}, pixel ({x}, {y})");
+                    continue;
+                }
+                let error = (got - area * 255.0).abs();
+                // The issue asks for 2/255; the coverage is within 2⁻⁹ of the area, and its
+                // alpha rounded: within 1/255.
+                assert!(
+                    error <= 1.0,
+                    "triangle {n} {v:?}, pixel ({x}, {y}): {got} for an area of {area}"
+                );
+                worst = worst.max(error);
+                sum += error;
+                edge_pixels += 1;
+            }
+        }
+    }
+    let mean = sum / edge_pixels as f64;
+    println!("{edge_pixels} pixels cut by an edge: error max {worst:.3}, mean {mean:.3} (of 255)");
+    assert!(mean <= 0.5, "mean error {mean}");
+    assert!(edge_pixels > 100_000);
+}
+
+/// A target with nothing but `draw_iter`, readable.
+struct PixelTarget<C>(Vec<C>);
+
+impl<C: PixelColor> OriginDimensions for PixelTarget<C> {
+    fn size(&self) -> Size {
+        Size::new(W, H)
+    }
+}
+
+impl<C: PixelColor> DrawTarget for PixelTarget<C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            if p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H {
+                self.0[(p.y as u32 * W + p.x as u32) as usize] = c;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<C: PixelColor> GetPixel for PixelTarget<C> {
+    type Color = C;
+
+    fn pixel(&self, p: Point) -> Option<C> {
+        let inside = p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H;
+        inside.then(|| self.0[(p.y as u32 * W + p.x as u32) as usize])
+    }
+}
+
+fn paths_agree<C: GouraudColor + std::fmt::Debug>(seed: u64, count: usize) {
+    let mut rng = Rng(seed);
+    let color = |rng: &mut Rng| {
+        C::from_channels(core::array::from_fn(|k| {
+            rng.below(u64::from(C::MAX[k]) + 1) as u8
+        }))
+    };
+    for _ in 0..count {
+        let v = coords(triangle(&mut rng));
+        let aa = SolidTriangle::new(v, color(&mut rng)).anti_aliased();
+        let under: Vec<C> = (0..W * H).map(|_| color(&mut rng)).collect();
+        let mut want = under.clone();
+        aa.draw_into(&mut SliceFramebuffer::new(&mut want, W, H).unwrap());
+
+        let mut target = PixelTarget(under.clone());
+        aa.draw_reading(&mut target).unwrap();
+        assert_eq!(target.0, want, "draw_reading");
+
+        for rows in [1, 2, 5, 16, H] {
+            let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
+            let mut buffer = vec![under[0]; layout.buffer_len()];
+            for index in 0..layout.count() {
+                let band_rect = layout.band(index).unwrap();
+                let start = (band_rect.top_left.y as u32 * W) as usize;
+                let len = (band_rect.size.height * W) as usize;
+                buffer[..len].copy_from_slice(&under[start..start + len]);
+                let mut band = ColorBand::new(&mut buffer, &layout, index).unwrap();
+                band.draw(&aa);
+                assert_eq!(
+                    band.pixels(),
+                    &want[start..start + len],
+                    "{rows}-row band {index}"
+                );
+                // A bin keeps the triangle for every band it may reach.
+                if let Some((first, last)) = aa.rows() {
+                    let (top, bottom) = (
+                        band_rect.top_left.y,
+                        band_rect.top_left.y + band_rect.size.height as i32 - 1,
+                    );
+                    if last < top || first > bottom {
+                        assert_eq!(
+                            band.pixels(),
+                            &under[start..start + len],
+                            "rows() misses band {index}"
+                        );
+                    }
+                }
+            }
+        }
+
+        let uniform = color(&mut rng);
+        let mut want = vec![uniform; (W * H) as usize];
+        aa.draw_into(&mut SliceFramebuffer::new(&mut want, W, H).unwrap());
+        let mut target = PixelTarget(vec![uniform; (W * H) as usize]);
+        aa.over(uniform).draw(&mut target).unwrap();
+        assert_eq!(target.0, want, "over a background colour");
+    }
+}
+
+#[test]
+fn every_path_gives_the_same_pixels() {
+    paths_agree::<Rgb565>(41, 400);
+    paths_agree::<Rgb888>(42, 200);
+}
