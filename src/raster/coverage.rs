@@ -58,7 +58,8 @@ struct CoverageEdge {
     b: i64,
     /// Right shift of the exact edge values to `C` (negative: a left shift).
     shift: i32,
-    /// `⌊2⁴⁰ / max(|a|, |b|)⌋`, `⌊2⁴⁰ / |a|⌋`, `⌊2⁴⁰ / |b|⌋` (0 for a zero component).
+    /// `⌊(2³² − 1) / max(|a|, |b|)⌋`, and of `|a|` and `|b|` (0 for a zero component): within
+    /// 2⁻¹⁹ of `2³²/v` for `v < 2¹²`, by one 32-bit division each.
     recip_max: u64,
     recip_a: u64,
     recip_b: u64,
@@ -71,7 +72,7 @@ impl CoverageEdge {
         let s = bits.saturating_sub(DIRECTION_BITS);
         let norm = |v: i64| (v.unsigned_abs() >> s) as i64 * v.signum();
         let (a, b) = (norm(edge.a), norm(edge.b));
-        let recip = |v: i64| (1u64 << 40).checked_div(v.unsigned_abs()).unwrap_or(0);
+        let recip = |v: i64| u64::from(u32::MAX.checked_div(v.unsigned_abs() as u32).unwrap_or(0));
         CoverageEdge {
             edge,
             half: 128 * (i128::from(edge.a.unsigned_abs()) + i128::from(edge.b.unsigned_abs())),
@@ -109,7 +110,8 @@ impl CoverageEdge {
         let (m, n) = (a.max(b), a.min(b));
         if c.abs() <= (m - n) << 15 {
             // Crosses two opposite sides: ½ + c/m.
-            let part = ((c.unsigned_abs() * self.recip_max) >> 40) as u32;
+            // |c| ≤ m·2¹⁵ < 2²⁷: the product is below 2⁴⁸.
+            let part = ((c.unsigned_abs() * self.recip_max) >> 32) as u32;
             return if c >= 0 {
                 (FULL / 2 + part).min(FULL)
             } else {
@@ -118,7 +120,7 @@ impl CoverageEdge {
         }
         // Cuts a corner: legs t/a and t/b (0 < t ≤ n·2¹⁶, so both below 2¹⁶ + 1).
         let t = (h - c.abs()) as u64;
-        let legs = ((t * self.recip_a) >> 40) * ((t * self.recip_b) >> 40);
+        let legs = ((t * self.recip_a) >> 32) * ((t * self.recip_b) >> 32);
         let corner = (legs >> 17).min(u64::from(FULL)) as u32;
         if c >= 0 {
             FULL - corner
@@ -171,9 +173,12 @@ impl Polygon {
                 push(p);
             }
             if (lp >= 0) != (lq >= 0) {
-                // lp and lq differ in sign: the denominator is nonzero, the ratio in [0, 1].
-                let (d, t) = (i128::from(lp - lq), i128::from(lp));
-                let cut = |p: i64, q: i64| p + (i128::from(q - p) * t / d) as i64;
+                // lp and lq differ in sign: |lp| < |lp − lq|, the ratio in [0, 1), found to 16
+                // bits from both shifted below 2¹⁵ (one 32-bit division).
+                let (d, t) = ((lp - lq).unsigned_abs(), lp.unsigned_abs());
+                let shift = (64 - d.leading_zeros()).saturating_sub(15);
+                let ratio = i64::from((((t >> shift) << 16) as u32) / ((d >> shift) as u32).max(1));
+                let cut = |p: i64, q: i64| p + (((q - p) * ratio) >> 16);
                 push((cut(p.0, q.0), cut(p.1, q.1)));
             }
         }
@@ -226,32 +231,168 @@ fn square_area(edges: &[CoverageEdge; 3], e: [i128; 3]) -> u32 {
     }
 }
 
-/// The columns `i` (inclusive bounds) where `s·i + k > t` (`strict`) or `≥ t`.
-fn columns(s: i128, k: i128, t: i128, strict: bool) -> (i128, i128) {
-    let all = (i128::MIN, i128::MAX);
-    let none = (1, 0);
-    match s {
-        0 if k > t || (!strict && k == t) => all,
-        0 => none,
-        s if s > 0 => {
-            let lo = if strict {
-                div_floor_wide(t - k, s) + 1
-            } else {
-                -div_floor_wide(k - t, s)
-            };
-            (lo, i128::MAX)
-        }
-        s => {
-            let s = -s;
-            let hi = if strict {
-                -div_floor_wide(t - k, s) - 1
-            } else {
-                div_floor_wide(k - t, s)
-            };
-            (i128::MIN, hi)
+/// The integers edge values are stepped in: `i64` for triangles set up narrow (every value at a
+/// pixel centre of the box within 2⁶²), `i128` beyond.
+trait Wide:
+    Copy
+    + Ord
+    + core::ops::Add<Output = Self>
+    + core::ops::Sub<Output = Self>
+    + core::ops::Mul<Output = Self>
+    + core::ops::Neg<Output = Self>
+{
+    const ZERO: Self;
+    const ONE: Self;
+    /// `v`, which the caller knows to fit.
+    fn of(v: i128) -> Self;
+    fn wide(self) -> i128;
+    /// `(⌊n / d⌋, n mod d)` for `d > 0`.
+    fn div_floor(n: Self, d: Self) -> (Self, Self);
+}
+
+impl Wide for i64 {
+    const ZERO: Self = 0;
+    const ONE: Self = 1;
+    #[inline(always)]
+    fn of(v: i128) -> Self {
+        v as i64
+    }
+    #[inline(always)]
+    fn wide(self) -> i128 {
+        i128::from(self)
+    }
+    #[inline]
+    fn div_floor(n: Self, d: Self) -> (Self, Self) {
+        let q = n.div_euclid(d.max(1));
+        (q, n - q * d)
+    }
+}
+
+impl Wide for i128 {
+    const ZERO: Self = 0;
+    const ONE: Self = 1;
+    #[inline(always)]
+    fn of(v: i128) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn wide(self) -> i128 {
+        self
+    }
+    #[inline]
+    fn div_floor(n: Self, d: Self) -> (Self, Self) {
+        let q = div_floor_wide(n, d.max(1));
+        (q, n.wrapping_sub(q.wrapping_mul(d)))
+    }
+}
+
+/// `⌊N_j / d⌋` of a value stepped by a constant a row (`N_{j+1} = N_j + δ`), exactly: quotient
+/// and remainder (`0 ≤ r < d`) carried from row to row, one division at the start.
+#[derive(Clone, Copy)]
+struct Floor<T> {
+    q: T,
+    r: T,
+    d: T,
+    dq: T,
+    dr: T,
+}
+
+impl<T: Wide> Floor<T> {
+    fn new(n: T, delta: T, d: T) -> Self {
+        let (q, r) = T::div_floor(n, d);
+        let (dq, dr) = T::div_floor(delta, d);
+        Floor { q, r, d, dq, dr }
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        self.q = self.q + self.dq;
+        self.r = self.r + self.dr;
+        if self.r >= self.d {
+            self.r = self.r - self.d;
+            self.q = self.q + T::ONE;
         }
     }
 }
+
+/// One edge's bounds on the columns of a row: where its squares are not wholly outside
+/// ("touched") and where they are wholly inside, from `Nt = −half − K` and `Ni = K − half` for
+/// the edge value `K` at column 0 of the row (`E = s·i + K`).
+#[derive(Clone, Copy)]
+enum Bounds<T> {
+    /// `s > 0`: lower bounds `⌊Nt/s⌋ + 1` and `−⌊Ni/s⌋`.
+    Left { touched: Floor<T>, inside: Floor<T> },
+    /// `s < 0`: upper bounds `−⌊Nt/|s|⌋ − 1` and `⌊Ni/|s|⌋`.
+    Right { touched: Floor<T>, inside: Floor<T> },
+    /// `s = 0` (a horizontal edge): the whole row, or none of it, by the signs of `Nt` and `Ni`.
+    Level { nt: T, ni: T, t: T },
+}
+
+impl<T: Wide> Bounds<T> {
+    fn new(s: T, t: T, k: T, half: T) -> Self {
+        let (nt, ni) = (-half - k, k - half);
+        if s > T::ZERO {
+            Bounds::Left {
+                touched: Floor::new(nt, -t, s),
+                inside: Floor::new(ni, t, s),
+            }
+        } else if s < T::ZERO {
+            Bounds::Right {
+                touched: Floor::new(nt, -t, -s),
+                inside: Floor::new(ni, t, -s),
+            }
+        } else {
+            Bounds::Level { nt, ni, t }
+        }
+    }
+
+    /// Narrows `touched` and `inside` (inclusive column ranges) to this edge's on the row.
+    #[inline(always)]
+    fn narrow(&self, touched: &mut (T, T), inside: &mut (T, T)) {
+        match self {
+            Bounds::Left {
+                touched: t,
+                inside: i,
+            } => {
+                touched.0 = touched.0.max(t.q + T::ONE);
+                inside.0 = inside.0.max(-i.q);
+            }
+            Bounds::Right {
+                touched: t,
+                inside: i,
+            } => {
+                touched.1 = touched.1.min(-t.q - T::ONE);
+                inside.1 = inside.1.min(i.q);
+            }
+            Bounds::Level { nt, ni, .. } => {
+                if *nt >= T::ZERO {
+                    *touched = (T::ONE, T::ZERO);
+                }
+                if *ni < T::ZERO {
+                    *inside = (T::ONE, T::ZERO);
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        match self {
+            Bounds::Left { touched, inside } | Bounds::Right { touched, inside } => {
+                touched.step();
+                inside.step();
+            }
+            Bounds::Level { nt, ni, t } => {
+                *nt = *nt - *t;
+                *ni = *ni + *t;
+            }
+        }
+    }
+}
+
+/// Boxes of at most this many pixels are scanned pixel by pixel (no divisions); larger ones take
+/// each row's runs from the edges' [`Bounds`].
+const SCAN_LIMIT: i64 = 256;
 
 /// Hands `sink` every pixel of `clip` that the triangle `v` covers in part or whole, row by row
 /// top to bottom: the wholly covered run of a row as one span, the others one by one with their
@@ -263,47 +404,128 @@ pub(crate) fn cover(v: [(Coord, Coord); 3], clip: &Rectangle, sink: &mut impl Co
     let Some(bottom_right) = clip.bottom_right() else {
         return;
     };
+    // The pixels whose squares meet the triangle's bounding box (open), inside the clip.
+    let span = |c: [i32; 3], lo: i32, hi: i32| {
+        let (min, max) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+        (
+            (min >> SUBPIXEL_BITS).max(lo),
+            ((max - 1) >> SUBPIXEL_BITS).min(hi),
+        )
+    };
+    let (x0, x1) = span(setup.oriented.map(|p| p.0), clip.top_left.x, bottom_right.x);
+    let (y0, y1) = span(setup.oriented.map(|p| p.1), clip.top_left.y, bottom_right.y);
+    if x0 > x1 || y0 > y1 {
+        return;
+    }
     let edges = [0, 1, 2].map(|k| CoverageEdge::new(setup.edge(k)));
-    let ys = setup.oriented.map(|p| p.1);
-    let (top, bottom) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
-    // Rows whose squares meet the open band between the lowest and highest vertex.
-    let first = (top >> SUBPIXEL_BITS).max(clip.top_left.y);
-    let last = ((bottom - 1) >> SUBPIXEL_BITS).min(bottom_right.y);
-    let (x0, x1) = (i128::from(clip.top_left.x), i128::from(bottom_right.x));
-    for y in first..=last {
-        // Per edge: E = s·i + k at the centre of pixel (i, y).
-        let k: [i128; 3] = edges.map(|e| e.edge.exact_at(0, i64::from(y), false));
-        let s: [i128; 3] = edges.map(|e| i128::from(e.edge.a) << SUBPIXEL_BITS);
-        let (mut lo, mut hi) = (x0, x1);
-        let (mut inner_lo, mut inner_hi) = (x0, x1);
-        for e in 0..3 {
-            let (a, b) = columns(s[e], k[e], -edges[e].half, true);
-            (lo, hi) = (lo.max(a), hi.min(b));
-            let (a, b) = columns(s[e], k[e], edges[e].half, false);
-            (inner_lo, inner_hi) = (inner_lo.max(a), inner_hi.min(b));
+    let area = (i64::from(x1) - i64::from(x0) + 1) * (i64::from(y1) - i64::from(y0) + 1);
+    if setup.narrow {
+        cover_box::<i64>(&edges, (x0, y0, x1, y1), area <= SCAN_LIMIT, sink);
+    } else {
+        cover_box::<i128>(&edges, (x0, y0, x1, y1), area <= SCAN_LIMIT, sink);
+    }
+}
+
+/// [`cover`] inside the pixel box `(x0, y0, x1, y1)` (inclusive), each pixel tested (`scan`) or
+/// each row's runs from the edges' bounds.
+fn cover_box<T: Wide>(
+    edges: &[CoverageEdge; 3],
+    (x0, y0, x1, y1): (i32, i32, i32, i32),
+    scan: bool,
+    sink: &mut impl CoverageSink,
+) {
+    let s: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.a) << SUBPIXEL_BITS));
+    let t: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.b) << SUBPIXEL_BITS));
+    let half: [T; 3] = edges.map(|e| T::of(e.half));
+    // Each edge's value at column 0 of the first row (a line through the box: it fits `T`).
+    let x0w = T::of(i128::from(x0));
+    let mut k: [T; 3] = core::array::from_fn(|n| {
+        T::of(edges[n].edge.exact_at(i64::from(x0), i64::from(y0), false)) - s[n] * x0w
+    });
+    let mut bounds = if scan {
+        None
+    } else {
+        Some(core::array::from_fn::<_, 3, _>(|n| {
+            Bounds::new(s[n], t[n], k[n], half[n])
+        }))
+    };
+    let (lo, hi) = (T::of(i128::from(x0)), T::of(i128::from(x1)));
+    for y in y0..=y1 {
+        // Scanned rows test every pixel: no run is known inside.
+        let (mut touched, mut inside) = ((lo, hi), (T::ONE, T::ZERO));
+        if let Some(bounds) = &bounds {
+            inside = (lo, hi);
+            for b in bounds {
+                b.narrow(&mut touched, &mut inside);
+            }
         }
-        if lo > hi {
+        if touched.0 <= touched.1 {
+            let (from, to) = (touched.0.wide() as i32, touched.1.wide() as i32);
+            let inside =
+                (inside.0 <= inside.1).then(|| (inside.0.wide() as i32, inside.1.wide() as i32));
+            let mut e: [T; 3] = core::array::from_fn(|n| k[n] + s[n] * T::of(i128::from(from)));
+            cover_row(edges, y, (from, to), inside, &mut e, s, half, sink);
+        }
+        for n in 0..3 {
+            k[n] = k[n] + t[n];
+        }
+        if let Some(bounds) = &mut bounds {
+            for b in bounds {
+                b.step();
+            }
+        }
+    }
+}
+
+/// The pixels `from ..= to` of row `y`: the run `inside` (if known) as one span, every other
+/// pixel tested: wholly inside ones gathered into runs, cut ones with their area. `e` holds the
+/// edge values at `from`'s centre and is stepped by `s` a pixel.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn cover_row<T: Wide>(
+    edges: &[CoverageEdge; 3],
+    y: i32,
+    (from, to): (i32, i32),
+    inside: Option<(i32, i32)>,
+    e: &mut [T; 3],
+    s: [T; 3],
+    half: [T; 3],
+    sink: &mut impl CoverageSink,
+) {
+    let mut run: Option<i32> = None;
+    let mut x = from;
+    while x <= to {
+        if let Some((a, b)) = inside.filter(|&(a, _)| a == x) {
+            // The known run: skip its pixels' tests.
+            let start = run.take().unwrap_or(a);
+            sink.full(y, start, b + 1);
+            let n = T::of(i128::from(b) - i128::from(x) + 1);
+            for k in 0..3 {
+                e[k] = e[k] + s[k] * n;
+            }
+            x = b + 1;
             continue;
         }
-        let (inner_lo, inner_hi) = if inner_lo <= inner_hi {
-            (inner_lo, inner_hi)
+        let whole = (0..3).all(|k| e[k] >= half[k]);
+        if whole {
+            run.get_or_insert(x);
         } else {
-            (hi + 1, hi)
-        };
-        // The cut squares left of the wholly covered run, the run, the cut squares right of it.
-        let partial = |sink: &mut _, from: i128, to: i128| {
-            for x in from..=to {
-                let e: [i128; 3] = core::array::from_fn(|n| s[n] * x + k[n]);
-                let area = square_area(&edges, e);
+            if let Some(start) = run.take() {
+                sink.full(y, start, x);
+            }
+            if (0..3).all(|k| e[k] > -half[k]) {
+                let area = square_area(edges, e.map(Wide::wide));
                 if area > 0 {
-                    CoverageSink::partial(sink, x as i32, y, area);
+                    sink.partial(x, y, area);
                 }
             }
-        };
-        partial(sink, lo, (inner_lo - 1).min(hi));
-        if inner_lo <= inner_hi {
-            sink.full(y, inner_lo as i32, inner_hi as i32 + 1);
-            partial(sink, inner_hi + 1, hi);
         }
+        for k in 0..3 {
+            e[k] = e[k] + s[k];
+        }
+        x += 1;
+    }
+    if let Some(start) = run {
+        sink.full(y, start, to + 1);
     }
 }
