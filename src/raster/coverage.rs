@@ -86,13 +86,13 @@ impl CoverageEdge {
         }
     }
 
-    /// `C` of the exact edge value `e` at a centre (`|e| < half`).
+    /// `C` of the exact edge value `e` at a centre (`|e| < half < 2⁴¹`).
     #[inline]
-    fn line_offset(&self, e: i128) -> i64 {
+    fn line_offset(&self, e: i64) -> i64 {
         if self.shift >= 0 {
-            (e >> self.shift) as i64
+            e >> self.shift
         } else {
-            (e << -self.shift) as i64
+            e << -self.shift
         }
     }
 
@@ -198,22 +198,21 @@ impl Polygon {
 }
 
 /// The area inside a triangle of the square of a pixel whose exact edge values at the centre are
-/// `e` (each edge `k` cuts the square: `|e[k]| < half`, or has it wholly inside).
-fn square_area(edges: &[CoverageEdge; 3], e: [i128; 3]) -> u32 {
+/// `e` (`half` each edge's [`CoverageEdge::half`]).
+#[inline]
+fn square_area<T: Wide>(edges: &[CoverageEdge; 3], e: [T; 3], half: [T; 3]) -> u32 {
     let mut cut = [false; 3];
-    for (k, edge) in edges.iter().enumerate() {
-        if e[k] <= -edge.half {
+    let mut offsets = [0i64; 3];
+    for k in 0..3 {
+        if e[k] <= -half[k] {
             return 0;
         }
-        cut[k] = e[k] < edge.half;
-    }
-    let offsets: [i64; 3] = core::array::from_fn(|k| {
-        if cut[k] {
-            edges[k].line_offset(e[k])
-        } else {
-            0
+        if e[k] < half[k] {
+            // |e| < half < 2⁴¹: the narrow value is exact.
+            cut[k] = true;
+            offsets[k] = edges[k].line_offset(e[k].wide() as i64);
         }
-    });
+    }
     match cut {
         [false, false, false] => FULL,
         [true, false, false] => edges[0].area(offsets[0]),
@@ -513,11 +512,9 @@ fn cover_row<T: Wide>(
             if let Some(start) = run.take() {
                 sink.full(y, start, x);
             }
-            if (0..3).all(|k| e[k] > -half[k]) {
-                let area = square_area(edges, e.map(Wide::wide));
-                if area > 0 {
-                    sink.partial(x, y, area);
-                }
+            let area = square_area(edges, *e, half);
+            if area > 0 {
+                sink.partial(x, y, area);
             }
         }
         for k in 0..3 {
