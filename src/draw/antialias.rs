@@ -35,9 +35,9 @@ fn alpha_of(coverage: u32) -> u8 {
 /// blended with the area it covers.
 ///
 /// Each triangle is blended on its own: where two anti-aliased triangles share an edge, the
-/// pixels along it are covered `a + b·(1 − a)` rather than whole (a seam a few percent darker
-/// or lighter). Draw shapes that share edges without anti-aliasing inside and anti-aliased only at
-/// their outline.
+/// pixels along it are covered `a + b·(1 − a)` rather than whole (a seam). Triangles of a mesh
+/// or fan mark the edges they share ([`with_shared_edges`](Self::with_shared_edges)): those are
+/// drawn by the exact aliased rule, seam-free, and only the outline is anti-aliased.
 ///
 /// # Examples
 ///
@@ -57,12 +57,42 @@ fn alpha_of(coverage: u32) -> u8 {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct AntiAliased<T> {
     shape: T,
+    /// Which edges (edge `i` from vertex `i` to vertex `i + 1`) are anti-aliased.
+    edges: [bool; 3],
 }
 
 impl<T> AntiAliased<T> {
     /// The aliased triangle.
     pub fn shape(&self) -> &T {
         &self.shape
+    }
+
+    /// The triangle with the edges `shared[i]` (edge `i` from vertex `i` to vertex `i + 1`)
+    /// drawn without anti-aliasing, by the exact top-left rule of the aliased triangles: where a
+    /// neighbour of a mesh or a fan drawn the same way shares such an edge, every pixel along it
+    /// is drawn by exactly one of the two, whole — no seam. Only the outline's edges are then
+    /// blended.
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Gray8, prelude::*};
+    /// use embedded_raster::{SliceFramebuffer, SolidTriangle};
+    ///
+    /// let mut pixels = [Gray8::BLACK; 16 * 16];
+    /// let mut fb = SliceFramebuffer::new(&mut pixels, 16, 16).unwrap();
+    /// // A square of two triangles sharing its diagonal (edge 2 of the first, 0 of the second).
+    /// let (a, b, c, d) = ((1.3, 1.3), (14.6, 1.3), (14.6, 14.6), (1.3, 14.6));
+    /// let first = SolidTriangle::new([a, b, c], Gray8::WHITE).anti_aliased();
+    /// let second = SolidTriangle::new([a, c, d], Gray8::WHITE).anti_aliased();
+    /// first.with_shared_edges([false, false, true]).draw_into(&mut fb);
+    /// second.with_shared_edges([true, false, false]).draw_into(&mut fb);
+    /// // Along the diagonal, every pixel is whole.
+    /// assert!((2..14).all(|i| fb.get(i, i) == Some(Gray8::WHITE)));
+    /// ```
+    pub fn with_shared_edges(self, shared: [bool; 3]) -> Self {
+        AntiAliased {
+            edges: shared.map(|s| !s),
+            ..self
+        }
     }
 
     /// This triangle over a background of one colour: a [`Drawable`] for any `DrawTarget`, the
@@ -75,7 +105,10 @@ impl<T> AntiAliased<T> {
 impl<C: GouraudColor> SolidTriangle<C> {
     /// This triangle with anti-aliased edges ([`AntiAliased`]).
     pub fn anti_aliased(self) -> AntiAliased<Self> {
-        AntiAliased { shape: self }
+        AntiAliased {
+            shape: self,
+            edges: [true; 3],
+        }
     }
 }
 
@@ -177,7 +210,7 @@ impl<C: GouraudColor> AntiAliased<SolidTriangle<C>> {
             color: self.shape.color,
             result: Ok(()),
         };
-        cover(self.shape.points, &clip, &mut sink);
+        cover(self.shape.points, self.edges, &clip, &mut sink);
         sink.result
     }
 
@@ -194,7 +227,7 @@ impl<C: GouraudColor> AntiAliased<SolidTriangle<C>> {
             color: self.shape.color,
             top,
         };
-        cover(self.shape.points, clip, &mut sink);
+        cover(self.shape.points, self.edges, clip, &mut sink);
     }
 }
 
@@ -214,7 +247,7 @@ impl<C: GouraudColor> Drawable for OnBackground<AntiAliased<SolidTriangle<C>>, C
             background: *background,
             result: Ok(()),
         };
-        cover(shape.shape.points, &clip, &mut sink);
+        cover(shape.shape.points, shape.edges, &clip, &mut sink);
         sink.result
     }
 }

@@ -26,7 +26,7 @@
 use embedded_graphics::primitives::Rectangle;
 
 use super::arith::div_floor_wide;
-use super::edge::{EdgeFunction, TriangleSetup};
+use super::edge::{owns_centres_on, EdgeFunction, TriangleSetup};
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
 
 /// Coverage of a whole pixel, 16 fractional bits.
@@ -51,8 +51,13 @@ pub(crate) trait CoverageSink {
 #[derive(Debug, Clone, Copy)]
 struct CoverageEdge {
     edge: EdgeFunction,
-    /// `128·(|a| + |b|)`: the most the edge function changes from a centre to its square's corners.
-    half: i128,
+    /// A square whose centre's edge value is below `lo` lies wholly outside, one at `hi` or above
+    /// wholly inside; in between the edge cuts it. Anti-aliased: `1 − half` and `half`, with
+    /// `half = 128·(|a| + |b|)` the most the edge value changes from a centre to a corner.
+    /// Aliased (an edge shared with a neighbour): both at the top-left rule's threshold, 0 or 1,
+    /// so a square is inside or outside by its centre alone and the edge cuts none.
+    lo: i128,
+    hi: i128,
     /// Normalised direction: `a`, `b` shifted right by `shift` (magnitudes, toward zero).
     a: i64,
     b: i64,
@@ -66,16 +71,19 @@ struct CoverageEdge {
 }
 
 impl CoverageEdge {
-    fn new(edge: EdgeFunction) -> Self {
+    fn new(edge: EdgeFunction, anti_aliased: bool) -> Self {
         let m = edge.a.unsigned_abs().max(edge.b.unsigned_abs());
         let bits = 64 - m.leading_zeros();
         let s = bits.saturating_sub(DIRECTION_BITS);
         let norm = |v: i64| (v.unsigned_abs() >> s) as i64 * v.signum();
         let (a, b) = (norm(edge.a), norm(edge.b));
         let recip = |v: i64| u64::from(u32::MAX.checked_div(v.unsigned_abs() as u32).unwrap_or(0));
+        let half = 128 * (i128::from(edge.a.unsigned_abs()) + i128::from(edge.b.unsigned_abs()));
+        let centre = i128::from(!owns_centres_on(edge.a, edge.b));
         CoverageEdge {
             edge,
-            half: 128 * (i128::from(edge.a.unsigned_abs()) + i128::from(edge.b.unsigned_abs())),
+            lo: if anti_aliased { 1 - half } else { centre },
+            hi: if anti_aliased { half } else { centre },
             a,
             b,
             // E / (256·2^s) in 16 fractional bits: E·2^(8 − s).
@@ -86,7 +94,7 @@ impl CoverageEdge {
         }
     }
 
-    /// `C` of the exact edge value `e` at a centre (`|e| < half < 2⁴¹`).
+    /// `C` of the exact edge value `e` at a centre of a square it cuts (`|e| < half < 2⁴¹`).
     #[inline]
     fn line_offset(&self, e: i64) -> i64 {
         if self.shift >= 0 {
@@ -198,16 +206,16 @@ impl Polygon {
 }
 
 /// The area inside a triangle of the square of a pixel whose exact edge values at the centre are
-/// `e` (`half` each edge's [`CoverageEdge::half`]).
+/// `e` (`lo` and `hi` each edge's [`CoverageEdge`] thresholds).
 #[inline]
-fn square_area<T: Wide>(edges: &[CoverageEdge; 3], e: [T; 3], half: [T; 3]) -> u32 {
+fn square_area<T: Wide>(edges: &[CoverageEdge; 3], e: [T; 3], (lo, hi): ([T; 3], [T; 3])) -> u32 {
     let mut cut = [false; 3];
     let mut offsets = [0i64; 3];
     for k in 0..3 {
-        if e[k] <= -half[k] {
+        if e[k] < lo[k] {
             return 0;
         }
-        if e[k] < half[k] {
+        if e[k] < hi[k] {
             // |e| < half < 2⁴¹: the narrow value is exact.
             cut[k] = true;
             offsets[k] = edges[k].line_offset(e[k].wide() as i64);
@@ -315,8 +323,9 @@ impl<T: Wide> Floor<T> {
 }
 
 /// One edge's bounds on the columns of a row: where its squares are not wholly outside
-/// ("touched") and where they are wholly inside, from `Nt = −half − K` and `Ni = K − half` for
-/// the edge value `K` at column 0 of the row (`E = s·i + K`).
+/// ("touched": `E ≥ lo`, that is `E > lo − 1`) and where they are wholly inside (`E ≥ hi`), from
+/// `Nt = lo − 1 − K` and `Ni = K − hi` for the edge value `K` at column 0 of the row
+/// (`E = s·i + K`).
 #[derive(Clone, Copy)]
 enum Bounds<T> {
     /// `s > 0`: lower bounds `⌊Nt/s⌋ + 1` and `−⌊Ni/s⌋`.
@@ -328,8 +337,8 @@ enum Bounds<T> {
 }
 
 impl<T: Wide> Bounds<T> {
-    fn new(s: T, t: T, k: T, half: T) -> Self {
-        let (nt, ni) = (-half - k, k - half);
+    fn new(s: T, t: T, k: T, (lo, hi): (T, T)) -> Self {
+        let (nt, ni) = (lo - T::ONE - k, k - hi);
         if s > T::ZERO {
             Bounds::Left {
                 touched: Floor::new(nt, -t, s),
@@ -395,8 +404,15 @@ const SCAN_LIMIT: i64 = 256;
 
 /// Hands `sink` every pixel of `clip` that the triangle `v` covers in part or whole, row by row
 /// top to bottom: the wholly covered run of a row as one span, the others one by one with their
-/// area. Degenerate triangles cover nothing.
-pub(crate) fn cover(v: [(Coord, Coord); 3], clip: &Rectangle, sink: &mut impl CoverageSink) {
+/// area. Edge `i` (from `v[i]` to `v[i + 1]`) is anti-aliased if `anti_aliased[i]`, else it
+/// takes or leaves whole squares by their centres under the top-left rule (the aliased fill's
+/// pixels along it). Degenerate triangles cover nothing.
+pub(crate) fn cover(
+    v: [(Coord, Coord); 3],
+    anti_aliased: [bool; 3],
+    clip: &Rectangle,
+    sink: &mut impl CoverageSink,
+) {
     let Some(setup) = TriangleSetup::new(v) else {
         return;
     };
@@ -416,7 +432,13 @@ pub(crate) fn cover(v: [(Coord, Coord); 3], clip: &Rectangle, sink: &mut impl Co
     if x0 > x1 || y0 > y1 {
         return;
     }
-    let edges = [0, 1, 2].map(|k| CoverageEdge::new(setup.edge(k)));
+    // Setup edge k joins oriented vertices k + 1 and k + 2: input vertices `order[..]`, input
+    // edge `i` joins input vertices i and i + 1.
+    let edges = [0, 1, 2].map(|k| {
+        let (i, j) = (setup.order[(k + 1) % 3], setup.order[(k + 2) % 3]);
+        let input_edge = if (i + 1) % 3 == j { i } else { j };
+        CoverageEdge::new(setup.edge(k), anti_aliased[input_edge])
+    });
     let area = (i64::from(x1) - i64::from(x0) + 1) * (i64::from(y1) - i64::from(y0) + 1);
     if setup.narrow {
         cover_box::<i64>(&edges, (x0, y0, x1, y1), area <= SCAN_LIMIT, sink);
@@ -435,7 +457,7 @@ fn cover_box<T: Wide>(
 ) {
     let s: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.a) << SUBPIXEL_BITS));
     let t: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.b) << SUBPIXEL_BITS));
-    let half: [T; 3] = edges.map(|e| T::of(e.half));
+    let thresholds: ([T; 3], [T; 3]) = (edges.map(|e| T::of(e.lo)), edges.map(|e| T::of(e.hi)));
     // Each edge's value at column 0 of the first row (a line through the box: it fits `T`).
     let x0w = T::of(i128::from(x0));
     let mut k: [T; 3] = core::array::from_fn(|n| {
@@ -445,7 +467,7 @@ fn cover_box<T: Wide>(
         None
     } else {
         Some(core::array::from_fn::<_, 3, _>(|n| {
-            Bounds::new(s[n], t[n], k[n], half[n])
+            Bounds::new(s[n], t[n], k[n], (thresholds.0[n], thresholds.1[n]))
         }))
     };
     let (lo, hi) = (T::of(i128::from(x0)), T::of(i128::from(x1)));
@@ -463,7 +485,7 @@ fn cover_box<T: Wide>(
             let inside =
                 (inside.0 <= inside.1).then(|| (inside.0.wide() as i32, inside.1.wide() as i32));
             let mut e: [T; 3] = core::array::from_fn(|n| k[n] + s[n] * T::of(i128::from(from)));
-            cover_row(edges, y, (from, to), inside, &mut e, s, half, sink);
+            cover_row(edges, y, (from, to), inside, &mut e, s, thresholds, sink);
         }
         for n in 0..3 {
             k[n] = k[n] + t[n];
@@ -488,7 +510,7 @@ fn cover_row<T: Wide>(
     inside: Option<(i32, i32)>,
     e: &mut [T; 3],
     s: [T; 3],
-    half: [T; 3],
+    thresholds: ([T; 3], [T; 3]),
     sink: &mut impl CoverageSink,
 ) {
     let mut run: Option<i32> = None;
@@ -505,14 +527,14 @@ fn cover_row<T: Wide>(
             x = b + 1;
             continue;
         }
-        let whole = (0..3).all(|k| e[k] >= half[k]);
+        let whole = (0..3).all(|k| e[k] >= thresholds.1[k]);
         if whole {
             run.get_or_insert(x);
         } else {
             if let Some(start) = run.take() {
                 sink.full(y, start, x);
             }
-            let area = square_area(edges, *e, half);
+            let area = square_area(edges, *e, thresholds);
             if area > 0 {
                 sink.partial(x, y, area);
             }
