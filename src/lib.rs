@@ -203,8 +203,9 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    AntiAliased, FramebufferError, GouraudTriangle, OnBackground, ShadedSpans, SliceFramebuffer,
-    SolidTriangle, SpanColors, TexturedTriangle, TexturedVertex, Translucent, Vertex,
+    AntiAliased, CoverageMask, FramebufferError, GouraudTriangle, OnBackground, ShadedSpans,
+    SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle, TexturedVertex, Translucent,
+    Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};

@@ -326,3 +326,108 @@ fn meshes_with_shared_edges_have_no_seams() {
         assert!(worst < 128.0, "{worst}");
     }
 }
+
+/// The union's exact area against a coverage mask's fill of the same triangles: every pixel
+/// within 1/255 (the outline's turns included), in the frame and in bands of every height.
+fn mask_against_union(triangles: &[[(i32, i32); 3]]) -> f64 {
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raster::CoverageMask;
+    let frame = Rectangle::new(Point::zero(), Size::new(W, H));
+    let mut cells = vec![0u16; (W * H) as usize];
+    let mut pixels = vec![Gray8::BLACK; (W * H) as usize];
+    let mut fb = SliceFramebuffer::new(&mut pixels, W, H).unwrap();
+    let mut mask = CoverageMask::new(&mut cells, frame).unwrap();
+    for t in triangles {
+        mask.add(coords(*t));
+    }
+    mask.fill_into(Gray8::WHITE, &mut fb);
+    // Cleared: a second fill draws nothing.
+    mask.fill_into(Gray8::new(7), &mut fb);
+    let mut worst = 0.0f64;
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let area: f64 = triangles
+                .iter()
+                .map(|t| reference::pixel_area(*t, x, y))
+                .sum();
+            let got = f64::from(fb.get(x, y).unwrap().luma());
+            let error = (got - 255.0 * area.min(1.0)).abs();
+            assert!(
+                error <= 1.0,
+                "pixel ({x}, {y}): {got} for an area of {area}"
+            );
+            worst = worst.max(error);
+        }
+    }
+    for rows in [1, 3, 16] {
+        let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
+        let mut buffer = vec![Gray8::BLACK; layout.buffer_len()];
+        let mut band_cells = vec![0u16; layout.buffer_len()];
+        for index in 0..layout.count() {
+            let rect = layout.band(index).unwrap();
+            let mut band = ColorBand::new(&mut buffer, &layout, index).unwrap();
+            band.clear(Gray8::BLACK);
+            let mut mask = CoverageMask::new(&mut band_cells, rect).unwrap();
+            for t in triangles {
+                mask.add(coords(*t));
+            }
+            band.fill_mask(&mut mask, Gray8::WHITE);
+            let start = (rect.top_left.y as u32 * W) as usize;
+            let len = (rect.size.height * W) as usize;
+            assert_eq!(
+                band.pixels(),
+                &fb.pixels()[start..start + len],
+                "{rows}-row band {index}"
+            );
+        }
+    }
+    worst
+}
+
+#[test]
+fn a_coverage_mask_is_the_union_within_one_level() {
+    let (cx, cy) = (26 * 256 + 77, 20 * 256 + 161);
+    let rim: Vec<(i32, i32)> = (0..60)
+        .map(|k| {
+            let a = f64::from(k) * std::f64::consts::TAU / 60.0;
+            (
+                cx + (4900.0 * a.cos()) as i32,
+                cy + (4700.0 * a.sin()) as i32,
+            )
+        })
+        .collect();
+    let fan: Vec<[(i32, i32); 3]> = (0..60)
+        .map(|k| [(cx, cy), rim[k], rim[(k + 1) % 60]])
+        .collect();
+    println!("fan: {:.2}/255", mask_against_union(&fan));
+    let mut rng = Rng(71);
+    for _ in 0..20 {
+        let (cols, rows) = (2 + rng.below(6) as i64, 2 + rng.below(5) as i64);
+        let point = |i: i64, j: i64, rng: &mut Rng| {
+            let x = 400 + i * 12_000 / cols + rng.range(-300, 300);
+            let y = 400 + j * 9_500 / rows + rng.range(-300, 300);
+            (x as i32, y as i32)
+        };
+        let grid: Vec<Vec<(i32, i32)>> = (0..=rows)
+            .map(|j| (0..=cols).map(|i| point(i, j, &mut rng)).collect())
+            .collect();
+        let mut mesh = Vec::new();
+        for j in 0..rows as usize {
+            for i in 0..cols as usize {
+                let (a, b, c, d) = (
+                    grid[j][i],
+                    grid[j][i + 1],
+                    grid[j + 1][i + 1],
+                    grid[j + 1][i],
+                );
+                mesh.push([a, b, c]);
+                mesh.push([a, c, d]);
+            }
+        }
+        println!("grid: {:.2}/255", mask_against_union(&mesh));
+    }
+    // Random triangles one at a time (overlaps saturate, so one each).
+    for _ in 0..300 {
+        mask_against_union(&[triangle(&mut rng)]);
+    }
+}

@@ -8,8 +8,8 @@ use embedded_graphics::Pixel;
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
-    skip_colors, AntiAliased, GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle,
-    Translucent,
+    skip_colors, AntiAliased, CoverageMask, GouraudTriangle, SliceFramebuffer, SolidTriangle,
+    TexturedTriangle, Translucent,
 };
 use crate::raster::band::Band;
 use crate::rect;
@@ -282,6 +282,17 @@ impl<'a, C: PixelColor> ColorBand<'a, C> {
     /// Sets every pixel of the band to `color`.
     pub fn clear(&mut self, color: C) {
         crate::draw::fill_row(self.pixels.pixels_mut(), color);
+    }
+
+    /// Blends `color` with the summed coverage of `mask` into the band (see [`CoverageMask`];
+    /// its area is usually the band's [`rect`](Self::rect)) and clears the mask: the pixels
+    /// [`CoverageMask::fill_into`] gives these rows of the frame.
+    pub fn fill_mask(&mut self, mask: &mut CoverageMask<'_>, color: C)
+    where
+        C: GouraudColor,
+    {
+        let top = self.rect().top_left.y;
+        mask.fill_rows(color, &mut self.pixels, top);
     }
 
     /// Draws the band's rows of `item`: the pixels the whole frame has there.

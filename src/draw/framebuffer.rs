@@ -94,6 +94,13 @@ pub enum FramebufferError {
         /// Entries given.
         given: usize,
     },
+    /// A coverage mask's cells shorter than its area (`width · height` cells).
+    MaskBuffer {
+        /// Cells the area needs: `width · height`.
+        needed: usize,
+        /// Cells given.
+        given: usize,
+    },
 }
 
 impl core::fmt::Display for FramebufferError {
@@ -112,6 +119,10 @@ impl core::fmt::Display for FramebufferError {
                 f,
                 "a depth buffer needs {needed} entries (width · height), given {given}"
             ),
+            FramebufferError::MaskBuffer { needed, given } => write!(
+                f,
+                "a coverage mask needs {needed} cells (width · height), given {given}"
+            ),
         }
     }
 }
@@ -120,7 +131,7 @@ impl core::error::Error for FramebufferError {}
 
 /// The number of pixels of a `width × height` frame: an error if a side does not fit an `i32`
 /// position or the product a `usize`.
-fn frame_len(width: u32, height: u32) -> Result<usize, FramebufferError> {
+pub(crate) fn frame_len(width: u32, height: u32) -> Result<usize, FramebufferError> {
     let too_large = FramebufferError::TooLarge { width, height };
     if width > i32::MAX as u32 || height > i32::MAX as u32 {
         return Err(too_large);

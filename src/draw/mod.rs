@@ -9,6 +9,7 @@
 mod antialias;
 mod framebuffer;
 mod image;
+mod mask;
 #[cfg(feature = "png")]
 mod png_file;
 mod textured;
@@ -19,6 +20,7 @@ pub use antialias::AntiAliased;
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{fill_row, FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;
+pub use mask::CoverageMask;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
 pub use textured::{TexturedTriangle, TexturedVertex};
