@@ -41,8 +41,9 @@
 //! The blend loop ([`blend_solid_565`]): LLVM keeps the portable pair loop's masks and lanes on
 //! the stack (25.6 instructions a pixel of a large translucent triangle). Here two pixels are
 //! 20 instructions in registers — three field extractions, three `muls` by `256 − w` and adds
-//! of the lanes' `s·w + 128` from high registers, three masks, two ORs — two words a pass; a
-//! pixel at an address of 2 mod 4 at either end alone. It gives the portable loop's integers
+//! of the lanes' `s·w + 128` from high registers, three masks, two ORs — four words a pass, the
+//! first pass entered by a computed jump as in the texel loop; a pixel at an address of 2 mod 4
+//! at either end alone. It gives the portable loop's integers
 //! (every lane below 2¹⁶); CI checks the Cortex-M0 scene's translucent triangles against the
 //! host's checksum.
 #![allow(unsafe_code)]
@@ -527,6 +528,14 @@ macro_rules! blend_pair_v6m {
     };
 }
 
+/// One word of the blend loop: two pixels at r0 blended ([`blend_pair_v6m`]) and stored, r0
+/// advanced past them. The same length every time: the loop's computed jump counts on it.
+macro_rules! blend_word_v6m {
+    () => {
+        concat!("ldr r2, [r0]\n", blend_pair_v6m!(), "\nstm r0!, {{r2}}")
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_blend_565_v6m,\"ax\",%progbits",
     ".syntax unified",
@@ -566,28 +575,29 @@ core::arch::global_asm!(
     "strh r2, [r0]",
     "adds r0, #2",
     "1:",
-    // lr = the end of the words; an odd word first, then two a pass.
+    // lr = the end of the words; four a pass, the first pass entered at the word that leaves
+    // a multiple of four: m = (−words) mod 4, a jump of 44m bytes from the loop's start (a word
+    // is 22 instructions of 16 bits), which the PC reads as 4 bytes past the `add`.
     "mov r3, r12",
     "lsrs r3, r3, #2",
     "lsls r3, r3, #2",
     "mov lr, r3",
     "subs r3, r3, r0",
-    "lsls r3, r3, #29",
-    "bpl 2f",
-    "ldr r2, [r0]",
-    blend_pair_v6m!(),
-    "stm r0!, {{r2}}",
-    "2:",
-    "cmp r0, lr",
-    "bhs 4f",
+    "beq 4f",
+    "rsbs r3, r3, #0",
+    "movs r4, #12",
+    "ands r3, r4",
+    "lsls r4, r3, #3",
+    "adds r4, r4, r3",
+    "lsls r3, r3, #1",
+    "adds r4, r4, r3",
+    "add pc, r4",
+    "nop",
     "3:",
-    "ldr r2, [r0]",
-    blend_pair_v6m!(),
-    "str r2, [r0]",
-    "ldr r2, [r0, #4]",
-    blend_pair_v6m!(),
-    "str r2, [r0, #4]",
-    "adds r0, #8",
+    blend_word_v6m!(),
+    blend_word_v6m!(),
+    blend_word_v6m!(),
+    blend_word_v6m!(),
     "cmp r0, lr",
     "blo 3b",
     // A last pixel alone.

@@ -1098,17 +1098,18 @@ core::arch::global_asm!(
     // r0 = pixels (2-byte aligned), r1 = pixel count, r2 = the weights: 256 − w and the top,
     // middle and bottom fields' s·w + 128 in both halves.
     "embedded_raster_blend_565_v7m:",
-    "cmp r1, #0",
-    "it eq",
-    "bxeq lr",
     "push {{r4-r11, lr}}",
     "ldm r2, {{r2, r3, r4, r5}}",
     "lsl r3, r3, #3",
     "mov r6, #0x00F800F8",
     "mov r7, #0x003F003F",
-    // A first pixel at an address of 2 mod 4 alone.
+    // A first pixel at an address of 2 mod 4 alone (no pixels: nothing to do; from an aligned
+    // address the count goes through the loops' tests as none).
     "tst r0, #2",
     "beq 1f",
+    "cmp r1, #0",
+    "it eq",
+    "popeq {{r4-r11, pc}}",
     "ldrh r8, [r0]",
     blend_pair_v7m!("r8", "r12", "lr"),
     "strh r8, [r0], #2",
