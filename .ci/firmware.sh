@@ -102,9 +102,11 @@ declare -A PERSPECTIVE_TARGET=([cortex-m4]=27 [cortex-m0]=64)
 declare -A PERSPECTIVE_LIT_TARGET=([cortex-m4]=52 [cortex-m0]=191)
 declare -A GOURAUD_TARGET=([cortex-m4]=10 [cortex-m0]=17.4)
 # Translucent triangles (fw_bench's large set, Rgb565): a solid colour at one opacity (the
-# alpha issue's targets are 6 and 12; measured 10.29 and 25.61, margins of 10 %) and an alpha
-# per vertex (target 14 on the M4; measured 33.42 and 60.67).
-declare -A OPACITY_TARGET=([cortex-m4]=11.4 [cortex-m0]=28.2)
+# alpha issue's targets are 6 and 12, out of reach: the blend loops' arithmetic alone is 5.5 and
+# 11.25 a pixel, the raster core's rows 1.01 and 4.00; measured 6.97 and 17.03 with the Thumb-2
+# and Thumb-1 loops, 10.29 and 25.61 before them; margins of 10 %) and an alpha per vertex
+# (target 14 on the M4; measured 33.42 and 60.67).
+declare -A OPACITY_TARGET=([cortex-m4]=7.7 [cortex-m0]=18.7)
 declare -A ALPHA_TARGET=([cortex-m4]=36.8 [cortex-m0]=66.8)
 
 fail() {

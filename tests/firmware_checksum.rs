@@ -13,7 +13,7 @@
 mod scene;
 
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use embedded_raster::SliceFramebuffer;
+use embedded_raster::{GouraudColor, SliceFramebuffer};
 use scene::Shape;
 
 /// What the reference puts at one pixel.
@@ -85,8 +85,27 @@ fn reference_image(width: u32, height: u32) -> Vec<Expected> {
 fn render(width: u32, height: u32) -> Vec<Rgb565> {
     let mut pixels = vec![Rgb565::BLACK; (width * height) as usize];
     let mut fb = SliceFramebuffer::new(&mut pixels, width, height).unwrap();
-    scene::render(&mut fb);
+    scene::render_opaque(&mut fb);
     pixels
+}
+
+/// The translucent shapes over the opaque image `under`: each pixel the reference covers is the
+/// shape's colour blended over it (`GouraudColor::blend`, the definition), the others as they
+/// were; shapes in drawing order.
+fn reference_translucent(width: u32, height: u32, under: &[Rgb565]) -> Vec<Rgb565> {
+    let mut image = under.to_vec();
+    for (t, alpha) in scene::translucent_shapes(width, height) {
+        let positions = t.points.map(|(x, y)| (x.to_bits(), y.to_bits()));
+        for j in 0..height {
+            for i in 0..width {
+                if reference_weights(positions, i64::from(i), i64::from(j)).is_some() {
+                    let px = &mut image[(j * width + i) as usize];
+                    *px = t.color.blend(*px, alpha);
+                }
+            }
+        }
+    }
+    image
 }
 
 #[test]
@@ -115,6 +134,26 @@ fn scene_matches_independent_reference_at_every_firmware_size() {
         assert!(
             shaded > (width * height) as usize * 3 / 4,
             "{shaded} shaded pixels"
+        );
+        // Then the translucent shapes, exactly their blends over the opaque image.
+        let want = reference_translucent(width, height, &got);
+        let blended = got.iter().zip(&want).filter(|(g, w)| g != w).count();
+        assert!(
+            blended > (width * height) as usize / 4,
+            "{blended} blended pixels"
+        );
+        let mut got = got;
+        let mut fb = SliceFramebuffer::new(&mut got, width, height).unwrap();
+        scene::render_translucent(&mut fb);
+        for (idx, (g, w)) in got.iter().zip(&want).enumerate() {
+            let (x, y) = (idx as u32 % width, idx as u32 / width);
+            assert_eq!(g, w, "{width}x{height}: translucent pixel ({x}, {y})");
+        }
+        let mut whole = vec![Rgb565::BLACK; (width * height) as usize];
+        scene::render(&mut SliceFramebuffer::new(&mut whole, width, height).unwrap());
+        assert_eq!(
+            whole, got,
+            "render is render_opaque then render_translucent"
         );
         println!(
             "{}",

@@ -6,7 +6,8 @@
 //! around a sub-pixel centre that crosses the top and bottom edges, a thin band between vertices
 //! at the ends of the `Coord` range, big triangles crossing the borders (one from 50 000
 //! pixels above the screen), off-screen and degenerate ones, and sub-pixel slivers. Shapes
-//! alternate between `Drawable::draw` and the `draw_into` fast path so both are exercised.
+//! alternate between `Drawable::draw` and the `draw_into` fast path so both are exercised. Four
+//! solid triangles at an opacity are then blended over the finished scene (`draw_into`).
 //!
 //! Everything here is panic-free for any size: `fw_nopanic` links it with a panic handler that
 //! does not exist.
@@ -271,8 +272,71 @@ pub fn for_each_shape(width: u32, height: u32, mut f: impl FnMut(Shape)) {
     }
 }
 
-/// Clears `fb` and draws the scene, alternating `Drawable::draw` and `draw_into`.
+/// Solid triangles at an opacity, drawn over the finished opaque scene ([`render`]): one
+/// crossing the left and bottom borders, a big one over most of the screen, a thin sliver and a
+/// small one at the highest opacity short of opaque, so that spans of every length start and
+/// end at both pixel parities of the 5-6-5 blend loops' words.
+pub fn translucent_shapes(width: u32, height: u32) -> [(SolidTriangle<Rgb565>, u8); 4] {
+    let w = (width.min(4096) as i32) * 256;
+    let h = (height.min(4096) as i32) * 256;
+    let fx = |n: i32| w / 100 * n;
+    let fy = |n: i32| h / 100 * n;
+    let tri = |p: [(i32, i32); 3], color: Rgb565, alpha: u8| {
+        (
+            SolidTriangle::new(p.map(|(x, y)| (c(x), c(y))), color),
+            alpha,
+        )
+    };
+    [
+        tri(
+            [(fx(-20), fy(30)), (fx(55) + 41, fy(70)), (fx(10), fy(130))],
+            Rgb565::new(31, 10, 3),
+            77,
+        ),
+        tri(
+            [(fx(8) + 3, fy(6)), (fx(93), fy(20) + 101), (fx(40), fy(95))],
+            Rgb565::new(4, 60, 25),
+            200,
+        ),
+        tri(
+            [
+                (fx(20), fy(50)),
+                (fx(90) + 17, fy(52)),
+                (fx(20) + 60, fy(56)),
+            ],
+            Rgb565::WHITE,
+            1,
+        ),
+        tri(
+            [
+                (fx(70), fy(10) + 33),
+                (fx(85) + 9, fy(25)),
+                (fx(66), fy(40)),
+            ],
+            Rgb565::new(0, 0, 31),
+            254,
+        ),
+    ]
+}
+
+/// Clears `fb` and draws the scene: the opaque shapes ([`render_opaque`]), then the translucent
+/// ones ([`render_translucent`]).
 pub fn render(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    render_opaque(fb);
+    render_translucent(fb);
+}
+
+/// Blends the [`translucent_shapes`] into `fb` (`draw_into`).
+pub fn render_translucent(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let size = fb.size();
+    for (t, alpha) in translucent_shapes(size.width, size.height) {
+        let (t, alpha) = core::hint::black_box((t, alpha));
+        t.with_opacity(alpha).draw_into(fb);
+    }
+}
+
+/// Clears `fb` and draws the opaque shapes, alternating `Drawable::draw` and `draw_into`.
+pub fn render_opaque(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     let size = fb.size();
     let _ = fb.clear(BACKGROUND);
     let mut n = 0u32;

@@ -16,9 +16,13 @@ pub(crate) mod x86_64;
 use core::num::NonZeroU32;
 
 #[cfg(armv6m)]
+pub(crate) use thumbv6m::blend_solid_565;
+#[cfg(armv6m)]
 pub(crate) use thumbv6m::depth_masked_nearest_565;
 #[cfg(armv6m)]
 pub(crate) use thumbv6m::masked_nearest_565;
+#[cfg(armv7m)]
+pub(crate) use thumbv7m::blend_solid_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
@@ -84,6 +88,15 @@ pub struct MaskedSpan565<'a> {
     pub(crate) x_mask: u32,
     /// The row mask in storage units: the height less one, times the width.
     pub(crate) rows: u32,
+}
+
+/// [`blend_solid_565`] where there is none (hosts: the portable loop, which LLVM vectorises):
+/// blends nothing and says so. On Cortex-M a constant colour at a constant opacity over 5-6-5
+/// pixels is one assembly loop, two pixels a word, the constants in registers.
+#[cfg(not(any(armv6m, armv7m)))]
+#[inline(always)]
+pub(crate) fn blend_solid_565<C>(_pixels: &mut [C], _weights: &[u32; 4]) -> bool {
+    false
 }
 
 /// [`masked_nearest_565`] where there is none: draws nothing and says so.

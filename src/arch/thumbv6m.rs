@@ -1,5 +1,6 @@
 //! ARMv6-M (Cortex-M0/M0+): the 5-6-5 span loop, the masked nearest texel loop and its
-//! depth-tested form (the perspective-correct fill's unlit chunks) in Thumb-1 assembly.
+//! depth-tested form (the perspective-correct fill's unlit chunks), and the 5-6-5 blend of a
+//! constant colour at a constant opacity in Thumb-1 assembly.
 //!
 //! LLVM keeps the loop's masks, steps and words in memory on Thumb-1 (26 instructions a pair of
 //! pixels, ~70 a span around them). Here the pair loop keeps everything in registers and stores
@@ -36,8 +37,18 @@
 //! computed jump. LLVM's loop took about 45. The host tests the masked formula; CI checks the
 //! Cortex-M0 `fw_texture_bench` frames (the perspective cases and 300 random perspective
 //! triangles) and the M0 code's textured mesh frames against the host's.
+//!
+//! The blend loop ([`blend_solid_565`]): LLVM keeps the portable pair loop's masks and lanes on
+//! the stack (25.6 instructions a pixel of a large translucent triangle). Here two pixels are
+//! 20 instructions in registers — three field extractions, three `muls` by `256 − w` and adds
+//! of the lanes' `s·w + 128` from high registers, three masks, two ORs — four words a pass, the
+//! first pass entered by a computed jump as in the texel loop; a pixel at an address of 2 mod 4
+//! at either end alone. It gives the portable loop's integers
+//! (every lane below 2¹⁶); CI checks the Cortex-M0 scene's translucent triangles against the
+//! host's checksum.
 #![allow(unsafe_code)]
 
+use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
 
 use super::MaskedSpan565;
@@ -498,5 +509,137 @@ pub(crate) fn depth_masked_nearest_565(
             &walk,
         );
     }
+    true
+}
+
+/// Two 5-6-5 pixels in r2 (the right one in the high half) under the constant colour: r1 =
+/// `256 − w`, r8, r9, r10 = the top, middle and bottom fields' `s·w + 128` (each in both
+/// halves of its word), r5 = 0x001F001F, r6 = 0x003F003F, r7 = 0xF800F800; r3 and r4 are
+/// clobbered. Each field of both pixels is one multiply and one add of a lane pair (every lane
+/// below 2¹⁶), its blended value bits 8 and up of its lane: the top ones shifted into place and
+/// masked, the middle ones masked and shifted, the bottom ones masked.
+macro_rules! blend_pair_v6m {
+    () => {
+        "lsrs r3, r2, #11\nands r3, r5\nmuls r3, r1, r3\nadd r3, r8\nlsls r3, r3, #3\n\
+         ands r3, r7\n\
+         lsrs r4, r2, #5\nands r4, r6\nmuls r4, r1, r4\nadd r4, r9\nlsrs r4, r4, #8\n\
+         ands r4, r6\nlsls r4, r4, #5\norrs r3, r4\n\
+         ands r2, r5\nmuls r2, r1, r2\nadd r2, r10\nlsrs r2, r2, #8\nands r2, r5\norrs r2, r3"
+    };
+}
+
+/// One word of the blend loop: two pixels at r0 blended ([`blend_pair_v6m`]) and stored, r0
+/// advanced past them. The same length every time: the loop's computed jump counts on it.
+macro_rules! blend_word_v6m {
+    () => {
+        concat!("ldr r2, [r0]\n", blend_pair_v6m!(), "\nstm r0!, {{r2}}")
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_blend_565_v6m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_blend_565_v6m",
+    ".hidden embedded_raster_blend_565_v6m",
+    ".type embedded_raster_blend_565_v6m,%function",
+    ".thumb_func",
+    // r0 = pixels (2-byte aligned), r1 = pixel count, r2 = the weights: 256 − w and the top,
+    // middle and bottom fields' s·w + 128 in both halves.
+    "embedded_raster_blend_565_v6m:",
+    "lsls r1, r1, #1",
+    "bne 0f",
+    "bx lr",
+    "0:",
+    "push {{r4-r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "push {{r4-r6}}",
+    // r12 = past the last pixel.
+    "adds r1, r0, r1",
+    "mov r12, r1",
+    "ldm r2!, {{r1, r3, r4, r5}}",
+    "mov r8, r3",
+    "mov r9, r4",
+    "mov r10, r5",
+    "ldr r5, 6f",
+    "ldr r6, 7f",
+    "ldr r7, 8f",
+    // A first pixel at an address of 2 mod 4 alone.
+    "lsls r3, r0, #30",
+    "bpl 1f",
+    "ldrh r2, [r0]",
+    blend_pair_v6m!(),
+    "strh r2, [r0]",
+    "adds r0, #2",
+    "1:",
+    // lr = the end of the words; four a pass, the first pass entered at the word that leaves
+    // a multiple of four: m = (−words) mod 4, a jump of 44m bytes from the loop's start (a word
+    // is 22 instructions of 16 bits), which the PC reads as 4 bytes past the `add`.
+    "mov r3, r12",
+    "lsrs r3, r3, #2",
+    "lsls r3, r3, #2",
+    "mov lr, r3",
+    "subs r3, r3, r0",
+    "beq 4f",
+    "rsbs r3, r3, #0",
+    "movs r4, #12",
+    "ands r3, r4",
+    "lsls r4, r3, #3",
+    "adds r4, r4, r3",
+    "lsls r3, r3, #1",
+    "adds r4, r4, r3",
+    "add pc, r4",
+    "nop",
+    "3:",
+    blend_word_v6m!(),
+    blend_word_v6m!(),
+    blend_word_v6m!(),
+    blend_word_v6m!(),
+    "cmp r0, lr",
+    "blo 3b",
+    // A last pixel alone.
+    "4:",
+    "cmp r0, r12",
+    "bhs 5f",
+    "ldrh r2, [r0]",
+    blend_pair_v6m!(),
+    "strh r2, [r0]",
+    "5:",
+    "pop {{r4-r6}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "pop {{r4-r7, pc}}",
+    ".p2align 2",
+    "6: .word 0x001F001F",
+    "7: .word 0x003F003F",
+    "8: .word 0xF800F800",
+    ".size embedded_raster_blend_565_v6m, . - embedded_raster_blend_565_v6m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_blend_565_v6m(pixels: *mut u16, len: usize, weights: *const [u32; 4]);
+}
+
+/// Blends the constant colour of `weights` over every pixel of `pixels`, 5-6-5 colours (one
+/// `u16` each, every raw value a colour: `C: From<RawU16>`): `weights` are `256 − w` and the
+/// raw top, middle and bottom fields' `s·w + 128`, each in both halves of its word (`s·w + 128
+/// ≤ 63·256 + 128`). Each field becomes `(pre + d·(256 − w)) >> 8`, as `color::blend`'s
+/// portable loop gives it. `false` without writing anything if `C` is not a 16-bit colour.
+#[inline(always)]
+pub(crate) fn blend_solid_565<C: From<RawU16>>(pixels: &mut [C], weights: &[u32; 4]) -> bool {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return false;
+    }
+    // SAFETY: the function reads and writes exactly `pixels.len()` consecutive 2-byte aligned
+    // `u16`s from the slice's start, which are the slice's own (a 5-6-5 colour is one `u16`,
+    // any bits a colour), words only at 4-byte aligned addresses (as ARMv6-M requires), and
+    // reads the four words of `weights`. It saves and restores every register the AAPCS asks
+    // it to.
+    unsafe { embedded_raster_blend_565_v6m(pixels.as_mut_ptr().cast(), pixels.len(), weights) }
     true
 }

@@ -1,5 +1,12 @@
 //! ARMv7-M (Cortex-M3/M4/M7): the rows of a small depth-tested triangle with interpolated light
-//! levels (the 3D pipeline's Gouraud fill) in Thumb-2 assembly.
+//! levels (the 3D pipeline's Gouraud fill) in Thumb-2 assembly, and the span loops of the
+//! textured fills and of a constant colour blended at a constant opacity into 5-6-5 pixels.
+//!
+//! The blend loop ([`blend_solid_565`]): LLVM unrolls the portable pair loop but reloads its
+//! lanes from the stack. Here two pixels (a word) are 10 instructions on ARMv7E-M (11 on the
+//! Cortex-M3, without `uxtb16`), every constant in a register, eight pixels a pass with one
+//! `ldm` and one `stm`. It gives the portable loop's integers (every lane below 2¹⁶); CI checks
+//! the M3 and M4 scenes' translucent triangles against the host's checksums.
 //!
 //! The triangles of a 3D mesh cover a few pixels each: spans of one or two pixels on four rows.
 //! LLVM's code for them keeps the row state on the stack (it needs more registers than there
@@ -18,6 +25,8 @@
 //! by `mla`, the wrapping `value + step·start`). The host tests the portable path; CI checks that
 //! the Cortex-M3 and M4 firmware frames have the host's checksums.
 #![allow(unsafe_code)]
+
+use embedded_graphics::pixelcolor::raw::RawU16;
 
 use super::{LevelRows, PerspectiveSpan565, TexturedRows};
 
@@ -1025,4 +1034,141 @@ fn region_stride(len: usize, rows: &LevelRows) -> Option<u32> {
         return None;
     }
     u32::try_from(rows.width.checked_mul(2)?).ok()
+}
+
+/// Two 5-6-5 pixels in `$d` (the right one in the high half) under the constant colour: r2 =
+/// `256 − w`, r3 = the top field's `s·w + 128` times 8, r4 and r5 the middle and bottom fields'
+/// (each in both halves of its word), r6 = 0x00F800F8, r7 = 0x003F003F; `$t` and `$m` are
+/// clobbered. The top fields are taken 8 times their value (`(d >> 8) & 0x00F800F8`), so their
+/// blended values land in place (bits 11–15 of each lane: `8·v < 2¹⁶` for `v ≤ 31·256 + 128`);
+/// the middle and bottom lanes' blended values are bits 8–15 of theirs, which `uxtb16` and
+/// `uxtab16` take (below 64, so the bytes hold them), the bottom one added into the lanes'
+/// clear low bits: 10 instructions.
+#[cfg(armv7em)]
+#[rustfmt::skip]
+macro_rules! blend_pair_v7m {
+    ($d:literal, $t:literal, $m:literal) => {
+        concat!(
+            "and ", $t, ", r6, ", $d, ", lsr #8\n",
+            "and ", $m, ", r7, ", $d, ", lsr #5\n",
+            "and ", $d, ", ", $d, ", #0x001F001F\n",
+            "mla ", $t, ", ", $t, ", r2, r3\n",
+            "mla ", $m, ", ", $m, ", r2, r4\n",
+            "mla ", $d, ", ", $d, ", r2, r5\n",
+            "and ", $t, ", ", $t, ", #0xF800F800\n",
+            "uxtb16 ", $m, ", ", $m, ", ror #8\n",
+            "orr ", $t, ", ", $t, ", ", $m, ", lsl #5\n",
+            "uxtab16 ", $d, ", ", $t, ", ", $d, ", ror #8\n",
+        )
+    };
+}
+
+/// The same on the Cortex-M3, which has no `uxtb16`/`uxtab16`: the middle and bottom lanes'
+/// values taken with the mask 0x003F003F (the bottom ones are below 32) and the bottom ones
+/// or'ed in: 11 instructions.
+#[cfg(not(armv7em))]
+#[rustfmt::skip]
+macro_rules! blend_pair_v7m {
+    ($d:literal, $t:literal, $m:literal) => {
+        concat!(
+            "and ", $t, ", r6, ", $d, ", lsr #8\n",
+            "and ", $m, ", r7, ", $d, ", lsr #5\n",
+            "and ", $d, ", ", $d, ", #0x001F001F\n",
+            "mla ", $t, ", ", $t, ", r2, r3\n",
+            "mla ", $m, ", ", $m, ", r2, r4\n",
+            "mla ", $d, ", ", $d, ", r2, r5\n",
+            "and ", $t, ", ", $t, ", #0xF800F800\n",
+            "and ", $m, ", r7, ", $m, ", lsr #8\n",
+            "orr ", $t, ", ", $t, ", ", $m, ", lsl #5\n",
+            "and ", $d, ", r7, ", $d, ", lsr #8\n",
+            "orr ", $d, ", ", $d, ", ", $t, "\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_blend_565_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_blend_565_v7m",
+    ".hidden embedded_raster_blend_565_v7m",
+    ".type embedded_raster_blend_565_v7m,%function",
+    ".thumb_func",
+    // r0 = pixels (2-byte aligned), r1 = pixel count, r2 = the weights: 256 − w and the top,
+    // middle and bottom fields' s·w + 128 in both halves.
+    "embedded_raster_blend_565_v7m:",
+    "push {{r4-r11, lr}}",
+    "ldm r2, {{r2, r3, r4, r5}}",
+    "lsl r3, r3, #3",
+    "mov r6, #0x00F800F8",
+    "mov r7, #0x003F003F",
+    // A first pixel at an address of 2 mod 4 alone (no pixels: nothing to do; from an aligned
+    // address the count goes through the loops' tests as none).
+    "tst r0, #2",
+    "beq 1f",
+    "cmp r1, #0",
+    "it eq",
+    "popeq {{r4-r11, pc}}",
+    "ldrh r8, [r0]",
+    blend_pair_v7m!("r8", "r12", "lr"),
+    "strh r8, [r0], #2",
+    "subs r1, #1",
+    "1:",
+    // Eight pixels (four words) a pass while there are eight.
+    "subs r1, #8",
+    "blo 3f",
+    "2:",
+    "ldm r0, {{r8-r11}}",
+    blend_pair_v7m!("r8", "r12", "lr"),
+    blend_pair_v7m!("r9", "r12", "lr"),
+    blend_pair_v7m!("r10", "r12", "lr"),
+    blend_pair_v7m!("r11", "r12", "lr"),
+    "stm r0!, {{r8-r11}}",
+    "subs r1, #8",
+    "bhs 2b",
+    // Then a word at a time, and a last pixel alone.
+    "3:",
+    "adds r1, #6",
+    "blo 5f",
+    "4:",
+    "ldr r8, [r0]",
+    blend_pair_v7m!("r8", "r12", "lr"),
+    "str r8, [r0], #4",
+    "subs r1, #2",
+    "bhs 4b",
+    "5:",
+    "tst r1, #1",
+    "beq 6f",
+    "ldrh r8, [r0]",
+    blend_pair_v7m!("r8", "r12", "lr"),
+    "strh r8, [r0]",
+    "6:",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_blend_565_v7m, . - embedded_raster_blend_565_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_blend_565_v7m(pixels: *mut u16, len: usize, weights: *const [u32; 4]);
+}
+
+/// Blends the constant colour of `weights` over every pixel of `pixels`, 5-6-5 colours (one
+/// `u16` each, every raw value a colour: `C: From<RawU16>`): `weights` are `256 − w` and the raw top, middle and bottom
+/// fields' `s·w + 128`, each in both halves of its word (`s·w + 128 ≤ 63·256 + 128`, the top
+/// one at most `31·256 + 128`). Each field becomes `(pre + d·(256 − w)) >> 8`, as
+/// `color::blend`'s portable loop gives it. `false` without writing anything if `C` is not a
+/// 16-bit colour.
+#[inline(always)]
+pub(crate) fn blend_solid_565<C: From<RawU16>>(pixels: &mut [C], weights: &[u32; 4]) -> bool {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return false;
+    }
+    // SAFETY: the function reads and writes exactly `pixels.len()` consecutive 2-byte aligned
+    // `u16`s from the slice's start, which are the slice's own (a 5-6-5 colour is one `u16`,
+    // any bits a colour), words and `ldm`/`stm` blocks only at 4-byte aligned addresses, and
+    // reads the four words of `weights`. It saves and restores every register the AAPCS asks
+    // it to.
+    unsafe { embedded_raster_blend_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), weights) }
+    true
 }

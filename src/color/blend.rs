@@ -69,6 +69,9 @@ pub struct BlendSource {
     pre: [u32; 3],
     /// `256 − w`.
     keep: u32,
+    /// `keep`, then each channel's `pre` in both halves of a word (channel order): the 5-6-5
+    /// formats' two-pixel lanes ([`blend_solid_565`]), formed once for all of a triangle's spans.
+    lanes: [u32; 4],
 }
 
 impl BlendSource {
@@ -76,9 +79,14 @@ impl BlendSource {
     #[inline]
     pub fn new<C: GouraudColor>(color: C, alpha: u8) -> Self {
         let w = weight(alpha);
+        let pre = color.channels().map(|s| u32::from(s) * w + 128);
+        let keep = 256 - w;
+        // Each `pre` is at most 255·256 + 128 < 2¹⁶: the halves do not overlap.
+        let both = |v: u32| v | (v << 16);
         BlendSource {
-            pre: color.channels().map(|s| u32::from(s) * w + 128),
-            keep: 256 - w,
+            pre,
+            keep,
+            lanes: [keep, both(pre[0]), both(pre[1]), both(pre[2])],
         }
     }
 
@@ -158,15 +166,18 @@ pub(crate) fn blend_solid_565<C: Copy + From<RawU16> + Into<RawU16>>(
     source: &BlendSource,
     order: [usize; 3],
 ) {
-    let pre = order.map(|k| {
-        source
-            .pre
-            .get(k)
-            .copied()
-            .unwrap_or(0)
-            .wrapping_mul(0x1_0001)
-    });
-    let keep = source.keep;
+    let permuted;
+    let lanes = if matches!(order, [0, 1, 2]) {
+        &source.lanes
+    } else {
+        let lane = |k: usize| source.lanes.get(k + 1).copied().unwrap_or(0);
+        permuted = [source.keep, lane(order[0]), lane(order[1]), lane(order[2])];
+        &permuted
+    };
+    if crate::arch::blend_solid_565(dst, lanes) {
+        return;
+    }
+    let [keep, pre @ ..] = *lanes;
     let raw_of = |c: C| u32::from(c.into().into_inner());
     let mut rest = dst;
     while let [a, b, tail @ ..] = rest {

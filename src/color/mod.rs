@@ -354,8 +354,7 @@ macro_rules! rgb_color {
                 fn prepare_steps(step: [u32; 3]) -> SpanSteps {
                     prepare_565(step, $order)
                 }
-                #[cfg_attr(not(armv7m), inline(always))]
-                #[cfg_attr(armv7m, inline(never))]
+                #[inline(always)]
                 fn blend_solid(dst: &mut [Self], source: &BlendSource) {
                     blend::blend_solid_565(dst, source, $order)
                 }
