@@ -4,10 +4,15 @@
 //! * `fan.png` — a fan of thin triangles around a sub-pixel centre, and next to it how often each
 //!   pixel was drawn (white once, red more than once, black never inside the fan);
 //! * `heatmap.png` — per-pixel colour error against the f64 reference, in LSB of Rgb888, with
-//!   its legend below the map.
+//!   its legend below the map;
+//! * `antialias.png` — the same shapes aliased, anti-aliased triangle by triangle, and as one
+//!   coverage mask, at 4×;
+//! * `translucent.png` — a Gouraud scene under translucent triangles: one opacity, an alpha per
+//!   vertex, and an anti-aliased one.
 //!
 //! Run with `cargo run --release --example gallery`.
 
+use embedded_graphics::image::Image;
 use embedded_graphics::{
     mono_font::{ascii::FONT_5X8, MonoTextStyle},
     pixelcolor::{Rgb565, Rgb888},
@@ -16,7 +21,9 @@ use embedded_graphics::{
     text::{Alignment, Text},
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
-use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, Vertex};
+use embedded_raster::{
+    Coord, CoverageMask, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
+};
 
 // The f64 reference, compiled in directly so that the example needs no cargo feature
 // (it is `embedded_raster::reference` with the `reference` feature).
@@ -255,9 +262,100 @@ fn error_color(e: f64) -> Rgb888 {
     Rgb888::new(r as u8, g as u8, b as u8)
 }
 
+/// A star of `n` spikes around `(cx, cy)` as triangles from the centre: each spike two.
+fn star(cx: f64, cy: f64, outer: f64, inner: f64, n: usize, turn: f64) -> Vec<[(f64, f64); 3]> {
+    let at = |k: usize, r: f64| {
+        let a = k as f64 * core::f64::consts::PI / n as f64 + turn;
+        (cx + r * a.cos(), cy + r * a.sin())
+    };
+    (0..2 * n)
+        .map(|k| {
+            let r = |k: usize| if k % 2 == 0 { outer } else { inner };
+            [(cx, cy), at(k, r(k)), at(k + 1, r(k + 1))]
+        })
+        .collect()
+}
+
+fn antialias_picture() {
+    let (w, h) = (72u32, 56u32);
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(3 * w + 8, h));
+    let background = Rgb565::new(3, 8, 6);
+    let thin = [(4.3, 50.2), (66.7, 6.4), (68.9, 10.1)];
+    let tilted = [(6.2, 4.7), (30.5, 9.3), (12.8, 33.6)];
+    let shapes = star(46.3, 34.4, 20.5, 8.2, 5, 0.3);
+    for panel in 0..3 {
+        let mut pixels = vec![background; (w * h) as usize];
+        let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
+        let mut cells = vec![0u16; (w * h) as usize];
+        let mut mask = CoverageMask::new(&mut cells, fb.bounding_box()).unwrap();
+        for (points, color) in [(thin, Rgb565::CSS_GOLD), (tilted, Rgb565::CSS_TOMATO)] {
+            let t = SolidTriangle::new(points, color);
+            match panel {
+                0 => t.draw_into(&mut fb),
+                _ => t.anti_aliased().draw_into(&mut fb),
+            }
+        }
+        for points in &shapes {
+            let t = SolidTriangle::new(*points, Rgb565::CSS_LIGHT_SKY_BLUE);
+            match panel {
+                0 => t.draw_into(&mut fb),
+                1 => t.anti_aliased().draw_into(&mut fb),
+                _ => mask.add_triangle(&t),
+            }
+        }
+        mask.fill_into(Rgb565::CSS_LIGHT_SKY_BLUE, &mut fb);
+        let at = Point::new(panel * (w as i32 + 4), 0);
+        Image::new(&fb, at).draw(&mut display).unwrap();
+    }
+    save(&display, 4, "antialias.png");
+}
+
+fn translucent_picture() {
+    let (w, h) = (160u32, 120u32);
+    let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
+    let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
+    let scene = [
+        [
+            vertex(6.0, 8.5, Rgb565::RED),
+            vertex(150.25, 30.0, Rgb565::GREEN),
+            vertex(55.75, 114.0, Rgb565::BLUE),
+        ],
+        [
+            vertex(125.0, 60.0, Rgb565::YELLOW),
+            vertex(190.0, 125.0, Rgb565::MAGENTA),
+            vertex(100.5, 150.0, Rgb565::CYAN),
+        ],
+    ];
+    for t in scene {
+        GouraudTriangle::new(t).draw_into(&mut fb);
+    }
+    // A panel at half opacity, a white fade (an alpha per vertex), an anti-aliased tint.
+    let panel = [(20.0, 70.0), (140.0, 70.0), (140.0, 108.0), (20.0, 108.0)];
+    for [a, b, c] in [[0, 1, 2], [0, 2, 3]] {
+        SolidTriangle::new([panel[a], panel[b], panel[c]], Rgb565::BLACK)
+            .with_opacity(150)
+            .draw_into(&mut fb);
+    }
+    GouraudTriangle::new([
+        vertex(90.0, 4.0, Rgb565::WHITE),
+        vertex(156.0, 4.0, Rgb565::WHITE),
+        vertex(156.0, 60.0, Rgb565::CSS_ORANGE),
+    ])
+    .with_alpha([0, 230, 120])
+    .draw_into(&mut fb);
+    SolidTriangle::new([(8.3, 20.1), (70.6, 44.8), (30.2, 62.9)], Rgb565::CSS_AQUA)
+        .anti_aliased()
+        .draw_into(&mut fb);
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(w, h));
+    Image::new(&fb, Point::zero()).draw(&mut display).unwrap();
+    save(&display, 2, "translucent.png");
+}
+
 fn main() {
     std::fs::create_dir_all("docs").expect("create docs/");
     gouraud();
     fan_picture();
     heatmap();
+    antialias_picture();
+    translucent_picture();
 }
