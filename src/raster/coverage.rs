@@ -137,69 +137,82 @@ impl CoverageEdge {
         }
     }
 
-    /// This edge's line, `a·u + b·v + c`, at `(u, v)`.
+    /// This edge's line, `a·u + b·v + c`, at `(u, v)` (within the square: below 2³⁰).
     #[inline]
-    fn at(&self, c: i64, (u, v): (i64, i64)) -> i64 {
-        self.a * u + self.b * v + c
+    fn at(&self, c: i64, (u, v): (i32, i32)) -> i32 {
+        (self.a * i64::from(u) + self.b * i64::from(v) + c) as i32
     }
 }
 
 /// A pixel square as a polygon clipped by up to three lines: at most seven corners.
 #[derive(Clone, Copy)]
 struct Polygon {
-    points: [(i64, i64); 8],
+    points: [(i32, i32); 8],
     len: usize,
 }
 
 impl Polygon {
-    const HALF: i64 = 1 << 15;
+    const HALF: i32 = 1 << 15;
+
+    const EMPTY: Polygon = Polygon {
+        points: [(0, 0); 8],
+        len: 0,
+    };
 
     fn square() -> Self {
         let h = Self::HALF;
-        let mut points = [(0, 0); 8];
-        points[..4].copy_from_slice(&[(-h, -h), (h, -h), (h, h), (-h, h)]);
-        Polygon { points, len: 4 }
+        let mut square = Self::EMPTY;
+        square.points[..4].copy_from_slice(&[(-h, -h), (h, -h), (h, h), (-h, h)]);
+        square.len = 4;
+        square
     }
 
-    /// The part where `line ≥ 0`.
-    fn clip(&self, line: impl Fn((i64, i64)) -> i64) -> Self {
-        let mut out = Polygon {
-            points: [(0, 0); 8],
-            len: 0,
-        };
-        let mut push = |p: (i64, i64)| {
-            if let Some(slot) = out.points.get_mut(out.len) {
-                *slot = p;
-                out.len += 1;
-            }
-        };
+    /// The part where `line ≥ 0`, into `out`. Corners stay within the square (±2¹⁵) and line
+    /// values below 2³⁰ in magnitude.
+    fn clip_into(&self, out: &mut Polygon, line: impl Fn((i32, i32)) -> i32) {
+        out.len = 0;
         let points = self.points.get(..self.len).unwrap_or(&[]);
-        for (i, &p) in points.iter().enumerate() {
-            let q = points.get(i + 1).or(points.first()).copied().unwrap_or(p);
-            let (lp, lq) = (line(p), line(q));
-            if lp >= 0 {
-                push(p);
-            }
+        let Some(&last) = points.last() else {
+            return;
+        };
+        let (mut p, mut lp) = (last, line(last));
+        for &q in points {
+            let lq = line(q);
             if (lp >= 0) != (lq >= 0) {
-                // lp and lq differ in sign: |lp| < |lp − lq|, the ratio in [0, 1), found to 16
-                // bits from both shifted below 2¹⁵ (one 32-bit division).
-                let (d, t) = ((lp - lq).unsigned_abs(), lp.unsigned_abs());
-                let shift = (64 - d.leading_zeros()).saturating_sub(15);
-                let ratio = i64::from((((t >> shift) << 16) as u32) / ((d >> shift) as u32).max(1));
-                let cut = |p: i64, q: i64| p + (((q - p) * ratio) >> 16);
-                push((cut(p.0, q.0), cut(p.1, q.1)));
+                // lp and lq differ in sign: |lp| < |lp − lq| < 2³¹, the ratio in [0, 1), found to
+                // 16 bits from both shifted below 2¹⁵ (one 32-bit division).
+                let d = (i64::from(lp) - i64::from(lq)).unsigned_abs() as u32;
+                let t = lp.unsigned_abs();
+                let shift = (32 - d.leading_zeros()).saturating_sub(15);
+                let ratio = ((t >> shift) << 16) / (d >> shift).max(1);
+                let cut = |p: i32, q: i32| p + ((i64::from(q - p) * i64::from(ratio)) >> 16) as i32;
+                out.push((cut(p.0, q.0), cut(p.1, q.1)));
             }
+            if lq >= 0 {
+                out.push(q);
+            }
+            (p, lp) = (q, lq);
         }
-        out
+    }
+
+    #[inline(always)]
+    fn push(&mut self, p: (i32, i32)) {
+        if let Some(slot) = self.points.get_mut(self.len) {
+            *slot = p;
+            self.len += 1;
+        }
     }
 
     /// The area in 16 fractional bits of a pixel.
     fn area(&self) -> u32 {
         let points = self.points.get(..self.len).unwrap_or(&[]);
-        let mut twice = 0i64;
-        for (i, &p) in points.iter().enumerate() {
-            let q = points.get(i + 1).or(points.first()).copied().unwrap_or(p);
-            twice += p.0 * q.1 - q.0 * p.1;
+        let Some(&last) = points.last() else {
+            return 0;
+        };
+        let (mut twice, mut p) = (0i64, last);
+        for &q in points {
+            twice += i64::from(p.0) * i64::from(q.1) - i64::from(q.0) * i64::from(p.1);
+            p = q;
         }
         ((twice.unsigned_abs() + (1 << 16)) >> 17).min(u64::from(FULL)) as u32
     }
@@ -227,13 +240,18 @@ fn square_area<T: Wide>(edges: &[CoverageEdge; 3], e: [T; 3], (lo, hi): ([T; 3],
         [false, true, false] => edges[1].area(offsets[1]),
         [false, false, true] => edges[2].area(offsets[2]),
         _ => {
-            let mut polygon = Polygon::square();
+            // Clipped back and forth between two polygons.
+            let mut polygons = [Polygon::square(), Polygon::EMPTY];
+            let mut current = 0;
             for k in 0..3 {
                 if cut[k] {
-                    polygon = polygon.clip(|p| edges[k].at(offsets[k], p));
+                    let [a, b] = &mut polygons;
+                    let (from, to) = if current == 0 { (a, b) } else { (b, a) };
+                    from.clip_into(to, |p| edges[k].at(offsets[k], p));
+                    current ^= 1;
                 }
             }
-            polygon.area()
+            polygons[current].area()
         }
     }
 }
