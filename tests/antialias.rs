@@ -98,6 +98,25 @@ fn coverage_is_within_two_levels_of_the_exact_area() {
     }
     let mean = sum / edge_pixels as f64;
     println!("{edge_pixels} pixels cut by an edge: error max {worst:.3}, mean {mean:.3} (of 255)");
+    // At an opacity: the alpha is coverage × opacity, rounded.
+    for _ in 0..500 {
+        let v = triangle(&mut rng);
+        let opacity = rng.below(256) as u8;
+        let mut pixels = vec![Gray8::BLACK; (W * H) as usize];
+        let mut fb = SliceFramebuffer::new(&mut pixels, W, H).unwrap();
+        let aa = SolidTriangle::new(coords(v), Gray8::WHITE).anti_aliased();
+        aa.with_opacity(opacity).draw_into(&mut fb);
+        for y in 0..H as i32 {
+            for x in 0..W as i32 {
+                let want = reference::pixel_area(v, x, y) * f64::from(opacity);
+                let got = f64::from(fb.get(x, y).unwrap().luma());
+                assert!(
+                    (got - want).abs() <= 1.0,
+                    "{v:?} at {opacity}: ({x}, {y}) {got} for {want}"
+                );
+            }
+        }
+    }
     assert!(mean <= 0.5, "mean error {mean}");
     assert!(edge_pixels > 100_000);
 }
@@ -146,7 +165,14 @@ fn paths_agree<C: GouraudColor + std::fmt::Debug>(seed: u64, count: usize) {
     };
     for _ in 0..count {
         let v = coords(triangle(&mut rng));
-        let aa = SolidTriangle::new(v, color(&mut rng)).anti_aliased();
+        let opacity = if rng.chance(2) {
+            255
+        } else {
+            rng.below(256) as u8
+        };
+        let aa = SolidTriangle::new(v, color(&mut rng))
+            .anti_aliased()
+            .with_opacity(opacity);
         let under: Vec<C> = (0..W * H).map(|_| color(&mut rng)).collect();
         let mut want = under.clone();
         aa.draw_into(&mut SliceFramebuffer::new(&mut want, W, H).unwrap());

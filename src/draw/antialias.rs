@@ -19,16 +19,16 @@ use embedded_graphics::Pixel;
 use super::framebuffer::{fill_row, SliceFramebuffer};
 use super::translucent::OnBackground;
 use super::triangle::SolidTriangle;
-use crate::color::GouraudColor;
+use crate::color::{BlendSource, GouraudColor};
 use crate::raster::coverage::{cover, CoverageSink, FULL};
 
 #[cfg(doc)]
 use super::translucent::Translucent;
 
-/// The 8-bit alpha of a coverage (16 fractional bits), rounded.
+/// The 8-bit alpha of a coverage (16 fractional bits) at `opacity`, rounded.
 #[inline(always)]
-fn alpha_of(coverage: u32) -> u8 {
-    ((coverage.min(FULL) * 255 + (1 << 15)) >> 16) as u8
+fn alpha_of(coverage: u32, opacity: u8) -> u8 {
+    ((coverage.min(FULL) * u32::from(opacity) + (1 << 15)) >> 16) as u8
 }
 
 /// A triangle with anti-aliased edges ([`SolidTriangle::anti_aliased`]): pixels it covers in part
@@ -59,6 +59,8 @@ pub struct AntiAliased<T> {
     shape: T,
     /// Which edges (edge `i` from vertex `i` to vertex `i + 1`) are anti-aliased.
     edges: [bool; 3],
+    /// The opacity of a wholly covered pixel (255: opaque).
+    opacity: u8,
 }
 
 impl<T> AntiAliased<T> {
@@ -95,6 +97,13 @@ impl<T> AntiAliased<T> {
         }
     }
 
+    /// The triangle at opacity `opacity` (0 transparent, 255 opaque, the default): a pixel is
+    /// blended at the alpha `coverage × opacity`, rounded (wholly covered pixels as
+    /// [`Translucent`]'s).
+    pub fn with_opacity(self, opacity: u8) -> Self {
+        AntiAliased { opacity, ..self }
+    }
+
     /// This triangle over a background of one colour: a [`Drawable`] for any `DrawTarget`, the
     /// pixels [`draw_into`](AntiAliased::draw_into) gives over a framebuffer of that colour.
     pub fn over<C>(self, background: C) -> OnBackground<Self, C> {
@@ -108,6 +117,7 @@ impl<C: GouraudColor> SolidTriangle<C> {
         AntiAliased {
             shape: self,
             edges: [true; 3],
+            opacity: 255,
         }
     }
 }
@@ -116,6 +126,9 @@ impl<C: GouraudColor> SolidTriangle<C> {
 struct IntoSlice<'f, 'a, C> {
     framebuffer: &'f mut SliceFramebuffer<'a, C>,
     color: C,
+    opacity: u8,
+    /// The colour at the opacity, for wholly covered runs.
+    source: BlendSource,
     top: i32,
 }
 
@@ -123,14 +136,18 @@ impl<C: GouraudColor> CoverageSink for IntoSlice<'_, '_, C> {
     #[inline]
     fn full(&mut self, y: i32, x0: i32, x1: i32) {
         if let Some(row) = self.framebuffer.clipped_span_mut(y - self.top, x0, x1) {
-            fill_row(row, self.color);
+            if self.opacity == 255 {
+                fill_row(row, self.color);
+            } else {
+                C::blend_solid(row, &self.source);
+            }
         }
     }
 
     #[inline]
     fn partial(&mut self, x: i32, y: i32, coverage: u32) {
         if let Some([px]) = self.framebuffer.clipped_span_mut(y - self.top, x, x + 1) {
-            *px = self.color.blend(*px, alpha_of(coverage));
+            *px = self.color.blend(*px, alpha_of(coverage, self.opacity));
         }
     }
 }
@@ -139,6 +156,9 @@ impl<C: GouraudColor> CoverageSink for IntoSlice<'_, '_, C> {
 struct Over<'t, D: DrawTarget> {
     target: &'t mut D,
     color: D::Color,
+    /// The colour of a wholly covered pixel over the background.
+    whole: D::Color,
+    opacity: u8,
     background: D::Color,
     result: Result<(), D::Error>,
 }
@@ -147,13 +167,15 @@ impl<C: GouraudColor, D: DrawTarget<Color = C>> CoverageSink for Over<'_, D> {
     fn full(&mut self, y: i32, x0: i32, x1: i32) {
         if self.result.is_ok() {
             let area = Rectangle::new(Point::new(x0, y), Size::new(x1.abs_diff(x0), 1));
-            self.result = self.target.fill_solid(&area, self.color);
+            self.result = self.target.fill_solid(&area, self.whole);
         }
     }
 
     fn partial(&mut self, x: i32, y: i32, coverage: u32) {
         if self.result.is_ok() {
-            let color = self.color.blend(self.background, alpha_of(coverage));
+            let color = self
+                .color
+                .blend(self.background, alpha_of(coverage, self.opacity));
             self.result = self
                 .target
                 .draw_iter(core::iter::once(Pixel(Point::new(x, y), color)));
@@ -165,6 +187,7 @@ impl<C: GouraudColor, D: DrawTarget<Color = C>> CoverageSink for Over<'_, D> {
 struct Reading<'t, D: DrawTarget> {
     target: &'t mut D,
     color: D::Color,
+    opacity: u8,
     result: Result<(), D::Error>,
 }
 
@@ -174,7 +197,11 @@ where
     D: DrawTarget<Color = C> + GetPixel<Color = C>,
 {
     fn full(&mut self, y: i32, x0: i32, x1: i32) {
-        if self.result.is_ok() {
+        if self.opacity < 255 {
+            for x in x0..x1 {
+                self.partial(x, y, FULL);
+            }
+        } else if self.result.is_ok() {
             let area = Rectangle::new(Point::new(x0, y), Size::new(x1.abs_diff(x0), 1));
             self.result = self.target.fill_solid(&area, self.color);
         }
@@ -183,7 +210,7 @@ where
     fn partial(&mut self, x: i32, y: i32, coverage: u32) {
         let p = Point::new(x, y);
         if let (true, Some(under)) = (self.result.is_ok(), self.target.pixel(p)) {
-            let color = self.color.blend(under, alpha_of(coverage));
+            let color = self.color.blend(under, alpha_of(coverage, self.opacity));
             self.result = self.target.draw_iter(core::iter::once(Pixel(p, color)));
         }
     }
@@ -208,6 +235,7 @@ impl<C: GouraudColor> AntiAliased<SolidTriangle<C>> {
         let mut sink = Reading {
             target,
             color: self.shape.color,
+            opacity: self.opacity,
             result: Ok(()),
         };
         cover(self.shape.points, self.edges, &clip, &mut sink);
@@ -225,6 +253,8 @@ impl<C: GouraudColor> AntiAliased<SolidTriangle<C>> {
         let mut sink = IntoSlice {
             framebuffer,
             color: self.shape.color,
+            opacity: self.opacity,
+            source: BlendSource::new(self.shape.color, self.opacity),
             top,
         };
         cover(self.shape.points, self.edges, clip, &mut sink);
@@ -241,9 +271,12 @@ impl<C: GouraudColor> Drawable for OnBackground<AntiAliased<SolidTriangle<C>>, C
     {
         let clip = target.bounding_box();
         let (shape, background) = self.parts();
+        let color = shape.shape.color;
         let mut sink = Over {
             target,
-            color: shape.shape.color,
+            color,
+            whole: color.blend(*background, shape.opacity),
+            opacity: shape.opacity,
             background: *background,
             result: Ok(()),
         };
