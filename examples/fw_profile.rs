@@ -1,7 +1,8 @@
 //! Profiling firmware: draws one triangle set many times with one renderer, for QEMU's
 //! execution log (`-d in_asm,exec,nochain`), which `.ci/qprof.py` turns into instructions per
 //! function. The renderer and set are chosen at build time with the `PROFILE` environment
-//! variable, `<solid|gouraud>-<large|small|tiny>` (default `gouraud-tiny`):
+//! variable, `<solid|gouraud|aa>-<large|small|tiny>` (default `gouraud-tiny`; `aa`: solid
+//! anti-aliased):
 //!
 //! ```text
 //! PROFILE=solid-small cargo build --release --target thumbv6m-none-eabi --example fw_profile
@@ -71,6 +72,10 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
             if gouraud {
                 let v = [0, 1, 2].map(|k| Vertex::new(centre(t[k].0), centre(t[k].1), colors[k]));
                 GouraudTriangle::new(v).draw_into(fb);
+            } else if PROFILE.starts_with("aa") {
+                SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
+                    .anti_aliased()
+                    .draw_into(fb);
             } else {
                 SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
                     .draw_into(fb);

@@ -25,7 +25,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use super::arith::div_floor_wide;
+use super::arith::{div_floor_wide, mul_i32_wide, mul_u32_u33};
 use super::edge::{owns_centres_on, EdgeFunction, TriangleSetup};
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
 
@@ -119,7 +119,7 @@ impl CoverageEdge {
         if c.abs() <= (m - n) << 15 {
             // Crosses two opposite sides: ½ + c/m.
             // |c| ≤ m·2¹⁵ < 2²⁷: the product is below 2⁴⁸.
-            let part = ((c.unsigned_abs() * self.recip_max) >> 32) as u32;
+            let part = (mul_u32_u33(c.unsigned_abs() as u32, self.recip_max) >> 32) as u32;
             return if c >= 0 {
                 (FULL / 2 + part).min(FULL)
             } else {
@@ -127,8 +127,9 @@ impl CoverageEdge {
             };
         }
         // Cuts a corner: legs t/a and t/b (0 < t ≤ n·2¹⁶, so both below 2¹⁶ + 1).
-        let t = (h - c.abs()) as u64;
-        let legs = ((t * self.recip_a) >> 32) * ((t * self.recip_b) >> 32);
+        let t = (h - c.abs()) as u32;
+        let leg = |recip: u64| (mul_u32_u33(t, recip) >> 32) as u32;
+        let legs = mul_u32_u33(leg(self.recip_a), u64::from(leg(self.recip_b)));
         let corner = (legs >> 17).min(u64::from(FULL)) as u32;
         if c >= 0 {
             FULL - corner
@@ -137,10 +138,12 @@ impl CoverageEdge {
         }
     }
 
-    /// This edge's line, `a·u + b·v + c`, at `(u, v)` (within the square: below 2³⁰).
+    /// This edge's line, `a·u + b·v + c`, at `(u, v)` within the square: `|a|, |b| < 2¹²`,
+    /// `|u|, |v| ≤ 2¹⁵` and `|c| < 2²⁸` for an edge that cuts it, so every term fits 32 bits
+    /// and the sum is below 2³⁰.
     #[inline]
     fn at(&self, c: i64, (u, v): (i32, i32)) -> i32 {
-        (self.a * i64::from(u) + self.b * i64::from(v) + c) as i32
+        (self.a as i32) * u + (self.b as i32) * v + c as i32
     }
 }
 
@@ -185,7 +188,7 @@ impl Polygon {
                 let t = lp.unsigned_abs();
                 let shift = (32 - d.leading_zeros()).saturating_sub(15);
                 let ratio = ((t >> shift) << 16) / (d >> shift).max(1);
-                let cut = |p: i32, q: i32| p + ((i64::from(q - p) * i64::from(ratio)) >> 16) as i32;
+                let cut = |p: i32, q: i32| p + (mul_i32_wide(q - p, ratio as i32) >> 16) as i32;
                 out.push((cut(p.0, q.0), cut(p.1, q.1)));
             }
             if lq >= 0 {
@@ -211,7 +214,7 @@ impl Polygon {
         };
         let (mut twice, mut p) = (0i64, last);
         for &q in points {
-            twice += i64::from(p.0) * i64::from(q.1) - i64::from(q.0) * i64::from(p.1);
+            twice += mul_i32_wide(p.0, q.1) - mul_i32_wide(q.0, p.1);
             p = q;
         }
         ((twice.unsigned_abs() + (1 << 16)) >> 17).min(u64::from(FULL)) as u32
@@ -268,6 +271,8 @@ trait Wide:
 {
     const ZERO: Self;
     const ONE: Self;
+    /// Whether this is the narrow triangles' type (their exact edge values in `i64`).
+    const NARROW: bool;
     /// `v`, which the caller knows to fit.
     fn of(v: i128) -> Self;
     fn wide(self) -> i128;
@@ -278,6 +283,7 @@ trait Wide:
 impl Wide for i64 {
     const ZERO: Self = 0;
     const ONE: Self = 1;
+    const NARROW: bool = true;
     #[inline(always)]
     fn of(v: i128) -> Self {
         v as i64
@@ -293,9 +299,29 @@ impl Wide for i64 {
     }
 }
 
+impl Wide for i32 {
+    const ZERO: Self = 0;
+    const ONE: Self = 1;
+    const NARROW: bool = true;
+    #[inline(always)]
+    fn of(v: i128) -> Self {
+        v as i32
+    }
+    #[inline(always)]
+    fn wide(self) -> i128 {
+        i128::from(self)
+    }
+    #[inline]
+    fn div_floor(n: Self, d: Self) -> (Self, Self) {
+        let q = n.div_euclid(d.max(1));
+        (q, n - q * d)
+    }
+}
+
 impl Wide for i128 {
     const ZERO: Self = 0;
     const ONE: Self = 1;
+    const NARROW: bool = false;
     #[inline(always)]
     fn of(v: i128) -> Self {
         v
@@ -416,6 +442,14 @@ impl<T: Wide> Bounds<T> {
     }
 }
 
+/// Triangles whose edges are shorter than this on both axes (sub-pixels: 64 px) in a box of at
+/// most [`SMALL_BOX`] pixels a side are stepped in `i32`: every edge value at a centre of the box
+/// is below `2·2¹⁴·(65·256) < 2³⁰`, a step `256·2¹⁴ = 2²²`, `half` below 2²².
+const SMALL_EDGE: u32 = 1 << 14;
+
+/// See [`SMALL_EDGE`].
+const SMALL_BOX: i64 = 64;
+
 /// Boxes of at most this many pixels are scanned pixel by pixel (no divisions); larger ones take
 /// each row's runs from the edges' [`Bounds`].
 const SCAN_LIMIT: i64 = 256;
@@ -457,11 +491,24 @@ pub(crate) fn cover(
         let input_edge = if (i + 1) % 3 == j { i } else { j };
         CoverageEdge::new(setup.edge(k), anti_aliased[input_edge])
     });
-    let area = (i64::from(x1) - i64::from(x0) + 1) * (i64::from(y1) - i64::from(y0) + 1);
-    if setup.narrow {
-        cover_box::<i64>(&edges, (x0, y0, x1, y1), area <= SCAN_LIMIT, sink);
+    let (w, h) = (
+        i64::from(x1) - i64::from(x0) + 1,
+        i64::from(y1) - i64::from(y0) + 1,
+    );
+    let scan = w * h <= SCAN_LIMIT;
+    let steepest = setup
+        .oriented
+        .iter()
+        .zip(setup.oriented.iter().cycle().skip(1))
+        .map(|(p, q)| (p.0.abs_diff(q.0)).max(p.1.abs_diff(q.1)))
+        .max()
+        .unwrap_or(u32::MAX);
+    if setup.narrow && steepest < SMALL_EDGE && w.max(h) <= SMALL_BOX {
+        cover_box::<i32>(&edges, (x0, y0, x1, y1), scan, sink);
+    } else if setup.narrow {
+        cover_box::<i64>(&edges, (x0, y0, x1, y1), scan, sink);
     } else {
-        cover_box::<i128>(&edges, (x0, y0, x1, y1), area <= SCAN_LIMIT, sink);
+        cover_box::<i128>(&edges, (x0, y0, x1, y1), scan, sink);
     }
 }
 
@@ -476,10 +523,13 @@ fn cover_box<T: Wide>(
     let s: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.a) << SUBPIXEL_BITS));
     let t: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.b) << SUBPIXEL_BITS));
     let thresholds: ([T; 3], [T; 3]) = (edges.map(|e| T::of(e.lo)), edges.map(|e| T::of(e.hi)));
-    // Each edge's value at column 0 of the first row (a line through the box: it fits `T`).
-    let x0w = T::of(i128::from(x0));
+    // Columns are counted from the box's first, `x0`: each edge's value there on the first row.
     let mut k: [T; 3] = core::array::from_fn(|n| {
-        T::of(edges[n].edge.exact_at(i64::from(x0), i64::from(y0), false)) - s[n] * x0w
+        T::of(
+            edges[n]
+                .edge
+                .exact_at(i64::from(x0), i64::from(y0), T::NARROW),
+        )
     });
     let mut bounds = if scan {
         None
@@ -488,7 +538,7 @@ fn cover_box<T: Wide>(
             Bounds::new(s[n], t[n], k[n], (thresholds.0[n], thresholds.1[n]))
         }))
     };
-    let (lo, hi) = (T::of(i128::from(x0)), T::of(i128::from(x1)));
+    let (lo, hi) = (T::ZERO, T::of(i128::from(x1) - i128::from(x0)));
     for y in y0..=y1 {
         // Scanned rows test every pixel: no run is known inside.
         let (mut touched, mut inside) = ((lo, hi), (T::ONE, T::ZERO));
@@ -499,10 +549,11 @@ fn cover_box<T: Wide>(
             }
         }
         if touched.0 <= touched.1 {
-            let (from, to) = (touched.0.wide() as i32, touched.1.wide() as i32);
-            let inside =
-                (inside.0 <= inside.1).then(|| (inside.0.wide() as i32, inside.1.wide() as i32));
-            let mut e: [T; 3] = core::array::from_fn(|n| k[n] + s[n] * T::of(i128::from(from)));
+            // Back to frame columns (within the box: no overflow).
+            let column = |c: T| x0.wrapping_add(c.wide() as i32);
+            let mut e: [T; 3] = core::array::from_fn(|n| k[n] + s[n] * touched.0);
+            let (from, to) = (column(touched.0), column(touched.1));
+            let inside = (inside.0 <= inside.1).then(|| (column(inside.0), column(inside.1)));
             cover_row(edges, y, (from, to), inside, &mut e, s, thresholds, sink);
         }
         for n in 0..3 {
