@@ -25,7 +25,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use super::arith::{div_floor_wide, mul_i32_wide, mul_u32_u33};
+use super::arith::{div_floor_wide, leading_zeros_32, leading_zeros_64, mul_u32_u33};
 use super::edge::{owns_centres_on, EdgeFunction, TriangleSetup};
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
 
@@ -73,13 +73,14 @@ struct CoverageEdge {
 impl CoverageEdge {
     fn new(edge: EdgeFunction, anti_aliased: bool) -> Self {
         let m = edge.a.unsigned_abs().max(edge.b.unsigned_abs());
-        let bits = 64 - m.leading_zeros();
+        let bits = 64 - leading_zeros_64(m.max(1));
         let s = bits.saturating_sub(DIRECTION_BITS);
         let norm = |v: i64| (v.unsigned_abs() >> s) as i64 * v.signum();
         let (a, b) = (norm(edge.a), norm(edge.b));
         let recip = |v: i64| u64::from(u32::MAX.checked_div(v.unsigned_abs() as u32).unwrap_or(0));
         let half = 128 * (i128::from(edge.a.unsigned_abs()) + i128::from(edge.b.unsigned_abs()));
         let centre = i128::from(!owns_centres_on(edge.a, edge.b));
+        let (recip_a, recip_b) = (recip(a), recip(b));
         CoverageEdge {
             edge,
             lo: if anti_aliased { 1 - half } else { centre },
@@ -88,9 +89,13 @@ impl CoverageEdge {
             b,
             // E / (256·2^s) in 16 fractional bits: E·2^(8 − s).
             shift: s as i32 - 8,
-            recip_max: recip(a.abs().max(b.abs())),
-            recip_a: recip(a),
-            recip_b: recip(b),
+            // The larger component's: the smaller reciprocal (0 only for a zero component).
+            recip_max: match (recip_a, recip_b) {
+                (0, r) | (r, 0) => r,
+                (ra, rb) => ra.min(rb),
+            },
+            recip_a,
+            recip_b,
         }
     }
 
@@ -186,9 +191,10 @@ impl Polygon {
                 // 16 bits from both shifted below 2¹⁵ (one 32-bit division).
                 let d = (i64::from(lp) - i64::from(lq)).unsigned_abs() as u32;
                 let t = lp.unsigned_abs();
-                let shift = (32 - d.leading_zeros()).saturating_sub(15);
-                let ratio = ((t >> shift) << 16) / (d >> shift).max(1);
-                let cut = |p: i32, q: i32| p + (mul_i32_wide(q - p, ratio as i32) >> 16) as i32;
+                // 14 bits, so that `(q − p)·ratio` (|q − p| ≤ 2¹⁶) fits 31 bits.
+                let shift = (32 - leading_zeros_32(d)).saturating_sub(15);
+                let ratio = ((t >> shift) << 14) / (d >> shift).max(1);
+                let cut = |p: i32, q: i32| p + (((q - p) * ratio as i32) >> 14);
                 out.push((cut(p.0, q.0), cut(p.1, q.1)));
             }
             if lq >= 0 {
@@ -214,7 +220,8 @@ impl Polygon {
         };
         let (mut twice, mut p) = (0i64, last);
         for &q in points {
-            twice += mul_i32_wide(p.0, q.1) - mul_i32_wide(q.0, p.1);
+            // Corners within ±2¹⁵: each product fits 31 bits.
+            twice += i64::from(p.0 * q.1) - i64::from(q.0 * p.1);
             p = q;
         }
         ((twice.unsigned_abs() + (1 << 16)) >> 17).min(u64::from(FULL)) as u32
