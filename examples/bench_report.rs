@@ -31,6 +31,15 @@
 //!
 //! prints `Collected : <instructions of 20 frames>`. `bench_report pictures <dir>` writes both
 //! renderers' frames as PPM files and prints where their coverage differs.
+//!
+//! Last, anti-aliased fills against tiny-skia 0.12 (`examples/common/aa_peer.rs`): pixel rates,
+//! coverage error against the exact area and seam dips; `bench_report aa` prints only that part.
+//! `bench_report aa <ours|tiny-skia|ours-aliased> <size class id> [passes]` only fills that set
+//! `passes` times (default 200) inside `aa_passes`, for callgrind:
+//!
+//! ```text
+//! valgrind --tool=callgrind --toggle-collect='*aa_passes*' target/release/examples/bench_report aa tiny-skia small_16px2 20
+//! ```
 
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use std::fmt::Write as _;
@@ -46,6 +55,15 @@ mod scene3d;
 
 #[path = "common/euc3d.rs"]
 mod euc3d;
+
+#[path = "common/aa_peer.rs"]
+mod aa_peer;
+
+// The f64 reference (exact pixel areas for the anti-aliasing report), compiled in directly so
+// that the example needs no cargo feature (it is `embedded_raster::reference` with `reference`).
+#[allow(dead_code, unused_imports)]
+#[path = "../src/reference/mod.rs"]
+mod reference;
 
 use embedded_raster::three_d::{DepthTarget, Mesh, ProjectedVertex, Vec3};
 use scene3d::{Model, PIXELS, SIZE, TORUS_FACES, TORUS_VERTICES};
@@ -147,6 +165,14 @@ fn main() {
             return profile_3d(renderer, parse_model(mesh), frames);
         }
         ["pictures", dir] => return pictures(dir),
+        ["aa"] => {
+            print!("{}", aa_peer::report_aa());
+            return;
+        }
+        ["aa", method, class, rest @ ..] => {
+            let passes = rest.first().map_or(200, |p| p.parse().expect("passes"));
+            return aa_peer::profile_aa(method, class, passes);
+        }
         _ => {}
     }
     if let [method, class, rest @ ..] = args.as_slice() {
@@ -336,6 +362,8 @@ fn main() {
 
     md.push('\n');
     md.push_str(&report_3d());
+    md.push('\n');
+    md.push_str(&aa_peer::report_aa());
 
     print!("{md}");
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/target/bench-report.md");
