@@ -24,6 +24,8 @@ pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::perspective_span;
 #[cfg(armv7m)]
+pub(crate) use thumbv7m::premultiplied_pairs_565;
+#[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one

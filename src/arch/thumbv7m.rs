@@ -1001,6 +1001,140 @@ pub(crate) fn perspective_span<C: Copy>(
     true
 }
 
+/// One pixel of the per-vertex alpha pair loop: `$d` holds the pixel's raw value in bits 0-15
+/// (bits above: anything, ignored), r7 the transparency factor `f`, r2-r4 the colour planes;
+/// the blended pixel goes to the high half of `$acc` (its low half unspecified) as
+/// `color::blend`'s `premultiplied_pixel_565` computes it: the top field `(d & 0xF800)·f + top
+/// plane` (scaled by 8: the field lands at bits 27-31), the others `⌊(d_field·f·2⁸ + plane) /
+/// 2²⁴⌋` inserted at bits 21-26 and 16-20 (`bfi` keeps their low 6 and 5 bits, the channel's
+/// mask). `$then` runs once the top field is in `$acc`. Clobbers r7 (left as `f·2⁸`) and `$tmp`.
+macro_rules! premultiplied_pixel {
+    ($d:literal, $acc:literal, $tmp:literal, $then:literal) => {
+        concat!(
+            "lsr r7, r5, #9\n",
+            "add r7, r7, r7, lsl #8\n",
+            "lsr r7, r7, #15\n",
+            "and ",
+            $acc,
+            ", ",
+            $d,
+            ", #0xF800\n",
+            "mla ",
+            $acc,
+            ", ",
+            $acc,
+            ", r7, r2\n",
+            $then,
+            "lsl r7, r7, #8\n",
+            "ubfx ",
+            $tmp,
+            ", ",
+            $d,
+            ", #5, #6\n",
+            "mla ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", r7, r3\n",
+            "lsr ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", #24\n",
+            "bfi ",
+            $acc,
+            ", ",
+            $tmp,
+            ", #21, #6\n",
+            "and ",
+            $tmp,
+            ", ",
+            $d,
+            ", #31\n",
+            "mla ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", r7, r4\n",
+            "lsr ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", #24\n",
+            "bfi ",
+            $acc,
+            ", ",
+            $tmp,
+            ", #16, #5\n",
+            // The planes stepped a pixel.
+            "add r2, r6\n",
+            "add r3, r8\n",
+            "add r4, r10\n",
+            "add r5, r11\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_premultiplied_565_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_premultiplied_565_v7m",
+    ".hidden embedded_raster_premultiplied_565_v7m",
+    ".type embedded_raster_premultiplied_565_v7m,%function",
+    ".thumb_func",
+    // r0 = the first pair of pixels, r1 = the pairs (at least one), r2 = the planes: values
+    // (top scaled by 8, middle, bottom, transparency) then their steps a pixel.
+    "embedded_raster_premultiplied_565_v7m:",
+    "push {{r4-r11, lr}}",
+    "ldm r2, {{r2, r3, r4, r5, r6, r8, r10, r11}}",
+    "1:",
+    // r9 = both pixels, the left one in the low half.
+    "ldr r9, [r0]",
+    premultiplied_pixel!("r9", "r12", "lr", ""),
+    // r12 = the left pixel, alone; then the right one, in lr, takes it as its low half.
+    "lsr r12, r12, #16",
+    "lsr r9, r9, #16",
+    premultiplied_pixel!("r9", "lr", "r12", "bfi lr, r12, #0, #16\n"),
+    "str lr, [r0], #4",
+    "subs r1, #1",
+    "bne 1b",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_premultiplied_565_v7m, . - embedded_raster_premultiplied_565_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    ///
+    /// # Safety
+    ///
+    /// `pixels` addresses `2·pairs` 2-byte aligned `u16`s, readable and writable; `pairs` is at
+    /// least one; `planes` is readable.
+    fn embedded_raster_premultiplied_565_v7m(pixels: *mut u16, pairs: u32, planes: *const [u32; 8]);
+}
+
+/// Blends the pixels of `pixels` (a whole number of pairs; nothing if there are none or `C` is
+/// not a 16-bit colour) as `color::blend`'s `premultiplied_pixel_565` does each, the planes
+/// `value` (raw order, the top one scaled by 8) stepped by `step` a pixel, wrapping.
+#[inline(always)]
+pub(crate) fn premultiplied_pairs_565<C>(pixels: &mut [C], value: [u32; 4], step: [u32; 4]) {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return;
+    }
+    let Ok(pairs @ 1..) = u32::try_from(pixels.len() / 2) else {
+        return;
+    };
+    let planes = [
+        value[0], value[1], value[2], value[3], step[0], step[1], step[2], step[3],
+    ];
+    // SAFETY: `pixels` holds at least `2·pairs` 2-byte aligned 16-bit colours (checked above),
+    // which the function reads and writes as `u16`s (a word at a time, unaligned where they
+    // are: ARMv7-M's `ldr` and `str` allow it); it reads the eight words of `planes` and saves
+    // and restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_premultiplied_565_v7m(pixels.as_mut_ptr().cast(), pairs, &planes) };
+}
+
 /// Whether the loops may draw `C` from `texels` with these masks and shifts: `C` a 2-byte colour
 /// (the 5-6-5 raw value the texels are), every index `row | column` (at most `rows_mask |
 /// x_mask`) inside the texels, every shift below 32.
