@@ -19,6 +19,8 @@ use core::num::NonZeroU32;
 pub(crate) use thumbv6m::depth_masked_nearest_565;
 #[cfg(armv6m)]
 pub(crate) use thumbv6m::masked_nearest_565;
+#[cfg(armv6m)]
+pub(crate) use thumbv6m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]

@@ -167,7 +167,7 @@ pub(crate) fn blend_premultiplied_by_pixels<C: GouraudColor>(
 /// eight times larger (its plane and step scaled by 8, wrapping), which puts it at bits 27–31,
 /// where the high half's top field is, and `d`'s field in place (`d & 0xF800` is `d_top·2¹¹`)
 /// is the multiplicand. The other two fields are inserted below it.
-// Not used on ARMv6-M, whose 5-6-5 formats blend pixel by pixel.
+// Not used on ARMv6-M, whose loop is `premultiplied_pixel_v6m`'s.
 #[cfg_attr(armv6m, allow(dead_code))]
 #[inline(always)]
 fn premultiplied_pixel_565(d: u32, f: u32, p: [u32; 3]) -> u32 {
@@ -178,11 +178,25 @@ fn premultiplied_pixel_565(d: u32, f: u32, p: [u32; 3]) -> u32 {
     (top & 0xF800_FFFF) | ((middle & 0x3F) << 21) | ((bottom & 0x1F) << 16)
 }
 
+/// The arithmetic of ARMv6-M's Thumb-1 loop (`arch::thumbv6m::premultiplied_565`) for one
+/// 5-6-5 pixel `d` under the transparency plane's value `t` and the colour planes `p` (raw
+/// order, unscaled): the raw blended pixel in the low half (bits above: anything). The factor is
+/// taken times 2¹⁰ and the planes scaled by 4, 4 and 8 (the bottom field doubled), which puts
+/// the top channel at bits 26-30, the middle at 26-31 and the bottom at 27-31 of their sums, as
+/// [`premultiplied_pixel_565`] scales its top one.
+#[cfg(test)]
+fn premultiplied_pixel_v6m(d: u32, t: u32, p: [u32; 3]) -> u32 {
+    let f = transparency_factor(t) << 10;
+    let top = (d >> 11).wrapping_mul(f).wrapping_add(p[0] << 2);
+    let middle = ((d << 21) >> 26).wrapping_mul(f).wrapping_add(p[1] << 2);
+    let bottom = ((d << 27) >> 26).wrapping_mul(f).wrapping_add(p[2] << 3);
+    // Bit 31 of `top` (not the channel's) lands at bit 16, beyond the pixel.
+    ((((top >> 26) << 6) | (middle >> 26)) << 5) | (bottom >> 27)
+}
+
 /// [`GouraudColor::blend_premultiplied_span`] for the 5-6-5 formats whose raw value holds
 /// channels `order` (top, middle, bottom field): on raw values, two pixels a word
 /// ([`premultiplied_pixel_565`]), the pixels of [`blend_premultiplied_by_pixels`].
-// Not used on ARMv6-M, whose 5-6-5 formats blend pixel by pixel.
-#[cfg_attr(armv6m, allow(dead_code))]
 #[inline(always)]
 pub(crate) fn blend_premultiplied_565<C: Copy + From<RawU16> + Into<RawU16>>(
     dst: &mut [C],
@@ -190,10 +204,22 @@ pub(crate) fn blend_premultiplied_565<C: Copy + From<RawU16> + Into<RawU16>>(
     step: [u32; 4],
     order: [usize; 3],
 ) {
-    // Raw order, the top field's plane scaled by 8 (see `premultiplied_pixel_565`).
-    let planes = |v: [u32; 4]| {
+    // Raw order (top, middle, bottom field, transparency).
+    let raw = |v: [u32; 4]| {
         let [top, middle, bottom] = order.map(|k| v.get(k).copied().unwrap_or(0));
-        [top << 3, middle, bottom, v[3]]
+        [top, middle, bottom, v[3]]
+    };
+    // ARMv6-M: one pixel at a time in Thumb-1 assembly (`premultiplied_pixel_v6m`'s arithmetic).
+    #[cfg(armv6m)]
+    {
+        crate::arch::premultiplied_565(dst, raw(start), raw(step));
+        return;
+    }
+    // The top field's plane scaled by 8 (see `premultiplied_pixel_565`).
+    #[allow(unreachable_code)]
+    let planes = |v: [u32; 4]| {
+        let [top, middle, bottom, t] = raw(v);
+        [top << 3, middle, bottom, t]
     };
     let (mut value, step) = (planes(start), planes(step));
     let advance =
@@ -407,12 +433,20 @@ mod tests {
                 let len = (round / 2) % 10;
                 let mut fast: [C; 9] =
                     core::array::from_fn(|_| C::from(RawU16::new(next() as u16)));
-                let mut plain = fast;
+                let (mut plain, under) = (fast, fast);
                 let fast = &mut fast[..len];
                 let plain = &mut plain[..len];
                 blend_premultiplied_565(fast, start, step, order);
                 blend_premultiplied_by_pixels(plain, start, step);
                 assert_eq!(fast, plain, "{start:x?} {step:x?} {len}");
+                // The Thumb-1 loop's arithmetic, pixel by pixel from the same planes.
+                let mut value = start;
+                for (&d, &want) in under.iter().zip(plain.iter()) {
+                    let d = u32::from(d.into().into_inner());
+                    let got = premultiplied_pixel_v6m(d, value[3], order.map(|k| value[k]));
+                    assert_eq!(C::from(RawU16::new(got as u16)), want, "{value:x?}");
+                    value = core::array::from_fn(|k| value[k].wrapping_add(step[k]));
+                }
             }
             // Every factor's extremes: opaque, transparent and the largest plane values.
             for t in [

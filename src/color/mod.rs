@@ -370,9 +370,6 @@ macro_rules! rgb_color {
                 fn blend_solid(dst: &mut [Self], source: &BlendSource) {
                     blend::blend_solid_565(dst, source, $order)
                 }
-                // Not on ARMv6-M, where LLVM's code for it (spilling most of its planes) is
-                // slower than the per-pixel default.
-                #[cfg(not(armv6m))]
                 #[cfg_attr(not(armv7m), inline(always))]
                 #[cfg_attr(armv7m, inline(never))]
                 fn blend_premultiplied_span(dst: &mut [Self], start: [u32; 4], step: [u32; 4]) {
