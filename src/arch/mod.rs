@@ -26,7 +26,7 @@ pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::perspective_span;
 #[cfg(armv7m)]
-pub(crate) use thumbv7m::premultiplied_pairs_565;
+pub(crate) use thumbv7m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 

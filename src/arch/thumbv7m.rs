@@ -21,7 +21,8 @@
 //! The blend of an alpha per vertex over 5-6-5 pixels ([`premultiplied_pairs_565`]): LLVM
 //! unrolls the portable pair loop and spills its planes (fw_bench: 43.18 instructions a pixel,
 //! 33.42 pixel by pixel through the channels); here a pair of pixels is one word loaded and
-//! stored and 43 instructions, the four planes and their steps in registers (24.35 a pixel). It computes `color::blend`'s `premultiplied_pixel_565` for each pixel,
+//! stored and 43 instructions, the four planes and their steps in registers, and a first pixel
+//! at 2 mod 4 and a last odd one are blended alone by the same function (23.62 a pixel). It computes `color::blend`'s `premultiplied_pixel_565` for each pixel,
 //! which the host tests against the per-pixel definition; CI checks that the firmware's scene
 //! (which blends such a triangle) has the host's checksum.
 #![allow(unsafe_code)]
@@ -1091,11 +1092,23 @@ core::arch::global_asm!(
     ".hidden embedded_raster_premultiplied_565_v7m",
     ".type embedded_raster_premultiplied_565_v7m,%function",
     ".thumb_func",
-    // r0 = the first pair of pixels, r1 = the pairs (at least one), r2 = the planes: values
-    // (top scaled by 8, middle, bottom, transparency) then their steps a pixel.
+    // r0 = the pixels, r1 = their number (at least one), r2 = the planes: values (top scaled
+    // by 8, middle, bottom, transparency) then their steps a pixel.
     "embedded_raster_premultiplied_565_v7m:",
     "push {{r4-r11, lr}}",
     "ldm r2, {{r2, r3, r4, r5, r6, r8, r10, r11}}",
+    // A first pixel at 2 mod 4 alone: the pairs are aligned words.
+    "tst r0, #2",
+    "beq 2f",
+    "ldrh r9, [r0]",
+    premultiplied_pixel!("r9", "r12", "lr", ""),
+    "lsr r12, r12, #16",
+    "strh r12, [r0], #2",
+    "subs r1, #1",
+    "beq 4f",
+    "2:",
+    "subs r1, #2",
+    "blo 3f",
     "1:",
     // r9 = both pixels, the left one in the low half.
     "ldr r9, [r0]",
@@ -1105,8 +1118,17 @@ core::arch::global_asm!(
     "lsr r9, r9, #16",
     premultiplied_pixel!("r9", "lr", "r12", "bfi lr, r12, #0, #16\n"),
     "str lr, [r0], #4",
-    "subs r1, #1",
-    "bne 1b",
+    "subs r1, #2",
+    "bhs 1b",
+    // r1 = −1 if a last pixel is left, −2 if not.
+    "3:",
+    "adds r1, #2",
+    "beq 4f",
+    "ldrh r9, [r0]",
+    premultiplied_pixel!("r9", "r12", "lr", ""),
+    "lsr r12, r12, #16",
+    "strh r12, [r0]",
+    "4:",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_premultiplied_565_v7m, . - embedded_raster_premultiplied_565_v7m",
 );
@@ -1116,30 +1138,37 @@ extern "C" {
     ///
     /// # Safety
     ///
-    /// `pixels` addresses `2·pairs` 2-byte aligned `u16`s, readable and writable; `pairs` is at
-    /// least one; `planes` is readable.
-    fn embedded_raster_premultiplied_565_v7m(pixels: *mut u16, pairs: u32, planes: *const [u32; 8]);
+    /// `pixels` addresses `len` (at least one) 2-byte aligned `u16`s, readable and writable;
+    /// `planes` is readable.
+    fn embedded_raster_premultiplied_565_v7m(pixels: *mut u16, len: usize, planes: *const [u32; 8]);
 }
 
-/// Blends the pixels of `pixels` (a whole number of pairs; nothing if there are none or `C` is
-/// not a 16-bit colour) as `color::blend`'s `premultiplied_pixel_565` does each, the planes
-/// `value` (raw order, the top one scaled by 8) stepped by `step` a pixel, wrapping.
+/// Blends the 5-6-5 pixels `pixels` (nothing if `C` is not a 16-bit colour) as
+/// `color::blend`'s `premultiplied_pixel_565` does each, the planes `value` (raw order: top,
+/// middle, bottom field, then transparency) stepped by `step` a pixel, wrapping.
 #[inline(always)]
-pub(crate) fn premultiplied_pairs_565<C>(pixels: &mut [C], value: [u32; 4], step: [u32; 4]) {
-    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+pub(crate) fn premultiplied_565<C>(pixels: &mut [C], value: [u32; 4], step: [u32; 4]) {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 || pixels.is_empty() {
         return;
     }
-    let Ok(pairs @ 1..) = u32::try_from(pixels.len() / 2) else {
-        return;
-    };
+    // The top plane scaled by 8 (its channel depends on its low 29 bits only).
     let planes = [
-        value[0], value[1], value[2], value[3], step[0], step[1], step[2], step[3],
+        value[0] << 3,
+        value[1],
+        value[2],
+        value[3],
+        step[0] << 3,
+        step[1],
+        step[2],
+        step[3],
     ];
-    // SAFETY: `pixels` holds at least `2·pairs` 2-byte aligned 16-bit colours (checked above),
-    // which the function reads and writes as `u16`s (a word at a time, unaligned where they
-    // are: ARMv7-M's `ldr` and `str` allow it); it reads the eight words of `planes` and saves
-    // and restores every register the AAPCS asks it to.
-    unsafe { embedded_raster_premultiplied_565_v7m(pixels.as_mut_ptr().cast(), pairs, &planes) };
+    // SAFETY: `pixels` holds `pixels.len()` (at least one) 2-byte aligned 16-bit colours
+    // (checked above), which the function reads and writes as `u16`s (pairs a word at a time,
+    // from a 4-byte aligned address); it reads the eight words of `planes` and saves and
+    // restores every register the AAPCS asks it to.
+    unsafe {
+        embedded_raster_premultiplied_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), &planes)
+    };
 }
 
 /// Whether the loops may draw `C` from `texels` with these masks and shifts: `C` a 2-byte colour

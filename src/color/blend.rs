@@ -167,8 +167,8 @@ pub(crate) fn blend_premultiplied_by_pixels<C: GouraudColor>(
 /// eight times larger (its plane and step scaled by 8, wrapping), which puts it at bits 27–31,
 /// where the high half's top field is, and `d`'s field in place (`d & 0xF800` is `d_top·2¹¹`)
 /// is the multiplicand. The other two fields are inserted below it.
-// Not used on ARMv6-M, whose loop is `premultiplied_pixel_v6m`'s.
-#[cfg_attr(armv6m, allow(dead_code))]
+// Not used on Cortex-M, whose loops are in assembly.
+#[cfg_attr(any(armv6m, armv7m), allow(dead_code))]
 #[inline(always)]
 fn premultiplied_pixel_565(d: u32, f: u32, p: [u32; 3]) -> u32 {
     let f8 = f << 8;
@@ -209,8 +209,9 @@ pub(crate) fn blend_premultiplied_565<C: Copy + From<RawU16> + Into<RawU16>>(
         let [top, middle, bottom] = order.map(|k| v.get(k).copied().unwrap_or(0));
         [top, middle, bottom, v[3]]
     };
-    // ARMv6-M: one pixel at a time in Thumb-1 assembly (`premultiplied_pixel_v6m`'s arithmetic).
-    #[cfg(armv6m)]
+    // Cortex-M: in assembly (ARMv7-M: `premultiplied_pixel_565`'s arithmetic, two pixels a
+    // word; ARMv6-M: `premultiplied_pixel_v6m`'s, one pixel at a time).
+    #[cfg(any(armv6m, armv7m))]
     {
         crate::arch::premultiplied_565(dst, raw(start), raw(step));
         return;
@@ -228,27 +229,6 @@ pub(crate) fn blend_premultiplied_565<C: Copy + From<RawU16> + Into<RawU16>>(
         let d = u32::from(d.into().into_inner());
         premultiplied_pixel_565(d, transparency_factor(v[3]), [v[0], v[1], v[2]])
     };
-    // ARMv7-M: the pairs in Thumb-2 assembly, from a word boundary.
-    #[cfg(armv7m)]
-    {
-        let mut rest = dst;
-        if rest.as_ptr() as usize & 2 != 0 {
-            if let [first, tail @ ..] = rest {
-                *first = C::from(RawU16::new((pixel(*first, value) >> 16) as u16));
-                value = advance(value);
-                rest = tail;
-            }
-        }
-        let (pairs, last) = rest.split_at_mut(rest.len() & !1);
-        crate::arch::premultiplied_pairs_565(pairs, value, step);
-        if let [last] = last {
-            let n = pairs.len() as u32;
-            let value = core::array::from_fn(|k| value[k].wrapping_add(step[k].wrapping_mul(n)));
-            *last = C::from(RawU16::new((pixel(*last, value) >> 16) as u16));
-        }
-        return;
-    }
-    #[allow(unreachable_code)]
     let mut rest = dst;
     while let [a, b, tail @ ..] = rest {
         let next = advance(value);

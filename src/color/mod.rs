@@ -370,8 +370,7 @@ macro_rules! rgb_color {
                 fn blend_solid(dst: &mut [Self], source: &BlendSource) {
                     blend::blend_solid_565(dst, source, $order)
                 }
-                #[cfg_attr(not(armv7m), inline(always))]
-                #[cfg_attr(armv7m, inline(never))]
+                #[inline(always)]
                 fn blend_premultiplied_span(dst: &mut [Self], start: [u32; 4], step: [u32; 4]) {
                     blend::blend_premultiplied_565(dst, start, step, $order)
                 }
