@@ -40,8 +40,8 @@
 //!
 //! The blend of an alpha per vertex ([`premultiplied_565`]): LLVM's loop on raw values keeps
 //! most of the four planes and their steps on the stack (fw_bench: 64-67 instructions a pixel,
-//! 60.67 pixel by pixel through the channels). Here the planes and three steps stay in
-//! registers and a pixel is 33 instructions (41.72 a pixel in fw_bench): the factor, the three fields each shifted so that
+//! 60.67 pixel by pixel through the channels). Here the four planes and their steps stay in
+//! registers and a pixel is 31 instructions: the factor, the three fields each shifted so that
 //! one multiply by `f·2¹⁰` and one add of its plane (scaled by 4, 4 and 8) put its channel at
 //! the top of the word, and the three packed. The host tests that arithmetic
 //! (`color::blend`'s `premultiplied_pixel_v6m`) against the per-pixel definition on any planes;
@@ -514,9 +514,10 @@ pub(crate) fn depth_masked_nearest_565(
 
 // The per-vertex alpha blend of a 5-6-5 span ([`premultiplied_565`]), one pixel a pass:
 // r0 = the end of the span, r1 = the byte offset of the pixel from it (negative, counting up to
-// 0), r2 = the pixel, r3 = the factor `f·2¹⁰`, r4-r6 = the channels, r7 = the transparency
-// plane; r8-r10 = the colour planes (raw order, scaled by 4, 4 and 8), r11, r12, lr = their
-// steps, [sp] = the transparency plane's step. 33 instructions a pixel.
+// 0), r2 = the top plane, r3 = the factor `f·2¹⁰`, r4-r6 = the pixel and its channels, r7 = the
+// transparency plane; r9, r10 = the middle and bottom planes (the colour planes in raw order,
+// scaled by 4, 4 and 8), r11, r12, lr = the colour planes' steps, r8 the transparency plane's.
+// 31 instructions a pixel.
 core::arch::global_asm!(
     ".section .text.embedded_raster_premultiplied_565_v6m,\"ax\",%progbits",
     ".syntax unified",
@@ -535,20 +536,20 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4-r7}}",
     "ldm r2!, {{r3-r6}}",
-    "mov r8, r3",
     "mov r9, r4",
     "mov r10, r5",
     "mov r7, r6",
-    "ldm r2!, {{r3-r6}}",
-    "mov r11, r3",
+    "ldm r2, {{r2, r4, r5, r6}}",
+    "mov r11, r2",
     "mov r12, r4",
     "mov lr, r5",
-    "push {{r6}}",
+    "mov r8, r6",
+    "mov r2, r3",
     "lsls r1, r1, #1",
     "adds r0, r0, r1",
     "rsbs r1, r1, #0",
     "1:",
-    "ldrh r2, [r0, r1]",
+    "ldrh r6, [r0, r1]",
     // The factor ((t >> 9)·257) >> 15, times 2¹⁰.
     "lsrs r3, r7, #9",
     "lsls r4, r3, #8",
@@ -556,16 +557,16 @@ core::arch::global_asm!(
     "lsrs r3, r3, #15",
     "lsls r3, r3, #10",
     // Top: d_top·f·2¹⁰ + plane (scaled by 4: the channel at bits 26-30).
-    "lsrs r4, r2, #11",
+    "lsrs r4, r6, #11",
     "muls r4, r3, r4",
-    "add r4, r8",
+    "adds r4, r4, r2",
     // Middle: d_mid·f·2¹⁰ + plane (scaled by 4: the channel at bits 26-31).
-    "lsls r5, r2, #21",
+    "lsls r5, r6, #21",
     "lsrs r5, r5, #26",
     "muls r5, r3, r5",
     "add r5, r9",
     // Bottom: d_bottom·2·f·2¹⁰ + plane (scaled by 8: the channel at bits 27-31).
-    "lsls r6, r2, #27",
+    "lsls r6, r6, #27",
     "lsrs r6, r6, #26",
     "muls r6, r3, r6",
     "add r6, r10",
@@ -579,14 +580,12 @@ core::arch::global_asm!(
     "lsrs r6, r6, #27",
     "orrs r4, r6",
     "strh r4, [r0, r1]",
-    "add r8, r11",
+    "add r2, r11",
     "add r9, r12",
     "add r10, lr",
-    "ldr r2, [sp]",
-    "adds r7, r7, r2",
+    "add r7, r8",
     "adds r1, #2",
     "bne 1b",
-    "add sp, #4",
     "pop {{r4-r7}}",
     "mov r8, r4",
     "mov r9, r5",
