@@ -78,7 +78,7 @@ MICROBIT_BAND_FRAME_LIMIT=160000000
 # 3,760 before the chunk length per chunk and the per-pixel light's span loop, whose frames on
 # ARMv6-M are now split out of fill_perspective, each kind of light's span loop in a frame of
 # its own), fw_band_microbit 4,576 of 6,128, fw_nopanic 6,044 of 8,796, fw_nopanic_textures
-# 8,752 of 14,172, fw_scene 1,588 of 10,224.
+# 8,752 of 14,172, fw_scene 1,660 of 10,224 (1,588 before its translucent triangle).
 STACK_HEADROOM=96
 
 # The firmware issue's targets, instructions per covered pixel on large triangles (enforced:
