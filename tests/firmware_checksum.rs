@@ -23,6 +23,8 @@ enum Expected {
     Solid(Rgb565),
     /// Exact channel values (r 0..31, g 0..63, b 0..31).
     Gouraud([f64; 3]),
+    /// Exact channel values of a translucent blend, and the error the pixel under it may add.
+    Blended([f64; 3], f64),
 }
 
 /// Exact coverage and barycentric weights of a pixel centre under the top-left rule.
@@ -79,7 +81,39 @@ fn reference_image(width: u32, height: u32) -> Vec<Expected> {
             }
         }
     });
+    // The translucent triangle blended over it: `P + d·(1 − α)` of the barycentric premultiplied
+    // colour `P` and alpha `α`.
+    let top = scene::translucent(width, height);
+    let positions = top.shape().vertices.map(|v| (v.x.to_bits(), v.y.to_bits()));
+    for j in 0..height {
+        for i in 0..width {
+            let Some(w) = reference_weights(positions, i64::from(i), i64::from(j)) else {
+                continue;
+            };
+            let idx = (j * width + i) as usize;
+            let a = top.alpha().map(|a| f64::from(a) / 255.0);
+            let alpha = (0..3).map(|k| w[k] * a[k]).sum::<f64>();
+            let (under, slack) = match image[idx] {
+                Expected::Background => (channels(scene::BACKGROUND), 0.0),
+                Expected::Solid(c) => (channels(c), 0.0),
+                // The pixel under it is within 1 LSB of the exact colour.
+                Expected::Gouraud(exact) => (exact, 1.0 - alpha),
+                Expected::Blended(..) => unreachable!("one translucent triangle"),
+            };
+            let blended = [0, 1, 2].map(|ch| {
+                let p = (0..3)
+                    .map(|k| w[k] * a[k] * channels(top.shape().vertices[k].color)[ch])
+                    .sum::<f64>();
+                p + under[ch] * (1.0 - alpha)
+            });
+            image[idx] = Expected::Blended(blended, slack);
+        }
+    }
     image
+}
+
+fn channels(c: Rgb565) -> [f64; 3] {
+    [c.r(), c.g(), c.b()].map(f64::from)
 }
 
 fn render(width: u32, height: u32) -> Vec<Rgb565> {
@@ -123,6 +157,11 @@ fn scene_matches_independent_reference_at_every_firmware_size() {
                     shaded += 1;
                     let got = [g.r(), g.g(), g.b()].map(f64::from);
                     (0..3).all(|k| (got[k] - exact[k]).abs() <= 1.0 + 1e-9)
+                }
+                Expected::Blended(exact, slack) => {
+                    shaded += 1;
+                    let got = [g.r(), g.g(), g.b()].map(f64::from);
+                    (0..3).all(|k| (got[k] - exact[k]).abs() <= 1.0 + slack + 1e-9)
                 }
             };
             assert!(

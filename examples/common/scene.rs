@@ -14,7 +14,9 @@
 
 use embedded_graphics::pixelcolor::{raw::RawU16, Rgb565};
 use embedded_graphics::prelude::*;
-use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+use embedded_raster::{
+    Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Translucent, Vertex,
+};
 
 /// Framebuffer size on the MPS2 boards (4 MiB RAM).
 pub const MPS2_SIZE: (u32, u32) = (128, 96);
@@ -335,7 +337,8 @@ pub fn render_translucent(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     }
 }
 
-/// Clears `fb` and draws the opaque shapes, alternating `Drawable::draw` and `draw_into`.
+/// Clears `fb` and draws the opaque shapes, alternating `Drawable::draw` and `draw_into`, then
+/// blends the triangle with an alpha per vertex ([`translucent`]) over them.
 pub fn render_opaque(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     let size = fb.size();
     let _ = fb.clear(BACKGROUND);
@@ -355,6 +358,24 @@ pub fn render_opaque(fb: &mut SliceFramebuffer<'_, Rgb565>) {
         }
         n = n.wrapping_add(1);
     });
+    core::hint::black_box(translucent(size.width, size.height)).draw_into(fb);
+}
+
+/// The triangle [`render_opaque`] blends over its shapes: an alpha per vertex, opaque to
+/// transparent.
+pub fn translucent(width: u32, height: u32) -> Translucent<GouraudTriangle<Rgb565>> {
+    let (w, h) = (width.min(4096) as i32 * 256, height.min(4096) as i32 * 256);
+    let colors = [
+        Rgb565::new(31, 10, 3),
+        Rgb565::new(2, 60, 9),
+        Rgb565::new(20, 5, 30),
+    ];
+    let p = [
+        (w / 9 + 37, h / 7),
+        (w / 9 * 8, h / 3 + 101),
+        (w / 3, h / 7 * 6 + 13),
+    ];
+    GouraudTriangle::new([0, 1, 2].map(|k| v(p[k].0, p[k].1, colors[k]))).with_alpha([255, 128, 0])
 }
 
 /// 32-bit FNV-1a over the raw pixels, each as two little-endian bytes.

@@ -21,12 +21,16 @@ pub(crate) use thumbv6m::blend_solid_565;
 pub(crate) use thumbv6m::depth_masked_nearest_565;
 #[cfg(armv6m)]
 pub(crate) use thumbv6m::masked_nearest_565;
+#[cfg(armv6m)]
+pub(crate) use thumbv6m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::blend_solid_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::perspective_span;
+#[cfg(armv7m)]
+pub(crate) use thumbv7m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 

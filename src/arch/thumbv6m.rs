@@ -1,6 +1,6 @@
 //! ARMv6-M (Cortex-M0/M0+): the 5-6-5 span loop, the masked nearest texel loop and its
-//! depth-tested form (the perspective-correct fill's unlit chunks), and the 5-6-5 blend of a
-//! constant colour at a constant opacity in Thumb-1 assembly.
+//! depth-tested form (the perspective-correct fill's unlit chunks), and the 5-6-5 blends of a
+//! constant colour at a constant opacity and of an alpha per vertex in Thumb-1 assembly.
 //!
 //! LLVM keeps the loop's masks, steps and words in memory on Thumb-1 (26 instructions a pair of
 //! pixels, ~70 a span around them). Here the pair loop keeps everything in registers and stores
@@ -46,6 +46,16 @@
 //! at either end alone. It gives the portable loop's integers
 //! (every lane below 2¹⁶); CI checks the Cortex-M0 scene's translucent triangles against the
 //! host's checksum.
+//!
+//! The blend of an alpha per vertex ([`premultiplied_565`]): LLVM's loop on raw values keeps
+//! most of the four planes and their steps on the stack (fw_bench: 64-67 instructions a pixel,
+//! 60.67 pixel by pixel through the channels). Here the four planes and their steps stay in
+//! registers and a pixel is 31 instructions: the factor, the three fields each shifted so that
+//! one multiply by `f·2¹⁰` and one add of its plane (scaled by 4, 4 and 8) put its channel at
+//! the top of the word, and the three packed. The host tests that arithmetic
+//! (`color::blend`'s `premultiplied_pixel_v6m`) against the per-pixel definition on any planes;
+//! CI checks that the Cortex-M0 firmware's scene (which blends such a triangle) has the host's
+//! checksum.
 #![allow(unsafe_code)]
 
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -642,4 +652,121 @@ pub(crate) fn blend_solid_565<C: From<RawU16>>(pixels: &mut [C], weights: &[u32;
     // it to.
     unsafe { embedded_raster_blend_565_v6m(pixels.as_mut_ptr().cast(), pixels.len(), weights) }
     true
+}
+
+// The per-vertex alpha blend of a 5-6-5 span ([`premultiplied_565`]), one pixel a pass:
+// r0 = the end of the span, r1 = the byte offset of the pixel from it (negative, counting up to
+// 0), r2 = the top plane, r3 = the factor `f·2¹⁰`, r4-r6 = the pixel and its channels, r7 = the
+// transparency plane; r9, r10 = the middle and bottom planes (the colour planes in raw order,
+// scaled by 4, 4 and 8), r11, r12, lr = the colour planes' steps, r8 the transparency plane's.
+// 31 instructions a pixel.
+core::arch::global_asm!(
+    ".section .text.embedded_raster_premultiplied_565_v6m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_premultiplied_565_v6m",
+    ".hidden embedded_raster_premultiplied_565_v6m",
+    ".type embedded_raster_premultiplied_565_v6m,%function",
+    ".thumb_func",
+    // r0 = the pixels, r1 = their number (at least one), r2 = the planes' values then steps.
+    "embedded_raster_premultiplied_565_v6m:",
+    "push {{r4-r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4-r7}}",
+    "ldm r2!, {{r3-r6}}",
+    "mov r9, r4",
+    "mov r10, r5",
+    "mov r7, r6",
+    "ldm r2, {{r2, r4, r5, r6}}",
+    "mov r11, r2",
+    "mov r12, r4",
+    "mov lr, r5",
+    "mov r8, r6",
+    "mov r2, r3",
+    "lsls r1, r1, #1",
+    "adds r0, r0, r1",
+    "rsbs r1, r1, #0",
+    "1:",
+    "ldrh r6, [r0, r1]",
+    // The factor ((t >> 9)·257) >> 15, times 2¹⁰.
+    "lsrs r3, r7, #9",
+    "lsls r4, r3, #8",
+    "adds r3, r3, r4",
+    "lsrs r3, r3, #15",
+    "lsls r3, r3, #10",
+    // Top: d_top·f·2¹⁰ + plane (scaled by 4: the channel at bits 26-30).
+    "lsrs r4, r6, #11",
+    "muls r4, r3, r4",
+    "adds r4, r4, r2",
+    // Middle: d_mid·f·2¹⁰ + plane (scaled by 4: the channel at bits 26-31).
+    "lsls r5, r6, #21",
+    "lsrs r5, r5, #26",
+    "muls r5, r3, r5",
+    "add r5, r9",
+    // Bottom: d_bottom·2·f·2¹⁰ + plane (scaled by 8: the channel at bits 27-31).
+    "lsls r6, r6, #27",
+    "lsrs r6, r6, #26",
+    "muls r6, r3, r6",
+    "add r6, r10",
+    // Packed: ((top << 6 | middle) << 5) | bottom (bit 31 of the top sum, not the channel's,
+    // lands at bit 16: not stored).
+    "lsrs r4, r4, #26",
+    "lsls r4, r4, #6",
+    "lsrs r5, r5, #26",
+    "orrs r4, r5",
+    "lsls r4, r4, #5",
+    "lsrs r6, r6, #27",
+    "orrs r4, r6",
+    "strh r4, [r0, r1]",
+    "add r2, r11",
+    "add r9, r12",
+    "add r10, lr",
+    "add r7, r8",
+    "adds r1, #2",
+    "bne 1b",
+    "pop {{r4-r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4-r7, pc}}",
+    ".size embedded_raster_premultiplied_565_v6m, . - embedded_raster_premultiplied_565_v6m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    ///
+    /// # Safety
+    ///
+    /// `pixels` must be valid for reads and writes of `len` (at least one) consecutive, 2-byte
+    /// aligned `u16`s, and `planes` for reads of eight aligned `u32`s.
+    fn embedded_raster_premultiplied_565_v6m(pixels: *mut u16, len: usize, planes: *const [u32; 8]);
+}
+
+/// The per-vertex alpha blend over the 5-6-5 pixels `pixels` (nothing if `C` is not a 16-bit
+/// colour): pixel `i` is `color::blend`'s `premultiplied_pixel_v6m` of its raw value with the
+/// planes `value` (raw order: top, middle, bottom field, then transparency; unscaled) stepped
+/// `i` times by `step`, wrapping.
+#[inline(always)]
+pub(crate) fn premultiplied_565<C>(pixels: &mut [C], value: [u32; 4], step: [u32; 4]) {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 || pixels.is_empty() {
+        return;
+    }
+    // The planes scaled as the loop wants them (each channel's bits 0-28 or 0-29 kept: the
+    // channel depends on no others).
+    let scaled = |v: [u32; 4]| [v[0] << 2, v[1] << 2, v[2] << 3, v[3]];
+    let (value, step) = (scaled(value), scaled(step));
+    let planes = [
+        value[0], value[1], value[2], value[3], step[0], step[1], step[2], step[3],
+    ];
+    // SAFETY: `pixels` holds `pixels.len()` (at least one) 2-byte aligned 16-bit colours (checked
+    // above), which the function reads and writes as `u16`s, one at a time; it reads the eight
+    // words of `planes` and saves and restores every register the AAPCS asks it to.
+    unsafe {
+        embedded_raster_premultiplied_565_v6m(pixels.as_mut_ptr().cast(), pixels.len(), &planes)
+    };
 }

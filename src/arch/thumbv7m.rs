@@ -24,6 +24,14 @@
 //! `table[l >> 24]`, the planes stepped by the same wrapping additions (a span's first values
 //! by `mla`, the wrapping `value + step·start`). The host tests the portable path; CI checks that
 //! the Cortex-M3 and M4 firmware frames have the host's checksums.
+//!
+//! The blend of an alpha per vertex over 5-6-5 pixels ([`premultiplied_pairs_565`]): LLVM
+//! unrolls the portable pair loop and spills its planes (fw_bench: 43.18 instructions a pixel,
+//! 33.42 pixel by pixel through the channels); here a pair of pixels is one word loaded and
+//! stored and 43 instructions, the four planes and their steps in registers, and a first pixel
+//! at 2 mod 4 and a last odd one are blended alone by the same function (23.62 a pixel). It computes `color::blend`'s `premultiplied_pixel_565` for each pixel,
+//! which the host tests against the per-pixel definition; CI checks that the firmware's scene
+//! (which blends such a triangle) has the host's checksum.
 #![allow(unsafe_code)]
 
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -1008,6 +1016,168 @@ pub(crate) fn perspective_span<C: Copy>(
     // saves and restores every register the AAPCS asks it to, its stack frame its own.
     unsafe { embedded_raster_perspective_span_v7m(&mut block, lit) };
     true
+}
+
+/// One pixel of the per-vertex alpha pair loop: `$d` holds the pixel's raw value in bits 0-15
+/// (bits above: anything, ignored), r7 the transparency factor `f`, r2-r4 the colour planes;
+/// the blended pixel goes to the high half of `$acc` (its low half unspecified) as
+/// `color::blend`'s `premultiplied_pixel_565` computes it: the top field `(d & 0xF800)·f + top
+/// plane` (scaled by 8: the field lands at bits 27-31), the others `⌊(d_field·f·2⁸ + plane) /
+/// 2²⁴⌋` inserted at bits 21-26 and 16-20 (`bfi` keeps their low 6 and 5 bits, the channel's
+/// mask). `$then` runs once the top field is in `$acc`. Clobbers r7 (left as `f·2⁸`) and `$tmp`.
+macro_rules! premultiplied_pixel {
+    ($d:literal, $acc:literal, $tmp:literal, $then:literal) => {
+        concat!(
+            "lsr r7, r5, #9\n",
+            "add r7, r7, r7, lsl #8\n",
+            "lsr r7, r7, #15\n",
+            "and ",
+            $acc,
+            ", ",
+            $d,
+            ", #0xF800\n",
+            "mla ",
+            $acc,
+            ", ",
+            $acc,
+            ", r7, r2\n",
+            $then,
+            "lsl r7, r7, #8\n",
+            "ubfx ",
+            $tmp,
+            ", ",
+            $d,
+            ", #5, #6\n",
+            "mla ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", r7, r3\n",
+            "lsr ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", #24\n",
+            "bfi ",
+            $acc,
+            ", ",
+            $tmp,
+            ", #21, #6\n",
+            "and ",
+            $tmp,
+            ", ",
+            $d,
+            ", #31\n",
+            "mla ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", r7, r4\n",
+            "lsr ",
+            $tmp,
+            ", ",
+            $tmp,
+            ", #24\n",
+            "bfi ",
+            $acc,
+            ", ",
+            $tmp,
+            ", #16, #5\n",
+            // The planes stepped a pixel.
+            "add r2, r6\n",
+            "add r3, r8\n",
+            "add r4, r10\n",
+            "add r5, r11\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_premultiplied_565_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_premultiplied_565_v7m",
+    ".hidden embedded_raster_premultiplied_565_v7m",
+    ".type embedded_raster_premultiplied_565_v7m,%function",
+    ".thumb_func",
+    // r0 = the pixels, r1 = their number (at least one), r2 = the planes: values (top scaled
+    // by 8, middle, bottom, transparency) then their steps a pixel.
+    "embedded_raster_premultiplied_565_v7m:",
+    "push {{r4-r11, lr}}",
+    "ldm r2, {{r2, r3, r4, r5, r6, r8, r10, r11}}",
+    // A first pixel at 2 mod 4 alone: the pairs are aligned words.
+    "tst r0, #2",
+    "beq 2f",
+    "ldrh r9, [r0]",
+    premultiplied_pixel!("r9", "r12", "lr", ""),
+    "lsr r12, r12, #16",
+    "strh r12, [r0], #2",
+    "subs r1, #1",
+    "beq 4f",
+    "2:",
+    "subs r1, #2",
+    "blo 3f",
+    "1:",
+    // r9 = both pixels, the left one in the low half.
+    "ldr r9, [r0]",
+    premultiplied_pixel!("r9", "r12", "lr", ""),
+    // r12 = the left pixel, alone; then the right one, in lr, takes it as its low half.
+    "lsr r12, r12, #16",
+    "lsr r9, r9, #16",
+    premultiplied_pixel!("r9", "lr", "r12", "bfi lr, r12, #0, #16\n"),
+    "str lr, [r0], #4",
+    "subs r1, #2",
+    "bhs 1b",
+    // r1 = −1 if a last pixel is left, −2 if not.
+    "3:",
+    "adds r1, #2",
+    "beq 4f",
+    "ldrh r9, [r0]",
+    premultiplied_pixel!("r9", "r12", "lr", ""),
+    "lsr r12, r12, #16",
+    "strh r12, [r0]",
+    "4:",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_premultiplied_565_v7m, . - embedded_raster_premultiplied_565_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    ///
+    /// # Safety
+    ///
+    /// `pixels` addresses `len` (at least one) 2-byte aligned `u16`s, readable and writable;
+    /// `planes` is readable.
+    fn embedded_raster_premultiplied_565_v7m(pixels: *mut u16, len: usize, planes: *const [u32; 8]);
+}
+
+/// Blends the 5-6-5 pixels `pixels` (nothing if `C` is not a 16-bit colour) as
+/// `color::blend`'s `premultiplied_pixel_565` does each, the planes `value` (raw order: top,
+/// middle, bottom field, then transparency) stepped by `step` a pixel, wrapping.
+#[inline(always)]
+pub(crate) fn premultiplied_565<C>(pixels: &mut [C], value: [u32; 4], step: [u32; 4]) {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 || pixels.is_empty() {
+        return;
+    }
+    // The top plane scaled by 8 (its channel depends on its low 29 bits only).
+    let planes = [
+        value[0] << 3,
+        value[1],
+        value[2],
+        value[3],
+        step[0] << 3,
+        step[1],
+        step[2],
+        step[3],
+    ];
+    // SAFETY: `pixels` holds `pixels.len()` (at least one) 2-byte aligned 16-bit colours
+    // (checked above), which the function reads and writes as `u16`s (pairs a word at a time,
+    // from a 4-byte aligned address); it reads the eight words of `planes` and saves and
+    // restores every register the AAPCS asks it to.
+    unsafe {
+        embedded_raster_premultiplied_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), &planes)
+    };
 }
 
 /// Whether the loops may draw `C` from `texels` with these masks and shifts: `C` a 2-byte colour

@@ -127,12 +127,129 @@ pub(crate) fn premultiplied_values(channels: [u8; 3], alpha: u8) -> [u16; 4] {
 #[inline(always)]
 pub(crate) fn blend_premultiplied<C: GouraudColor>(p: [u32; 3], t: u32, d: C) -> C {
     // t < 255·2²⁴ + 2¹⁷: (t >> 9)·257 < 2³¹; the factor is t/255 in 0.16, at most 2¹⁶ + 1.
-    let factor = ((t >> 9) * 257) >> 15;
+    let factor = transparency_factor(t);
     let d = d.channels();
     // The sum is the blended channel (at most 255.5) in 8.24; its terms wrap back into it.
     C::from_channels(core::array::from_fn(|k| {
         (p[k].wrapping_add((u32::from(d[k]) * factor) << 8) >> 24) as u8
     }))
+}
+
+/// The factor `t/255` (0.16 fixed point, at most 2¹⁶ + 2⁸) of the transparency plane's value `t`
+/// that [`blend_premultiplied`] multiplies the destination's channels by.
+#[inline(always)]
+fn transparency_factor(t: u32) -> u32 {
+    // t >> 9 < 2²³: the product is below 2³².
+    ((t >> 9) * 257) >> 15
+}
+
+/// [`GouraudColor::blend_premultiplied_span`] pixel by pixel: [`blend_premultiplied`] of each
+/// pixel of `dst`, the planes (`r`, `g`, `b`, `t`) from `start` stepped by `step`, wrapping. The
+/// definition, for every format.
+#[inline(always)]
+pub(crate) fn blend_premultiplied_by_pixels<C: GouraudColor>(
+    dst: &mut [C],
+    start: [u32; 4],
+    step: [u32; 4],
+) {
+    let mut value = start;
+    let planes = (0..dst.len()).map(move |_| {
+        let here = value;
+        for (v, s) in value.iter_mut().zip(step) {
+            *v = v.wrapping_add(s);
+        }
+        here
+    });
+    for (px, [r, g, b, t]) in dst.iter_mut().zip(planes) {
+        *px = blend_premultiplied([r, g, b], t, *px);
+    }
+}
+
+/// One 5-6-5 pixel `d` (its raw value in the low half) under [`blend_premultiplied`] with the
+/// factor `f` ([`transparency_factor`]) and the colour planes `p` in raw order (top, middle,
+/// bottom field), the top one scaled by 8: the blended pixel in the **high** half, the low half
+/// unspecified.
+///
+/// A channel is bits 24 and up of `p + d·f·2⁸` (modulo 2³²), masked to its field: it depends
+/// only on the sum's low 29 bits (30 for the middle field), so the top channel can be computed
+/// eight times larger (its plane and step scaled by 8, wrapping), which puts it at bits 27–31,
+/// where the high half's top field is, and `d`'s field in place (`d & 0xF800` is `d_top·2¹¹`)
+/// is the multiplicand. The other two fields are inserted below it.
+// Not used on Cortex-M, whose loops are in assembly.
+#[cfg_attr(any(armv6m, armv7m), allow(dead_code))]
+#[inline(always)]
+fn premultiplied_pixel_565(d: u32, f: u32, p: [u32; 3]) -> u32 {
+    let f8 = f << 8;
+    let top = (d & 0xF800).wrapping_mul(f).wrapping_add(p[0]);
+    let middle = ((d >> 5) & 0x3F).wrapping_mul(f8).wrapping_add(p[1]) >> 24;
+    let bottom = (d & 0x1F).wrapping_mul(f8).wrapping_add(p[2]) >> 24;
+    (top & 0xF800_FFFF) | ((middle & 0x3F) << 21) | ((bottom & 0x1F) << 16)
+}
+
+/// The arithmetic of ARMv6-M's Thumb-1 loop (`arch::thumbv6m::premultiplied_565`) for one
+/// 5-6-5 pixel `d` under the transparency plane's value `t` and the colour planes `p` (raw
+/// order, unscaled): the raw blended pixel in the low half (bits above: anything). The factor is
+/// taken times 2¹⁰ and the planes scaled by 4, 4 and 8 (the bottom field doubled), which puts
+/// the top channel at bits 26-30, the middle at 26-31 and the bottom at 27-31 of their sums, as
+/// [`premultiplied_pixel_565`] scales its top one.
+#[cfg(test)]
+fn premultiplied_pixel_v6m(d: u32, t: u32, p: [u32; 3]) -> u32 {
+    let f = transparency_factor(t) << 10;
+    let top = (d >> 11).wrapping_mul(f).wrapping_add(p[0] << 2);
+    let middle = ((d << 21) >> 26).wrapping_mul(f).wrapping_add(p[1] << 2);
+    let bottom = ((d << 27) >> 26).wrapping_mul(f).wrapping_add(p[2] << 3);
+    // Bit 31 of `top` (not the channel's) lands at bit 16, beyond the pixel.
+    ((((top >> 26) << 6) | (middle >> 26)) << 5) | (bottom >> 27)
+}
+
+/// [`GouraudColor::blend_premultiplied_span`] for the 5-6-5 formats whose raw value holds
+/// channels `order` (top, middle, bottom field): on raw values, two pixels a word
+/// ([`premultiplied_pixel_565`]), the pixels of [`blend_premultiplied_by_pixels`].
+#[inline(always)]
+pub(crate) fn blend_premultiplied_565<C: Copy + From<RawU16> + Into<RawU16>>(
+    dst: &mut [C],
+    start: [u32; 4],
+    step: [u32; 4],
+    order: [usize; 3],
+) {
+    // Raw order (top, middle, bottom field, transparency).
+    let raw = |v: [u32; 4]| {
+        let [top, middle, bottom] = order.map(|k| v.get(k).copied().unwrap_or(0));
+        [top, middle, bottom, v[3]]
+    };
+    // Cortex-M: in assembly (ARMv7-M: `premultiplied_pixel_565`'s arithmetic, two pixels a
+    // word; ARMv6-M: `premultiplied_pixel_v6m`'s, one pixel at a time).
+    #[cfg(any(armv6m, armv7m))]
+    {
+        crate::arch::premultiplied_565(dst, raw(start), raw(step));
+        return;
+    }
+    // The top field's plane scaled by 8 (see `premultiplied_pixel_565`).
+    #[allow(unreachable_code)]
+    let planes = |v: [u32; 4]| {
+        let [top, middle, bottom, t] = raw(v);
+        [top << 3, middle, bottom, t]
+    };
+    let (mut value, step) = (planes(start), planes(step));
+    let advance =
+        |v: [u32; 4]| -> [u32; 4] { core::array::from_fn(|k| v[k].wrapping_add(step[k])) };
+    let pixel = |d: C, v: [u32; 4]| {
+        let d = u32::from(d.into().into_inner());
+        premultiplied_pixel_565(d, transparency_factor(v[3]), [v[0], v[1], v[2]])
+    };
+    let mut rest = dst;
+    while let [a, b, tail @ ..] = rest {
+        let next = advance(value);
+        let (left, right) = (pixel(*a, value), pixel(*b, next));
+        let both = (right & 0xFFFF_0000) | (left >> 16);
+        *a = C::from(RawU16::new(both as u16));
+        *b = C::from(RawU16::new((both >> 16) as u16));
+        value = advance(next);
+        rest = tail;
+    }
+    if let [last] = rest {
+        *last = C::from(RawU16::new((pixel(*last, value) >> 16) as u16));
+    }
 }
 
 /// [`GouraudColor::blend_solid`] by channels: the definition, for every format.
@@ -272,6 +389,71 @@ mod tests {
                         weight(a)
                     ))
                 );
+            }
+        }
+        check::<Rgb565>([0, 1, 2]);
+        check::<Bgr565>([2, 1, 0]);
+    }
+
+    /// The raw 5-6-5 loop of per-vertex alpha against the per-pixel definition: random pixels,
+    /// planes and steps (in range and anywhere in `u32`, wrapping), every length up to 9 and
+    /// both pair positions.
+    #[test]
+    fn premultiplied_565_span_is_the_pixel_blend() {
+        fn check<C: GouraudColor + Copy + From<RawU16> + Into<RawU16> + core::fmt::Debug>(
+            order: [usize; 3],
+        ) {
+            let mut seed = 0x9E37_79B9u32;
+            let mut next = || {
+                seed ^= seed << 13;
+                seed ^= seed >> 17;
+                seed ^= seed << 5;
+                seed
+            };
+            for round in 0..20_000 {
+                let (start, step) = if round % 2 == 0 {
+                    // Anywhere: huge and wrapping values.
+                    ([(); 4].map(|_| next()), [(); 4].map(|_| next()))
+                } else {
+                    // In range: premultiplied channels with their +½, transparency up to 255.
+                    let mut v = [(); 4].map(|_| next());
+                    v[3] = next() % (255 << 24) + TRANSPARENCY_HALF;
+                    let s = [(); 4].map(|_| (next() as i32 >> (6 + next() % 20)) as u32);
+                    (v, s)
+                };
+                let len = (round / 2) % 10;
+                let mut fast: [C; 9] =
+                    core::array::from_fn(|_| C::from(RawU16::new(next() as u16)));
+                let (mut plain, under) = (fast, fast);
+                let fast = &mut fast[..len];
+                let plain = &mut plain[..len];
+                blend_premultiplied_565(fast, start, step, order);
+                blend_premultiplied_by_pixels(plain, start, step);
+                assert_eq!(fast, plain, "{start:x?} {step:x?} {len}");
+                // The Thumb-1 loop's arithmetic, pixel by pixel from the same planes.
+                let mut value = start;
+                for (&d, &want) in under.iter().zip(plain.iter()) {
+                    let d = u32::from(d.into().into_inner());
+                    let got = premultiplied_pixel_v6m(d, value[3], order.map(|k| value[k]));
+                    assert_eq!(C::from(RawU16::new(got as u16)), want, "{value:x?}");
+                    value = core::array::from_fn(|k| value[k].wrapping_add(step[k]));
+                }
+            }
+            // Every factor's extremes: opaque, transparent and the largest plane values.
+            for t in [
+                0,
+                TRANSPARENCY_HALF,
+                255 << 24,
+                u32::MAX,
+                (255 << 24) + TRANSPARENCY_HALF,
+            ] {
+                for p in [0, u32::MAX, 1 << 31, 0x00FF_FFFF] {
+                    let mut fast = [C::from(RawU16::new(0xFFFF)), C::from(RawU16::new(0x1234))];
+                    let mut plain = fast;
+                    blend_premultiplied_565(&mut fast, [p, p, p, t], [0; 4], order);
+                    blend_premultiplied_by_pixels(&mut plain, [p, p, p, t], [0; 4]);
+                    assert_eq!(fast, plain, "{p:x} {t:x}");
+                }
             }
         }
         check::<Rgb565>([0, 1, 2]);

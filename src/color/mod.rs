@@ -221,6 +221,17 @@ pub trait GouraudColor: PixelColor {
         blend::blend_solid_by_channels(dst, source);
     }
 
+    /// Blends a span of a triangle with an alpha per vertex over `dst`: pixel `i` is
+    /// `blend_premultiplied` of the planes (premultiplied `r`, `g`, `b`, transparency `t`) at
+    /// `start + i·step` (wrapping) over it. By default pixel by pixel; the 5-6-5 formats override
+    /// it with a loop on raw values that gives the same pixels. Hidden: the planes' form is the
+    /// crate's own.
+    #[doc(hidden)]
+    #[inline]
+    fn blend_premultiplied_span(dst: &mut [Self], start: [u32; 4], step: [u32; 4]) {
+        blend::blend_premultiplied_by_pixels(dst, start, step);
+    }
+
     /// Fills `dst` with an affine span of nearest Rgb565 texels by a loop of the target's own,
     /// if this format has one there (Rgb565 on Cortex-M0); `false` without writing anything
     /// where it has none (the default). Hidden: its argument's type cannot be named outside the
@@ -357,6 +368,10 @@ macro_rules! rgb_color {
                 #[inline(always)]
                 fn blend_solid(dst: &mut [Self], source: &BlendSource) {
                     blend::blend_solid_565(dst, source, $order)
+                }
+                #[inline(always)]
+                fn blend_premultiplied_span(dst: &mut [Self], start: [u32; 4], step: [u32; 4]) {
+                    blend::blend_premultiplied_565(dst, start, step, $order)
                 }
                 // Out of line on Cortex-M3/M4/M7: the loop then has the registers to itself.
                 // Inlined on ARMv6-M (the loop is an assembly function and this wrapper is

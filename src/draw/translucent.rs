@@ -236,6 +236,11 @@ impl<C: GouraudColor> SpanSource<C, 4> for PremultipliedSource<C> {
     fn over(&self, [r, g, b, t]: [u32; 4], under: C) -> C {
         blend_premultiplied([r, g, b], t, under)
     }
+
+    #[inline(always)]
+    fn blend_into(&self, step: &[u32; 4], start: [u32; 4], dst: &mut [C]) {
+        C::blend_premultiplied_span(dst, start, *step);
+    }
 }
 
 /// Blends into a [`SliceFramebuffer`] (or a band's rows), reading its pixels.
