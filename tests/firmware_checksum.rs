@@ -188,11 +188,13 @@ fn scene_matches_independent_reference_at_every_firmware_size() {
             let (x, y) = (idx as u32 % width, idx as u32 / width);
             assert_eq!(g, w, "{width}x{height}: translucent pixel ({x}, {y})");
         }
+        // Then the anti-aliased shapes, one at a time, each over the image before it.
+        check_antialiased(width, height, &mut got);
         let mut whole = vec![Rgb565::BLACK; (width * height) as usize];
         scene::render(&mut SliceFramebuffer::new(&mut whole, width, height).unwrap());
         assert_eq!(
             whole, got,
-            "render is render_opaque then render_translucent"
+            "render is render_opaque, render_translucent then render_antialiased"
         );
         println!(
             "{}",
@@ -201,6 +203,108 @@ fn scene_matches_independent_reference_at_every_firmware_size() {
                 height,
                 checksum: scene::checksum(&got)
             }
+        );
+    }
+}
+
+/// The area of the square of pixel `(i, j)` inside the triangle `p` (raw sub-pixels): the
+/// square clipped by the three edges in `f64`, the shoelace formula.
+fn pixel_area(p: [(i32, i32); 3], i: u32, j: u32) -> f64 {
+    let v = p.map(|(x, y)| (f64::from(x) / 256.0, f64::from(y) / 256.0));
+    let orient = (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[1].1 - v[0].1) * (v[2].0 - v[0].0);
+    let (x0, y0) = (f64::from(i), f64::from(j));
+    let mut poly = vec![
+        (x0, y0),
+        (x0 + 1.0, y0),
+        (x0 + 1.0, y0 + 1.0),
+        (x0, y0 + 1.0),
+    ];
+    for k in 0..3 {
+        let (a, b) = (v[k], v[(k + 1) % 3]);
+        let side = |q: (f64, f64)| {
+            orient.signum() * ((b.0 - a.0) * (q.1 - a.1) - (b.1 - a.1) * (q.0 - a.0))
+        };
+        let mut out = Vec::new();
+        for n in 0..poly.len() {
+            let (p0, p1) = (poly[n], poly[(n + 1) % poly.len()]);
+            let (s0, s1) = (side(p0), side(p1));
+            if s0 >= 0.0 {
+                out.push(p0);
+            }
+            if (s0 >= 0.0) != (s1 >= 0.0) {
+                let t = s0 / (s0 - s1);
+                out.push((p0.0 + (p1.0 - p0.0) * t, p0.1 + (p1.1 - p0.1) * t));
+            }
+        }
+        poly = out;
+    }
+    let n = poly.len();
+    ((0..n)
+        .map(|k| poly[k].0 * poly[(k + 1) % n].1 - poly[(k + 1) % n].0 * poly[k].1)
+        .sum::<f64>()
+        / 2.0)
+        .abs()
+}
+
+/// Whether `got` is `color` over `under` at an alpha within one level of `255 · area · opacity/255`.
+fn blended_near(got: Rgb565, color: Rgb565, under: Rgb565, area: f64, opacity: u8) -> bool {
+    let exact = area * f64::from(opacity);
+    let lo = (exact - 1.0).ceil().max(0.0) as u8;
+    let hi = (exact + 1.0).floor().min(255.0) as u8;
+    (lo..=hi).any(|a| color.blend(under, a) == got)
+}
+
+/// Draws the scene's anti-aliased shapes over `image` one at a time, checking each against the
+/// pixel areas; leaves `image` as `render_antialiased` leaves it.
+fn check_antialiased(width: u32, height: u32, image: &mut [Rgb565]) {
+    let mut touched = 0;
+    for (t, opacity) in scene::antialiased_shapes(width, height) {
+        let under = image.to_vec();
+        t.anti_aliased()
+            .with_opacity(opacity)
+            .draw_into(&mut SliceFramebuffer::new(image, width, height).unwrap());
+        let p = t.points.map(|(x, y)| (x.to_bits(), y.to_bits()));
+        for (idx, (g, u)) in image.iter().zip(&under).enumerate() {
+            let (i, j) = (idx as u32 % width, idx as u32 / width);
+            let area = pixel_area(p, i, j);
+            let ok = if area == 0.0 {
+                g == u
+            } else {
+                blended_near(*g, t.color, *u, area, opacity)
+            };
+            touched += usize::from(area > 0.0);
+            assert!(
+                ok,
+                "{width}x{height}: anti-aliased pixel ({i}, {j}) {g:?} over {u:?}, area {area}"
+            );
+        }
+    }
+    assert!(
+        touched > (width * height) as usize / 8,
+        "{touched} anti-aliased pixels"
+    );
+    // The mask: the two triangles' areas summed, one colour blended once.
+    let under = image.to_vec();
+    let f = scene::MASK_FAN;
+    let parts = [[f[0], f[1], f[2]], [f[0], f[2], f[3]]];
+    let mut fb = SliceFramebuffer::new(image, width, height).unwrap();
+    scene::render_antialiased_mask(&mut fb);
+    for (idx, (g, u)) in image.iter().zip(&under).enumerate() {
+        let (i, j) = (idx as u32 % width, idx as u32 / width);
+        let inside = (4..28).contains(&i) && (4..20).contains(&j);
+        let area: f64 = if inside {
+            parts.iter().map(|p| pixel_area(*p, i, j)).sum()
+        } else {
+            0.0
+        };
+        let ok = if area == 0.0 {
+            g == u
+        } else {
+            blended_near(*g, scene::MASK_COLOR, *u, area.min(1.0), 255)
+        };
+        assert!(
+            ok,
+            "{width}x{height}: mask pixel ({i}, {j}) {g:?} over {u:?}, area {area}"
         );
     }
 }

@@ -15,7 +15,7 @@
 use embedded_graphics::pixelcolor::{raw::RawU16, Rgb565};
 use embedded_graphics::prelude::*;
 use embedded_raster::{
-    Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Translucent, Vertex,
+    Coord, CoverageMask, GouraudTriangle, SliceFramebuffer, SolidTriangle, Translucent, Vertex,
 };
 
 /// Framebuffer size on the MPS2 boards (4 MiB RAM).
@@ -326,6 +326,91 @@ pub fn translucent_shapes(width: u32, height: u32) -> [(SolidTriangle<Rgb565>, u
 pub fn render(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     render_opaque(fb);
     render_translucent(fb);
+    render_antialiased(fb);
+}
+
+/// Anti-aliased triangles drawn last ([`render_antialiased`]), with their opacities: one crossing
+/// the right border, a sub-pixel one, a sliver at half opacity and one far beyond the screen
+/// (the `i64` and `i128` paths, rows stepped and scanned).
+pub fn antialiased_shapes(width: u32, height: u32) -> [(SolidTriangle<Rgb565>, u8); 4] {
+    let w = (width.min(4096) as i32) * 256;
+    let h = (height.min(4096) as i32) * 256;
+    let tri = |p: [(i32, i32); 3], color: Rgb565, opacity: u8| {
+        (
+            SolidTriangle::new(p.map(|(x, y)| (c(x), c(y))), color),
+            opacity,
+        )
+    };
+    [
+        tri(
+            [
+                (w / 2 + 77, h / 9),
+                (w + w / 5, h / 2 + 13),
+                (w / 3 + 5, h - h / 8),
+            ],
+            Rgb565::new(30, 58, 6),
+            255,
+        ),
+        tri(
+            [
+                (w / 5 + 21, h / 3 + 40),
+                (w / 5 + 190, h / 3 + 77),
+                (w / 5 + 60, h / 3 + 230),
+            ],
+            Rgb565::WHITE,
+            255,
+        ),
+        tri(
+            [
+                (w / 10, h / 2),
+                (w - w / 10, h / 2 + 300),
+                (w / 10 + 40, h / 2 + 700),
+            ],
+            Rgb565::new(0, 20, 31),
+            128,
+        ),
+        tri(
+            [
+                (-2_000_000_000, h / 4),
+                (w / 2, -1_900_000_000),
+                (w / 3, h / 5 + 3),
+            ],
+            Rgb565::new(31, 0, 20),
+            200,
+        ),
+    ]
+}
+
+/// The corners of a small quadrilateral anti-aliased as one shape ([`render_antialiased`]'s coverage mask,
+/// over the 24 × 16 pixels from (4, 4)).
+pub const MASK_FAN: [(i32, i32); 4] = [(1100, 1090), (1500, 1900), (5700, 2300), (2000, 4900)];
+
+/// Blends the [`antialiased_shapes`] into `fb` (`anti_aliased().with_opacity(..).draw_into`),
+/// then the quadrilateral [`MASK_FAN`] (two triangles around its first corner) through a
+/// coverage mask.
+pub fn render_antialiased(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let size = fb.size();
+    for (t, opacity) in antialiased_shapes(size.width, size.height) {
+        let (t, opacity) = core::hint::black_box((t, opacity));
+        t.anti_aliased().with_opacity(opacity).draw_into(fb);
+    }
+    render_antialiased_mask(fb);
+}
+
+/// The colour of the [`MASK_FAN`] quadrilateral.
+pub const MASK_COLOR: Rgb565 = Rgb565::new(31, 40, 0);
+
+/// The [`MASK_FAN`] quadrilateral through a coverage mask (the end of [`render_antialiased`]).
+pub fn render_antialiased_mask(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let mut cells = [0u16; 24 * 16];
+    let area = embedded_graphics::primitives::Rectangle::new(Point::new(4, 4), Size::new(24, 16));
+    if let Ok(mut mask) = CoverageMask::new(&mut cells, area) {
+        for k in 1..MASK_FAN.len() - 1 {
+            let p = [MASK_FAN[0], MASK_FAN[k], MASK_FAN[k + 1]];
+            mask.add(core::hint::black_box(p.map(|(x, y)| (c(x), c(y)))));
+        }
+        mask.fill_into(MASK_COLOR, fb);
+    }
 }
 
 /// Blends the [`translucent_shapes`] into `fb` (`draw_into`).
@@ -365,17 +450,12 @@ pub fn render_opaque(fb: &mut SliceFramebuffer<'_, Rgb565>) {
 /// transparent.
 pub fn translucent(width: u32, height: u32) -> Translucent<GouraudTriangle<Rgb565>> {
     let (w, h) = (width.min(4096) as i32 * 256, height.min(4096) as i32 * 256);
-    let colors = [
-        Rgb565::new(31, 10, 3),
-        Rgb565::new(2, 60, 9),
-        Rgb565::new(20, 5, 30),
-    ];
-    let p = [
-        (w / 9 + 37, h / 7),
-        (w / 9 * 8, h / 3 + 101),
-        (w / 3, h / 7 * 6 + 13),
-    ];
-    GouraudTriangle::new([0, 1, 2].map(|k| v(p[k].0, p[k].1, colors[k]))).with_alpha([255, 128, 0])
+    GouraudTriangle::new([
+        v(w / 9 + 37, h / 7, Rgb565::new(31, 10, 3)),
+        v(w / 9 * 8, h / 3 + 101, Rgb565::new(2, 60, 9)),
+        v(w / 3, h / 7 * 6 + 13, Rgb565::new(20, 5, 30)),
+    ])
+    .with_alpha([255, 128, 0])
 }
 
 /// 32-bit FNV-1a over the raw pixels, each as two little-endian bytes.

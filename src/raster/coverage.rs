@@ -252,16 +252,19 @@ fn square_area<T: Wide>(edges: &[CoverageEdge; 3], e: [T; 3], (lo, hi): ([T; 3],
         _ => {
             // Clipped back and forth between two polygons.
             let mut polygons = [Polygon::square(), Polygon::EMPTY];
-            let mut current = 0;
-            for k in 0..3 {
-                if cut[k] {
-                    let [a, b] = &mut polygons;
-                    let (from, to) = if current == 0 { (a, b) } else { (b, a) };
-                    from.clip_into(to, |p| edges[k].at(offsets[k], p));
-                    current ^= 1;
-                }
+            let mut current = false;
+            for ((edge, &offset), _) in edges.iter().zip(&offsets).zip(cut).filter(|(_, c)| *c) {
+                let [a, b] = &mut polygons;
+                let (from, to) = if current { (b, a) } else { (a, b) };
+                from.clip_into(to, |p| edge.at(offset, p));
+                current = !current;
             }
-            polygons[current].area()
+            let [a, b] = &polygons;
+            if current {
+                b.area()
+            } else {
+                a.area()
+            }
         }
     }
 }
@@ -449,6 +452,14 @@ impl<T: Wide> Bounds<T> {
     }
 }
 
+/// `[f(a₀, b₀), f(a₁, b₁), f(a₂, b₂)]`: no index a closure would have to check where it is not
+/// inlined (size-optimised builds).
+#[inline(always)]
+fn zip3<A, B, U>(a: [A; 3], b: [B; 3], mut f: impl FnMut(A, B) -> U) -> [U; 3] {
+    let ([a0, a1, a2], [b0, b1, b2]) = (a, b);
+    [f(a0, b0), f(a1, b1), f(a2, b2)]
+}
+
 /// Triangles whose edges are shorter than this on both axes (sub-pixels: 64 px) in a box of at
 /// most [`SMALL_BOX`] pixels a side are stepped in `i32`: every edge value at a centre of the box
 /// is below `2·2¹⁴·(65·256) < 2³⁰`, a step `256·2¹⁴ = 2²²`, `half` below 2²².
@@ -496,7 +507,8 @@ pub(crate) fn cover(
     let edges = [0, 1, 2].map(|k| {
         let (i, j) = (setup.order[(k + 1) % 3], setup.order[(k + 2) % 3]);
         let input_edge = if (i + 1) % 3 == j { i } else { j };
-        CoverageEdge::new(setup.edge(k), anti_aliased[input_edge])
+        let anti_aliased = anti_aliased.get(input_edge).copied().unwrap_or(true);
+        CoverageEdge::new(setup.edge(k), anti_aliased)
     });
     let (w, h) = (
         i64::from(x1) - i64::from(x0) + 1,
@@ -531,18 +543,19 @@ fn cover_box<T: Wide>(
     let t: [T; 3] = edges.map(|e| T::of(i128::from(e.edge.b) << SUBPIXEL_BITS));
     let thresholds: ([T; 3], [T; 3]) = (edges.map(|e| T::of(e.lo)), edges.map(|e| T::of(e.hi)));
     // Columns are counted from the box's first, `x0`: each edge's value there on the first row.
-    let mut k: [T; 3] = core::array::from_fn(|n| {
-        T::of(
-            edges[n]
-                .edge
-                .exact_at(i64::from(x0), i64::from(y0), T::NARROW),
-        )
-    });
+    let mut k: [T; 3] =
+        edges.map(|e| T::of(e.edge.exact_at(i64::from(x0), i64::from(y0), T::NARROW)));
     let mut bounds = if scan {
         None
     } else {
-        Some(core::array::from_fn::<_, 3, _>(|n| {
-            Bounds::new(s[n], t[n], k[n], (thresholds.0[n], thresholds.1[n]))
+        let steps = zip3(s, t, |s, t| (s, t));
+        let values = zip3(
+            k,
+            zip3(thresholds.0, thresholds.1, |lo, hi| (lo, hi)),
+            |k, l| (k, l),
+        );
+        Some(zip3(steps, values, |(s, t), (k, l)| {
+            Bounds::new(s, t, k, l)
         }))
     };
     let (lo, hi) = (T::ZERO, T::of(i128::from(x1) - i128::from(x0)));
@@ -558,7 +571,7 @@ fn cover_box<T: Wide>(
         if touched.0 <= touched.1 {
             // Back to frame columns (within the box: no overflow).
             let column = |c: T| x0.wrapping_add(c.wide() as i32);
-            let mut e: [T; 3] = core::array::from_fn(|n| k[n] + s[n] * touched.0);
+            let mut e: [T; 3] = zip3(k, s, |k, s| k + s * touched.0);
             let (from, to) = (column(touched.0), column(touched.1));
             let inside = (inside.0 <= inside.1).then(|| (column(inside.0), column(inside.1)));
             cover_row(edges, y, (from, to), inside, &mut e, s, thresholds, sink);
@@ -603,7 +616,7 @@ fn cover_row<T: Wide>(
             x = b + 1;
             continue;
         }
-        let whole = (0..3).all(|k| e[k] >= thresholds.1[k]);
+        let whole = e[0] >= thresholds.1[0] && e[1] >= thresholds.1[1] && e[2] >= thresholds.1[2];
         if whole {
             run.get_or_insert(x);
         } else {
