@@ -4,7 +4,7 @@
 //! interpolated like a colour channel) make a [`Translucent`] triangle. Blending needs the
 //! destination, and where it comes from is in the types:
 //!
-//! * [`Translucent::draw_into`] a [`SliceFramebuffer`] (and bands: [`ColorBand::draw`]) reads
+//! * [`Translucent::draw_into`] a [`SliceFramebuffer`] (and bands: `ColorBand::draw`) reads
 //!   the pixels it blends over;
 //! * [`Translucent::draw_reading`] reads them from any `DrawTarget` that implements
 //!   embedded-graphics' [`GetPixel`], 32 pixels at a time;
@@ -17,7 +17,6 @@
 //! within 1 LSB of the exact f64 blend (of the barycentric `P` and `α`, for an alpha per vertex;
 //! see `tests/alpha.rs`).
 //!
-//! [`ColorBand::draw`]: crate::band::ColorBand::draw
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::image::GetPixel;
