@@ -13,15 +13,17 @@
 
 use std::fmt::Debug;
 
-use embedded_graphics::image::GetPixel;
 use embedded_graphics::pixelcolor::{Bgr565, Gray4, Gray8, Rgb565, Rgb666, Rgb888};
 use embedded_graphics::prelude::*;
-use embedded_graphics::Pixel;
 use embedded_raster::band::{BandLayout, ColorBand};
 use embedded_raster::reference;
 use embedded_raster::{
     Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
+
+#[path = "support/readable_target.rs"]
+mod readable_target;
+use readable_target::ReadableTarget;
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -29,34 +31,13 @@ use rng::Rng;
 
 #[path = "support/raw_points.rs"]
 mod raw_points;
-use raw_points::{extreme, sliver, Screen, MAX, MIN};
+use raw_points::mixed_triangle;
 
 const W: u32 = 61;
 const H: u32 = 37;
 
-/// A random triangle for the target, raw sub-pixel coordinates.
 fn triangle(rng: &mut Rng) -> [(i32, i32); 3] {
-    let (wi, hi) = (i64::from(W), i64::from(H));
-    let screen = Screen::new(wi, hi);
-    let v: [(i64, i64); 3] = match rng.below(7) {
-        0 => screen.cluster(rng, 2, (1, 300)),
-        1 | 2 => screen.cluster(rng, 4, (128, 256 * 12)),
-        3 => [(); 3].map(|_| screen.point_xy(rng, (wi / 2 + 2, hi / 2 + 2))),
-        4 => [(); 3].map(|_| screen.point_xy(rng, (10 * wi, 10 * hi))),
-        5 => {
-            let a = screen.point(rng, 1);
-            [
-                a,
-                (extreme(rng), extreme(rng)),
-                (extreme(rng), extreme(rng)),
-            ]
-        }
-        _ => {
-            let a = screen.point(rng, 8);
-            sliver(rng, a, 28)
-        }
-    };
-    v.map(|(x, y)| (x.clamp(MIN, MAX) as i32, y.clamp(MIN, MAX) as i32))
+    mixed_triangle(rng, W, H)
 }
 
 fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
@@ -210,48 +191,13 @@ fn vertex_alpha_is_within_one_lsb_of_the_f64_blend() {
     println!("largest error (LSB): {worst:?}");
 }
 
-/// A target with nothing but `draw_iter`.
-struct PixelTarget<C>(Vec<C>);
-
-impl<C: PixelColor> OriginDimensions for PixelTarget<C> {
-    fn size(&self) -> Size {
-        Size::new(W, H)
-    }
-}
-
-impl<C: PixelColor> DrawTarget for PixelTarget<C> {
-    type Color = C;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        for Pixel(p, c) in pixels {
-            if p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H {
-                self.0[(p.y as u32 * W + p.x as u32) as usize] = c;
-            }
-        }
-        Ok(())
-    }
-}
-
-impl<C: PixelColor> GetPixel for PixelTarget<C> {
-    type Color = C;
-
-    fn pixel(&self, p: Point) -> Option<C> {
-        let inside = p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H;
-        inside.then(|| self.0[(p.y as u32 * W + p.x as u32) as usize])
-    }
-}
-
 /// Draws `draw_into`'s pixels every other way and compares.
 fn same_pixels<C, T>(
     triangle: &T,
     under: &[C],
     into: impl Fn(&T, &mut SliceFramebuffer<'_, C>),
-    reading: impl Fn(&T, &mut PixelTarget<C>),
-    over: impl Fn(&T, C, &mut PixelTarget<C>),
+    reading: impl Fn(&T, &mut ReadableTarget<C>),
+    over: impl Fn(&T, C, &mut ReadableTarget<C>),
     uniform: C,
 ) where
     C: GouraudColor + Debug,
@@ -263,9 +209,9 @@ fn same_pixels<C, T>(
         &mut SliceFramebuffer::new(&mut want, W, H).unwrap(),
     );
 
-    let mut target = PixelTarget(under.to_vec());
+    let mut target = ReadableTarget::new(W, H, under.to_vec());
     reading(triangle, &mut target);
-    assert_eq!(target.0, want, "draw_reading");
+    assert_eq!(target.pixels, want, "draw_reading");
 
     for rows in [1, 2, 3, 7, 16, H] {
         let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
@@ -291,9 +237,9 @@ fn same_pixels<C, T>(
         triangle,
         &mut SliceFramebuffer::new(&mut want, W, H).unwrap(),
     );
-    let mut target = PixelTarget(plain.clone());
+    let mut target = ReadableTarget::new(W, H, plain.clone());
     over(triangle, uniform, &mut target);
-    assert_eq!(target.0, want, "over a background colour");
+    assert_eq!(target.pixels, want, "over a background colour");
 }
 
 fn paths_agree<C: GouraudColor + Debug>(seed: u64, count: usize) {

@@ -8,13 +8,15 @@
 //! and pixels wholly inside are the plain fill. Then every path (`draw_into`, `draw_reading`,
 //! `over` a background, bands of every height) gives the same pixels.
 
-use embedded_graphics::image::GetPixel;
 use embedded_graphics::pixelcolor::{Gray8, Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use embedded_graphics::Pixel;
 use embedded_raster::band::{BandDrawable, BandLayout, ColorBand};
 use embedded_raster::reference;
 use embedded_raster::{Coord, GouraudColor, SliceFramebuffer, SolidTriangle};
+
+#[path = "support/readable_target.rs"]
+mod readable_target;
+use readable_target::ReadableTarget;
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -22,34 +24,13 @@ use rng::Rng;
 
 #[path = "support/raw_points.rs"]
 mod raw_points;
-use raw_points::{extreme, sliver, Screen, MAX, MIN};
+use raw_points::mixed_triangle;
 
 const W: u32 = 53;
 const H: u32 = 41;
 
 fn triangle(rng: &mut Rng) -> [(i32, i32); 3] {
-    let (wi, hi) = (i64::from(W), i64::from(H));
-    let screen = Screen::new(wi, hi);
-    let v: [(i64, i64); 3] = match rng.below(8) {
-        0 => screen.cluster(rng, 2, (1, 300)),
-        1 | 2 => screen.cluster(rng, 4, (128, 256 * 12)),
-        3 => [(); 3].map(|_| screen.point_xy(rng, (wi / 2 + 2, hi / 2 + 2))),
-        4 => [(); 3].map(|_| screen.point_xy(rng, (10 * wi, 10 * hi))),
-        5 => {
-            let a = screen.point(rng, 1);
-            [
-                a,
-                (extreme(rng), extreme(rng)),
-                (extreme(rng), extreme(rng)),
-            ]
-        }
-        6 => [(); 3].map(|_| screen.snapped_per_axis(rng, 6)),
-        _ => {
-            let a = screen.point(rng, 8);
-            sliver(rng, a, 28)
-        }
-    };
-    v.map(|(x, y)| (x.clamp(MIN, MAX) as i32, y.clamp(MIN, MAX) as i32))
+    mixed_triangle(rng, W, H)
 }
 
 fn coords(v: [(i32, i32); 3]) -> [(Coord, Coord); 3] {
@@ -121,41 +102,6 @@ fn coverage_is_within_two_levels_of_the_exact_area() {
     assert!(edge_pixels > 100_000);
 }
 
-/// A target with nothing but `draw_iter`, readable.
-struct PixelTarget<C>(Vec<C>);
-
-impl<C: PixelColor> OriginDimensions for PixelTarget<C> {
-    fn size(&self) -> Size {
-        Size::new(W, H)
-    }
-}
-
-impl<C: PixelColor> DrawTarget for PixelTarget<C> {
-    type Color = C;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        for Pixel(p, c) in pixels {
-            if p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H {
-                self.0[(p.y as u32 * W + p.x as u32) as usize] = c;
-            }
-        }
-        Ok(())
-    }
-}
-
-impl<C: PixelColor> GetPixel for PixelTarget<C> {
-    type Color = C;
-
-    fn pixel(&self, p: Point) -> Option<C> {
-        let inside = p.x >= 0 && p.y >= 0 && (p.x as u32) < W && (p.y as u32) < H;
-        inside.then(|| self.0[(p.y as u32 * W + p.x as u32) as usize])
-    }
-}
-
 fn paths_agree<C: GouraudColor + std::fmt::Debug>(seed: u64, count: usize) {
     let mut rng = Rng(seed);
     let color = |rng: &mut Rng| {
@@ -177,9 +123,9 @@ fn paths_agree<C: GouraudColor + std::fmt::Debug>(seed: u64, count: usize) {
         let mut want = under.clone();
         aa.draw_into(&mut SliceFramebuffer::new(&mut want, W, H).unwrap());
 
-        let mut target = PixelTarget(under.clone());
+        let mut target = ReadableTarget::new(W, H, under.clone());
         aa.draw_reading(&mut target).unwrap();
-        assert_eq!(target.0, want, "draw_reading");
+        assert_eq!(target.pixels, want, "draw_reading");
 
         for rows in [1, 2, 5, 16, H] {
             let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
@@ -216,9 +162,9 @@ fn paths_agree<C: GouraudColor + std::fmt::Debug>(seed: u64, count: usize) {
         let uniform = color(&mut rng);
         let mut want = vec![uniform; (W * H) as usize];
         aa.draw_into(&mut SliceFramebuffer::new(&mut want, W, H).unwrap());
-        let mut target = PixelTarget(vec![uniform; (W * H) as usize]);
+        let mut target = ReadableTarget::new(W, H, vec![uniform; (W * H) as usize]);
         aa.over(uniform).draw(&mut target).unwrap();
-        assert_eq!(target.0, want, "over a background colour");
+        assert_eq!(target.pixels, want, "over a background colour");
     }
 }
 
@@ -226,6 +172,23 @@ fn paths_agree<C: GouraudColor + std::fmt::Debug>(seed: u64, count: usize) {
 fn every_path_gives_the_same_pixels() {
     paths_agree::<Rgb565>(41, 400);
     paths_agree::<Rgb888>(42, 200);
+}
+
+/// A fan of 60 triangles around a sub-pixel centre (raw sub-pixels), radii 19 and 18 px.
+fn fan60() -> Vec<[(i32, i32); 3]> {
+    let (cx, cy) = (26 * 256 + 77, 20 * 256 + 161);
+    let rim: Vec<(i32, i32)> = (0..60)
+        .map(|k| {
+            let a = f64::from(k) * std::f64::consts::TAU / 60.0;
+            (
+                cx + (4900.0 * a.cos()) as i32,
+                cy + (4700.0 * a.sin()) as i32,
+            )
+        })
+        .collect();
+    (0..60)
+        .map(|k| [(cx, cy), rim[k], rim[(k + 1) % 60]])
+        .collect()
 }
 
 /// With every edge shared, the anti-aliased fill is the aliased one, pixel for pixel.
@@ -293,19 +256,7 @@ fn mesh_seams(triangles: &[[(i32, i32); 3]]) -> (f64, f64) {
 /// anywhere inside; where the outline turns inside a pixel, its error is reported.
 #[test]
 fn meshes_with_shared_edges_have_no_seams() {
-    let (cx, cy) = (26 * 256 + 77, 20 * 256 + 161);
-    let rim: Vec<(i32, i32)> = (0..60)
-        .map(|k| {
-            let a = f64::from(k) * std::f64::consts::TAU / 60.0;
-            (
-                cx + (4900.0 * a.cos()) as i32,
-                cy + (4700.0 * a.sin()) as i32,
-            )
-        })
-        .collect();
-    let fan: Vec<[(i32, i32); 3]> = (0..60)
-        .map(|k| [(cx, cy), rim[k], rim[(k + 1) % 60]])
-        .collect();
+    let fan = fan60();
     let (worst, dip) = mesh_seams(&fan);
     println!("fan: outline error up to {worst:.2}/255; without shared edges, seams dip {dip}/255");
     // The rim turns by 6° a vertex: the owner of a pixel there misses little of the turn.
@@ -412,19 +363,7 @@ fn mask_against_union(triangles: &[[(i32, i32); 3]]) -> f64 {
 
 #[test]
 fn a_coverage_mask_is_the_union_within_one_level() {
-    let (cx, cy) = (26 * 256 + 77, 20 * 256 + 161);
-    let rim: Vec<(i32, i32)> = (0..60)
-        .map(|k| {
-            let a = f64::from(k) * std::f64::consts::TAU / 60.0;
-            (
-                cx + (4900.0 * a.cos()) as i32,
-                cy + (4700.0 * a.sin()) as i32,
-            )
-        })
-        .collect();
-    let fan: Vec<[(i32, i32); 3]> = (0..60)
-        .map(|k| [(cx, cy), rim[k], rim[(k + 1) % 60]])
-        .collect();
+    let fan = fan60();
     println!("fan: {:.2}/255", mask_against_union(&fan));
     let mut rng = Rng(71);
     for _ in 0..20 {

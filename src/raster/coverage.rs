@@ -290,43 +290,32 @@ trait Wide:
     fn div_floor(n: Self, d: Self) -> (Self, Self);
 }
 
-impl Wide for i64 {
-    const ZERO: Self = 0;
-    const ONE: Self = 1;
-    const NARROW: bool = true;
-    #[inline(always)]
-    fn of(v: i128) -> Self {
-        v as i64
-    }
-    #[inline(always)]
-    fn wide(self) -> i128 {
-        i128::from(self)
-    }
-    #[inline]
-    fn div_floor(n: Self, d: Self) -> (Self, Self) {
-        let q = n.div_euclid(d.max(1));
-        (q, n - q * d)
-    }
+/// [`Wide`] for the narrow types, whose division is the hardware's (a library call on
+/// Cortex-M0 for `i64`).
+macro_rules! narrow_wide {
+    ($($t:ty),*) => {$(
+        impl Wide for $t {
+            const ZERO: Self = 0;
+            const ONE: Self = 1;
+            const NARROW: bool = true;
+            #[inline(always)]
+            fn of(v: i128) -> Self {
+                v as $t
+            }
+            #[inline(always)]
+            fn wide(self) -> i128 {
+                i128::from(self)
+            }
+            #[inline]
+            fn div_floor(n: Self, d: Self) -> (Self, Self) {
+                let q = n.div_euclid(d.max(1));
+                (q, n - q * d)
+            }
+        }
+    )*};
 }
 
-impl Wide for i32 {
-    const ZERO: Self = 0;
-    const ONE: Self = 1;
-    const NARROW: bool = true;
-    #[inline(always)]
-    fn of(v: i128) -> Self {
-        v as i32
-    }
-    #[inline(always)]
-    fn wide(self) -> i128 {
-        i128::from(self)
-    }
-    #[inline]
-    fn div_floor(n: Self, d: Self) -> (Self, Self) {
-        let q = n.div_euclid(d.max(1));
-        (q, n - q * d)
-    }
-}
+narrow_wide!(i32, i64);
 
 impl Wide for i128 {
     const ZERO: Self = 0;

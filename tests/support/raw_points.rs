@@ -1,5 +1,6 @@
 //! Random raw (sub-pixel: 256 a pixel) vertex positions for the 2D fill tests
-//! (tests/coverage_random.rs, tests/perspective.rs, tests/same_pixels.rs, tests/textured.rs).
+//! (tests/coverage_random.rs, tests/perspective.rs, tests/same_pixels.rs, tests/textured.rs,
+//! tests/alpha.rs, tests/antialias.rs).
 //! Needs the suite's `mod rng`.
 
 #![allow(dead_code)]
@@ -99,4 +100,33 @@ impl Screen {
         };
         (snap(self.w), snap(self.h))
     }
+}
+
+/// A triangle for a `w × h` target from a mix of kinds, raw `i32` coordinates: sub-pixel, up to
+/// a dozen pixels, about the target's size and ten times it, one vertex on the target and the
+/// others out to the range's ends, snapped to corners and centres, slivers (the translucent and
+/// anti-aliased suites).
+pub fn mixed_triangle(rng: &mut Rng, w: u32, h: u32) -> [(i32, i32); 3] {
+    let (wi, hi) = (i64::from(w), i64::from(h));
+    let screen = Screen::new(wi, hi);
+    let v: [(i64, i64); 3] = match rng.below(8) {
+        0 => screen.cluster(rng, 2, (1, 300)),
+        1 | 2 => screen.cluster(rng, 4, (128, 256 * 12)),
+        3 => [(); 3].map(|_| screen.point_xy(rng, (wi / 2 + 2, hi / 2 + 2))),
+        4 => [(); 3].map(|_| screen.point_xy(rng, (10 * wi, 10 * hi))),
+        5 => {
+            let a = screen.point(rng, 1);
+            [
+                a,
+                (extreme(rng), extreme(rng)),
+                (extreme(rng), extreme(rng)),
+            ]
+        }
+        6 => [(); 3].map(|_| screen.snapped_per_axis(rng, 6)),
+        _ => {
+            let a = screen.point(rng, 8);
+            sliver(rng, a, 28)
+        }
+    };
+    v.map(|(x, y)| (x.clamp(MIN, MAX) as i32, y.clamp(MIN, MAX) as i32))
 }
