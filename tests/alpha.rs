@@ -303,3 +303,113 @@ fn opaque_and_transparent_ends() {
         assert_eq!(none, under);
     }
 }
+
+/// A translucent mesh (`Pipeline::draw_mesh_translucent`, and in bands) over an opaque one:
+/// where the mesh drawn opaque would write a pixel, the pixel is that colour blended over the one
+/// there at the opacity; elsewhere, and the whole depth buffer, untouched. Every shading, with
+/// and without a highlight; bands of several heights equal the frame.
+#[test]
+fn translucent_meshes_blend_where_nearer_and_keep_depth() {
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raster::band::{BandLayout, ColorBands, DepthBands};
+    use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
+    use embedded_raster::{
+        Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3,
+    };
+
+    let (w, h) = (96u32, 72u32);
+    let n = (w * h) as usize;
+    let camera = Mat4::perspective(Angle::from_degrees(55), 4.0 / 3.0, 0.5, 20).unwrap()
+        * Mat4::look_at(Vec3::new(0.3, 0.8, 3.2), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
+    let light = Light::new(Vec3::new(-0.4, 1.0, 0.8), 0.2);
+    let behind = Pipeline::new(
+        Mat4::rotation_x(Angle::from_degrees(70)),
+        camera,
+        viewport,
+        light,
+    );
+    let front = Pipeline::new(
+        Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7),
+        camera,
+        viewport,
+        light,
+    );
+    let base = Material::new(Rgb565::new(25, 30, 4), Shading::Gouraud);
+    for shading in [
+        Shading::Unlit,
+        Shading::Flat,
+        Shading::Gouraud,
+        Shading::Quadratic,
+    ] {
+        for specular in [None, Some(Specular::new(0.6, 24))] {
+            let mut glass = Material::new(Rgb565::new(6, 50, 31), shading);
+            glass.specular = specular;
+            for opacity in [0u8, 77, 200, 255] {
+                let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
+                let mut target = DepthTarget::new(&mut colors, &mut depth, w, h).unwrap();
+                behind.draw_mesh(&TORUS, &base, &mut target);
+                let (before, before_depth) = (
+                    target.framebuffer().pixels().to_vec(),
+                    target.depth().to_vec(),
+                );
+                // The mesh drawn opaque over a copy: where and what it would draw.
+                let (mut oc, mut od) = (before.clone(), before_depth.clone());
+                let mut opaque = DepthTarget::new_uncleared(&mut oc, &mut od, w, h).unwrap();
+                front.draw_mesh(&ICOSPHERE, &glass, &mut opaque);
+                let (drawn, drawn_depth) = (
+                    opaque.framebuffer().pixels().to_vec(),
+                    opaque.depth().to_vec(),
+                );
+                front.draw_mesh_translucent(&ICOSPHERE, &glass, opacity, &mut target);
+                assert_eq!(target.depth(), &before_depth[..], "depth written");
+                let mut blended = 0;
+                for i in 0..n {
+                    let want = if drawn_depth[i] != before_depth[i] {
+                        blended += 1;
+                        drawn[i].blend(before[i], opacity)
+                    } else {
+                        before[i]
+                    };
+                    assert_eq!(
+                        target.framebuffer().pixels()[i],
+                        want,
+                        "{shading:?} pixel {i}"
+                    );
+                }
+                assert!(blended > n / 20, "{blended}");
+                let whole = target.framebuffer().pixels().to_vec();
+
+                // In bands: the same pixels.
+                for rows in [5, 16, 72] {
+                    let layout = BandLayout::new(Size::new(w, h), rows).unwrap();
+                    let (mut cb, mut db) = (
+                        vec![Rgb565::BLACK; layout.buffer_len()],
+                        vec![0; layout.buffer_len()],
+                    );
+                    let mut bands =
+                        DepthBands::new(ColorBands::new(layout, &mut cb).unwrap(), &mut db)
+                            .unwrap();
+                    let mut out = vec![Rgb565::BLACK; n];
+                    bands
+                        .render(
+                            &mut embedded_raster::band::Callback(
+                                |rect: &Rectangle, px: &[Rgb565]| {
+                                    let start = (rect.top_left.y as u32 * w) as usize;
+                                    out[start..start + px.len()].copy_from_slice(px);
+                                    Ok::<(), ()>(())
+                                },
+                            ),
+                            |band| {
+                                band.clear(Rgb565::BLACK);
+                                band.draw_mesh(&behind, &TORUS, &base);
+                                band.draw_mesh_translucent(&front, &ICOSPHERE, &glass, opacity);
+                            },
+                        )
+                        .unwrap();
+                    assert_eq!(out, whole, "{rows}-row bands, {shading:?}");
+                }
+            }
+        }
+    }
+}

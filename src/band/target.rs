@@ -516,6 +516,25 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         frame.each_face(mesh, &mut self.target)
     }
 
+    /// [`draw_mesh`](Self::draw_mesh) of a translucent material, as
+    /// [`Pipeline::draw_mesh_translucent`]: depth-tested, not written, blended at `opacity`.
+    pub fn draw_mesh_translucent(
+        &mut self,
+        pipeline: &Pipeline,
+        mesh: &Mesh<'_>,
+        material: &Material<C>,
+        opacity: u8,
+    ) -> DrawStats {
+        let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
+        self.target.set_blend(Some(crate::three_d::Blend {
+            opacity,
+            over: C::blend,
+        }));
+        let stats = frame.each_face(mesh, &mut self.target);
+        self.target.set_blend(None);
+        stats
+    }
+
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed once into `scratch`, as
     /// [`Pipeline::draw_mesh_with`]; `Err` without drawing if `scratch` is too short.
     pub fn draw_mesh_with(

@@ -50,6 +50,21 @@ pub struct DepthTarget<'a, C> {
     color: SliceFramebuffer<'a, C>,
     depth: &'a mut [u16],
     width: u32,
+    /// While a translucent mesh is drawn ([`Pipeline::draw_mesh_translucent`]): its opacity and
+    /// the colour format's blend. The fills then test depth without writing it and blend.
+    ///
+    /// [`Pipeline::draw_mesh_translucent`]: crate::Pipeline::draw_mesh_translucent
+    blend: Option<Blend<C>>,
+}
+
+/// A translucent draw's opacity and the colour format's [`GouraudColor::blend`] (a function
+/// pointer: the depth-tested fills are generic over `PixelColor`).
+///
+/// [`GouraudColor::blend`]: crate::GouraudColor::blend
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Blend<C> {
+    pub(crate) opacity: u8,
+    pub(crate) over: fn(C, C, u8) -> C,
 }
 
 impl<'a, C: PixelColor> DepthTarget<'a, C> {
@@ -104,6 +119,7 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
             color,
             depth,
             width,
+            blend: None,
         })
     }
 
@@ -163,6 +179,17 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
     pub fn clear(&mut self, color: C) {
         fill_row(self.color.pixels_mut(), color);
         self.clear_depth();
+    }
+
+    /// The blend of a translucent draw in progress, if any.
+    #[inline(always)]
+    pub(crate) fn blend(&self) -> Option<Blend<C>> {
+        self.blend
+    }
+
+    /// Starts (`Some`) or ends (`None`) a translucent draw.
+    pub(crate) fn set_blend(&mut self, blend: Option<Blend<C>>) {
+        self.blend = blend;
     }
 
     /// The colour and depth buffers (row-major, of the same length) and the row length.

@@ -72,7 +72,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::band::{BandPlanes, SideCache};
 use super::clip::{ClipVertex, Polygon};
-use super::depth::{DepthTarget, ScreenVertex};
+use super::depth::{Blend, DepthTarget, ScreenVertex};
 use super::light::{Highlight, Light, LightRig, Lights, Specular};
 use super::math::{normalize_wide, zip3_with, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
@@ -364,6 +364,48 @@ impl Pipeline {
     ) -> DrawStats {
         let clip = TargetClip::new(&self.viewport, target);
         Frame::new(self, mesh, material, clip).each_face(mesh, target)
+    }
+
+    /// [`draw_mesh`](Self::draw_mesh) of a translucent material: each pixel where the mesh is
+    /// nearer than the depth buffer gets the material's colour there (lit as `draw_mesh` lights
+    /// it) blended over the pixel at `opacity` ([`GouraudColor::blend`]), and the depth buffer
+    /// is not written. Draw the opaque meshes first, then the translucent ones from the farthest
+    /// to the nearest; a mesh whose faces overlap on screen (not convex, or without culling)
+    /// blends them in the order of its faces — the order is the caller's to choose.
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+    /// use embedded_raster::{Angle, DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
+    /// use embedded_raster::{Shading, Vec3};
+    ///
+    /// let (mut pixels, mut depth) = ([Rgb565::BLUE; 32 * 32], [0u16; 32 * 32]);
+    /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20).unwrap()
+    ///     * Mat4::translation(Vec3::new(0, 0, -3));
+    /// let viewport = Rectangle::new(Point::zero(), Size::new(32, 32));
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    /// let glass = Material::new(Rgb565::WHITE, Shading::Unlit);
+    /// pipeline.draw_mesh_translucent(&ICOSPHERE, &glass, 128, &mut target);
+    /// assert_eq!(target.framebuffer().get(16, 16), Some(Rgb565::WHITE.blend(Rgb565::BLUE, 128)));
+    /// assert_eq!(target.depth_at(16, 16), Some(u16::MAX)); // not written
+    /// ```
+    ///
+    /// [`GouraudColor::blend`]: crate::GouraudColor::blend
+    pub fn draw_mesh_translucent<C: GouraudColor>(
+        &self,
+        mesh: &Mesh<'_>,
+        material: &Material<C>,
+        opacity: u8,
+        target: &mut DepthTarget<'_, C>,
+    ) -> DrawStats {
+        target.set_blend(Some(Blend {
+            opacity,
+            over: C::blend,
+        }));
+        let stats = self.draw_mesh(mesh, material, target);
+        target.set_blend(None);
+        stats
     }
 
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed, projected and lit once, into
