@@ -25,9 +25,10 @@ use crate::raster::coverage::{cover, CoverageSink, FULL};
 #[cfg(doc)]
 use super::translucent::Translucent;
 
-/// The 8-bit alpha of a coverage (16 fractional bits) at `opacity`, rounded.
+/// The 8-bit alpha of a coverage (16 fractional bits) at `opacity`, rounded: the one rule from
+/// coverage to alpha (a `CoverageMask`'s cells too).
 #[inline(always)]
-fn alpha_of(coverage: u32, opacity: u8) -> u8 {
+pub(super) fn alpha_of(coverage: u32, opacity: u8) -> u8 {
     ((coverage.min(FULL) * u32::from(opacity) + (1 << 15)) >> 16) as u8
 }
 

@@ -10,6 +10,7 @@
 
 use embedded_graphics::primitives::Rectangle;
 
+use super::antialias::alpha_of;
 use super::framebuffer::{frame_len, FramebufferError, SliceFramebuffer};
 use super::triangle::SolidTriangle;
 use crate::color::GouraudColor;
@@ -193,8 +194,8 @@ fn blend_cells<C: GouraudColor>(cells: &[u16], row: &mut [C], color: C) {
         if cell >= CELL_FULL {
             *px = color;
         } else if cell > 0 {
-            let alpha = ((cell * 255 + (CELL_FULL >> 1)) >> 15) as u8;
-            *px = color.blend(*px, alpha);
+            // A cell's 15 fractional bits as the 16 of a coverage.
+            *px = color.blend(*px, alpha_of(cell << 1, 255));
         }
     }
 }
