@@ -1385,11 +1385,12 @@ fn candidate_texels(
 /// The coordinate tolerance at a pixel, on each axis, as in the nearest tests: the documented
 /// error of the computed coordinates (`δ·spread + 2⁻¹⁶`) plus the chord's deviation and the
 /// steps' rounding. A face close enough to affine to take the 2D fill (src/three_d/texturing.rs,
-/// "Accuracy": its perspective departure within 1/16 texel; taken generously here, 1/8) gets
-/// that departure and the 2D fill's rounding (`s/32 639 + 1/128`) on top.
+/// "Accuracy": its perspective departure `spread·(ratio − 1)/4` within 1/16 texel; with 5 %
+/// slack for the fill's 16-bit `q`) gets that departure and the 2D fill's rounding
+/// (`s/32 639 + 1/128`) on top.
 fn coordinate_tolerance(tri: &Tri, r: &RefPixel) -> [f64; 2] {
     let mut eps = tri.documented_bound();
-    if tri.spread() * (tri.w_ratio() - 1.0) / 2.0 <= 1.0 / 8.0 {
+    if tri.spread() * (tri.w_ratio() - 1.0) / 4.0 <= 1.05 / 16.0 {
         eps += 1.0 / 16.0 + tri.spread() / 32_639.0 + 1.0 / 128.0;
     }
     r.chord.map(|d| d + eps)

@@ -481,14 +481,14 @@ fn slack(limit: f64) -> f64 {
 
 /// Whether face `f` may be filled in screen space: `None` if not, else the bound on the
 /// departure of screen-space values from perspective-correct ones per unit of spread,
-/// `(q_max − q_min)/(2·q_min)`. `spreads` are the attributes' spreads the fill decides by, each
+/// `(q_max − q_min)/(4·q_min)`. `spreads` are the attributes' spreads the fill decides by, each
 /// with its limit. A face crossing the near or far plane is drawn as a fan of smaller triangles,
 /// any of which may qualify: it may (its departure on each attribute at most that attribute's
 /// limit, see `departure`).
 fn affine_ratio(scene: &Scene, f: &RefFace, spreads: &[(f64, f64)]) -> Option<f64> {
     let lo = f.w.0.max(scene.view.near);
     let hi = f.w.1.min(scene.view.far);
-    let ratio = (hi / lo - 1.0) / 2.0;
+    let ratio = (hi / lo - 1.0) / 4.0;
     let clipped = f.w.0 < scene.view.near || f.w.1 > scene.view.far;
     let qualifies = spreads
         .iter()

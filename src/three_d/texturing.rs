@@ -35,7 +35,7 @@
 //!
 //! A face whose `1/w` varies so little across it that screen-space interpolation departs from
 //! the perspective-correct values by at most 1/16 texel and a quarter of the target's finest
-//! channel step in light level (its spread times `(q_max − q_min) / 2q_min`; a quarter of a
+//! channel step in light level (its spread times `(q_max − q_min) / 4q_min`; a quarter of a
 //! level of 255 for 8-bit channels, one level for Rgb565's 6-bit green: most faces of a mesh)
 //! takes the 2D textured fill's planes
 //! instead, with their own rounding (`s + 1/128` texel, see
@@ -690,10 +690,16 @@ const fn affine_level<C: GouraudColor>() -> u64 {
 }
 
 /// Whether a face whose vertices have `q ∝ 1/w`, texel coordinates (16.16) and light may be
-/// interpolated in screen space (the levels within `affine_level`, 8.8): an attribute of spread `s` (its largest difference between
-/// vertices) departs from its perspective-correct value by at most `s·(q_max − q_min) /
-/// (2·q_min)`, as the perspective-correct value is the average of the vertex values weighted by
-/// `bₖ·qₖ / Σ bⱼ·qⱼ`. Small faces (most of a mesh's) take the cheaper screen-space fill.
+/// interpolated in screen space (the levels within `affine_level`, 8.8): an attribute of
+/// spread `s` (its largest difference between vertices) departs from its perspective-correct
+/// value by at most `s·(q_max − q_min) / (4·q_min)`. At screen barycentrics `bₖ` the
+/// perspective-correct value weighs the vertex values by `bₖ·qₖ / Q` (`Q = Σ bⱼ·qⱼ`), so it
+/// departs from the screen-space one by `Σ bₖ·(aₖ − c)·(qₖ − Q) / Q` for any `c`: with `c`
+/// the middle of the values' range, at most `s/2` times the mean absolute deviation of the
+/// `qₖ` (weights `bₖ`, mean `Q`) over `Q`, and that deviation is at most `(q_max − q_min)/2`.
+/// The bound is reached along an edge whose ends hold `q_min` and `q_max` as `q_max/q_min → 1`
+/// (a unit test checks both). Small faces (most of a mesh's) take the cheaper screen-space
+/// fill.
 #[inline(always)]
 fn nearly_affine(
     q: [Inverse; 3],
@@ -714,9 +720,9 @@ fn nearly_affine(
         (spread(texels.map(|t| t[0])) as u32).max(spread(texels.map(|t| t[1])) as u32);
     // The common scale's values are below 2²⁴; a truncated mantissa is within one unit, so the
     // difference is widened by two units of the largest shift: a larger ratio, never a smaller
-    // one. Below 2³² · 2²⁵ and 2¹⁴ · 2²⁵: no overflow.
-    let (ratio, twice) = (u64::from(hi - lo + (2 << most)), u64::from(2 * lo));
-    if u64::from(texel_spread) * ratio > AFFINE_TEXELS * twice {
+    // one. Below 2³² · 2²⁵ and 2¹⁴ · 2²⁶: no overflow.
+    let (ratio, four) = (u64::from(hi - lo + (2 << most)), u64::from(4 * lo));
+    if u64::from(texel_spread) * ratio > AFFINE_TEXELS * four {
         return false;
     }
     let levels = match light {
@@ -736,7 +742,7 @@ fn nearly_affine(
         TexelLight::Full | TexelLight::Level(_) => return true,
         TexelLight::Quadratic(_) => return false,
     };
-    u64::from(levels) * ratio <= affine_level * twice
+    u64::from(levels) * ratio <= affine_level * four
 }
 
 /// The span shader of a textured face interpolated in screen space: the depth, the texel
@@ -1847,5 +1853,45 @@ mod tests {
         }
         // Only coordinates spread over nearly 2³² units shift left.
         assert!(declined < 20_000 / 33 * 2, "{declined}");
+    }
+
+    /// `nearly_affine`'s bound, in f64: screen-space interpolation departs from the
+    /// perspective-correct value by at most `s·(q_max − q_min) / (4·q_min)` anywhere in a
+    /// triangle, and by nearly that much along an edge from `q_min` to `q_max` when the ratio is
+    /// near 1 (so a bound half as large would be wrong).
+    #[test]
+    fn screen_space_departure_is_within_a_quarter() {
+        let mut next = crate::random(0x7e47_0007);
+        let mut unit = move || (next() >> 40) as f64 / (1u64 << 24) as f64;
+        let mut closest = 0.0f64;
+        for n in 0..4_000 {
+            let ratio = 1.0 + [0.001, 0.05, 1.0, 19.0][n % 4] * unit();
+            let q = [(); 3].map(|_| 1.0 + (ratio - 1.0) * unit());
+            let a = [(); 3].map(|_| 100.0 * unit() - 50.0);
+            let (lo, hi) = (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]));
+            let s = a[0].max(a[1]).max(a[2]) - a[0].min(a[1]).min(a[2]);
+            let bound = s * (hi - lo) / (4.0 * lo);
+            let mut worst = 0.0f64;
+            for i in 0..=32 {
+                for j in 0..=32 - i {
+                    let b = [i, j, 32 - i - j].map(|k| f64::from(k) / 32.0);
+                    let big_q: f64 = (0..3).map(|k| b[k] * q[k]).sum();
+                    let exact: f64 = (0..3).map(|k| b[k] * q[k] * a[k]).sum::<f64>() / big_q;
+                    let screen: f64 = (0..3).map(|k| b[k] * a[k]).sum();
+                    worst = worst.max((exact - screen).abs());
+                }
+            }
+            assert!(worst <= bound * (1.0 + 1e-9) + 1e-12, "{worst} > {bound}");
+            // Two vertices at the extremes of both: the edge between them comes close.
+            let edge = |t: f64| {
+                let big_q = (1.0 - t) + t * ratio;
+                (t * ratio * s / big_q - t * s).abs()
+            };
+            let peak = (1..100)
+                .map(|k| edge(f64::from(k) / 100.0))
+                .fold(0.0, f64::max);
+            closest = closest.max(peak / (s * (ratio - 1.0) / 4.0));
+        }
+        assert!(closest > 0.99, "{closest}");
     }
 }
