@@ -98,9 +98,9 @@ fn palette(k: usize) -> [Rgb565; 3] {
 }
 
 /// Number of triangle sets.
-const SETS: usize = 4;
+const SETS: usize = 5;
 
-/// Triangle set `index` (large, small, tiny, huge) for a `w × h` screen. Sets are built one at a
+/// Triangle set `index` (large, small, tiny, huge, medium) for a `w × h` screen. Sets are built one at a
 /// time: all three would not fit the micro:bit's stack next to its framebuffer.
 fn make_set(index: usize, w: i32, h: i32) -> Set {
     let mut set = Set {
@@ -134,6 +134,22 @@ fn make_set(index: usize, w: i32, h: i32) -> Set {
             ];
             for (k, (t, c)) in set.triangles.iter_mut().zip(corners).enumerate() {
                 t.corners = c;
+                t.colors = palette(k);
+            }
+        }
+        4 => {
+            // 1,000 px² each (a 44 × 46 box), four orientations, in the screen's corners (they
+            // overlap on the micro:bit's 64 × 48).
+            (set.name, set.len, set.reps) = ("medium", 4, 2);
+            let shapes = [
+                [(0, 0), (44, 4), (6, 46)],
+                [(44, 0), (40, 46), (0, 6)],
+                [(0, 46), (44, 42), (6, 0)],
+                [(44, 46), (0, 42), (38, 0)],
+            ];
+            for (k, t) in set.triangles.iter_mut().take(4).enumerate() {
+                let (x, y) = ((k % 2) as i32 * (w - 45), (k / 2) as i32 * (h - 47));
+                t.corners = shapes[k].map(|(dx, dy)| (x + dx, y + dy));
                 t.colors = palette(k);
             }
         }
@@ -517,13 +533,13 @@ mod firmware {
         for (index, row) in totals.iter_mut().enumerate() {
             *row = bench_set(index, &mut fb, (cal_instructions, cal_ticks));
         }
-        let [large, small, tiny, huge] = totals;
+        let [large, small, tiny, huge, medium] = totals;
         hprintln!(
             "\n| renderer | instr/pixel, large | instr/pixel, small (16 px²) | setup: instr/triangle, \
              tiny (0–1 px) | setup: small minus large per-pixel | instr/triangle, huge (general \
-             set-up) |"
+             set-up) | instr/pixel, medium (1,000 px²) |"
         );
-        hprintln!("|---|---:|---:|---:|---:|---:|");
+        hprintln!("|---|---:|---:|---:|---:|---:|---:|");
         for (r, &renderer) in RENDERERS.iter().enumerate() {
             let (lt, lp, _) = large[r];
             let (st, sp, sn) = small[r];
@@ -531,13 +547,14 @@ mod firmware {
             let explained = (sp * lt).checked_div(lp).unwrap_or(0);
             let (ht, _, hn) = huge[r];
             hprintln!(
-                "| {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} |",
                 renderer.name(),
                 Ratio(lt, lp),
                 Ratio(st, sp),
                 Ratio(tiny[r].0, tiny[r].2),
                 Ratio(st.saturating_sub(explained), sn),
-                Ratio(ht, hn)
+                Ratio(ht, hn),
+                Ratio(medium[r].0, medium[r].1)
             );
         }
 
