@@ -304,9 +304,17 @@ fn meshes_with_shared_edges_have_no_seams() {
     }
 }
 
-/// The union's exact area against a coverage mask's fill of the same triangles: every pixel
-/// within 1/255 (the outline's turns included), in the frame and in bands of every height.
+/// The union's exact area against a coverage mask's fill of the same triangles, opaque and at
+/// other opacities: every pixel within 1/255 of `opacity ×` the area (the outline's turns
+/// included), in the frame and in bands of every height.
 fn mask_against_union(triangles: &[[(i32, i32); 3]]) -> f64 {
+    [255, 200, 128, 31, 0]
+        .into_iter()
+        .map(|opacity| mask_against_union_at(triangles, opacity))
+        .fold(0.0, f64::max)
+}
+
+fn mask_against_union_at(triangles: &[[(i32, i32); 3]], opacity: u8) -> f64 {
     use embedded_graphics::primitives::Rectangle;
     use embedded_raster::CoverageMask;
     let frame = Rectangle::new(Point::zero(), Size::new(W, H));
@@ -317,7 +325,10 @@ fn mask_against_union(triangles: &[[(i32, i32); 3]]) -> f64 {
     for t in triangles {
         mask.add(coords(*t));
     }
-    mask.fill_into(Gray8::WHITE, &mut fb);
+    match opacity {
+        255 => mask.fill_into(Gray8::WHITE, &mut fb),
+        _ => mask.fill_translucent_into(Gray8::WHITE, opacity, &mut fb),
+    }
     // Cleared: a second fill draws nothing.
     mask.fill_into(Gray8::new(7), &mut fb);
     let mut worst = 0.0f64;
@@ -328,10 +339,10 @@ fn mask_against_union(triangles: &[[(i32, i32); 3]]) -> f64 {
                 .map(|t| reference::pixel_area(*t, x, y))
                 .sum();
             let got = f64::from(fb.get(x, y).unwrap().luma());
-            let error = (got - 255.0 * area.min(1.0)).abs();
+            let error = (got - f64::from(opacity) * area.min(1.0)).abs();
             assert!(
                 error <= 1.0,
-                "pixel ({x}, {y}): {got} for an area of {area}"
+                "pixel ({x}, {y}): {got} for an area of {area} at opacity {opacity}"
             );
             worst = worst.max(error);
         }
@@ -348,7 +359,10 @@ fn mask_against_union(triangles: &[[(i32, i32); 3]]) -> f64 {
             for t in triangles {
                 mask.add(coords(*t));
             }
-            band.fill_mask(&mut mask, Gray8::WHITE);
+            match opacity {
+                255 => band.fill_mask(&mut mask, Gray8::WHITE),
+                _ => band.fill_mask_translucent(&mut mask, Gray8::WHITE, opacity),
+            }
             let start = (rect.top_left.y as u32 * W) as usize;
             let len = (rect.size.height * W) as usize;
             assert_eq!(

@@ -292,7 +292,17 @@ impl<'a, C: PixelColor> ColorBand<'a, C> {
         C: GouraudColor,
     {
         let top = self.rect().top_left.y;
-        mask.fill_rows(color, &mut self.pixels, top);
+        mask.fill_rows(color, 255, &mut self.pixels, top);
+    }
+
+    /// [`fill_mask`](Self::fill_mask) at `opacity`: the band's rows of
+    /// [`CoverageMask::fill_translucent_into`].
+    pub fn fill_mask_translucent(&mut self, mask: &mut CoverageMask<'_>, color: C, opacity: u8)
+    where
+        C: GouraudColor,
+    {
+        let top = self.rect().top_left.y;
+        mask.fill_rows(color, opacity, &mut self.pixels, top);
     }
 
     /// Draws the band's rows of `item`: the pixels the whole frame has there.

@@ -107,24 +107,58 @@ impl<'a> CoverageMask<'a> {
         color: C,
         framebuffer: &mut SliceFramebuffer<'_, C>,
     ) {
-        self.resolve(color, framebuffer, 0);
+        self.resolve(color, 255, framebuffer, 0);
     }
 
-    /// [`fill_into`](Self::fill_into) a band's buffer, whose first row is frame row `top`.
+    /// [`fill_into`](Self::fill_into) at `opacity` (0 transparent … 255 opaque): each pixel's
+    /// alpha is `opacity ×` its summed coverage (at most whole), rounded, as an
+    /// [`AntiAliased::with_opacity`](crate::AntiAliased::with_opacity) triangle's. The shape is
+    /// blended once, so where its triangles share an edge or overlap the pixels are not
+    /// blended twice (no darker seams or overlaps, as drawing each translucent triangle would
+    /// leave).
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::{CoverageMask, SliceFramebuffer};
+    ///
+    /// let mut pixels = [Gray8::BLACK; 16 * 16];
+    /// let mut fb = SliceFramebuffer::new(&mut pixels, 16, 16).unwrap();
+    /// let mut cells = [0u16; 16 * 16];
+    /// let mut mask = CoverageMask::new(&mut cells, Rectangle::new(Point::zero(), Size::new(16, 16)))?;
+    /// // Two overlapping triangles, blended once at half opacity.
+    /// mask.add([(2.0, 2.0), (14.0, 2.0), (2.0, 14.0)]);
+    /// mask.add([(2.0, 2.0), (14.0, 2.0), (14.0, 14.0)]);
+    /// mask.fill_translucent_into(Gray8::WHITE, 128, &mut fb);
+    /// assert_eq!(fb.get(5, 3), Some(Gray8::new(128)));
+    /// # Ok::<(), embedded_raster::FramebufferError>(())
+    /// ```
+    pub fn fill_translucent_into<C: GouraudColor>(
+        &mut self,
+        color: C,
+        opacity: u8,
+        framebuffer: &mut SliceFramebuffer<'_, C>,
+    ) {
+        self.resolve(color, opacity, framebuffer, 0);
+    }
+
+    /// [`fill_translucent_into`](Self::fill_translucent_into) a band's buffer, whose first row
+    /// is frame row `top`.
     pub(crate) fn fill_rows<C: GouraudColor>(
         &mut self,
         color: C,
+        opacity: u8,
         framebuffer: &mut SliceFramebuffer<'_, C>,
         top: i32,
     ) {
-        self.resolve(color, framebuffer, top);
+        self.resolve(color, opacity, framebuffer, top);
     }
 
-    /// Blends `color` into `framebuffer` (whose row 0 is frame row `top`) with each cell's
-    /// coverage, and clears the cells the triangles reached.
+    /// Blends `color` at `opacity` into `framebuffer` (whose row 0 is frame row `top`) with
+    /// each cell's coverage, and clears the cells the triangles reached.
     fn resolve<C: GouraudColor>(
         &mut self,
         color: C,
+        opacity: u8,
         framebuffer: &mut SliceFramebuffer<'_, C>,
         top: i32,
     ) {
@@ -142,7 +176,11 @@ impl<'a> CoverageMask<'a> {
             // The framebuffer's part of the row: columns left of 0 skipped.
             if let Some(row) = framebuffer.clipped_span_mut(y - top, x0, x1 + 1) {
                 let skip = x0.min(0).unsigned_abs() as usize;
-                blend_cells(cells.get(skip..).unwrap_or(&[]), row, color);
+                let cells = cells.get(skip..).unwrap_or(&[]);
+                match opacity {
+                    255 => blend_cells(cells, row, color),
+                    _ => blend_cells_at(cells, row, color, opacity),
+                }
             }
             cells.fill(0);
         }
@@ -196,6 +234,16 @@ fn blend_cells<C: GouraudColor>(cells: &[u16], row: &mut [C], color: C) {
         } else if cell > 0 {
             // A cell's 15 fractional bits as the 16 of a coverage.
             *px = color.blend(*px, alpha_of(cell << 1, 255));
+        }
+    }
+}
+
+/// [`blend_cells`] at `opacity` (below 255): a whole cell blends at `opacity` too.
+fn blend_cells_at<C: GouraudColor>(cells: &[u16], row: &mut [C], color: C, opacity: u8) {
+    for (&cell, px) in cells.iter().zip(row.iter_mut()) {
+        let alpha = alpha_of(u32::from(cell) << 1, opacity);
+        if alpha > 0 {
+            *px = color.blend(*px, alpha);
         }
     }
 }
