@@ -304,15 +304,17 @@ fn opaque_and_transparent_ends() {
     }
 }
 
-/// A translucent mesh (`Pipeline::draw_mesh_translucent`, and in bands) over an opaque one:
-/// where the mesh drawn opaque would write a pixel, the pixel is that colour blended over the one
-/// there at the opacity; elsewhere, and the whole depth buffer, untouched. Every shading, with
-/// and without a highlight; bands of several heights equal the frame.
+/// A translucent mesh (`Material::with_opacity`) over an opaque one: where the mesh drawn opaque
+/// would write a pixel, the pixel is that colour blended over the one there at the opacity;
+/// elsewhere, and the whole depth buffer, untouched. Every shading, with and without a
+/// highlight; the same pixels with a vertex scratch, in bands of several heights (with and
+/// without a scratch) and from mesh bins.
 #[test]
 fn translucent_meshes_blend_where_nearer_and_keep_depth() {
     use embedded_graphics::primitives::Rectangle;
-    use embedded_raster::band::{BandLayout, ColorBands, DepthBands};
+    use embedded_raster::band::{BandLayout, BinEntry, ColorBands, DepthBands, MeshBin};
     use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
+    use embedded_raster::three_d::ProjectedVertex;
     use embedded_raster::{
         Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3,
     };
@@ -345,7 +347,7 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
         for specular in [None, Some(Specular::new(0.6, 24))] {
             let mut glass = Material::new(Rgb565::new(6, 50, 31), shading);
             glass.specular = specular;
-            for opacity in [0u8, 77, 200, 255] {
+            for opacity in [0u8, 77, 200, 254] {
                 let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
                 let mut target = DepthTarget::new(&mut colors, &mut depth, w, h).unwrap();
                 behind.draw_mesh(&TORUS, &base, &mut target);
@@ -361,7 +363,8 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
                     opaque.framebuffer().pixels().to_vec(),
                     opaque.depth().to_vec(),
                 );
-                front.draw_mesh_translucent(&ICOSPHERE, &glass, opacity, &mut target);
+                let glass = glass.with_opacity(opacity);
+                front.draw_mesh(&ICOSPHERE, &glass, &mut target);
                 assert_eq!(target.depth(), &before_depth[..], "depth written");
                 let mut blended = 0;
                 for i in 0..n {
@@ -380,7 +383,17 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
                 assert!(blended > n / 20, "{blended}");
                 let whole = target.framebuffer().pixels().to_vec();
 
-                // In bands: the same pixels.
+                // With a vertex scratch: the same pixels.
+                let mut scratch = vec![ProjectedVertex::EMPTY; TORUS.vertices.len()];
+                let mut with = (before.clone(), before_depth.clone());
+                let mut t = DepthTarget::new_uncleared(&mut with.0, &mut with.1, w, h).unwrap();
+                front
+                    .draw_mesh_with(&ICOSPHERE, &glass, &mut t, &mut scratch)
+                    .unwrap();
+                assert_eq!(t.framebuffer().pixels(), &whole[..], "scratch, {shading:?}");
+                assert_eq!(t.depth(), &before_depth[..], "depth written with a scratch");
+
+                // In bands (with and without a scratch) and from bins: the same pixels.
                 for rows in [5, 16, 72] {
                     let layout = BandLayout::new(Size::new(w, h), rows).unwrap();
                     let (mut cb, mut db) = (
@@ -403,11 +416,46 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
                             |band| {
                                 band.clear(Rgb565::BLACK);
                                 band.draw_mesh(&behind, &TORUS, &base);
-                                band.draw_mesh_translucent(&front, &ICOSPHERE, &glass, opacity);
+                                if rows == 16 {
+                                    band.draw_mesh_with(&front, &ICOSPHERE, &glass, &mut scratch)
+                                        .unwrap();
+                                } else {
+                                    band.draw_mesh(&front, &ICOSPHERE, &glass);
+                                }
                             },
                         )
                         .unwrap();
                     assert_eq!(out, whole, "{rows}-row bands, {shading:?}");
+
+                    let (mut s0, mut s1) = (
+                        vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
+                        vec![ProjectedVertex::EMPTY; ICOSPHERE.vertices.len()],
+                    );
+                    let (mut e0, mut e1) =
+                        (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
+                    let mut opaque_bin =
+                        MeshBin::new(&behind, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
+                    let mut glass_bin =
+                        MeshBin::new(&front, &ICOSPHERE, &glass, &layout, &mut s1, &mut e1)
+                            .unwrap();
+                    let mut binned = vec![Rgb565::BLACK; n];
+                    bands
+                        .render(
+                            &mut embedded_raster::band::Callback(
+                                |rect: &Rectangle, px: &[Rgb565]| {
+                                    let start = (rect.top_left.y as u32 * w) as usize;
+                                    binned[start..start + px.len()].copy_from_slice(px);
+                                    Ok::<(), ()>(())
+                                },
+                            ),
+                            |band| {
+                                band.clear(Rgb565::BLACK);
+                                opaque_bin.draw(band).unwrap();
+                                glass_bin.draw(band).unwrap();
+                            },
+                        )
+                        .unwrap();
+                    assert_eq!(binned, whole, "{rows}-row bins, {shading:?}");
                 }
             }
         }

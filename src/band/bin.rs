@@ -656,34 +656,37 @@ impl<'a, C: GouraudColor> MeshBin<'a, C> {
             return Ok(());
         };
         // The refill inlined in the list's walk: a call per face otherwise.
-        self.lists.each(
-            placement.index,
-            #[inline(always)]
-            |r, above, continues, kept| {
-                let (idx, clipped) = (r.face(), r.flag);
-                if let Some(n) = above.then(|| kept.take(r.slot)).flatten() {
-                    // Set up in a band above: its rows here from the same integers.
-                    if let Some(set_up) = kept.at(n) {
-                        frame.resume_levels(table, target, set_up);
-                        if continues {
-                            kept.requeue(n);
+        let lists = &mut self.lists;
+        target.blending(frame.blend(), |target| {
+            lists.each(
+                placement.index,
+                #[inline(always)]
+                |r, above, continues, kept| {
+                    let (idx, clipped) = (r.face(), r.flag);
+                    if let Some(n) = above.then(|| kept.take(r.slot)).flatten() {
+                        // Set up in a band above: its rows here from the same integers.
+                        if let Some(set_up) = kept.at(n) {
+                            frame.resume_levels(table, target, set_up);
+                            if continues {
+                                kept.requeue(n);
+                            }
+                            return;
                         }
-                        return;
                     }
-                }
-                if continues {
-                    if let Some(slot) = kept.vacant() {
-                        if frame.refill_levels_keeping(
-                            table, mesh, scratch, &idx, clipped, target, slot,
-                        ) {
-                            kept.commit(r.slot);
+                    if continues {
+                        if let Some(slot) = kept.vacant() {
+                            if frame.refill_levels_keeping(
+                                table, mesh, scratch, &idx, clipped, target, slot,
+                            ) {
+                                kept.commit(r.slot);
+                            }
+                            return;
                         }
-                        return;
                     }
-                }
-                frame.refill_levels(table, mesh, scratch, &idx, clipped, target);
-            },
-        );
+                    frame.refill_levels(table, mesh, scratch, &idx, clipped, target);
+                },
+            )
+        });
         Ok(())
     }
 }
@@ -805,8 +808,10 @@ fn set_up_each<C: GouraudColor, T: FaceTexture<C>>(
     let frame = bin.frame.with_clip(band.clip(bin.pipeline));
     let (target, placement) = band.parts();
     let (mesh, scratch) = (&bin.mesh, bin.scratch);
-    bin.lists.each(placement.index, |r, _, _, _| {
-        frame.refill(mesh, scratch, &r.face(), r.flag, target);
+    target.blending(frame.blend(), |target| {
+        bin.lists.each(placement.index, |r, _, _, _| {
+            frame.refill(mesh, scratch, &r.face(), r.flag, target);
+        })
     });
     Ok(())
 }

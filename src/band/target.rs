@@ -523,26 +523,8 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         material: &Material<C>,
     ) -> DrawStats {
         let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
-        frame.each_face(mesh, &mut self.target)
-    }
-
-    /// [`draw_mesh`](Self::draw_mesh) of a translucent material, as
-    /// [`Pipeline::draw_mesh_translucent`]: depth-tested, not written, blended at `opacity`.
-    pub fn draw_mesh_translucent(
-        &mut self,
-        pipeline: &Pipeline,
-        mesh: &Mesh<'_>,
-        material: &Material<C>,
-        opacity: u8,
-    ) -> DrawStats {
-        let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
-        self.target.set_blend(Some(crate::three_d::Blend {
-            opacity,
-            over: C::blend,
-        }));
-        let stats = frame.each_face(mesh, &mut self.target);
-        self.target.set_blend(None);
-        stats
+        self.target
+            .blending(frame.blend(), |target| frame.each_face(mesh, target))
     }
 
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed once into `scratch`, as
@@ -557,7 +539,9 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
         let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
         frame.project(mesh, scratch);
-        Ok(frame.scratch_faces(mesh, scratch, &mut self.target))
+        Ok(self.target.blending(frame.blend(), |target| {
+            frame.scratch_faces(mesh, scratch, target)
+        }))
     }
 
     /// Draws the band's rows of `mesh` with the textured `material`, as
@@ -593,7 +577,9 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
         let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));
         frame.project(mesh, scratch);
-        Ok(frame.scratch_faces(mesh, scratch, &mut self.target))
+        Ok(self.target.blending(frame.blend(), |target| {
+            frame.scratch_faces(mesh, scratch, target)
+        }))
     }
 
     /// The clip of `pipeline`'s draws into this band: its viewport inside the frame, the band's

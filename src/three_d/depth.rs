@@ -50,10 +50,10 @@ pub struct DepthTarget<'a, C> {
     color: SliceFramebuffer<'a, C>,
     depth: &'a mut [u16],
     width: u32,
-    /// While a translucent mesh is drawn ([`Pipeline::draw_mesh_translucent`]): its opacity and
-    /// the colour format's blend. The fills then test depth without writing it and blend.
+    /// While a translucent material is drawn ([`Material::opacity`]): its opacity and the colour
+    /// format's blend. The fills then test depth without writing it and blend.
     ///
-    /// [`Pipeline::draw_mesh_translucent`]: crate::Pipeline::draw_mesh_translucent
+    /// [`Material::opacity`]: crate::Material::opacity
     blend: Option<Blend<C>>,
 }
 
@@ -187,9 +187,17 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
         self.blend
     }
 
-    /// Starts (`Some`) or ends (`None`) a translucent draw.
-    pub(crate) fn set_blend(&mut self, blend: Option<Blend<C>>) {
+    /// Runs `draw` with `blend` as the draw's blend (none: opaque), then ends it.
+    #[inline(always)]
+    pub(crate) fn blending<T>(
+        &mut self,
+        blend: Option<Blend<C>>,
+        draw: impl FnOnce(&mut Self) -> T,
+    ) -> T {
         self.blend = blend;
+        let result = draw(self);
+        self.blend = None;
+        result
     }
 
     /// The colour and depth buffers (row-major, of the same length) and the row length.

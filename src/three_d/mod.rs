@@ -114,7 +114,6 @@ mod shading;
 mod texturing;
 mod vertex;
 
-pub(crate) use depth::Blend;
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use light::{Light, LightSource, Lights, Specular};
 pub use math::{

@@ -363,49 +363,8 @@ impl Pipeline {
         target: &mut DepthTarget<'_, C>,
     ) -> DrawStats {
         let clip = TargetClip::new(&self.viewport, target);
-        Frame::new(self, mesh, material, clip).each_face(mesh, target)
-    }
-
-    /// [`draw_mesh`](Self::draw_mesh) of a translucent material: each pixel where the mesh is
-    /// nearer than the depth buffer gets the material's colour there (lit as `draw_mesh` lights
-    /// it) blended over the pixel at `opacity` ([`GouraudColor::blend`]), and the depth buffer
-    /// is not written. Draw the opaque meshes first, then the translucent ones from the farthest
-    /// to the nearest; a mesh whose faces overlap on screen (not convex, or without culling)
-    /// blends them in the order of its faces — the order is the caller's to choose.
-    ///
-    /// ```
-    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
-    /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
-    /// use embedded_raster::{Angle, DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
-    /// use embedded_raster::{Shading, Vec3};
-    ///
-    /// let (mut pixels, mut depth) = ([Rgb565::BLUE; 32 * 32], [0u16; 32 * 32]);
-    /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
-    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20).unwrap()
-    ///     * Mat4::translation(Vec3::new(0, 0, -3));
-    /// let viewport = Rectangle::new(Point::zero(), Size::new(32, 32));
-    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
-    /// let glass = Material::new(Rgb565::WHITE, Shading::Unlit);
-    /// pipeline.draw_mesh_translucent(&ICOSPHERE, &glass, 128, &mut target);
-    /// assert_eq!(target.framebuffer().get(16, 16), Some(Rgb565::WHITE.blend(Rgb565::BLUE, 128)));
-    /// assert_eq!(target.depth_at(16, 16), Some(u16::MAX)); // not written
-    /// ```
-    ///
-    /// [`GouraudColor::blend`]: crate::GouraudColor::blend
-    pub fn draw_mesh_translucent<C: GouraudColor>(
-        &self,
-        mesh: &Mesh<'_>,
-        material: &Material<C>,
-        opacity: u8,
-        target: &mut DepthTarget<'_, C>,
-    ) -> DrawStats {
-        target.set_blend(Some(Blend {
-            opacity,
-            over: C::blend,
-        }));
-        let stats = self.draw_mesh(mesh, material, target);
-        target.set_blend(None);
-        stats
+        let frame = Frame::new(self, mesh, material, clip);
+        target.blending(frame.blend(), |target| frame.each_face(mesh, target))
     }
 
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed, projected and lit once, into
@@ -427,7 +386,9 @@ impl Pipeline {
             TargetClip::new(&self.viewport, target),
         );
         frame.project(mesh, scratch);
-        Ok(frame.scratch_faces(mesh, scratch, target))
+        Ok(target.blending(frame.blend(), |target| {
+            frame.scratch_faces(mesh, scratch, target)
+        }))
     }
 
     /// Draws every triangle of `mesh` with the textured `material` into `target`, as
@@ -693,6 +654,8 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     /// The pipeline's lights ([`Lights`]) when they light anything: then every level and
     /// specular term comes from them instead of `light`.
     rig: Option<LightRig>,
+    /// A translucent material's blend, which the draw sets on its target while it draws.
+    blend: Option<Blend<C>>,
 }
 
 impl<'p, 't, C, R, S> Frame<'p, C, R, FrameTexture<'t, S>>
@@ -740,6 +703,7 @@ where
             clip,
             fill,
             texture: FrameTexture::new(material.texture),
+            blend: None,
         }
     }
 }
@@ -753,6 +717,10 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         clip: TargetClip<R>,
     ) -> Self {
         let color = material.color;
+        let blend = (material.opacity < 255).then_some(Blend {
+            opacity: material.opacity,
+            over: C::blend,
+        });
         // A highlight of strength 0 is none: the same frame as without it.
         let specular = material
             .specular
@@ -798,6 +766,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             clip,
             fill,
             texture: NoTexture,
+            blend,
         }
     }
 
@@ -826,7 +795,14 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             clip,
             fill: self.fill.clone(),
             texture: self.texture,
+            blend: self.blend,
         }
+    }
+
+    /// The blend the draw sets on its target while it draws (none: opaque).
+    #[inline(always)]
+    pub(crate) fn blend(&self) -> Option<Blend<C>> {
+        self.blend
     }
 
     /// Vertex `k` of `mesh`, at `p`.

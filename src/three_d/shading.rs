@@ -144,16 +144,53 @@ pub struct Material<C> {
     /// The colour is `base · (ambient + (1 − ambient)·diffuse) + specular` in every channel,
     /// the specular term as white light (each channel's maximum times it), saturating.
     pub specular: Option<Specular>,
+    /// Opacity, 0 (transparent) to 255 (opaque, the default). A translucent material (below
+    /// 255) is drawn depth-tested without writing depth, its lit colour blended over each pixel
+    /// at this opacity ([`GouraudColor::blend`]) — by every draw of an untextured mesh: the
+    /// pipeline's, with and without a vertex scratch, a depth band's and a mesh bin's. Draw the
+    /// opaque meshes first, then the translucent ones from the farthest to the nearest; a mesh
+    /// whose faces overlap on screen (not convex, or without culling) blends them in the order
+    /// of its faces — the order is the caller's to choose.
+    pub opacity: u8,
 }
 
 impl<C> Material<C> {
-    /// A material of `color` lit with `shading`, without a highlight.
+    /// A material of `color` lit with `shading`, opaque, without a highlight.
     pub const fn new(color: C, shading: Shading) -> Self {
         Material {
             color,
             shading,
             specular: None,
+            opacity: 255,
         }
+    }
+
+    /// The material at `opacity` ([`opacity`](Self::opacity) says how it draws).
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+    /// use embedded_raster::{Angle, DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
+    /// use embedded_raster::{Shading, Vec3};
+    ///
+    /// let (mut pixels, mut depth) = ([Rgb565::BLUE; 32 * 32], [0u16; 32 * 32]);
+    /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20).unwrap()
+    ///     * Mat4::translation(Vec3::new(0, 0, -3));
+    /// let viewport = Rectangle::new(Point::zero(), Size::new(32, 32));
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    /// let glass = Material::new(Rgb565::WHITE, Shading::Unlit).with_opacity(128);
+    /// pipeline.draw_mesh(&ICOSPHERE, &glass, &mut target);
+    /// assert_eq!(target.framebuffer().get(16, 16), Some(Rgb565::WHITE.blend(Rgb565::BLUE, 128)));
+    /// assert_eq!(target.depth_at(16, 16), Some(u16::MAX)); // not written
+    /// ```
+    ///
+    /// [`GouraudColor::blend`]: crate::GouraudColor::blend
+    pub const fn with_opacity(self, opacity: u8) -> Self
+    where
+        C: Copy,
+    {
+        Material { opacity, ..self }
     }
 
     /// The material with the highlight `specular` ([`Specular`] has an example).
