@@ -461,3 +461,179 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
         }
     }
 }
+
+/// A translucent textured mesh (`TexturedMaterial::with_opacity`) over an opaque one: as the
+/// untextured test above — where the mesh drawn opaque would write a pixel, that colour blended
+/// over the pixel there; elsewhere, and the depth buffer, untouched — for nearest and bilinear
+/// textures, power-of-two and not, every shading with and without a highlight; the same pixels
+/// with a vertex scratch, in bands (with and without it) and from mesh bins.
+#[test]
+fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raster::band::{BandLayout, BinEntry, Callback, ColorBands, DepthBands, MeshBin};
+    use embedded_raster::texture::{Filter, Rgb565Texels, Texture};
+    use embedded_raster::three_d::meshes::{icosphere, torus::TORUS};
+    use embedded_raster::three_d::{ProjectedVertex, TexCoord, TexturedMaterial};
+    use embedded_raster::{Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading};
+    use embedded_raster::{Specular, Vec3};
+
+    let (w, h) = (80u32, 64u32);
+    let n = (w * h) as usize;
+    let camera = Mat4::perspective(Angle::from_degrees(55), 1.25, 0.5, 20).unwrap()
+        * Mat4::look_at(Vec3::new(0.3, 0.8, 3.0), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
+    let light = Light::new(Vec3::new(-0.4, 1.0, 0.8), 0.2);
+    let behind = Pipeline::new(
+        Mat4::rotation_x(Angle::from_degrees(70)),
+        camera,
+        viewport,
+        light,
+    );
+    let front = Pipeline::new(
+        Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7),
+        camera,
+        viewport,
+        light,
+    );
+    let base = Material::new(Rgb565::new(25, 30, 4), Shading::Gouraud);
+    // A sphere with texture coordinates from its positions (two turns around).
+    let mut sphere = icosphere(1.0, 2);
+    sphere.uvs = sphere
+        .vertices
+        .iter()
+        .map(|p| {
+            let [x, y, z] = embedded_raster::three_d::meshes::to_f64(*p);
+            TexCoord::new(
+                (z.atan2(x) / std::f64::consts::PI + 1.0) as f32,
+                (y * 0.5 + 0.5) as f32,
+            )
+        })
+        .collect();
+    let sphere = sphere.as_mesh();
+    let mut rng = Rng(0x7e47);
+    let texels: Vec<u16> = (0..16 * 16).map(|_| rng.below(1 << 16) as u16).collect();
+    let square = Texture::new(Rgb565Texels(&texels), 16, 16).unwrap();
+    let odd = Texture::new(Rgb565Texels(&texels), 12, 16).unwrap();
+    for (kind, texture) in [
+        ("nearest", square),
+        ("bilinear", square.with_filter(Filter::Bilinear)),
+        ("12 wide", odd),
+    ] {
+        for shading in [
+            Shading::Unlit,
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Quadratic,
+        ] {
+            for specular in [None, Some(Specular::new(0.6, 24))] {
+                let mut glass = TexturedMaterial::new(&texture, shading);
+                glass.specular = specular;
+                let opacity = rng.below(255) as u8;
+                let case = format!("{kind}, {shading:?}, {specular:?}, opacity {opacity}");
+                let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
+                let mut target = DepthTarget::new(&mut colors, &mut depth, w, h).unwrap();
+                behind.draw_mesh(&TORUS, &base, &mut target);
+                let (before, before_depth) = (
+                    target.framebuffer().pixels().to_vec(),
+                    target.depth().to_vec(),
+                );
+                let (mut oc, mut od) = (before.clone(), before_depth.clone());
+                let mut opaque = DepthTarget::new_uncleared(&mut oc, &mut od, w, h).unwrap();
+                front.draw_textured_mesh(&sphere, &glass, &mut opaque);
+                let (drawn, drawn_depth) = (
+                    opaque.framebuffer().pixels().to_vec(),
+                    opaque.depth().to_vec(),
+                );
+                let glass = glass.with_opacity(opacity);
+                front.draw_textured_mesh(&sphere, &glass, &mut target);
+                assert_eq!(target.depth(), &before_depth[..], "depth written, {case}");
+                let mut blended = 0;
+                for i in 0..n {
+                    let want = if drawn_depth[i] != before_depth[i] {
+                        blended += 1;
+                        drawn[i].blend(before[i], opacity)
+                    } else {
+                        before[i]
+                    };
+                    assert_eq!(target.framebuffer().pixels()[i], want, "pixel {i}, {case}");
+                }
+                assert!(blended > n / 20, "{blended}");
+                let whole = target.framebuffer().pixels().to_vec();
+
+                let mut scratch = vec![ProjectedVertex::EMPTY; sphere.vertices.len()];
+                let mut with = (before.clone(), before_depth.clone());
+                let mut t = DepthTarget::new_uncleared(&mut with.0, &mut with.1, w, h).unwrap();
+                front
+                    .draw_textured_mesh_with(&sphere, &glass, &mut t, &mut scratch)
+                    .unwrap();
+                assert_eq!(t.framebuffer().pixels(), &whole[..], "scratch, {case}");
+                assert_eq!(t.depth(), &before_depth[..], "depth written with a scratch");
+
+                for rows in [5, 16, 64] {
+                    let layout = BandLayout::new(Size::new(w, h), rows).unwrap();
+                    let (mut cb, mut db) = (
+                        vec![Rgb565::BLACK; layout.buffer_len()],
+                        vec![0; layout.buffer_len()],
+                    );
+                    let mut bands =
+                        DepthBands::new(ColorBands::new(layout, &mut cb).unwrap(), &mut db)
+                            .unwrap();
+                    let mut out = vec![Rgb565::BLACK; n];
+                    bands
+                        .render(
+                            &mut Callback(|rect: &Rectangle, px: &[Rgb565]| {
+                                let start = (rect.top_left.y as u32 * w) as usize;
+                                out[start..start + px.len()].copy_from_slice(px);
+                                Ok::<(), ()>(())
+                            }),
+                            |band| {
+                                band.clear(Rgb565::BLACK);
+                                band.draw_mesh(&behind, &TORUS, &base);
+                                if rows == 16 {
+                                    band.draw_textured_mesh_with(
+                                        &front,
+                                        &sphere,
+                                        &glass,
+                                        &mut scratch,
+                                    )
+                                    .unwrap();
+                                } else {
+                                    band.draw_textured_mesh(&front, &sphere, &glass);
+                                }
+                            },
+                        )
+                        .unwrap();
+                    assert_eq!(out, whole, "{rows}-row bands, {case}");
+
+                    let (mut s0, mut s1) = (
+                        vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
+                        vec![ProjectedVertex::EMPTY; sphere.vertices.len()],
+                    );
+                    let (mut e0, mut e1) =
+                        (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
+                    let mut opaque_bin =
+                        MeshBin::new(&behind, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
+                    let mut glass_bin =
+                        MeshBin::new_textured(&front, &sphere, &glass, &layout, &mut s1, &mut e1)
+                            .unwrap();
+                    let mut binned = vec![Rgb565::BLACK; n];
+                    bands
+                        .render(
+                            &mut Callback(|rect: &Rectangle, px: &[Rgb565]| {
+                                let start = (rect.top_left.y as u32 * w) as usize;
+                                binned[start..start + px.len()].copy_from_slice(px);
+                                Ok::<(), ()>(())
+                            }),
+                            |band| {
+                                band.clear(Rgb565::BLACK);
+                                opaque_bin.draw(band).unwrap();
+                                glass_bin.draw(band).unwrap();
+                            },
+                        )
+                        .unwrap();
+                    assert_eq!(binned, whole, "{rows}-row bins, {case}");
+                }
+            }
+        }
+    }
+}

@@ -30,7 +30,7 @@ use crate::raster::scan::{KeptWords, KEPT_WORDS};
 use crate::texture::TexelSource;
 use crate::three_d::{
     fit_scratch, DrawStats, FaceSink, FaceTexture, Frame, FrameTexture, Material, Mesh, NoTexture,
-    Pipeline, ProjectedVertex, TargetClip, TexturedMaterial,
+    Opacity, Pipeline, ProjectedVertex, TargetClip, TexturedMaterial,
 };
 use crate::Vec3;
 
@@ -709,10 +709,11 @@ impl<C, T> MeshBin<'_, C, T> {
     }
 }
 
-impl<'a, C, S> MeshBin<'a, C, FrameTexture<'a, S>>
+impl<'a, C, S, W> MeshBin<'a, C, FrameTexture<'a, S, W>>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
+    W: Opacity,
 {
     /// [`new`](MeshBin::new) for a textured material: the vertex and face stages of `mesh`
     /// with `material` through `pipeline` for the frame of `layout`, as
@@ -778,7 +779,7 @@ where
     pub fn new_textured(
         pipeline: &'a Pipeline,
         mesh: &Mesh<'a>,
-        material: &TexturedMaterial<'a, S>,
+        material: &TexturedMaterial<'a, S, W>,
         layout: &BandLayout,
         scratch: &'a mut [ProjectedVertex],
         storage: &'a mut [BinEntry],

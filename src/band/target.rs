@@ -15,8 +15,8 @@ use crate::raster::band::Band;
 use crate::rect;
 use crate::texture::TexelSource;
 use crate::three_d::{
-    DepthTarget, DrawStats, Frame, Material, Mesh, Pipeline, ProjectedVertex, ScratchTooSmall,
-    TargetClip, TexturedMaterial,
+    DepthTarget, DrawStats, Frame, Material, Mesh, Opacity, Pipeline, ProjectedVertex,
+    ScratchTooSmall, TargetClip, TexturedMaterial,
 };
 
 /// Which band of which layout a band target holds: its rows in the frame.
@@ -546,15 +546,16 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
 
     /// Draws the band's rows of `mesh` with the textured `material`, as
     /// [`Pipeline::draw_textured_mesh`] draws the whole frame: the same pixels and depths there.
-    pub fn draw_textured_mesh<S>(
+    pub fn draw_textured_mesh<S, W>(
         &mut self,
         pipeline: &Pipeline,
         mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'_, S>,
+        material: &TexturedMaterial<'_, S, W>,
     ) -> DrawStats
     where
         S: TexelSource,
         C: From<S::Color>,
+        W: Opacity,
     {
         let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));
         frame.each_face(mesh, &mut self.target)
@@ -563,16 +564,17 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
     /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed once into
     /// `scratch`, as [`Pipeline::draw_textured_mesh_with`]; `Err` without drawing if `scratch`
     /// is too short.
-    pub fn draw_textured_mesh_with<S>(
+    pub fn draw_textured_mesh_with<S, W>(
         &mut self,
         pipeline: &Pipeline,
         mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'_, S>,
+        material: &TexturedMaterial<'_, S, W>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall>
     where
         S: TexelSource,
         C: From<S::Color>,
+        W: Opacity,
     {
         let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
         let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));

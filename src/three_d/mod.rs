@@ -129,7 +129,7 @@ pub use shading::{
 };
 pub(crate) use texturing::FaceTexture;
 pub use texturing::{
-    draw_textured, draw_textured_lit, FrameTexture, NoTexture, TexturedMaterial,
-    TexturedScreenVertex,
+    draw_textured, draw_textured_lit, Blended, FrameTexture, NoTexture, Opacity, Opaque,
+    TexturedMaterial, TexturedScreenVertex,
 };
 pub use vertex::ProjectedVertex;

@@ -78,7 +78,7 @@ use super::math::{normalize_wide, zip3_with, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::texturing::{
-    FaceTexture, FrameTexture, NoTexture, PixelLight, TexelLight, TexturedMaterial,
+    FaceTexture, FrameTexture, NoTexture, Opacity, PixelLight, TexelLight, TexturedMaterial,
 };
 use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, VertexStage};
 use crate::arch;
@@ -435,15 +435,16 @@ impl Pipeline {
     /// assert_eq!(target.framebuffer().get(26, 26), Some(Rgb565::RED));
     /// assert_eq!(target.framebuffer().get(38, 38), Some(Rgb565::WHITE));
     /// ```
-    pub fn draw_textured_mesh<S, C>(
+    pub fn draw_textured_mesh<S, C, W>(
         &self,
         mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'_, S>,
+        material: &TexturedMaterial<'_, S, W>,
         target: &mut DepthTarget<'_, C>,
     ) -> DrawStats
     where
         S: TexelSource,
         C: GouraudColor + From<S::Color>,
+        W: Opacity,
     {
         let clip = TargetClip::new(&self.viewport, target);
         Frame::textured(self, mesh, material, clip).each_face(mesh, target)
@@ -452,16 +453,17 @@ impl Pipeline {
     /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed and
     /// projected once into `scratch`, as [`draw_mesh_with`](Self::draw_mesh_with): the same
     /// pixels; `Err` without drawing if `scratch` is too short.
-    pub fn draw_textured_mesh_with<S, C>(
+    pub fn draw_textured_mesh_with<S, C, W>(
         &self,
         mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'_, S>,
+        material: &TexturedMaterial<'_, S, W>,
         target: &mut DepthTarget<'_, C>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall>
     where
         S: TexelSource,
         C: GouraudColor + From<S::Color>,
+        W: Opacity,
     {
         let scratch = fit_scratch(mesh, scratch)?;
         let clip = TargetClip::new(&self.viewport, target);
@@ -658,17 +660,18 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     blend: Option<Blend<C>>,
 }
 
-impl<'p, 't, C, R, S> Frame<'p, C, R, FrameTexture<'t, S>>
+impl<'p, 't, C, R, S, W> Frame<'p, C, R, FrameTexture<'t, S, W>>
 where
     C: GouraudColor + From<S::Color>,
     R: RowWindow,
     S: TexelSource,
+    W: Opacity,
 {
     /// The draw of `mesh` with the textured `material` by `pipeline` inside `clip`.
     pub(crate) fn textured(
         pipeline: &'p Pipeline,
         mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'t, S>,
+        material: &TexturedMaterial<'t, S, W>,
         clip: TargetClip<R>,
     ) -> Self {
         let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
@@ -702,7 +705,8 @@ where
             vertex_rig: false,
             clip,
             fill,
-            texture: FrameTexture::new(material.texture),
+            texture: FrameTexture::new(material.texture, material.opacity),
+            // A translucent textured material blends by its type (`FrameTexture`'s `W`).
             blend: None,
         }
     }

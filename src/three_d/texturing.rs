@@ -175,6 +175,7 @@ pub fn draw_textured<S, C>(
         q,
         texels,
         Sampler::new(texture),
+        Opaque,
         TexelLight::Full,
     );
 }
@@ -233,6 +234,7 @@ pub fn draw_textured_lit<S, C>(
         q,
         texels,
         Sampler::new(texture),
+        Opaque,
         TexelLight::Levels(levels),
     );
 }
@@ -318,25 +320,28 @@ impl<C> FaceTexture<C> for NoTexture {
 /// A textured draw's texture and its sampler, decided once a draw: the texture type of a
 /// `band::MeshBin` of a [`TexturedMaterial`] reading texels of `S` (`MeshBin::new_textured`).
 #[derive(Debug, Clone, Copy)]
-pub struct FrameTexture<'t, S> {
+pub struct FrameTexture<'t, S, W = Opaque> {
     size: (u32, u32),
     sampler: Sampler<'t, S>,
+    write: W,
 }
 
-impl<'t, S: TexelSource> FrameTexture<'t, S> {
-    /// The texture of a draw.
-    pub(crate) fn new(texture: &'t Texture<S>) -> Self {
+impl<'t, S: TexelSource, W> FrameTexture<'t, S, W> {
+    /// The texture of a draw, its texels written as `write` says.
+    pub(crate) fn new(texture: &'t Texture<S>, write: W) -> Self {
         FrameTexture {
             size: (texture.width(), texture.height()),
             sampler: Sampler::new(texture),
+            write,
         }
     }
 }
 
-impl<S, C> FaceTexture<C> for FrameTexture<'_, S>
+impl<S, C, W> FaceTexture<C> for FrameTexture<'_, S, W>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
+    W: Opacity,
 {
     #[inline(always)]
     fn size(&self) -> (u32, u32) {
@@ -353,7 +358,61 @@ where
         texels: [[i32; 2]; 3],
         light: TexelLight<'_>,
     ) {
-        fill_textured(target, clip, vertices, q, texels, self.sampler, light);
+        fill_textured(
+            target,
+            clip,
+            vertices,
+            q,
+            texels,
+            self.sampler,
+            self.write,
+            light,
+        );
+    }
+}
+
+mod sealed {
+    /// Only this crate's opacities.
+    pub trait Sealed {}
+}
+
+/// How a [`TexturedMaterial`] writes its texels, by its type: [`Opaque`] (colour and depth, the
+/// default) or [`Blended`] ([`TexturedMaterial::with_opacity`]: the lit texel blended over the
+/// pixel, depth tested and not written). A draw of an opaque material has no code for blending.
+pub trait Opacity: Copy + core::fmt::Debug + sealed::Sealed {
+    /// Whether the texels are blended.
+    #[doc(hidden)]
+    const BLENDS: bool;
+
+    /// The opacity the texels are blended at (255 for [`Opaque`]).
+    fn opacity(self) -> u8;
+}
+
+/// Opaque texels: a [`TexturedMaterial`]'s default [`Opacity`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Opaque;
+
+impl sealed::Sealed for Opaque {}
+
+impl Opacity for Opaque {
+    const BLENDS: bool = false;
+
+    fn opacity(self) -> u8 {
+        255
+    }
+}
+
+/// Texels blended at an opacity: the [`Opacity`] of [`TexturedMaterial::with_opacity`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Blended(u8);
+
+impl sealed::Sealed for Blended {}
+
+impl Opacity for Blended {
+    const BLENDS: bool = true;
+
+    fn opacity(self) -> u8 {
+        self.0
     }
 }
 
@@ -369,7 +428,7 @@ where
 /// channel by channel (the colour and the light level both interpolated perspective-correct,
 /// as one tint a channel); a mesh without colours draws as without them.
 #[derive(Debug)]
-pub struct TexturedMaterial<'t, S> {
+pub struct TexturedMaterial<'t, S, W = Opaque> {
     /// The texture.
     pub texture: &'t Texture<S>,
     /// How the texels are lit.
@@ -380,15 +439,18 @@ pub struct TexturedMaterial<'t, S> {
     /// per vertex, interpolated perspective-correct; quadratic: per pixel, or per vertex where
     /// quadratic shading is; none unlit), or none.
     pub specular: Option<super::Specular>,
+    /// How the texels are written: [`Opaque`], or [`Blended`] at an opacity
+    /// ([`with_opacity`](Self::with_opacity)).
+    pub opacity: W,
 }
 
-impl<S> Clone for TexturedMaterial<'_, S> {
+impl<S, W: Copy> Clone for TexturedMaterial<'_, S, W> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<S> Copy for TexturedMaterial<'_, S> {}
+impl<S, W: Copy> Copy for TexturedMaterial<'_, S, W> {}
 
 impl<'t, S> TexturedMaterial<'t, S> {
     /// The material of `texture` lit with `shading`, without vertex colours.
@@ -398,6 +460,46 @@ impl<'t, S> TexturedMaterial<'t, S> {
             shading,
             vertex_colors: false,
             specular: None,
+            opacity: Opaque,
+        }
+    }
+}
+
+impl<'t, S, W: Opacity> TexturedMaterial<'t, S, W> {
+    /// The same material translucent: its lit texels blended over the pixels at `opacity` (0
+    /// transparent … 255), depth-tested without writing depth, as a
+    /// [`Material`](super::Material)'s [`opacity`](super::Material::opacity) below 255 (here
+    /// at 255 too: the type decides, so that opaque draws carry no blending code). Draw it after
+    /// the opaque meshes, the farthest first.
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+    /// use embedded_raster::texture::{Rgb565Texels, Texture};
+    /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
+    /// use embedded_raster::three_d::{Angle, DepthTarget, Light, Mat4, Pipeline, Shading};
+    /// use embedded_raster::three_d::{TexturedMaterial, Vec3};
+    /// use embedded_raster::GouraudColor;
+    ///
+    /// static WHITE: [u16; 1] = [0xffff];
+    /// let texture = Texture::new(Rgb565Texels(&WHITE), 1, 1).unwrap();
+    /// let (mut pixels, mut depth) = ([Rgb565::BLUE; 32 * 32], [0u16; 32 * 32]);
+    /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 32, 32).unwrap();
+    /// let camera = Mat4::perspective(Angle::from_degrees(60), 1, 0.5, 20).unwrap()
+    ///     * Mat4::translation(Vec3::new(0, 0, -3));
+    /// let viewport = Rectangle::new(Point::zero(), Size::new(32, 32));
+    /// let pipeline = Pipeline::new(Mat4::IDENTITY, camera, viewport, Light::default());
+    /// let glass = TexturedMaterial::new(&texture, Shading::Unlit).with_opacity(128);
+    /// pipeline.draw_textured_mesh(&ICOSPHERE, &glass, &mut target);
+    /// assert_eq!(target.framebuffer().get(16, 16), Some(Rgb565::WHITE.blend(Rgb565::BLUE, 128)));
+    /// assert_eq!(target.depth_at(16, 16), Some(u16::MAX)); // not written
+    /// ```
+    pub const fn with_opacity(self, opacity: u8) -> TexturedMaterial<'t, S, Blended> {
+        TexturedMaterial {
+            texture: self.texture,
+            shading: self.shading,
+            vertex_colors: self.vertex_colors,
+            specular: self.specular,
+            opacity: Blended(opacity),
         }
     }
 
@@ -454,13 +556,14 @@ impl<'t, S> TexturedMaterial<'t, S> {
 /// [`draw_textured`] inside a clip already within the target, with the vertices' `q ∝ 1/w`
 /// and 16.16 texel coordinates, lit by `light`.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn fill_textured<S, C, R: RowWindow>(
+pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
     screen: [&ScreenVertex; 3],
     q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
+    write: W,
     light: TexelLight<'_>,
 ) where
     S: TexelSource,
@@ -468,9 +571,9 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
 {
     let quadratic = matches!(light, TexelLight::Quadratic(_));
     if !quadratic && nearly_affine(q, texels, &light, affine_level::<C>()) {
-        fill_screen_space(target, clip, screen, texels, sampler, light);
+        fill_screen_space(target, clip, screen, texels, sampler, write, light);
     } else {
-        fill_perspective(target, clip, screen, q, texels, sampler, light);
+        fill_perspective(target, clip, screen, q, texels, sampler, write, light);
     }
 }
 
@@ -480,12 +583,13 @@ pub(crate) fn fill_textured<S, C, R: RowWindow>(
 /// time (a micro:bit has 4 KB of it beside a 64×48 frame and its z-buffer).
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline(always))]
-fn fill_screen_space<S, C, R: RowWindow>(
+fn fill_screen_space<S, C, R: RowWindow, W: Opacity>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
     screen: [&ScreenVertex; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
+    write: W,
     light: TexelLight<'_>,
 ) where
     S: TexelSource,
@@ -509,7 +613,7 @@ fn fill_screen_space<S, C, R: RowWindow>(
                 position,
                 &a,
                 &rect,
-                AffineFill::new(target, sampler, maps, Unlit),
+                AffineFill::new(target, sampler, write, maps, Unlit),
             );
         }
         TexelLight::Full | TexelLight::Level(_) => {
@@ -523,19 +627,19 @@ fn fill_screen_space<S, C, R: RowWindow>(
                 position,
                 &a,
                 &rect,
-                AffineFill::new(target, sampler, maps, light),
+                AffineFill::new(target, sampler, write, maps, light),
             );
         }
         TexelLight::Levels(l) => {
             let more = zip3_with(u, v, l, |u, v, l| [u, v, l]);
             let a = with_depth::<3, 4>(screen, more, [0; 3]);
-            let fill = AffineFill::new(target, sampler, maps, PlaneLevel);
+            let fill = AffineFill::new(target, sampler, write, maps, PlaneLevel);
             rows.shade(position, &a, &rect, fill);
         }
         TexelLight::Tints(t) if !SIZE_OVER_SPEED => {
             let more = zip3_with(u, v, t, |u, v, [r, g, b]| [u, v, r, g, b]);
             let a = with_depth::<5, 6>(screen, more, [0; 5]);
-            let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<3>);
+            let fill = AffineFill::new(target, sampler, write, maps, PlaneChannels::<3>);
             rows.shade(position, &a, &rect, fill);
         }
         TexelLight::Tints(t) | TexelLight::Shiny { tints: t, .. } => {
@@ -546,7 +650,7 @@ fn fill_screen_space<S, C, R: RowWindow>(
             let light = zip3_with(t, speculars, [(); 3], |t, s, ()| (t, s));
             let more = zip3_with(u, v, light, |u, v, ([r, g, b], s)| [u, v, r, g, b, s]);
             let a = with_depth::<6, 7>(screen, more, [0; 6]);
-            let fill = AffineFill::new(target, sampler, maps, PlaneChannels::<4>);
+            let fill = AffineFill::new(target, sampler, write, maps, PlaneChannels::<4>);
             rows.shade(position, &a, &rect, fill);
         }
         // Per-pixel light is always perspective-correct (`fill_textured` never brings it here).
@@ -555,15 +659,17 @@ fn fill_screen_space<S, C, R: RowWindow>(
 }
 
 /// [`fill_textured`] of a face interpolated perspective-correct.
+#[allow(clippy::too_many_arguments)]
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline(always))]
-fn fill_perspective<S, C, R: RowWindow>(
+fn fill_perspective<S, C, R: RowWindow, W: Opacity>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
     screen: [&ScreenVertex; 3],
     q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
+    write: W,
     light: TexelLight<'_>,
 ) where
     S: TexelSource,
@@ -582,7 +688,7 @@ fn fill_perspective<S, C, R: RowWindow>(
     // One span loop for each kind of light.
     match light {
         TexelLight::Full if !SIZE_OVER_SPEED => {
-            let fill = TexturedFill::new(target, sampler, coordinates, Unlit);
+            let fill = TexturedFill::new(target, sampler, write, coordinates, Unlit);
             shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Full | TexelLight::Level(_) => {
@@ -590,13 +696,14 @@ fn fill_perspective<S, C, R: RowWindow>(
                 TexelLight::Level(level) => level_fraction(level),
                 _ => full,
             };
-            let fill = TexturedFill::new(target, sampler, coordinates, Constant(level));
+            let fill = TexturedFill::new(target, sampler, write, coordinates, Constant(level));
             shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Levels(levels) => {
             let fill = TexturedFill::new(
                 target,
                 sampler,
+                write,
                 coordinates,
                 Varying(Corrected::new(levels.map(|l| level_fraction(l) as i32))),
             );
@@ -604,8 +711,13 @@ fn fill_perspective<S, C, R: RowWindow>(
         }
         TexelLight::Tints(tints) if !SIZE_OVER_SPEED => {
             let [r, g, b] = transpose(tints).map(corrected_levels);
-            let fill =
-                TexturedFill::new(target, sampler, coordinates, CorrectedChannels([r, g, b]));
+            let fill = TexturedFill::new(
+                target,
+                sampler,
+                write,
+                coordinates,
+                CorrectedChannels([r, g, b]),
+            );
             shade_textured(clip, position, &attributes, &rect, fill);
         }
         TexelLight::Tints(tints) | TexelLight::Shiny { tints, .. } => {
@@ -617,6 +729,7 @@ fn fill_perspective<S, C, R: RowWindow>(
             let fill = TexturedFill::new(
                 target,
                 sampler,
+                write,
                 coordinates,
                 CorrectedChannels([r, g, b, corrected_levels(speculars)]),
             );
@@ -626,6 +739,7 @@ fn fill_perspective<S, C, R: RowWindow>(
             let fill = TexturedFill {
                 target,
                 sampler,
+                write,
                 coordinates,
                 light: PerPixel(pixel),
             };
@@ -639,12 +753,12 @@ fn fill_perspective<S, C, R: RowWindow>(
 /// [`fill_perspective`]'s (a micro:bit's stack is 4 KB beside its buffers).
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline(always))]
-fn shade_textured<S, C, L, R: RowWindow>(
+fn shade_textured<S, C, L, R: RowWindow, W: Opacity>(
     clip: &TargetClip<R>,
     position: [(crate::Coord, crate::Coord); 3],
     attributes: &crate::raster::plane::Attributes<4>,
     rect: &Rectangle,
-    fill: TexturedFill<'_, '_, '_, C, S, L>,
+    fill: TexturedFill<'_, '_, '_, C, S, L, W>,
 ) where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
@@ -748,37 +862,41 @@ fn nearly_affine(
 /// The span shader of a textured face interpolated in screen space: the depth, the texel
 /// coordinates (16-bit planes as [`PlaneMap`] maps them) and the light's planes after them, if
 /// any (`L` reads them).
-struct AffineFill<'t, 'a, 'x, C, S, L> {
+struct AffineFill<'t, 'a, 'x, C, S, L, W> {
     target: &'t mut DepthTarget<'a, C>,
     sampler: Sampler<'x, S>,
+    write: W,
     maps: [PlaneMap; 2],
     light: L,
 }
 
-impl<'t, 'a, 'x, C, S, L> AffineFill<'t, 'a, 'x, C, S, L> {
+impl<'t, 'a, 'x, C, S, L, W> AffineFill<'t, 'a, 'x, C, S, L, W> {
     /// The fill of `target` sampling with `sampler` at the coordinates `maps` map, lit by
     /// `light`.
     #[inline(always)]
     fn new(
         target: &'t mut DepthTarget<'a, C>,
         sampler: Sampler<'x, S>,
+        write: W,
         maps: [PlaneMap; 2],
         light: L,
     ) -> Self {
         AffineFill {
             target,
             sampler,
+            write,
             maps,
             light,
         }
     }
 }
 
-impl<C, S, L, const N: usize> SpanShader<N> for AffineFill<'_, '_, '_, C, S, L>
+impl<C, S, L, W, const N: usize> SpanShader<N> for AffineFill<'_, '_, '_, C, S, L, W>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
     L: PlaneLight<N>,
+    W: Opacity,
 {
     type Steps = ([u32; N], (i32, i32));
 
@@ -802,6 +920,10 @@ where
     /// same spans, values and pixels as [`span`](Self::span) gives them.
     #[inline(always)]
     fn small_rows(&mut self, scan: &SmallScan<'_, N>) -> bool {
+        // A translucent draw's spans blend (`span`).
+        if W::BLENDS {
+            return false;
+        }
         let steps = self.prepare(scan.planes().step());
         let (colors, depths, width) = self.target.buffers_mut();
         // The target's row loop where it draws these texels and light (the same pixels).
@@ -842,13 +964,14 @@ where
             step: (dx, dy),
             level: self.light.of_planes(&start, step),
             light: self.light,
+            write: self.write,
         };
         self.sampler.run(run);
     }
 }
 
-/// One span of [`AffineFill`].
-struct AffineSpan<'p, C, L: SpanLight> {
+/// One span of [`AffineFill`], its pixels written as `W` writes them.
+struct AffineSpan<'p, C, L: SpanLight, W> {
     colors: &'p mut [C],
     depths: &'p mut [u16],
     depth: (u32, u32),
@@ -857,9 +980,10 @@ struct AffineSpan<'p, C, L: SpanLight> {
     /// The light's state at the first pixel, and its step.
     level: (L::Level, L::Level),
     light: L,
+    write: W,
 }
 
-impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for AffineSpan<'_, C, L> {
+impl<C: GouraudColor, L: SpanLight, W: Opacity> SampledLoop<C> for AffineSpan<'_, C, L, W> {
     type Output = ();
 
     #[inline(always)]
@@ -869,7 +993,13 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for AffineSpan<'_, C, L> {
         let (x, dx) = (self.at.0, self.step.0);
         let (l, dl) = self.level;
         let (values, steps) = ((z, x, y, l), (dz, dx, dy, dl));
-        pixels(self.colors, self.depths, values, steps, &texel, self.light);
+        let (colors, depths, light) = (self.colors, self.depths, self.light);
+        if W::BLENDS {
+            let opacity = self.write.opacity();
+            blended_pixels(colors, depths, values, steps, &texel, light, opacity);
+        } else {
+            pixels(colors, depths, values, steps, &texel, light);
+        }
     }
 }
 
@@ -1568,36 +1698,40 @@ impl SpanLight for PerPixel<'_> {
 /// the perspective planes at the ends of chunks of up to [`CHUNK`](perspective::CHUNK) pixels
 /// (short enough for the light's chords to stay within a quarter of the target's finest
 /// channel step), the texture sampled between.
-struct TexturedFill<'t, 'a, 'x, C, S, L> {
+struct TexturedFill<'t, 'a, 'x, C, S, L, W> {
     target: &'t mut DepthTarget<'a, C>,
     sampler: Sampler<'x, S>,
+    write: W,
     coordinates: (Corrected, Corrected),
     light: L,
 }
 
-impl<'t, 'a, 'x, C: GouraudColor, S, L: SpanLight> TexturedFill<'t, 'a, 'x, C, S, L> {
+impl<'t, 'a, 'x, C: GouraudColor, S, L: SpanLight, W> TexturedFill<'t, 'a, 'x, C, S, L, W> {
     /// The fill of `target` sampling with `sampler` at `coordinates`, lit by `light`.
     #[inline(always)]
     fn new(
         target: &'t mut DepthTarget<'a, C>,
         sampler: Sampler<'x, S>,
+        write: W,
         coordinates: (Corrected, Corrected),
         light: L,
     ) -> Self {
         TexturedFill {
             target,
             sampler,
+            write,
             coordinates,
             light,
         }
     }
 }
 
-impl<C, S, L> SpanShader<4> for TexturedFill<'_, '_, '_, C, S, L>
+impl<C, S, L, W> SpanShader<4> for TexturedFill<'_, '_, '_, C, S, L, W>
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
     L: SpanLight,
+    W: Opacity,
 {
     type Steps = [u32; 4];
 
@@ -1629,7 +1763,7 @@ where
             |k1, k2| light.slope(k1, k2),
         );
         // The target's span loop where it draws these texels and light (the same pixels).
-        if arch::PERSPECTIVE_SPAN {
+        if arch::PERSPECTIVE_SPAN && !W::BLENDS {
             // The sampler first: a bilinear face's spans stop at its kind.
             if let Some((texels, x_mask, rows_mask, y_shift)) = masked_565(&self.sampler) {
                 if let Some(level) = self.light.span_level() {
@@ -1654,7 +1788,7 @@ where
             }
         }
         // The target's chunk loop where it draws these texels unlit (the same pixels).
-        let masked = if arch::DEPTH_MASKED_565 && self.light.plain() {
+        let masked = if arch::DEPTH_MASKED_565 && self.light.plain() && !W::BLENDS {
             masked_565(&self.sampler)
         } else {
             None
@@ -1668,13 +1802,15 @@ where
             light: self.light,
             room,
             masked,
+            write: self.write,
         };
         self.sampler.run(run);
     }
 }
 
-/// One span of [`TexturedFill`]: its pixels and depths, the planes' steps and first values.
-struct PerspectiveSpan<'p, C, L> {
+/// One span of [`TexturedFill`]: its pixels and depths, the planes' steps and first values; its
+/// pixels written as `W` writes them.
+struct PerspectiveSpan<'p, C, L, W> {
     colors: &'p mut [C],
     depths: &'p mut [u16],
     steps: [u32; 4],
@@ -1686,9 +1822,10 @@ struct PerspectiveSpan<'p, C, L> {
     /// The texels, masks and row shift of [`masked_565`], where the target's chunk loop draws
     /// the chunks' pixels.
     masked: Option<(&'p [u16], u32, u32, u32)>,
+    write: W,
 }
 
-impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L> {
+impl<C: GouraudColor, L: SpanLight, W: Opacity> SampledLoop<C> for PerspectiveSpan<'_, C, L, W> {
     type Output = ();
 
     /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate.
@@ -1737,6 +1874,10 @@ impl<C: GouraudColor, L: SpanLight> SampledLoop<C> for PerspectiveSpan<'_, C, L>
                 {
                     z.wrapping_add(dz.wrapping_mul(chunk.len))
                 }
+                _ if W::BLENDS => {
+                    let opacity = self.write.opacity();
+                    blended_pixels(c, d, (z, x, y, level), steps, &texel, light, opacity)
+                }
                 _ => chunk_pixels(c, d, (z, x, y, level), steps, &texel, light),
             };
             (colors, depths) = (rest_c, rest_d);
@@ -1776,6 +1917,30 @@ fn pixels<C: GouraudColor, L: SpanLight>(
         if z16 < *depth {
             *depth = z16;
             *px = light.apply(texel(x, y), level);
+        }
+        z = z.wrapping_add(dz);
+        x = x.wrapping_add(dx);
+        y = y.wrapping_add(dy);
+        level = L::step(level, dl);
+    }
+    z
+}
+
+/// [`pixels`] of a translucent draw: each pixel nearer than the depth there blended over the
+/// colour there, the depth kept.
+#[inline(never)]
+fn blended_pixels<C: GouraudColor, L: SpanLight>(
+    colors: &mut [C],
+    depths: &mut [u16],
+    (mut z, mut x, mut y, mut level): (u32, i32, i32, L::Level),
+    (dz, dx, dy, dl): (u32, i32, i32, L::Level),
+    texel: &impl Fn(i32, i32) -> C,
+    light: L,
+    opacity: u8,
+) -> u32 {
+    for (px, depth) in colors.iter_mut().zip(depths.iter()) {
+        if ((z >> DEPTH_SHIFT) as u16) < *depth {
+            *px = light.apply(texel(x, y), level).blend(*px, opacity);
         }
         z = z.wrapping_add(dz);
         x = x.wrapping_add(dx);
