@@ -136,7 +136,8 @@
 //!
 //! # Errors
 //!
-//! Every error type — [`FramebufferError`], [`band::BandError`], [`three_d::MeshError`],
+//! Every error type — [`FramebufferError`], [`band::BandError`] and a band render's
+//! [`band::RenderError`], [`three_d::MeshError`],
 //! [`three_d::ScratchTooSmall`],
 //! [`texture::TextureError`], [`raster::TooLarge`], and on the host `three_d::obj`'s and
 //! `texture::convert`'s — implements [`core::fmt::Display`], with a message that says what was

@@ -402,8 +402,8 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
                             ),
                             |band| {
                                 band.clear(Rgb565::BLACK);
-                                band.draw_mesh(&behind, &TORUS, &base);
-                                band.draw_mesh_translucent(&front, &ICOSPHERE, &glass, opacity);
+                                behind.draw_mesh(&TORUS, &base, band);
+                                front.draw_mesh_translucent(&ICOSPHERE, &glass, opacity, band);
                             },
                         )
                         .unwrap();

@@ -106,6 +106,7 @@ mod depth;
 mod light;
 mod math;
 mod mesh;
+mod mesh_target;
 pub mod meshes;
 #[cfg(feature = "std")]
 pub mod obj;
@@ -114,7 +115,6 @@ mod shading;
 mod texturing;
 mod vertex;
 
-pub(crate) use depth::Blend;
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use light::{Light, LightSource, Lights, Specular};
 pub use math::{
@@ -122,6 +122,8 @@ pub use math::{
     SCALAR_BITS,
 };
 pub use mesh::{Bounds, Mesh, MeshError, TexCoord};
+pub(crate) use mesh_target::sealed::Target as MeshTargetParts;
+pub use mesh_target::MeshTarget;
 pub(crate) use pipeline::{fit_scratch, FaceSink, Frame};
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub(crate) use shading::TargetClip;

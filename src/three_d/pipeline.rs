@@ -76,6 +76,7 @@ use super::depth::{Blend, DepthTarget, ScreenVertex};
 use super::light::{Highlight, Light, LightRig, Lights, Specular};
 use super::math::{normalize_wide, zip3_with, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
+use super::mesh_target::MeshTarget;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::texturing::{
     FaceTexture, FrameTexture, NoTexture, PixelLight, TexelLight, TexturedMaterial,
@@ -360,10 +361,10 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &Material<C>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
     ) -> DrawStats {
-        let clip = TargetClip::new(&self.viewport, target);
-        Frame::new(self, mesh, material, clip).each_face(mesh, target)
+        let clip = target.clip(&self.viewport);
+        target.with_depth(|target| Frame::new(self, mesh, material, clip).each_face(mesh, target))
     }
 
     /// [`draw_mesh`](Self::draw_mesh) of a translucent material: each pixel where the mesh is
@@ -397,15 +398,18 @@ impl Pipeline {
         mesh: &Mesh<'_>,
         material: &Material<C>,
         opacity: u8,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
     ) -> DrawStats {
-        target.set_blend(Some(Blend {
-            opacity,
-            over: C::blend,
-        }));
-        let stats = self.draw_mesh(mesh, material, target);
-        target.set_blend(None);
-        stats
+        let clip = target.clip(&self.viewport);
+        target.with_depth(|target| {
+            target.set_blend(Some(Blend {
+                opacity,
+                over: C::blend,
+            }));
+            let stats = Frame::new(self, mesh, material, clip).each_face(mesh, target);
+            target.set_blend(None);
+            stats
+        })
     }
 
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed, projected and lit once, into
@@ -416,18 +420,13 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &Material<C>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall> {
         let scratch = fit_scratch(mesh, scratch)?;
-        let frame = Frame::new(
-            self,
-            mesh,
-            material,
-            TargetClip::new(&self.viewport, target),
-        );
+        let frame = Frame::new(self, mesh, material, target.clip(&self.viewport));
         frame.project(mesh, scratch);
-        Ok(frame.scratch_faces(mesh, scratch, target))
+        Ok(target.with_depth(|target| frame.scratch_faces(mesh, scratch, target)))
     }
 
     /// Draws every triangle of `mesh` with the textured `material` into `target`, as
@@ -478,14 +477,16 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &TexturedMaterial<'_, S>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
     ) -> DrawStats
     where
         S: TexelSource,
         C: GouraudColor + From<S::Color>,
     {
-        let clip = TargetClip::new(&self.viewport, target);
-        Frame::textured(self, mesh, material, clip).each_face(mesh, target)
+        let clip = target.clip(&self.viewport);
+        target.with_depth(|target| {
+            Frame::textured(self, mesh, material, clip).each_face(mesh, target)
+        })
     }
 
     /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed and
@@ -495,7 +496,7 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &TexturedMaterial<'_, S>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall>
     where
@@ -503,10 +504,10 @@ impl Pipeline {
         C: GouraudColor + From<S::Color>,
     {
         let scratch = fit_scratch(mesh, scratch)?;
-        let clip = TargetClip::new(&self.viewport, target);
+        let clip = target.clip(&self.viewport);
         let frame = Frame::textured(self, mesh, material, clip);
         frame.project(mesh, scratch);
-        Ok(frame.scratch_faces(mesh, scratch, target))
+        Ok(target.with_depth(|target| frame.scratch_faces(mesh, scratch, target)))
     }
 }
 
