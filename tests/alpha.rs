@@ -313,9 +313,8 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
     use embedded_graphics::primitives::Rectangle;
     use embedded_raster::band::{BandLayout, ColorBands, DepthBands};
     use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
-    use embedded_raster::{
-        Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3,
-    };
+    use embedded_raster::three_d::Angle;
+    use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3};
 
     let (w, h) = (96u32, 72u32);
     let n = (w * h) as usize;

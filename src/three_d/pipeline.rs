@@ -135,7 +135,7 @@ pub fn signed_area2(v: [(Coord, Coord); 3]) -> i128 {
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
 /// use embedded_raster::three_d::meshes::torus::TORUS;
-/// use embedded_raster::{Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+/// use embedded_raster::three_d::{Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
 ///
 /// let (mut pixels, mut depth) = ([Rgb888::BLACK; 64 * 64], [0u16; 64 * 64]);
 /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 64).unwrap();
@@ -377,7 +377,7 @@ impl Pipeline {
     /// ```
     /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
     /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
-    /// use embedded_raster::{Angle, DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
+    /// use embedded_raster::{three_d::Angle, DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
     /// use embedded_raster::{Shading, Vec3};
     ///
     /// let (mut pixels, mut depth) = ([Rgb565::BLUE; 32 * 32], [0u16; 32 * 32]);
