@@ -73,7 +73,7 @@ MICROBIT_BAND_FRAME_LIMIT=160000000
 
 # Stack headroom on the micro:bit (16 KiB of RAM, most of it buffers, the stack below them
 # growing into the statics unchecked): the firmware run there paints its free stack at the start
-# and prints `stack high-water: N bytes of M` at the end (examples/common/stack.rs); M − N must be
+# and prints `stack high-water: N bytes of M` at the end (firmware/common/stack.rs); M − N must be
 # at least this. Measured (stop 38): fw_texture_bench 3,928 of 4,072 (144 spare: the tightest;
 # 3,760 before the chunk length per chunk and the per-pixel light's span loop, whose frames on
 # ARMv6-M are now split out of fill_perspective, each kind of light's span loop in a frame of

@@ -5,8 +5,8 @@
 #   bash .ci/profile.sh <target> mesh-<knot|torus>[-faces] [functions] [blocks]
 #   bash .ci/profile.sh thumbv6m-none-eabi gouraud-tiny 20 10
 #
-# Builds examples/fw_profile.rs for <target> with that workload (or, for mesh-*, the 3D frame of
-# examples/fw_mesh_bench.rs four times: with the vertex scratch, or per face with -faces; on the
+# Builds firmware/fw_profile.rs for <target> with that workload (or, for mesh-*, the 3D frame of
+# firmware/fw_mesh_bench.rs four times: with the vertex scratch, or per face with -faces; on the
 # MPS2 boards, thumbv6m code on mps2-an385's model), runs it under QEMU with its
 # execution log (-d in_asm,exec,nochain; -icount as in CI), and prints the executed instructions
 # per function and, optionally, the hottest translation blocks (addresses to look up with

@@ -37,7 +37,7 @@ fn main() {
     let pipeline = scene3d::pipeline(scene3d::Model::Knot);
     let draw = |band: &mut embedded_raster::band::DepthBand<'_, Rgb565>| {
         band.clear(scene3d::BACKGROUND);
-        band.draw_mesh(&pipeline, &scene3d::KNOT, &scene3d::MATERIAL);
+        pipeline.draw_mesh(&scene3d::KNOT, &scene3d::MATERIAL, band);
     };
 
     // The display: the frame on the left, the bands drawn apart on the right.

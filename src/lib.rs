@@ -62,7 +62,8 @@
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
 //! use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
 //! use embedded_raster::three_d::DEPTH_CLEAR;
-//! use embedded_raster::{Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+//! use embedded_raster::three_d::Angle;
+//! use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
 //!
 //! let (mut pixels, mut depth) = ([Rgb565::BLACK; 64 * 48], [0u16; 64 * 48]);
 //! let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 48)?;
@@ -103,8 +104,8 @@
 //! |---|---|---|---|---|
 //! | [`ToCoord::to_coord`] (`f32`, `f64` to [`Coord`]: the 2D vertices) | 0 | [`Coord::MAX`] / [`Coord::MIN`] | saturates to `Coord::MAX` / `MIN` (±2²³ px) | [`ToCoord::try_to_coord`] |
 //! | [`ToScalar::to_scalar`] (`f32`, `f64` to [`Scalar`]: the 3D vectors, distances, light and material values) | 0 | `Scalar::MAX` / `MIN` | saturates to ±32768 | [`ToScalar::try_to_scalar`] |
-//! | [`Angle::from_degrees`] (`f32`, `f64` degrees) | 0° | 0° | none: angles wrap | [`Angle::try_from_degrees`], [`Degrees::try_to_angle`](three_d::Degrees::try_to_angle) |
-//! | [`Angle::from_radians`] | 0° | 0° | none: angles wrap | [`Angle::try_from_radians`] |
+//! | [`Angle::from_degrees`](three_d::Angle::from_degrees) (`f32`, `f64` degrees) | 0° | 0° | none: angles wrap | [`Angle::try_from_degrees`](three_d::Angle::try_from_degrees), [`Degrees::try_to_angle`](three_d::Degrees::try_to_angle) |
+//! | [`Angle::from_radians`](three_d::Angle::from_radians) | 0° | 0° | none: angles wrap | [`Angle::try_from_radians`](three_d::Angle::try_from_radians) |
 //! | [`ToAngle::to_angle`] of embedded-graphics' `Angle` (through its radians) | 0° | 0° | none: angles wrap | [`ToAngle::try_to_angle`] |
 //!
 //! Integers convert without floats: to a `Scalar` saturating beyond ±32768 (`try_to_scalar`
@@ -122,7 +123,8 @@
 //! never give NaN or an infinity.
 //!
 //! ```
-//! use embedded_raster::{Angle, Coord, Scalar, ToCoord, ToScalar};
+//! use embedded_raster::three_d::Angle;
+//! use embedded_raster::{Coord, Scalar, ToCoord, ToScalar};
 //!
 //! assert_eq!(f32::NAN.to_coord(), Coord::ZERO); // a NaN vertex lands on 0 ...
 //! assert_eq!(f32::NAN.try_to_coord(), None); // ... unless you ask
@@ -136,7 +138,8 @@
 //!
 //! # Errors
 //!
-//! Every error type — [`FramebufferError`], [`band::BandError`], [`three_d::MeshError`],
+//! Every error type — [`FramebufferError`], [`band::BandError`] and a band render's
+//! [`band::RenderError`], [`three_d::MeshError`],
 //! [`three_d::ScratchTooSmall`],
 //! [`texture::TextureError`], [`raster::TooLarge`], and on the host `three_d::obj`'s and
 //! `texture::convert`'s — implements [`core::fmt::Display`], with a message that says what was
@@ -210,8 +213,8 @@ pub use draw::{
 pub use fixed_point::{Coord, ToCoord};
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
-    Angle, Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline,
-    Scalar, Shading, Specular, TexCoord, TexturedMaterial, ToAngle, ToScalar, Vec3,
+    Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline, Scalar,
+    Shading, Specular, TexCoord, TexturedMaterial, ToAngle, ToScalar, Vec3,
 };
 
 /// Everything a 2D or 3D drawing needs, in one import: `use embedded_raster::prelude::*;`
@@ -222,19 +225,26 @@ pub use three_d::{
 /// [`Coord`] with [`ToCoord`] and the pixel placements, [`Texture`] with its [`Wrap`] and
 /// [`Filter`], and the [`GouraudColor`] bound. 3D: the pipeline, its mesh, target, light and
 /// material types (textured too), the maths types with [`ToScalar`], [`ToAngle`] and
-/// [`Degrees`](three_d::Degrees). [`Angle`] is not in it, because embedded-graphics' prelude has
-/// an `Angle` of its own: import `embedded_raster::Angle`.
+/// [`Degrees`](three_d::Degrees).
+///
+/// No `Angle` is in it, nor at the crate's root: embedded-graphics' prelude has an `Angle` of
+/// its own, and two globs bringing one each would make the name ambiguous. So either glob
+/// (`embedded_raster::prelude::*` or `embedded_raster::*`) goes next to embedded-graphics'
+/// prelude, whose `Angle` and `.deg()` the matrices take ([`ToAngle`]); this crate's exact
+/// binary angle (integer degrees without floats) is [`three_d::Angle`].
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 /// use embedded_raster::prelude::*;
-/// use embedded_raster::Angle;
+/// use embedded_raster::three_d;
 ///
 /// let mut pixels = [Rgb565::BLACK; 8 * 8];
 /// let mut fb = SliceFramebuffer::new(&mut pixels, 8, 8).unwrap();
 /// SolidTriangle::new([(0.0, 0.0), (8.0, 0.0), (0.0, 8.0)], Rgb565::RED).draw_into(&mut fb);
 /// let view = Mat4::look_at(Vec3::new(0, 0, 5), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-/// let camera = Mat4::perspective(Angle::from_degrees(52.5), 1, 0.5, 20).unwrap() * view;
+/// let camera = Mat4::perspective(52.5.deg(), 1, 0.5, 20).unwrap() * view;
+/// // embedded-graphics' `Angle` (through its radians, in floats) or this crate's, exact:
+/// assert_eq!(Mat4::rotation_y(90.0.deg()), Mat4::rotation_y(three_d::Angle::from_degrees(90)));
 /// # let _ = camera;
 /// ```
 pub mod prelude {

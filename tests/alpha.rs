@@ -314,10 +314,8 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
     use embedded_graphics::primitives::Rectangle;
     use embedded_raster::band::{BandLayout, BinEntry, ColorBands, DepthBands, MeshBin};
     use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
-    use embedded_raster::three_d::ProjectedVertex;
-    use embedded_raster::{
-        Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3,
-    };
+    use embedded_raster::three_d::{Angle, ProjectedVertex};
+    use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3};
 
     let (w, h) = (96u32, 72u32);
     let n = (w * h) as usize;
@@ -415,12 +413,13 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
                             ),
                             |band| {
                                 band.clear(Rgb565::BLACK);
-                                band.draw_mesh(&behind, &TORUS, &base);
+                                behind.draw_mesh(&TORUS, &base, band);
                                 if rows == 16 {
-                                    band.draw_mesh_with(&front, &ICOSPHERE, &glass, &mut scratch)
+                                    front
+                                        .draw_mesh_with(&ICOSPHERE, &glass, band, &mut scratch)
                                         .unwrap();
                                 } else {
-                                    band.draw_mesh(&front, &ICOSPHERE, &glass);
+                                    front.draw_mesh(&ICOSPHERE, &glass, band);
                                 }
                             },
                         )
@@ -473,9 +472,9 @@ fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
     use embedded_raster::band::{BandLayout, BinEntry, Callback, ColorBands, DepthBands, MeshBin};
     use embedded_raster::texture::{Filter, Rgb565Texels, Texture};
     use embedded_raster::three_d::meshes::{icosphere, torus::TORUS};
+    use embedded_raster::three_d::Angle;
     use embedded_raster::three_d::{ProjectedVertex, TexCoord, TexturedMaterial};
-    use embedded_raster::{Angle, DepthTarget, Light, Mat4, Material, Pipeline, Shading};
-    use embedded_raster::{Specular, Vec3};
+    use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3};
 
     let (w, h) = (80u32, 64u32);
     let n = (w * h) as usize;
@@ -588,17 +587,18 @@ fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
                             }),
                             |band| {
                                 band.clear(Rgb565::BLACK);
-                                band.draw_mesh(&behind, &TORUS, &base);
+                                behind.draw_mesh(&TORUS, &base, band);
                                 if rows == 16 {
-                                    band.draw_textured_mesh_with(
-                                        &front,
-                                        &sphere,
-                                        &glass,
-                                        &mut scratch,
-                                    )
-                                    .unwrap();
+                                    front
+                                        .draw_textured_mesh_with(
+                                            &sphere,
+                                            &glass,
+                                            band,
+                                            &mut scratch,
+                                        )
+                                        .unwrap();
                                 } else {
-                                    band.draw_textured_mesh(&front, &sphere, &glass);
+                                    front.draw_textured_mesh(&sphere, &glass, band);
                                 }
                             },
                         )

@@ -25,7 +25,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::band::{
     BandError, BandLayout, BandOutput, BinEntry, Callback, ColorBand, ColorBands, DepthBand,
-    DepthBands, MeshBin, ToDisplay, Triangle, TriangleBin,
+    DepthBands, MeshBin, RenderError, ToDisplay, Triangle, TriangleBin,
 };
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
 use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
@@ -300,12 +300,13 @@ fn banded(
         match mode {
             Mode::EachFace => {
                 for (mesh, material) in meshes {
-                    band.draw_mesh(pipeline, mesh, material);
+                    pipeline.draw_mesh(mesh, material, &mut band);
                 }
             }
             Mode::Scratch => {
                 for (mesh, material) in meshes {
-                    band.draw_mesh_with(pipeline, mesh, material, &mut band_scratch)
+                    pipeline
+                        .draw_mesh_with(mesh, material, &mut band, &mut band_scratch)
                         .unwrap();
                 }
             }
@@ -387,10 +388,11 @@ fn knot_bands_are_the_whole_frame_at_every_height() {
                 band.clear(scene3d::BACKGROUND);
                 match mode {
                     Mode::EachFace => {
-                        band.draw_mesh(&pipeline, &scene3d::KNOT, &material);
+                        pipeline.draw_mesh(&scene3d::KNOT, &material, &mut band);
                     }
                     Mode::Scratch => {
-                        band.draw_mesh_with(&pipeline, &scene3d::KNOT, &material, &mut scratch)
+                        pipeline
+                            .draw_mesh_with(&scene3d::KNOT, &material, &mut band, &mut scratch)
                             .unwrap();
                     }
                     Mode::Bin => bin.draw(&mut band).unwrap(),
@@ -1026,7 +1028,7 @@ fn bands_reach_a_display_as_one_fill_each() {
         bands
             .render(&mut ToDisplay(&mut display), |band| {
                 band.clear(scene3d::BACKGROUND);
-                band.draw_mesh(&pipeline, &scene3d::KNOT, &scene3d::MATERIAL);
+                pipeline.draw_mesh(&scene3d::KNOT, &scene3d::MATERIAL, band);
             })
             .unwrap();
         assert_eq!(display.calls, layout.bands().collect::<Vec<_>>());
@@ -1130,8 +1132,105 @@ fn a_callbacks_error_stops_the_frame() {
         }),
         |band| band.clear(Gray8::WHITE),
     );
-    assert_eq!(result, Err("display gone"));
+    assert_eq!(result, Err(RenderError::Display("display gone")));
     assert_eq!(calls, 3);
+}
+
+/// A band's draw that fails (a bin of another layout) stops the frame with `RenderError::Band`:
+/// that band is not sent, the output is waited for, and no later band is drawn.
+#[test]
+fn a_draws_error_stops_the_frame() {
+    let layout = BandLayout::new(Size::new(8, 8), 2).unwrap();
+    let other = BandLayout::new(Size::new(8, 8), 4).unwrap();
+    let scene = [SolidTriangle::new(
+        [(0.0, 0.0), (8.0, 0.0), (0.0, 8.0)],
+        Gray8::WHITE,
+    )];
+    let mut storage = [BinEntry::EMPTY; 8];
+    let mut wrong = TriangleBin::new(&other, &scene, &mut storage).unwrap();
+    let mut buffer = [Gray8::BLACK; 16];
+    let mut bands = ColorBands::new(layout, &mut buffer).unwrap();
+    let (mut sent, mut drawn) = (0, 0);
+    let result = bands.render(
+        &mut Callback(|_: &Rectangle, _: &[Gray8]| {
+            sent += 1;
+            Ok::<(), &str>(())
+        }),
+        |band| {
+            drawn += 1;
+            band.clear(Gray8::WHITE);
+            // The first band draws; the second one's bin is of another layout.
+            if band.index() == 0 {
+                Ok(())
+            } else {
+                wrong.draw(band)
+            }
+        },
+    );
+    assert_eq!(result, Err(RenderError::Band(BandError::OtherLayout)));
+    assert_eq!((drawn, sent), (2, 1));
+}
+
+/// `RenderError`'s messages: the band error's own, or the display's error (by its `Debug`, which
+/// every `DrawTarget::Error` has); and `?` takes a render's error and the set-up's into
+/// `Box<dyn Error>` (issue #32, item 4).
+#[test]
+fn render_errors_say_what_failed_and_box() {
+    #[derive(Debug)]
+    #[allow(dead_code)] // read through `Debug`
+    struct SpiError(u8);
+
+    let band: RenderError<SpiError> = BandError::ZeroRows.into();
+    assert_eq!(
+        band.to_string(),
+        "a band of 0 rows: a band needs at least 1 row"
+    );
+    let display = RenderError::Display(SpiError(3));
+    assert_eq!(
+        display.to_string(),
+        "the display (band output) failed: SpiError(3)"
+    );
+    let scratch: RenderError<SpiError> = embedded_raster::three_d::ScratchTooSmall {
+        needed: 42,
+        given: 12,
+    }
+    .into();
+    assert!(matches!(scratch, RenderError::Band(BandError::Scratch(_))));
+    // The band error's source is the wrapped one's (the message is the band error's).
+    assert!(std::error::Error::source(&scratch).is_some());
+    assert!(std::error::Error::source(&display).is_none());
+
+    fn frame(rows: u32, fail: bool) -> Result<(), Box<dyn std::error::Error>> {
+        let layout = BandLayout::new(Size::new(8, 8), rows)?;
+        let mut buffer = [Gray8::BLACK; 16];
+        let mut bands = ColorBands::new(layout, &mut buffer)?;
+        bands.render(
+            &mut Callback(
+                |_: &Rectangle, _: &[Gray8]| {
+                    if fail {
+                        Err(SpiError(7))
+                    } else {
+                        Ok(())
+                    }
+                },
+            ),
+            |band| band.clear(Gray8::WHITE),
+        )?;
+        Ok(())
+    }
+    assert!(frame(2, false).is_ok());
+    assert_eq!(
+        frame(0, false).unwrap_err().to_string(),
+        "a band of 0 rows: a band needs at least 1 row"
+    );
+    assert_eq!(
+        frame(4, false).unwrap_err().to_string(),
+        "a colour band buffer needs 32 pixels (width · rows), given 16"
+    );
+    assert_eq!(
+        frame(2, true).unwrap_err().to_string(),
+        "the display (band output) failed: SpiError(7)"
+    );
 }
 
 /// A `ColorBand` as an embedded-graphics target: other drawables land in frame coordinates,

@@ -1157,14 +1157,18 @@ impl Visit for Paths<'_> {
                         frame[start..start + pixels.len()].copy_from_slice(pixels);
                         Ok::<(), Infallible>(())
                     });
-                    let Ok(()) = bands.render(&mut output, |band| {
-                        let area = band.rect();
-                        let start = (area.top_left.y as u32 * W) as usize;
-                        let len = (area.size.width * area.size.height) as usize;
-                        let Ok(()) = band
-                            .fill_contiguous(&area, background[start..start + len].iter().copied());
-                        band.draw_all(&scene);
-                    });
+                    bands
+                        .render(&mut output, |band| {
+                            let area = band.rect();
+                            let start = (area.top_left.y as u32 * W) as usize;
+                            let len = (area.size.width * area.size.height) as usize;
+                            let Ok(()) = band.fill_contiguous(
+                                &area,
+                                background[start..start + len].iter().copied(),
+                            );
+                            band.draw_all(&scene);
+                        })
+                        .unwrap();
                     let kind = if double { "double" } else { "single" };
                     frames.push((format!("bands of {rows} rows ({kind} buffer)"), frame));
                 }

@@ -2041,11 +2041,12 @@ where
             match (mode, bin.as_mut()) {
                 (Mode::Bin, Some(bin)) => bin.draw(band).unwrap(),
                 (Mode::Scratch, _) => {
-                    band.draw_textured_mesh_with(pipeline, mesh, material, scratch)
+                    pipeline
+                        .draw_textured_mesh_with(mesh, material, band, scratch)
                         .unwrap();
                 }
                 _ => {
-                    band.draw_textured_mesh(pipeline, mesh, material);
+                    pipeline.draw_textured_mesh(mesh, material, band);
                 }
             }
             let start = (band.rect().top_left.y as u32 * W) as usize;

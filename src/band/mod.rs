@@ -17,7 +17,12 @@
 //!   the caller's closure and handed to a [`BandOutput`]: any `DrawTarget` ([`ToDisplay`]: one
 //!   `fill_contiguous` of the band's rectangle, which SPI display drivers take as one window
 //!   write) or a callback with the band's pixels as a slice ([`Callback`], e.g. for DMA). With
-//!   two colour buffers the next band is drawn while the last one is sent.
+//!   two colour buffers the next band is drawn while the last one is sent. A render's one
+//!   error type is [`RenderError`]: the set-up's [`BandError`] (`?` converts it) or the
+//!   output's (the display's) error.
+//! * A [`DepthBand`] is a target of the pipeline as a [`DepthTarget`](crate::DepthTarget) is:
+//!   `pipeline.draw_mesh(mesh, material, band)`, in the same order for the whole frame and for
+//!   a band.
 //! * Without a bin, each band runs the whole draw again: a mesh's vertices are transformed for
 //!   every band (faces wholly above or below the band are rejected from two rows of the
 //!   transform, before projection) — no memory but the band's. With a bin ([`TriangleBin`],
@@ -61,16 +66,14 @@
 //!
 //! let (mut colors, mut depth) = ([Rgb565::BLACK; 64 * 16], [0u16; 64 * 16]);
 //! let mut bands = DepthBands::new(ColorBands::new(layout, &mut colors)?, &mut depth)?;
-//! bands
-//!     .render(&mut ToDisplay(&mut display), |band| {
-//!         band.clear(Rgb565::BLUE);
-//!         band.draw_mesh(&pipeline, &ICOSPHERE, &material);
-//!         band.colors().draw(&overlay);
-//!     })
-//!     .unwrap(); // the display's error: none for a SliceFramebuffer
+//! bands.render(&mut ToDisplay(&mut display), |band| {
+//!     band.clear(Rgb565::BLUE);
+//!     pipeline.draw_mesh(&ICOSPHERE, &material, band); // a band is the pipeline's target
+//!     band.colors().draw(&overlay);
+//! })?; // a RenderError: the display's error (none for a SliceFramebuffer) or a band's
 //! assert_eq!(display.get(1, 1), Some(Rgb565::RED));
 //! assert_ne!(display.get(32, 24), Some(Rgb565::BLUE)); // lit
-//! # Ok::<(), embedded_raster::band::BandError>(())
+//! # Ok::<(), embedded_raster::band::RenderError<core::convert::Infallible>>(())
 //! ```
 
 mod bin;
@@ -266,6 +269,99 @@ impl core::error::Error for BandError {
             BandError::Scratch(e) => Some(e),
             _ => None,
         }
+    }
+}
+
+/// What went wrong in a frame drawn in bands: the one error type of a render, so that `?` takes
+/// both the set-up's errors ([`BandError`], through `From`) and [`render`](DepthBands::render)'s
+/// into a function's result.
+///
+/// `E` is the band output's error: a display driver's `DrawTarget::Error` through
+/// [`ToDisplay`], or a [`Callback`]'s. The message and [`core::error::Error`] need only
+/// `E: Debug` (every `DrawTarget::Error` is), so a render's error goes into
+/// `Box<dyn std::error::Error>` whatever the display.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
+/// use embedded_raster::band::{BandError, BandLayout, Callback, ColorBands, RenderError};
+///
+/// fn frame(rows: u32, fail: bool) -> Result<u32, RenderError<&'static str>> {
+///     let layout = BandLayout::new(Size::new(16, 8), rows)?; // a BandError
+///     let mut pixels = [Gray8::BLACK; 16 * 4];
+///     let mut bands = ColorBands::new(layout, &mut pixels)?; // a BandError
+///     let mut sent = 0;
+///     let mut output = Callback(|_: &Rectangle, _: &[Gray8]| {
+///         sent += 1;
+///         if fail { Err("the display went away") } else { Ok(()) }
+///     });
+///     bands.render(&mut output, |band| band.clear(Gray8::WHITE))?; // the display's error
+///     Ok(sent)
+/// }
+///
+/// assert_eq!(frame(4, false), Ok(2));
+/// assert_eq!(frame(0, false), Err(RenderError::Band(BandError::ZeroRows)));
+/// assert_eq!(frame(2, false), Err(RenderError::Band(BandError::ColorBuffer { needed: 32, given: 64 })));
+/// assert_eq!(frame(4, true), Err(RenderError::Display("the display went away")));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RenderError<E> {
+    /// The renderer's input (a layout, a buffer, a bin): reported before the band it concerns
+    /// is drawn.
+    Band(BandError),
+    /// The band output's (the display's) error; the frame stopped there.
+    Display(E),
+}
+
+impl<E> From<BandError> for RenderError<E> {
+    fn from(e: BandError) -> Self {
+        RenderError::Band(e)
+    }
+}
+
+impl<E> From<ScratchTooSmall> for RenderError<E> {
+    fn from(e: ScratchTooSmall) -> Self {
+        RenderError::Band(BandError::Scratch(e))
+    }
+}
+
+impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RenderError::Band(e) => e.fmt(f),
+            RenderError::Display(e) => write!(f, "the display (band output) failed: {e:?}"),
+        }
+    }
+}
+
+impl<E: core::fmt::Debug> core::error::Error for RenderError<E> {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            // The message is the band error's own: its source is the band error's source.
+            RenderError::Band(e) => e.source(),
+            RenderError::Display(_) => None,
+        }
+    }
+}
+
+/// What a band's draw closure of [`ColorBands::render`] and [`DepthBands::render`] may return:
+/// nothing (`()`), or a `Result` whose error converts into a [`BandError`] (a bin's
+/// `bin.draw(band)`, a scratch draw's [`ScratchTooSmall`]), which stops the frame.
+pub trait BandDrawn {
+    /// `Ok(())`, or the error that stops the frame.
+    fn into_band_result(self) -> Result<(), BandError>;
+}
+
+impl BandDrawn for () {
+    #[inline(always)]
+    fn into_band_result(self) -> Result<(), BandError> {
+        Ok(())
+    }
+}
+
+impl<T, E: Into<BandError>> BandDrawn for Result<T, E> {
+    #[inline(always)]
+    fn into_band_result(self) -> Result<(), BandError> {
+        self.map(|_| ()).map_err(Into::into)
     }
 }
 

@@ -5,7 +5,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::target::{ColorBand, DepthBand, Placement};
-use super::{check_buffer, BandError, BandLayout};
+use super::{check_buffer, BandDrawn, BandError, BandLayout, RenderError};
 use crate::color::GouraudColor;
 
 /// Where finished bands go: a display, a DMA channel, a checksum.
@@ -86,7 +86,7 @@ impl<D: DrawTarget> BandOutput<D::Color> for ToDisplay<'_, D> {
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
-/// use embedded_raster::band::{BandLayout, Callback, ColorBands};
+/// use embedded_raster::band::{BandLayout, Callback, ColorBands, RenderError};
 ///
 /// let layout = BandLayout::new(Size::new(16, 10), 4)?;
 /// let mut band_pixels = [Gray8::BLACK; 16 * 4];
@@ -107,7 +107,7 @@ impl<D: DrawTarget> BandOutput<D::Color> for ToDisplay<'_, D> {
 ///     Err("the display went away")
 /// });
 /// let result = bands.render(&mut failing, |band| band.clear(Gray8::WHITE));
-/// assert_eq!(result, Err("the display went away"));
+/// assert_eq!(result, Err(RenderError::Display("the display went away")));
 /// assert_eq!(calls, 1);
 /// # Ok::<(), embedded_raster::band::BandError>(())
 /// ```
@@ -194,18 +194,19 @@ impl<'a, C: PixelColor> ColorBands<'a, C> {
         &self.layout
     }
 
-    /// Draws the frame: for each band, top to bottom, `draw` and then `output`. Stops at the
-    /// output's first error.
-    pub fn render<O: BandOutput<C>>(
+    /// Draws the frame: for each band, top to bottom, `draw` and then `output`. `draw` returns
+    /// nothing, or a `Result` whose error is a [`BandError`] (a bin's draw: `bin.draw(band)`).
+    /// Stops at the first error, the output's ([`RenderError::Display`]) or `draw`'s
+    /// ([`RenderError::Band`]; that band is not sent).
+    pub fn render<O: BandOutput<C>, R: BandDrawn>(
         &mut self,
         output: &mut O,
-        mut draw: impl FnMut(&mut ColorBand<'_, C>),
-    ) -> Result<(), O::Error> {
+        mut draw: impl FnMut(&mut ColorBand<'_, C>) -> R,
+    ) -> Result<(), RenderError<O::Error>> {
         self.each(output, |pixels, placement| {
-            // One band buffer (checked in the constructors): never an error.
-            let mut band = ColorBand::placed(pixels, placement).ok()?;
-            draw(&mut band);
-            Some(band.pixels().len())
+            let mut band = ColorBand::placed(pixels, placement)?;
+            draw(&mut band).into_band_result()?;
+            Ok(band.pixels().len())
         })
     }
 
@@ -215,38 +216,45 @@ impl<'a, C: PixelColor> ColorBands<'a, C> {
     fn each<O: BandOutput<C>>(
         &mut self,
         output: &mut O,
-        mut draw: impl FnMut(&mut [C], Placement) -> Option<usize>,
-    ) -> Result<(), O::Error> {
+        mut draw: impl FnMut(&mut [C], Placement) -> Result<usize, BandError>,
+    ) -> Result<(), RenderError<O::Error>> {
         let mut sent = false;
         let double = self.back.is_some();
         for index in 0..self.layout.count() {
-            let Ok(placement) = Placement::new(&self.layout, index) else {
-                break;
-            };
+            let placement = Placement::new(&self.layout, index)?;
             let buffer = match &mut self.back {
                 Some(back) if index % 2 == 1 => &mut **back,
                 _ => &mut *self.front,
             };
             // One buffer: the last band's transfer must end before it is drawn over.
             if sent && !double {
-                output.wait()?;
+                output.wait().map_err(RenderError::Display)?;
             }
-            let Some(len) = draw(buffer, placement) else {
-                break;
+            let len = match draw(buffer, placement) {
+                Ok(len) => len,
+                Err(e) => {
+                    // The bands sent are finished with before the error comes back.
+                    if sent {
+                        output.wait().map_err(RenderError::Display)?;
+                    }
+                    return Err(RenderError::Band(e));
+                }
             };
             // With two, the other buffer's transfer ends before this one starts.
             if sent && double {
-                output.wait()?;
+                output.wait().map_err(RenderError::Display)?;
             }
             let buffer = match &self.back {
                 Some(back) if index % 2 == 1 => &**back,
                 _ => &*self.front,
             };
-            output.send(&placement.rect(), buffer.get(..len).unwrap_or(buffer))?;
+            output
+                .send(&placement.rect(), buffer.get(..len).unwrap_or(buffer))
+                .map_err(RenderError::Display)?;
             sent = true;
         }
         if sent {
-            output.wait()?;
+            output.wait().map_err(RenderError::Display)?;
         }
         Ok(())
     }
@@ -290,7 +298,7 @@ impl<'a, C: PixelColor> ColorBands<'a, C> {
 ///         }),
 ///         |band| {
 ///             band.clear(Rgb565::BLACK);
-///             band.draw_mesh(&pipeline, &TORUS, &material);
+///             pipeline.draw_mesh(&TORUS, &material, band);
 ///         },
 ///     )
 ///     .unwrap();
@@ -318,18 +326,19 @@ impl<'a, C: GouraudColor> DepthBands<'a, C> {
     }
 
     /// Draws the frame: for each band, top to bottom, `draw` and then `output` (the colours).
-    /// Stops at the output's first error.
-    pub fn render<O: BandOutput<C>>(
+    /// `draw` returns nothing, or a `Result` whose error is a [`BandError`] (a bin's draw:
+    /// `bin.draw(band)`). Stops at the first error, the output's ([`RenderError::Display`]) or
+    /// `draw`'s ([`RenderError::Band`]; that band is not sent).
+    pub fn render<O: BandOutput<C>, R: BandDrawn>(
         &mut self,
         output: &mut O,
-        mut draw: impl FnMut(&mut DepthBand<'_, C>),
-    ) -> Result<(), O::Error> {
+        mut draw: impl FnMut(&mut DepthBand<'_, C>) -> R,
+    ) -> Result<(), RenderError<O::Error>> {
         let depth = &mut *self.depth;
         self.colors.each(output, |pixels, placement| {
-            // One band buffer each (checked in the constructors): never an error.
-            let mut band = DepthBand::placed(pixels, depth, placement).ok()?;
-            draw(&mut band);
-            Some(band.pixels().len())
+            let mut band = DepthBand::placed(pixels, depth, placement)?;
+            draw(&mut band).into_band_result()?;
+            Ok(band.pixels().len())
         })
     }
 }

@@ -14,10 +14,7 @@ use crate::draw::{
 use crate::raster::band::Band;
 use crate::rect;
 use crate::texture::TexelSource;
-use crate::three_d::{
-    DepthTarget, DrawStats, Frame, Material, Mesh, Opacity, Pipeline, ProjectedVertex,
-    ScratchTooSmall, TargetClip, TexturedMaterial,
-};
+use crate::three_d::{DepthTarget, MeshTarget, MeshTargetParts, Pipeline, TargetClip};
 
 /// Which band of which layout a band target holds: its rows in the frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -400,10 +397,13 @@ impl<C: PixelColor> DrawTarget for ColorBand<'_, C> {
 /// One band of a frame for the 3D pipeline: caller's colour and depth buffers of the band's rows
 /// (row-major, the frame's width), drawn in frame coordinates.
 ///
-/// [`draw_mesh`](Self::draw_mesh) runs the pipeline for the band: every vertex and face again
-/// (faces outside the band's rows are rejected before they are projected), the fills only for
-/// the band's rows — exactly the pixels and depths the whole frame has there. With a
-/// [`MeshBin`](super::MeshBin), each face is transformed and culled once per frame instead.
+/// It is a target of the pipeline ([`MeshTarget`]), as a [`DepthTarget`] of the whole frame is:
+/// `pipeline.draw_mesh(mesh, material, &mut band)` (and `draw_mesh_with`,
+/// `draw_textured_mesh`, `draw_textured_mesh_with`) runs the pipeline
+/// for the band: every vertex and face again (faces outside the band's rows are rejected before
+/// they are projected), the fills only for the band's rows — exactly the pixels and depths the
+/// whole frame has there; the counts are the band's. With a [`MeshBin`](super::MeshBin), each
+/// face is transformed and culled once per frame instead.
 ///
 /// # Examples
 ///
@@ -427,7 +427,7 @@ impl<C: PixelColor> DrawTarget for ColorBand<'_, C> {
 /// for index in 0..layout.count() {
 ///     let mut band = DepthBand::new(&mut colors, &mut depth, &layout, index)?;
 ///     band.clear(Rgb565::BLACK);
-///     band.draw_mesh(&pipeline, &ICOSPHERE, &material);
+///     pipeline.draw_mesh(&ICOSPHERE, &material, &mut band);
 ///     lit += band.pixels().iter().filter(|&&c| c != Rgb565::BLACK).count();
 /// }
 /// assert!(lit > 500);
@@ -512,87 +512,36 @@ impl<'a, C: GouraudColor> DepthBand<'a, C> {
         }
     }
 
-    /// Draws the band's rows of `mesh` with `material` through `pipeline`, as
-    /// [`Pipeline::draw_mesh`] draws the whole frame (no memory per vertex), with the same
-    /// pixels and depths there. The counts are the band's: faces outside its rows are
-    /// `rejected`.
-    pub fn draw_mesh(
-        &mut self,
-        pipeline: &Pipeline,
-        mesh: &Mesh<'_>,
-        material: &Material<C>,
-    ) -> DrawStats {
-        let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
-        self.target
-            .blending(frame.blend(), |target| frame.each_face(mesh, target))
-    }
-
-    /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed once into `scratch`, as
-    /// [`Pipeline::draw_mesh_with`]; `Err` without drawing if `scratch` is too short.
-    pub fn draw_mesh_with(
-        &mut self,
-        pipeline: &Pipeline,
-        mesh: &Mesh<'_>,
-        material: &Material<C>,
-        scratch: &mut [ProjectedVertex],
-    ) -> Result<DrawStats, ScratchTooSmall> {
-        let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
-        let frame = Frame::new(pipeline, mesh, material, self.clip(pipeline));
-        frame.project(mesh, scratch);
-        Ok(self.target.blending(frame.blend(), |target| {
-            frame.scratch_faces(mesh, scratch, target)
-        }))
-    }
-
-    /// Draws the band's rows of `mesh` with the textured `material`, as
-    /// [`Pipeline::draw_textured_mesh`] draws the whole frame: the same pixels and depths there.
-    pub fn draw_textured_mesh<S, W>(
-        &mut self,
-        pipeline: &Pipeline,
-        mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'_, S, W>,
-    ) -> DrawStats
-    where
-        S: TexelSource,
-        C: From<S::Color>,
-        W: Opacity,
-    {
-        let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));
-        frame.each_face(mesh, &mut self.target)
-    }
-
-    /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed once into
-    /// `scratch`, as [`Pipeline::draw_textured_mesh_with`]; `Err` without drawing if `scratch`
-    /// is too short.
-    pub fn draw_textured_mesh_with<S, W>(
-        &mut self,
-        pipeline: &Pipeline,
-        mesh: &Mesh<'_>,
-        material: &TexturedMaterial<'_, S, W>,
-        scratch: &mut [ProjectedVertex],
-    ) -> Result<DrawStats, ScratchTooSmall>
-    where
-        S: TexelSource,
-        C: From<S::Color>,
-        W: Opacity,
-    {
-        let scratch = crate::three_d::fit_scratch(mesh, scratch)?;
-        let frame = Frame::textured(pipeline, mesh, material, self.clip(pipeline));
-        frame.project(mesh, scratch);
-        Ok(self.target.blending(frame.blend(), |target| {
-            frame.scratch_faces(mesh, scratch, target)
-        }))
-    }
-
     /// The clip of `pipeline`'s draws into this band: its viewport inside the frame, the band's
     /// rows.
     pub(crate) fn clip(&self, pipeline: &Pipeline) -> TargetClip<Band> {
-        let frame = Rectangle::new(Point::zero(), self.placement.layout.size());
-        TargetClip::of_frame(&pipeline.viewport, &frame, self.placement.rows)
+        MeshTargetParts::clip(self, &pipeline.viewport)
     }
 
     /// The band's depth target (its own rows, from 0) and placement.
     pub(crate) fn parts(&mut self) -> (&mut DepthTarget<'a, C>, &Placement) {
         (&mut self.target, &self.placement)
+    }
+}
+
+/// The band as the target of [`Pipeline::draw_mesh`] and its kin (`_with`, `_translucent`,
+/// `draw_textured_mesh`, `draw_textured_mesh_with`): the band's rows of the frame, exactly the
+/// pixels and depths the whole frame has there. The counts are the band's: faces outside its
+/// rows are `rejected`.
+impl<C: GouraudColor> MeshTarget<C> for DepthBand<'_, C> {}
+
+#[allow(private_bounds, private_interfaces)]
+impl<C: GouraudColor> MeshTargetParts<C> for DepthBand<'_, C> {
+    type Rows = Band;
+
+    #[inline(always)]
+    fn clip(&self, viewport: &Rectangle) -> TargetClip<Band> {
+        let frame = Rectangle::new(Point::zero(), self.placement.layout.size());
+        TargetClip::of_frame(viewport, &frame, self.placement.rows)
+    }
+
+    #[inline(always)]
+    fn with_depth<R>(&mut self, draw: impl FnOnce(&mut DepthTarget<'_, C>) -> R) -> R {
+        draw(&mut self.target)
     }
 }

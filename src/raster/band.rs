@@ -53,7 +53,7 @@ pub(crate) trait RowWindow: Copy {
 
 /// Every row, in place: [`shade`] itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) struct AllRows;
+pub struct AllRows;
 
 impl RowWindow for AllRows {
     #[inline(always)]
@@ -81,7 +81,7 @@ impl RowWindow for AllRows {
 
 /// Rows `first ..= last` of a frame, drawn into a buffer whose row 0 is `first`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Band {
+pub struct Band {
     pub(crate) first: i32,
     pub(crate) last: i32,
 }

@@ -164,7 +164,7 @@ pub trait Degrees: Copy {
 /// use embedded_graphics::prelude::*;
 /// use embedded_raster::three_d::{Angle, Mat4};
 ///
-/// let ours = Mat4::rotation_y(embedded_raster::Angle::from_degrees(90));
+/// let ours = Mat4::rotation_y(embedded_raster::three_d::Angle::from_degrees(90));
 /// // embedded-graphics' prelude brings its own `Angle` and the `.deg()` of `AngleUnit`.
 /// assert_eq!(Mat4::rotation_y(90.0.deg()), ours);
 /// assert_eq!(Mat4::rotation_y(Angle::from_degrees(90.0)), ours);

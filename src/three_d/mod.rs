@@ -106,6 +106,7 @@ mod depth;
 mod light;
 mod math;
 mod mesh;
+mod mesh_target;
 pub mod meshes;
 #[cfg(feature = "std")]
 pub mod obj;
@@ -121,6 +122,8 @@ pub use math::{
     SCALAR_BITS,
 };
 pub use mesh::{Bounds, Mesh, MeshError, TexCoord};
+pub(crate) use mesh_target::sealed::Target as MeshTargetParts;
+pub use mesh_target::MeshTarget;
 pub(crate) use pipeline::{fit_scratch, FaceSink, Frame};
 pub use pipeline::{signed_area2, Cull, DrawStats, Pipeline, ScratchTooSmall};
 pub(crate) use shading::TargetClip;

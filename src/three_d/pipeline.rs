@@ -76,6 +76,7 @@ use super::depth::{Blend, DepthTarget, ScreenVertex};
 use super::light::{Highlight, Light, LightRig, Lights, Specular};
 use super::math::{normalize_wide, zip3_with, Bary, Mat4, Vec3, Vec4, BARY_ONE};
 use super::mesh::Mesh;
+use super::mesh_target::MeshTarget;
 use super::shading::{self, Material, QuadraticNormals, ShadeTable, Shading, TargetClip};
 use super::texturing::{
     FaceTexture, FrameTexture, NoTexture, Opacity, PixelLight, TexelLight, TexturedMaterial,
@@ -134,7 +135,7 @@ pub fn signed_area2(v: [(Coord, Coord); 3]) -> i128 {
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
 /// use embedded_raster::three_d::meshes::torus::TORUS;
-/// use embedded_raster::{Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
+/// use embedded_raster::three_d::{Angle, Cull, DepthTarget, Light, Mat4, Material, Pipeline, Shading, Vec3};
 ///
 /// let (mut pixels, mut depth) = ([Rgb888::BLACK; 64 * 64], [0u16; 64 * 64]);
 /// let mut target = DepthTarget::new(&mut pixels, &mut depth, 64, 64).unwrap();
@@ -360,11 +361,13 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &Material<C>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
     ) -> DrawStats {
-        let clip = TargetClip::new(&self.viewport, target);
-        let frame = Frame::new(self, mesh, material, clip);
-        target.blending(frame.blend(), |target| frame.each_face(mesh, target))
+        let clip = target.clip(&self.viewport);
+        target.with_depth(|target| {
+            let frame = Frame::new(self, mesh, material, clip);
+            target.blending(frame.blend(), |target| frame.each_face(mesh, target))
+        })
     }
 
     /// [`draw_mesh`](Self::draw_mesh) with each vertex transformed, projected and lit once, into
@@ -375,19 +378,16 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &Material<C>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall> {
         let scratch = fit_scratch(mesh, scratch)?;
-        let frame = Frame::new(
-            self,
-            mesh,
-            material,
-            TargetClip::new(&self.viewport, target),
-        );
+        let frame = Frame::new(self, mesh, material, target.clip(&self.viewport));
         frame.project(mesh, scratch);
-        Ok(target.blending(frame.blend(), |target| {
-            frame.scratch_faces(mesh, scratch, target)
+        Ok(target.with_depth(|target| {
+            target.blending(frame.blend(), |target| {
+                frame.scratch_faces(mesh, scratch, target)
+            })
         }))
     }
 
@@ -439,15 +439,17 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &TexturedMaterial<'_, S, W>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
     ) -> DrawStats
     where
         S: TexelSource,
         C: GouraudColor + From<S::Color>,
         W: Opacity,
     {
-        let clip = TargetClip::new(&self.viewport, target);
-        Frame::textured(self, mesh, material, clip).each_face(mesh, target)
+        let clip = target.clip(&self.viewport);
+        target.with_depth(|target| {
+            Frame::textured(self, mesh, material, clip).each_face(mesh, target)
+        })
     }
 
     /// [`draw_textured_mesh`](Self::draw_textured_mesh) with each vertex transformed and
@@ -457,7 +459,7 @@ impl Pipeline {
         &self,
         mesh: &Mesh<'_>,
         material: &TexturedMaterial<'_, S, W>,
-        target: &mut DepthTarget<'_, C>,
+        target: &mut impl MeshTarget<C>,
         scratch: &mut [ProjectedVertex],
     ) -> Result<DrawStats, ScratchTooSmall>
     where
@@ -466,10 +468,10 @@ impl Pipeline {
         W: Opacity,
     {
         let scratch = fit_scratch(mesh, scratch)?;
-        let clip = TargetClip::new(&self.viewport, target);
+        let clip = target.clip(&self.viewport);
         let frame = Frame::textured(self, mesh, material, clip);
         frame.project(mesh, scratch);
-        Ok(frame.scratch_faces(mesh, scratch, target))
+        Ok(target.with_depth(|target| frame.scratch_faces(mesh, scratch, target)))
     }
 }
 

@@ -41,10 +41,11 @@ pub fn banded(
         band.clear(Rgb888::new(3, 60, 90));
         match mode {
             0 => meshes.iter().for_each(|(mesh, material)| {
-                band.draw_mesh(pipeline, mesh, material);
+                pipeline.draw_mesh(mesh, material, &mut band);
             }),
             1 => meshes.iter().for_each(|(mesh, material)| {
-                band.draw_mesh_with(pipeline, mesh, material, &mut band_scratch)
+                pipeline
+                    .draw_mesh_with(mesh, material, &mut band, &mut band_scratch)
                     .unwrap();
             }),
             _ => bins.iter_mut().for_each(|bin| bin.draw(&mut band).unwrap()),

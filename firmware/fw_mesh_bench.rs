@@ -1,6 +1,6 @@
 //! Firmware benchmark of the 3D pipeline: the frame of `examples/common/scene3d.rs` (320×240
 //! Rgb565, 16-bit z-buffer, back faces culled, Gouraud, colour and depth cleared) for each bench
-//! mesh, in instructions counted by SysTick under QEMU's `-icount` (`examples/common/clock.rs`).
+//! mesh, in instructions counted by SysTick under QEMU's `-icount` (`firmware/common/clock.rs`).
 //!
 //! ```text
 //! cargo run --release --target thumbv7em-none-eabihf --example fw_mesh_bench   # mps2-an386, M4F
@@ -19,10 +19,10 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[allow(dead_code)]
-#[path = "common/scene3d.rs"]
+#[path = "../examples/common/scene3d.rs"]
 mod scene3d;
 
-#[path = "common/textured3d.rs"]
+#[path = "../examples/common/textured3d.rs"]
 mod textured3d;
 
 #[cfg(target_os = "none")]

@@ -14,7 +14,7 @@ use embedded_graphics::prelude::*;
 use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
 
 #[allow(dead_code)]
-#[path = "common/scene.rs"]
+#[path = "../examples/common/scene.rs"]
 mod scene;
 
 #[cfg(target_os = "none")]

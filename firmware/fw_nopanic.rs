@@ -22,7 +22,7 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[allow(dead_code)]
-#[path = "common/scene.rs"]
+#[path = "../examples/common/scene.rs"]
 mod scene;
 
 #[cfg(target_os = "none")]

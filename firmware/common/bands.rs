@@ -3,11 +3,14 @@
 //! three ways a band can draw the mesh, and the checksums a display stand-in computes from the
 //! bands as they arrive, which must equal those of the frame drawn whole.
 
+use core::convert::Infallible;
+
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::band::{
     BandError, BandLayout, BinEntry, Callback, ColorBands, DepthBand, DepthBands, MeshBin,
+    RenderError,
 };
 use embedded_raster::three_d::{Material, Mesh, Pipeline, ProjectedVertex};
 
@@ -132,7 +135,7 @@ pub fn render(
     mode: Mode,
     buffers: Buffers<'_>,
     hash: bool,
-) -> Result<(Seen, usize), BandError> {
+) -> Result<(Seen, usize), RenderError<Infallible>> {
     let (w, h) = scene3d::SIZE;
     let layout = BandLayout::new(Size::new(w, h), rows)?;
     let n = layout.buffer_len();
@@ -152,7 +155,6 @@ pub fn render(
     }
     let (mut colors, mut rows) = (Fnv::new(), 0);
     let mut depths = Fnv::new();
-    let mut error = Ok(());
     {
         let mut output = Callback(|area: &Rectangle, pixels: &[Rgb565]| {
             if hash {
@@ -160,7 +162,7 @@ pub fn render(
             }
             core::hint::black_box(pixels);
             rows += area.size.height;
-            Ok::<(), BandError>(())
+            Ok::<(), Infallible>(())
         });
         bands.render(&mut output, |band| {
             band.clear(scene3d::BACKGROUND);
@@ -173,13 +175,12 @@ pub fn render(
                 (Mode::Bin, Some(bin), _) => binned(bin, band),
                 _ => Ok(()),
             };
-            error = error.and(drawn);
             if hash {
                 depths.words(band.depth().iter().copied());
             }
+            drawn
         })?;
     }
-    error?;
     let seen = Seen {
         colors,
         depths,
@@ -198,7 +199,7 @@ fn each_face(
     mesh: &Mesh<'_>,
     material: &Material<Rgb565>,
 ) {
-    band.draw_mesh(pipeline, mesh, material);
+    pipeline.draw_mesh(mesh, material, band);
 }
 
 #[inline(never)]
@@ -209,7 +210,8 @@ fn with_scratch(
     material: &Material<Rgb565>,
     scratch: &mut [ProjectedVertex],
 ) -> Result<(), BandError> {
-    band.draw_mesh_with(pipeline, mesh, material, scratch)
+    pipeline
+        .draw_mesh_with(mesh, material, band, scratch)
         .map(|_| ())
         .map_err(BandError::from)
 }

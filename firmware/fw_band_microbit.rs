@@ -16,7 +16,7 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[allow(dead_code)]
-#[path = "common/scene3d.rs"]
+#[path = "../examples/common/scene3d.rs"]
 mod scene3d;
 
 #[allow(dead_code)]

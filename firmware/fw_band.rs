@@ -1,9 +1,9 @@
 //! Firmware benchmark of band rendering: the 3D bench frame (`examples/common/scene3d.rs`, the
 //! knot, 320×240 Rgb565 with z, Gouraud) drawn in bands of 8, 16, 32 and 240 rows, each band
 //! handed to a display stand-in that hashes it, in the three modes of
-//! `examples/common/bands.rs` (no bin per face, no bin with the vertex scratch, a `MeshBin`),
+//! `firmware/common/bands.rs` (no bin per face, no bin with the vertex scratch, a `MeshBin`),
 //! against the frame drawn whole with the scratch; instructions counted by SysTick under QEMU's
-//! `-icount` (`examples/common/clock.rs`), and the RAM each mode takes.
+//! `-icount` (`firmware/common/clock.rs`), and the RAM each mode takes.
 //!
 //! ```text
 //! cargo run --release --target thumbv7em-none-eabihf --example fw_band   # mps2-an386, M4F
@@ -17,7 +17,7 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[allow(dead_code)]
-#[path = "common/scene3d.rs"]
+#[path = "../examples/common/scene3d.rs"]
 mod scene3d;
 
 #[allow(dead_code)]

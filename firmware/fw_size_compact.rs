@@ -1,5 +1,5 @@
-//! Footprint firmware: `GouraudTriangle<Rgb565>` through `draw` and `draw_into` (see
-//! `examples/common/size.rs`; `.ci/firmware.sh` reports the sizes).
+//! Footprint firmware: `GouraudTriangle<Rgb565>` through `draw_into_compact` only (see
+//! `firmware/common/size.rs`; `.ci/firmware.sh` reports the sizes).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
@@ -15,19 +15,17 @@ mod size;
 fn main() -> ! {
     use core::hint::black_box;
 
-    use embedded_graphics::Drawable;
     use embedded_raster::{GouraudTriangle, Vertex};
 
     size::run(|fb| {
         let (points, colors) = size::inputs();
         let vertex = |k: usize| Vertex::new(points[k].0, points[k].1, colors[k]);
         let triangle = GouraudTriangle::new([vertex(0), vertex(1), vertex(2)]);
-        let _ = black_box(triangle).draw(fb);
-        black_box(triangle).draw_into(fb);
+        let _ = black_box(triangle).draw_into_compact(fb);
     })
 }
 
 #[cfg(not(target_os = "none"))]
 fn main() {
-    println!("fw_size_gouraud is firmware: build it with --target thumbv6m-none-eabi");
+    println!("fw_size_compact is firmware: build it with --target thumbv6m-none-eabi");
 }

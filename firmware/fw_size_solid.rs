@@ -1,5 +1,5 @@
 //! Footprint firmware: `SolidTriangle<Rgb565>` through `draw` and `draw_into` (see
-//! `examples/common/size.rs`; `.ci/firmware.sh` reports the sizes).
+//! `firmware/common/size.rs`; `.ci/firmware.sh` reports the sizes).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]

@@ -1,6 +1,6 @@
 //! Footprint firmware: a textured mesh through `Pipeline::draw_textured_mesh_with` — a cube with
 //! texture coordinates and normals, a nearest Rgb565 texture, Gouraud-lit, perspective-correct,
-//! into an Rgb565 framebuffer with its z-buffer (see `examples/common/size.rs`, `run_depth`;
+//! into an Rgb565 framebuffer with its z-buffer (see `firmware/common/size.rs`, `run_depth`;
 //! `.ci/firmware.sh` reports the sizes). The material is fixed as an application's would be;
 //! the mesh, texture, camera and light are opaque (`black_box`), so nothing is specialised to
 //! constants. Like the other footprint firmware it links only if the drawing code has no

@@ -30,7 +30,7 @@ use embedded_raster::three_d::{
 use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle, TexturedTriangle, TexturedVertex};
 
 #[allow(dead_code)]
-#[path = "common/scene.rs"]
+#[path = "../examples/common/scene.rs"]
 mod scene;
 
 #[cfg(target_os = "none")]

@@ -1,5 +1,5 @@
 //! Footprint firmware: `TexturedTriangle<Rgb565Texels, Rgb565>` through `draw` and `draw_into`,
-//! a texture of any size, wrap mode and filter (see `examples/common/size.rs`;
+//! a texture of any size, wrap mode and filter (see `firmware/common/size.rs`;
 //! `.ci/firmware.sh` reports the sizes). Like the other footprint firmware it links only if the
 //! drawing code has no panic path.
 #![cfg_attr(target_os = "none", no_std, no_main)]

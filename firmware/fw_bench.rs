@@ -8,7 +8,7 @@
 //! cargo run --release --target thumbv6m-none-eabi    --example fw_bench   # micro:bit
 //! ```
 //!
-//! Instructions are counted by SysTick (`examples/common/clock.rs`). Each case draws a set of
+//! Instructions are counted by SysTick (`firmware/common/clock.rs`). Each case draws a set of
 //! triangles into a `SliceFramebuffer<Rgb565>`, repeated so that it runs for at least ~10⁵
 //! instructions; the covered pixels are counted exactly in a separate, untimed pass through a counting draw target.
 //! Vertices sit on pixel centres, so embedded-graphics' integer `Triangle` (filled with
@@ -24,7 +24,7 @@ use embedded_graphics::primitives::{PrimitiveStyle, Triangle};
 use embedded_raster::{Coord, GouraudTriangle, SolidTriangle, Vertex};
 
 #[allow(dead_code)]
-#[path = "common/scene.rs"]
+#[path = "../examples/common/scene.rs"]
 mod scene;
 
 #[cfg(target_os = "none")]

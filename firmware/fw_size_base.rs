@@ -1,5 +1,5 @@
 //! Footprint firmware: the skeleton alone: the baseline the other two are measured against (see
-//! `examples/common/size.rs`; `.ci/firmware.sh` reports the sizes).
+//! `firmware/common/size.rs`; `.ci/firmware.sh` reports the sizes).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]

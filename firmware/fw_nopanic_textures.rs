@@ -1,5 +1,5 @@
 //! Firmware that must link without a panic handler, as `fw_nopanic`, for the textured drawing
-//! (`examples/common/texture_scene.rs`): 2D `TexturedTriangle`s through `draw` and `draw_into`
+//! (`firmware/common/texture_scene.rs`): 2D `TexturedTriangle`s through `draw` and `draw_into`
 //! with every wrap mode and filter; a textured mesh through `draw_textured_mesh_with` with every
 //! shading, vertex colours and highlights, perspective-correct faces among its own, and
 //! `three_d::draw_textured`; on the MPS2 boards also `draw_textured_mesh`, which the micro:bit's
