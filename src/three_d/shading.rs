@@ -60,7 +60,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{Blend, DepthTarget, ScreenVertex};
-use super::light::{Highlight, Light, Specular};
+use super::light::{Highlight, Light, Lights, PixelSource, Specular};
 use super::math::{
     inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
 };
@@ -733,6 +733,82 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
     }
 }
 
+/// [`Lit`] with the pipeline's other lights ([`Lights`](super::Lights)) besides the first one,
+/// and the highlight if any: as [`Shiny`], the stepped normal rounded to 16 fractional bits and
+/// renormalised once a light ([`pixel_terms`]); the first light's level
+/// `ambient + (1 − ambient)·max(0, n̂·l)` plus each source's `weight · max(0, n̂·lᵢ)` (a point
+/// light's direction and weight taken at the face's centroid,
+/// [`LightRig::pixel_sources`](super::light::LightRig)), the highlights likewise, each sum
+/// saturating at 1 ([`lights_terms`]).
+struct ManyLit<'l> {
+    lit: Lit<'l>,
+    /// The first light's direction and half vector, raw `I16F16` (within ±2¹⁶).
+    l: [i32; 3],
+    h: [i32; 3],
+    specular: Option<(Specular, u32)>,
+    /// The other lights, the first `count`.
+    sources: [PixelSource; Lights::MAX],
+    count: usize,
+}
+
+impl<C: GouraudColor> DepthPixel<C, 3> for ManyLit<'_> {
+    #[inline(always)]
+    fn start(&mut self, values: &[u32; 3], len: u32) {
+        DepthPixel::<C, 3>::start(&mut self.lit, values, len);
+    }
+
+    #[inline(always)]
+    fn color(&mut self, _: &[u32; 3]) -> C {
+        // 16 fractional bits, within ±2¹⁷ (the field stays near unit length), as `Shiny`.
+        let q = self.lit.n.map(|v| {
+            (v.wrapping_add(1 << (STEP_BITS - 17)) >> (STEP_BITS - 16))
+                .clamp(-(1 << 17) + 1, (1 << 17) - 1) as i32
+        });
+        let sources = self.sources.get(..self.count).unwrap_or(&[]);
+        let (level, specular) = lights_terms(
+            q,
+            self.lit.light,
+            (&self.l, &self.h),
+            self.specular.as_ref(),
+            sources,
+        );
+        highlighted_channels::<C>(self.lit.base, level, specular)
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        DepthPixel::<C, 3>::advance(&mut self.lit);
+    }
+}
+
+/// The light level and the highlights' sum (16 fractional bits each, saturating at 1) of the
+/// normal `q` (as [`pixel_terms`] takes it) lit by `light` (its unit direction and half vector
+/// `first`, raw `I16F16`) and the `sources`, with the highlight `specular` (and its threshold)
+/// if any: `ambient + (1 − ambient)·max(0, n̂·l) + Σ weightᵢ·max(0, n̂·lᵢ)` and
+/// `Σ weightᵢ·strength·max(0, n̂·ĥᵢ)^shininess` (the first light's weight 1), each term as the
+/// textured per-pixel light sums them.
+#[inline(always)]
+pub(super) fn lights_terms(
+    q: [i32; 3],
+    light: &Light,
+    (l, h): (&[i32; 3], &[i32; 3]),
+    specular: Option<&(Specular, u32)>,
+    sources: &[PixelSource],
+) -> (u32, u32) {
+    let highlight = specular.map(|(s, t)| (h, s, *t));
+    let (diffuse, mut specular_sum) = pixel_terms(q, l, highlight);
+    let mut level = light.level_of_diffuse(diffuse);
+    for s in sources {
+        let highlight = specular.map(|(sp, t)| (&s.h, sp, *t));
+        let (d, sp) = pixel_terms(q, &s.l, highlight);
+        // Below 2¹⁸·2¹⁶ each.
+        let weigh = |v: u32| ((u64::from(s.weight) * u64::from(v) + (1 << 15)) >> 16) as u32;
+        level = level.saturating_add(weigh(d)).min(1 << 16);
+        specular_sum = specular_sum.saturating_add(weigh(sp)).min(1 << 16);
+    }
+    (level, specular_sum)
+}
+
 /// The diffuse cosine `max(0, n̂·l)` and the Blinn-Phong term `strength · max(0, n̂·ĥ)^shininess`
 /// (0 without a highlight, or where `n̂·l ≤ 0`), 16 fractional bits each, of the normal `q`
 /// (16 fractional bits, components within ±2¹⁷, any length but zero: renormalised here once by
@@ -1077,6 +1153,50 @@ pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
     let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
     depth_fill(target, clip, vertices, &attributes, shiny);
+}
+
+/// [`fill_quadratic`] lit by `light` and the pipeline's other lights `sources` (the first
+/// `count`, as [`LightRig::pixel_sources`](super::light::LightRig) gives them for the face),
+/// with the Blinn-Phong highlight `highlight` if any (its half vector, like the sources', in
+/// the space of `normals` and `light`), per pixel ([`ManyLit`]).
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fill_quadratic_lights<C: GouraudColor, R: RowWindow>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    vertices: [&ScreenVertex; 3],
+    normals: &QuadraticNormals,
+    light: &Light,
+    highlight: Option<&Highlight>,
+    (sources, count): ([PixelSource; Lights::MAX], usize),
+    color: C,
+) {
+    let Some(setup) = TriangleSetup::new(vertices.map(|v| v.position())) else {
+        return;
+    };
+    let field = NormalPlane::new(normals, &setup, &InverseArea::new(setup.area2));
+    let lit = Lit {
+        d2: field.c.map(|c| c.wrapping_mul(2)),
+        field,
+        n: [0; 3],
+        d1: [0; 3],
+        l: [0; 3],
+        light,
+        base: color.channels(),
+    };
+    // Unit vectors: within ±2¹⁶ a component.
+    let unit = |v: Vec3| v.to_bits().map(|c| c.clamp(-(1 << 16), 1 << 16));
+    let many = ManyLit {
+        lit,
+        l: unit(light.direction),
+        h: highlight.map_or([0; 3], |h| unit(h.half)),
+        specular: highlight.map(|h| (h.specular, h.threshold)),
+        sources,
+        count: count.min(Lights::MAX),
+    };
+    let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
+    let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
+    depth_fill(target, clip, vertices, &attributes, many);
 }
 
 #[cfg(test)]
