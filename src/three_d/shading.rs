@@ -36,6 +36,12 @@
 //! the shininess, so it needs more than the 14 bits of the plain fill). Flat and Gouraud faces
 //! whose specular terms are all 0 take the plain fills: the same pixels as without a highlight.
 //!
+//! With the pipeline's [`Lights`](super::Lights), the quadratic fill lights each pixel by the
+//! first light and every source (a point light's direction, half vector and falloff taken at the
+//! face's centroid), the 16-bit normal renormalised once a light, the levels and highlights
+//! summed and saturating at 1 (`fill_quadratic_lights`): as the textured per-pixel light sums
+//! them. Faces no source reaches take the fills above.
+//!
 //! ```
 //! use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
 //! use embedded_raster::three_d::{Scalar, Vec3};
