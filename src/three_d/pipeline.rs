@@ -1378,11 +1378,9 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             Some(rig) => rig.pixel_sources(&model),
             None => Default::default(),
         };
+        // Without a source here: the first light's fills (with `count` 0, the highlighted one).
         match (sources.1, highlight) {
             (0, None) => shading::fill_quadratic(target, clip, tri, &normals, light, color),
-            (0, Some(h)) => {
-                shading::fill_quadratic_specular(target, clip, tri, &normals, light, h, color)
-            }
             _ => shading::fill_quadratic_lights(
                 target, clip, tri, &normals, light, highlight, sources, color,
             ),

@@ -39,8 +39,9 @@
 //! With the pipeline's [`Lights`](super::Lights), the quadratic fill lights each pixel by the
 //! first light and every source (a point light's direction, half vector and falloff taken at the
 //! face's centroid), the 16-bit normal renormalised once a light, the levels and highlights
-//! summed and saturating at 1 (`fill_quadratic_lights`): as the textured per-pixel light sums
-//! them. Faces no source reaches take the fills above.
+//! summed and saturating at 1 (`fill_quadratic_lights`, the highlighted fill's loops with the
+//! sources added out of line): as the textured per-pixel light sums them. Faces no source
+//! reaches take the fills above.
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
@@ -705,6 +706,10 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
 /// With `q` the stepped normal rounded to 16 fractional bits (`|q| ≈ 2¹⁶`, each component
 /// within 2⁻¹⁷), `1/|q|` from [`inv_sqrt`] (relative error below 2⁻¹⁸) and `l`, `ĥ` in raw
 /// `I16F16`, each cosine is within about 2⁻¹⁵ of the exact one of the stepped normal.
+///
+/// With the pipeline's other lights (`count` of `sources`), each lights the same normal and
+/// adds its highlight ([`add_sources`]; a draw without a highlight has one of strength 0): the
+/// fill of a face they reach shares this one's loops.
 struct Shiny<'l> {
     lit: Lit<'l>,
     /// Light direction and half vector, raw `I16F16`.
@@ -712,6 +717,8 @@ struct Shiny<'l> {
     h: [i32; 3],
     specular: Specular,
     threshold: u32,
+    sources: [PixelSource; Lights::MAX],
+    count: usize,
 }
 
 impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
@@ -729,8 +736,12 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
         });
         let highlight = Some((&self.h, &self.specular, self.threshold));
         let (diffuse, specular) = pixel_terms(q, &self.l, highlight);
-        let level = self.lit.light.level_of_diffuse(diffuse);
-        highlighted_channels::<C>(self.lit.base, level, specular)
+        let mut terms = (self.lit.light.level_of_diffuse(diffuse), specular);
+        if self.count != 0 {
+            let sources = self.sources.get(..self.count).unwrap_or(&[]);
+            terms = add_sources(q, terms, sources, (&self.specular, self.threshold));
+        }
+        highlighted_channels::<C>(self.lit.base, terms.0, terms.1)
     }
 
     #[inline(always)]
@@ -739,80 +750,28 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
     }
 }
 
-/// [`Lit`] with the pipeline's other lights ([`Lights`](super::Lights)) besides the first one,
-/// and the highlight if any: as [`Shiny`], the stepped normal rounded to 16 fractional bits and
-/// renormalised once a light ([`pixel_terms`]); the first light's level
-/// `ambient + (1 − ambient)·max(0, n̂·l)` plus each source's `weight · max(0, n̂·lᵢ)` (a point
+/// The pipeline's other lights ([`Lights`](super::Lights)) added to a pixel's light level and
+/// highlight (16 fractional bits each) of the normal `q` (as [`pixel_terms`] takes it): each
+/// source's `weight · max(0, n̂·lᵢ)` and `weight · strength · max(0, n̂·ĥᵢ)^shininess` (a point
 /// light's direction and weight taken at the face's centroid,
-/// [`LightRig::pixel_sources`](super::light::LightRig)), the highlights likewise, each sum
-/// saturating at 1 ([`lights_terms`]).
-struct ManyLit<'l> {
-    lit: Lit<'l>,
-    /// The first light's direction and half vector, raw `I16F16` (within ±2¹⁶).
-    l: [i32; 3],
-    h: [i32; 3],
-    specular: Option<(Specular, u32)>,
-    /// The other lights, the first `count`.
-    sources: [PixelSource; Lights::MAX],
-    count: usize,
-}
-
-impl<C: GouraudColor> DepthPixel<C, 3> for ManyLit<'_> {
-    #[inline(always)]
-    fn start(&mut self, values: &[u32; 3], len: u32) {
-        DepthPixel::<C, 3>::start(&mut self.lit, values, len);
-    }
-
-    #[inline(always)]
-    fn color(&mut self, _: &[u32; 3]) -> C {
-        // 16 fractional bits, within ±2¹⁷ (the field stays near unit length), as `Shiny`.
-        let q = self.lit.n.map(|v| {
-            (v.wrapping_add(1 << (STEP_BITS - 17)) >> (STEP_BITS - 16))
-                .clamp(-(1 << 17) + 1, (1 << 17) - 1) as i32
-        });
-        let sources = self.sources.get(..self.count).unwrap_or(&[]);
-        let (level, specular) = lights_terms(
-            q,
-            self.lit.light,
-            (&self.l, &self.h),
-            self.specular.as_ref(),
-            sources,
-        );
-        highlighted_channels::<C>(self.lit.base, level, specular)
-    }
-
-    #[inline(always)]
-    fn advance(&mut self) {
-        DepthPixel::<C, 3>::advance(&mut self.lit);
-    }
-}
-
-/// The light level and the highlights' sum (16 fractional bits each, saturating at 1) of the
-/// normal `q` (as [`pixel_terms`] takes it) lit by `light` (its unit direction and half vector
-/// `first`, raw `I16F16`) and the `sources`, with the highlight `specular` (and its threshold)
-/// if any: `ambient + (1 − ambient)·max(0, n̂·l) + Σ weightᵢ·max(0, n̂·lᵢ)` and
-/// `Σ weightᵢ·strength·max(0, n̂·ĥᵢ)^shininess` (the first light's weight 1), each term as the
-/// textured per-pixel light sums them.
-#[inline(always)]
-pub(super) fn lights_terms(
+/// [`LightRig::pixel_sources`](super::light::LightRig)), each sum saturating at 1, as the
+/// textured per-pixel light sums them. Out of line: the single-light fill's loop only tests
+/// whether there are any, and the firmware has one copy of it.
+#[inline(never)]
+fn add_sources(
     q: [i32; 3],
-    light: &Light,
-    (l, h): (&[i32; 3], &[i32; 3]),
-    specular: Option<&(Specular, u32)>,
+    (mut level, mut specular): (u32, u32),
     sources: &[PixelSource],
+    (highlight, threshold): (&Specular, u32),
 ) -> (u32, u32) {
-    let highlight = specular.map(|(s, t)| (h, s, *t));
-    let (diffuse, mut specular_sum) = pixel_terms(q, l, highlight);
-    let mut level = light.level_of_diffuse(diffuse);
     for s in sources {
-        let highlight = specular.map(|(sp, t)| (&s.h, sp, *t));
-        let (d, sp) = pixel_terms(q, &s.l, highlight);
+        let (d, sp) = pixel_terms(q, &s.l, Some((&s.h, highlight, threshold)));
         // Below 2¹⁸·2¹⁶ each.
         let weigh = |v: u32| ((u64::from(s.weight) * u64::from(v) + (1 << 15)) >> 16) as u32;
         level = level.saturating_add(weigh(d)).min(1 << 16);
-        specular_sum = specular_sum.saturating_add(weigh(sp)).min(1 << 16);
+        specular = specular.saturating_add(weigh(sp)).min(1 << 16);
     }
-    (level, specular_sum)
+    (level, specular)
 }
 
 /// The diffuse cosine `max(0, n̂·l)` and the Blinn-Phong term `strength · max(0, n̂·ĥ)^shininess`
@@ -1123,8 +1082,9 @@ pub(crate) fn fill_quadratic<C: GouraudColor, R: RowWindow>(
 }
 
 /// [`fill_quadratic`] with the Blinn-Phong highlight `highlight` (its half vector in the space
-/// of `normals` and `light`) added per pixel.
-#[inline(never)]
+/// of `normals` and `light`) added per pixel: [`fill_quadratic_lights`] without other lights
+/// (one copy of the loops for both).
+#[inline(always)]
 pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
@@ -1134,37 +1094,24 @@ pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     highlight: &Highlight,
     color: C,
 ) {
-    let Some(setup) = TriangleSetup::new(vertices.map(|v| v.position())) else {
-        return;
-    };
-    let field = NormalPlane::new(normals, &setup, &InverseArea::new(setup.area2));
-    let lit = Lit {
-        d2: field.c.map(|c| c.wrapping_mul(2)),
-        field,
-        n: [0; 3],
-        d1: [0; 3],
-        l: [0; 3],
+    let none = ([PixelSource::default(); Lights::MAX], 0);
+    fill_quadratic_lights(
+        target,
+        clip,
+        vertices,
+        normals,
         light,
-        base: color.channels(),
-    };
-    // Unit vectors: within ±2¹⁶ a component.
-    let unit = |v: Vec3| v.to_bits().map(|c| c.clamp(-(1 << 16), 1 << 16));
-    let shiny = Shiny {
-        lit,
-        l: unit(light.direction),
-        h: unit(highlight.half),
-        specular: highlight.specular,
-        threshold: highlight.threshold,
-    };
-    let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
-    let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
-    depth_fill(target, clip, vertices, &attributes, shiny);
+        Some(highlight),
+        none,
+        color,
+    );
 }
 
 /// [`fill_quadratic`] lit by `light` and the pipeline's other lights `sources` (the first
 /// `count`, as [`LightRig::pixel_sources`](super::light::LightRig) gives them for the face),
 /// with the Blinn-Phong highlight `highlight` if any (its half vector, like the sources', in
-/// the space of `normals` and `light`), per pixel ([`ManyLit`]).
+/// the space of `normals` and `light`), per pixel: [`fill_quadratic_specular`]'s loops
+/// ([`Shiny`], a highlight of strength 0 without one).
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fill_quadratic_lights<C: GouraudColor, R: RowWindow>(
@@ -1192,17 +1139,23 @@ pub(crate) fn fill_quadratic_lights<C: GouraudColor, R: RowWindow>(
     };
     // Unit vectors: within ±2¹⁶ a component.
     let unit = |v: Vec3| v.to_bits().map(|c| c.clamp(-(1 << 16), 1 << 16));
-    let many = ManyLit {
+    // Without a highlight, one of strength 0 whose threshold no cosine reaches: no power.
+    let (h, specular, threshold) = match highlight {
+        Some(h) => (unit(h.half), h.specular, h.threshold),
+        None => ([0; 3], Specular::new(Scalar::ZERO, 0), (1 << 16) + 1),
+    };
+    let shiny = Shiny {
         lit,
         l: unit(light.direction),
-        h: highlight.map_or([0; 3], |h| unit(h.half)),
-        specular: highlight.map(|h| (h.specular, h.threshold)),
+        h,
+        specular,
+        threshold,
         sources,
         count: count.min(Lights::MAX),
     };
     let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
     let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
-    depth_fill(target, clip, vertices, &attributes, many);
+    depth_fill(target, clip, vertices, &attributes, shiny);
 }
 
 #[cfg(test)]
