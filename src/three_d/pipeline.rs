@@ -1379,8 +1379,9 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             None => Default::default(),
         };
         // Without a source here: the first light's fills (with `count` 0, the highlighted one).
-        match (sources.1, highlight) {
-            (0, None) => shading::fill_quadratic(target, clip, tri, &normals, light, color),
+        let sources = sources.0.get(..sources.1).unwrap_or(&[]);
+        match (sources, highlight) {
+            ([], None) => shading::fill_quadratic(target, clip, tri, &normals, light, color),
             _ => shading::fill_quadratic_lights(
                 target, clip, tri, &normals, light, highlight, sources, color,
             ),

@@ -67,7 +67,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{Blend, DepthTarget, ScreenVertex};
-use super::light::{Highlight, Light, Lights, PixelSource, Specular};
+use super::light::{Highlight, Light, PixelSource, Specular};
 use super::math::{
     inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
 };
@@ -707,7 +707,7 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
 /// within 2⁻¹⁷), `1/|q|` from [`inv_sqrt`] (relative error below 2⁻¹⁸) and `l`, `ĥ` in raw
 /// `I16F16`, each cosine is within about 2⁻¹⁵ of the exact one of the stepped normal.
 ///
-/// With the pipeline's other lights (`count` of `sources`), each lights the same normal and
+/// With the pipeline's other lights (`sources`), each lights the same normal and
 /// adds its highlight ([`add_sources`]; a draw without a highlight has one of strength 0): the
 /// fill of a face they reach shares this one's loops.
 struct Shiny<'l> {
@@ -717,8 +717,7 @@ struct Shiny<'l> {
     h: [i32; 3],
     specular: Specular,
     threshold: u32,
-    sources: [PixelSource; Lights::MAX],
-    count: usize,
+    sources: &'l [PixelSource],
 }
 
 impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
@@ -737,9 +736,8 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
         let highlight = Some((&self.h, &self.specular, self.threshold));
         let (diffuse, specular) = pixel_terms(q, &self.l, highlight);
         let mut terms = (self.lit.light.level_of_diffuse(diffuse), specular);
-        if self.count != 0 {
-            let sources = self.sources.get(..self.count).unwrap_or(&[]);
-            terms = add_sources(q, terms, sources, (&self.specular, self.threshold));
+        if !self.sources.is_empty() {
+            terms = add_sources(q, terms, self.sources, (&self.specular, self.threshold));
         }
         highlighted_channels::<C>(self.lit.base, terms.0, terms.1)
     }
@@ -1094,7 +1092,6 @@ pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     highlight: &Highlight,
     color: C,
 ) {
-    let none = ([PixelSource::default(); Lights::MAX], 0);
     fill_quadratic_lights(
         target,
         clip,
@@ -1102,13 +1099,13 @@ pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
         normals,
         light,
         Some(highlight),
-        none,
+        &[],
         color,
     );
 }
 
-/// [`fill_quadratic`] lit by `light` and the pipeline's other lights `sources` (the first
-/// `count`, as [`LightRig::pixel_sources`](super::light::LightRig) gives them for the face),
+/// [`fill_quadratic`] lit by `light` and the pipeline's other lights `sources` (as
+/// [`LightRig::pixel_sources`](super::light::LightRig) gives them for the face),
 /// with the Blinn-Phong highlight `highlight` if any (its half vector, like the sources', in
 /// the space of `normals` and `light`), per pixel: [`fill_quadratic_specular`]'s loops
 /// ([`Shiny`], a highlight of strength 0 without one).
@@ -1121,7 +1118,7 @@ pub(crate) fn fill_quadratic_lights<C: GouraudColor, R: RowWindow>(
     normals: &QuadraticNormals,
     light: &Light,
     highlight: Option<&Highlight>,
-    (sources, count): ([PixelSource; Lights::MAX], usize),
+    sources: &[PixelSource],
     color: C,
 ) {
     let Some(setup) = TriangleSetup::new(vertices.map(|v| v.position())) else {
@@ -1151,7 +1148,6 @@ pub(crate) fn fill_quadratic_lights<C: GouraudColor, R: RowWindow>(
         specular,
         threshold,
         sources,
-        count: count.min(Lights::MAX),
     };
     let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
     let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
