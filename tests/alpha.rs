@@ -307,14 +307,15 @@ fn opaque_and_transparent_ends() {
 /// A translucent mesh (`Material::with_opacity`) over an opaque one: where the mesh drawn opaque
 /// would write a pixel, the pixel is that colour blended over the one there at the opacity;
 /// elsewhere, and the whole depth buffer, untouched. Every shading, with and without a
-/// highlight; the same pixels with a vertex scratch, in bands of several heights (with and
-/// without a scratch) and from mesh bins.
+/// highlight, with the first light alone and with more (`Lights`: a point light and a
+/// directional one); the same pixels with a vertex scratch, in bands of several heights (with
+/// and without a scratch) and from mesh bins.
 #[test]
 fn translucent_meshes_blend_where_nearer_and_keep_depth() {
     use embedded_graphics::primitives::Rectangle;
     use embedded_raster::band::{BandLayout, BinEntry, ColorBands, DepthBands, MeshBin};
     use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
-    use embedded_raster::three_d::{Angle, ProjectedVertex};
+    use embedded_raster::three_d::{Angle, LightSource, Lights, ProjectedVertex};
     use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3};
 
     let (w, h) = (96u32, 72u32);
@@ -329,19 +330,28 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
         viewport,
         light,
     );
-    let front = Pipeline::new(
+    let first = Pipeline::new(
         Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7),
         camera,
         viewport,
         light,
     );
+    let lights = Lights::new()
+        .with(LightSource::point(Vec3::new(0.9, 0.7, 1.5), 0.9, 2.5))
+        .with(LightSource::directional(Vec3::new(1, -0.5, 0.3), 0.3));
     let base = Material::new(Rgb565::new(25, 30, 4), Shading::Gouraud);
-    for shading in [
-        Shading::Unlit,
-        Shading::Flat,
-        Shading::Gouraud,
-        Shading::Quadratic,
-    ] {
+    for (front, shading) in [first, first.with_lights(lights)]
+        .into_iter()
+        .flat_map(|p| {
+            [
+                Shading::Unlit,
+                Shading::Flat,
+                Shading::Gouraud,
+                Shading::Quadratic,
+            ]
+            .map(|s| (p, s))
+        })
+    {
         for specular in [None, Some(Specular::new(0.6, 24))] {
             let mut glass = Material::new(Rgb565::new(6, 50, 31), shading);
             glass.specular = specular;

@@ -17,10 +17,11 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raster::band::BandLayout;
 use embedded_raster::reference::{self, lights as model};
+use embedded_raster::texture::{Solid, Texture};
 use embedded_raster::three_d::meshes::{self, icosphere::ICOSPHERE, torus::TORUS, MeshData};
 use embedded_raster::three_d::{
     normalize_wide, Angle, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh,
-    Pipeline, ProjectedVertex, Scalar, Shading, Specular, Vec3, DEPTH_CLEAR,
+    Pipeline, ProjectedVertex, Scalar, Shading, Specular, TexturedMaterial, Vec3, DEPTH_CLEAR,
 };
 use embedded_raster::GouraudColor;
 
@@ -426,25 +427,333 @@ fn flat_lights_match_f64() {
     }
 }
 
-/// Per-pixel shading with the lights draws the Gouraud frame (documented: per-pixel lighting
-/// takes the first light only, so with more it lights the vertices).
+/// What a per-pixel comparison found: pixels checked and skipped (next to a terminator of a
+/// point light, where the centroid's direction and the pixel's light different sides), the
+/// largest error (LSB) against the f64 reference with the implementation's centroid
+/// approximation (`centroid`) and against the true per-pixel one (`pixel`), the largest
+/// difference between the two references, the largest `(error − tight tolerance) / bound` and
+/// the largest bound (LSB).
+#[derive(Default, Debug)]
+struct PixelTally {
+    pixels: u64,
+    skipped: u64,
+    centroid: f64,
+    pixel: f64,
+    approximation: f64,
+    ratio: f64,
+    bound: f64,
+    /// The largest `ρ/(D − ρ)` (face radius over distance to a point light) of a checked face.
+    reach: f64,
+}
+
+/// The fixed-point per-pixel cosine's own error (nodes rounded to `I16F16`, the stepped field,
+/// the 16-bit normal and `inv_sqrt`): 2⁻¹³, as `tests/textured_mesh.rs` bounds it.
+const COSINE_ERROR: f64 = 1.0 / 8192.0;
+
+/// The quadratic normal field `Σ Nᵢbᵢ(2bᵢ − 1) + Σ 4N̂ᵢⱼbᵢbⱼ` of unit normals `n` at
+/// barycentrics `b`, normalised.
+fn quadratic_normal(n: &[[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
+    let mid = |i: usize, j: usize| normalize([0, 1, 2].map(|c| n[i][c] + n[j][c]));
+    let nodes = [n[0], n[1], n[2], mid(0, 1), mid(1, 2), mid(2, 0)];
+    let w = [
+        b[0] * (2.0 * b[0] - 1.0),
+        b[1] * (2.0 * b[1] - 1.0),
+        b[2] * (2.0 * b[2] - 1.0),
+        4.0 * b[0] * b[1],
+        4.0 * b[1] * b[2],
+        4.0 * b[2] * b[0],
+    ];
+    normalize([0, 1, 2].map(|c| (0..6).map(|k| w[k] * nodes[k][c]).sum::<f64>()))
+}
+
+/// Draws each face of `mesh` alone with `Shading::Quadratic` (a `Material`, or a
+/// `TexturedMaterial` of a `Solid` texture of the same colour when `textured`) and checks every
+/// pixel it covers against two f64 per-pixel references, both the quadratic normal field at the
+/// pixel centre's barycentrics (screen-space for a material, perspective-correct for a texture,
+/// as the fills interpolate), renormalised, with Lambert and Blinn-Phong per light:
+///
+/// * with each point light's direction and falloff at the face's centroid (the
+///   implementation's approximation): within
+///   `1 LSB + Σ wᵢ·(base + max·strength·shininess)·2⁻¹³ + max·shininess·2⁻¹⁷·Σ wᵢ`
+///   (rounding, the cosines' and the power's own errors; `wᵢ` the
+///   lights' weights, the first light's 1), plus `max·2⁻⁷` for a texture (its perspective
+///   barycentrics stepped along 16-pixel chords);
+/// * with each point light's direction and falloff at the pixel's own surface point (the exact
+///   per-pixel light): within that plus the documented bound of the approximation, per point
+///   light of intensity `I`, range `r`, at distance `D` from the centroid of a face reaching
+///   `ρ` from it (`ε = ρ/(D − ρ)`): `I·(ε + 1.54·ρ/r)` on the level and
+///   `I·strength·min(1, shininess·ε/|l̂ + v̂| + 1.54·ρ/r)` on the highlight (`|l̂ + v̂|` at the
+///   centroid, less `ε`), times the channel's base and maximum.
+///
+/// Pixels where a point light's direction at the pixel and at the centroid light different
+/// sides of the normal (or graze it) are skipped: the highlight is cut there.
+fn check_pixel_lights(
+    scene: &Scene,
+    mesh: &MeshData,
+    base: Rgb888,
+    specular: Option<Specular>,
+    textured: bool,
+) -> PixelTally {
+    let pipeline = &scene.pipeline;
+    let solid = Texture::new(Solid(base), 1, 1).unwrap();
+    let mut material = Material::new(base, Shading::Quadratic);
+    let mut texture = TexturedMaterial::new(&solid, Shading::Quadratic);
+    if let Some(s) = specular {
+        material = material.with_specular(s);
+        texture = texture.with_specular(s);
+    }
+    let (strength, shininess) = specular.map_or((0.0, 0.0), |s| {
+        (s.strength().to_num::<f64>(), f64::from(s.shininess()))
+    });
+    let base_c = base.channels().map(f64::from);
+    let max = 255.0;
+    let weights: f64 = 1.0
+        + scene
+            .model
+            .sources
+            .iter()
+            .map(|s| match *s {
+                model::Source::Directional { intensity, .. }
+                | model::Source::Point { intensity, .. } => intensity,
+            })
+            .sum::<f64>();
+    let tight = |ch: usize| {
+        1.0 + weights * (base_c[ch] + max * strength * shininess) * COSINE_ERROR
+            + max * shininess * weights / 131072.0
+            + if textured { max / 128.0 } else { 0.0 }
+    };
+    let n = (W * H) as usize;
+    let (mut px, mut z) = (vec![base; n], vec![0u16; n]);
+    let mut tally = PixelTally::default();
+    for face in &mesh.indices {
+        let one = [*face];
+        let single = Mesh::new(&mesh.vertices, &mesh.normals, &one);
+        let idx = face.map(usize::from);
+        let clip = idx.map(|i| pipeline.clip_position(mesh.vertices[i]));
+        let Some(screen) = clip
+            .iter()
+            .map(|&c| pipeline.project(c))
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let w = clip.map(|c| c.w.to_num::<f64>());
+        let raw = [0, 1, 2].map(|k| (screen[k].x.to_bits(), screen[k].y.to_bits()));
+        let mut target = DepthTarget::new(&mut px, &mut z, W, H).unwrap();
+        target.clear(Rgb888::BLACK);
+        let stats = match textured {
+            true => pipeline.draw_textured_mesh(&single, &texture, &mut target),
+            false => pipeline.draw_mesh(&single, &material, &mut target),
+        };
+        if stats.drawn == 0 {
+            continue;
+        }
+        let positions = idx.map(|i| apply(&pipeline.model, meshes::to_f64(mesh.vertices[i]), true));
+        let normals = idx.map(|i| {
+            normalize(apply(
+                &pipeline.normal_matrix,
+                meshes::to_f64(mesh.normals[i]),
+                false,
+            ))
+        });
+        let model_p = idx.map(|i| meshes::to_f64(mesh.vertices[i]));
+        let centroid_model =
+            core::array::from_fn(|k| (model_p[0][k] + model_p[1][k] + model_p[2][k]) / 3.0);
+        let centroid = apply(&pipeline.model, centroid_model, true);
+        let radius = positions
+            .iter()
+            .map(|&p| dot(vec_f64::sub(p, centroid), vec_f64::sub(p, centroid)).sqrt())
+            .fold(0.0, f64::max);
+        // The implementation's approximation: each point light as a directional one from the
+        // centroid, weighted by its falloff there; and the bound per point light.
+        let mut at_centroid = scene.model.clone();
+        let mut points = Vec::new();
+        let mut level_bound = 0.0;
+        let mut highlight_bound = 0.0;
+        for s in &mut at_centroid.sources {
+            if let model::Source::Point {
+                position,
+                intensity,
+                range,
+            } = *s
+            {
+                let d = vec_f64::sub(position, centroid);
+                let distance = dot(d, d).sqrt();
+                let a = model::falloff(distance, range);
+                *s = model::Source::Directional {
+                    direction: if distance > 0.0 { d } else { [0.0, 0.0, 1.0] },
+                    intensity: if distance > 0.0 { intensity * a } else { 0.0 },
+                };
+                if distance <= radius || distance - radius >= range {
+                    // Out of reach of the face (or inside it): a bound of its own below.
+                    if distance - radius < range {
+                        level_bound += intensity;
+                        highlight_bound += intensity * strength;
+                    }
+                    points.push((position, d, f64::INFINITY));
+                    continue;
+                }
+                let eps = radius / (distance - radius);
+                let lv = normalize(d);
+                let sum = [0, 1, 2].map(|k| lv[k] + scene.model.eye[k]);
+                let lv_norm = (dot(sum, sum).sqrt() - eps).max(1e-9);
+                let slope = 1.54 * radius / range;
+                level_bound += intensity * (eps + slope);
+                // A highlight is at most `I·strength` wherever it is.
+                highlight_bound +=
+                    intensity * strength * (shininess * eps / lv_norm + slope).min(1.0);
+                tally.reach = tally.reach.max(eps);
+                points.push((position, d, eps));
+            }
+        }
+        let bound = |ch: usize| base_c[ch] * level_bound + max * highlight_bound;
+        reference::for_each_covered(raw, 0, 0, W as i32, H as i32, |i, j| {
+            let c = reference::barycentric(raw, i, j).unwrap();
+            let q = [0, 1, 2].map(|k| c[k] / w[k]);
+            let sum = q[0] + q[1] + q[2];
+            let lambda = q.map(|v| v / sum);
+            let b = if textured { lambda } else { c };
+            let normal = quadratic_normal(&normals, b);
+            let x = [0, 1, 2].map(|k| (0..3).map(|m| lambda[m] * positions[m][k]).sum::<f64>());
+            // A point light's terminator between the pixel and the centroid: skipped.
+            let cut = points.iter().any(|&(p, d, _)| {
+                let (at_x, at_c) = (dot(normal, vec_f64::sub(p, x)), dot(normal, d));
+                at_x * at_c <= 0.0
+                    || at_c.abs() < 1e-3 * dot(d, d).sqrt()
+                    || at_x.abs() < 1e-3 * dot(vec_f64::sub(p, x), vec_f64::sub(p, x)).sqrt()
+            });
+            if cut {
+                tally.skipped += 1;
+                return;
+            }
+            let color =
+                |(level, spec): (f64, f64)| base_c.map(|b| (b * level + max * spec).min(max));
+            let want_centroid = color(at_centroid.terms(centroid, normal));
+            let want_pixel = color(scene.model.terms(x, normal));
+            let got = target
+                .framebuffer()
+                .get(i, j)
+                .unwrap()
+                .channels()
+                .map(f64::from);
+            for ch in 0..3 {
+                let e_c = (got[ch] - want_centroid[ch]).abs();
+                let e_p = (got[ch] - want_pixel[ch]).abs();
+                tally.centroid = tally.centroid.max(e_c);
+                tally.pixel = tally.pixel.max(e_p);
+                tally.approximation = tally
+                    .approximation
+                    .max((want_pixel[ch] - want_centroid[ch]).abs());
+                tally.bound = tally.bound.max(bound(ch));
+                if bound(ch) > 0.0 {
+                    tally.ratio = tally.ratio.max((e_p - tight(ch)) / bound(ch));
+                }
+                assert!(
+                    e_c <= tight(ch),
+                    "face {face:?} pixel {i},{j} channel {ch}: {} vs {} with the centroid's \
+                     lights (tolerance {})",
+                    got[ch],
+                    want_centroid[ch],
+                    tight(ch)
+                );
+                assert!(
+                    e_p <= tight(ch) + bound(ch),
+                    "face {face:?} pixel {i},{j} channel {ch}: {} vs {} per pixel \
+                     (tolerance {} + bound {})",
+                    got[ch],
+                    want_pixel[ch],
+                    tight(ch),
+                    bound(ch)
+                );
+            }
+            tally.pixels += 1;
+        });
+    }
+    tally
+}
+
+/// Per-pixel shading with the lights (`Shading::Quadratic`, a `Material` and a
+/// `TexturedMaterial`): lit per pixel by every light, point lights with their direction and
+/// falloff at each face's centroid. Checked against the f64 per-pixel references of
+/// `check_pixel_lights` (the same centroid approximation: within the arithmetic's tolerance;
+/// the exact per-pixel light: within the approximation's documented bound), on the sphere
+/// tests' lights and on point lights close to the surface of a coarser sphere (faces large
+/// beside their distance to the light), with and without a highlight.
 #[test]
-fn quadratic_with_lights_is_lit_per_vertex() {
+fn quadratic_lights_are_lit_per_pixel() {
+    let near = [
+        LightSource::point(
+            Vec3::new(0.9, 0.5, 1.0),
+            Scalar::from_num(0.8),
+            Scalar::from_num(1.6),
+        ),
+        LightSource::point(
+            Vec3::new(-1.0, -0.2, 0.7),
+            Scalar::from_num(1.2),
+            Scalar::from_num(1.2),
+        ),
+        LightSource::directional(Vec3::new(0.3, -1.0, 0.2), Scalar::from_num(0.35)),
+    ];
+    let cases = [
+        ("sphere lights", sphere(), None),
+        ("near lights", meshes::icosphere(1.0, 2), Some(near)),
+    ];
+    for (name, mesh, sources) in &cases {
+        for (model_matrix, it, pose) in poses() {
+            for specular in [None, Some(Specular::new(Scalar::from_num(0.6), 24))] {
+                let mut scene = scene(model_matrix, it, specular);
+                if let Some(sources) = sources {
+                    scene.pipeline.lights = Lights::new();
+                    scene.model.sources.clear();
+                    for s in sources {
+                        scene.pipeline.lights.push(*s).unwrap();
+                        scene.model.sources.push(to_model(s));
+                    }
+                }
+                for textured in [false, true] {
+                    let base = Rgb888::new(200, 120, 60);
+                    let t = check_pixel_lights(&scene, mesh, base, specular, textured);
+                    println!("quadratic {name} {pose} {specular:?} textured {textured}: {t:?}");
+                    assert!(t.pixels > 3000, "{t:?}");
+                    // The approximation shows (the two references differ), well within its
+                    // bound.
+                    assert!(t.approximation > 5.0 && t.ratio < 0.5, "{t:?}");
+                }
+            }
+        }
+    }
+}
+
+/// The per-pixel fill with the lights is not the Gouraud frame it used to fall back to, nor
+/// the frame without them.
+#[test]
+fn quadratic_with_lights_is_lit_per_pixel() {
     let mesh = sphere();
     let specular = Specular::new(Scalar::from_num(0.5), 20);
     let scene = scene(poses()[0].0, false, Some(specular));
-    let draw = |shading| {
+    let draw = |pipeline: &Pipeline, shading| {
         let n = (W * H) as usize;
         let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
         let mut target = DepthTarget::new(&mut colors, &mut depth, W, H).unwrap();
         target.clear(Rgb565::BLACK);
         let material = Material::new(Rgb565::new(20, 40, 10), shading).with_specular(specular);
-        scene
-            .pipeline
-            .draw_mesh(&mesh.as_mesh(), &material, &mut target);
+        pipeline.draw_mesh(&mesh.as_mesh(), &material, &mut target);
         (colors, depth)
     };
-    assert!(draw(Shading::Quadratic) == draw(Shading::Gouraud));
+    let lit = draw(&scene.pipeline, Shading::Quadratic);
+    assert!(lit != draw(&scene.pipeline, Shading::Gouraud));
+    let mut plain = scene.pipeline;
+    plain.lights = Lights::new();
+    let unlit = draw(&plain, Shading::Quadratic);
+    assert!(lit != unlit);
+    // A point light that reaches no face's centroid: each face filled as without it.
+    let mut far = plain;
+    far.lights = Lights::new().with(LightSource::point(
+        Vec3::new(0, 0, 3),
+        Scalar::ONE,
+        Scalar::from_num(1.5),
+    ));
+    assert!(draw(&far, Shading::Quadratic) == unlit);
 }
 
 /// Every path draws the same pixels and depths with the lights: `draw_mesh`,

@@ -117,8 +117,8 @@ enum Kind {
 ///
 /// With a [`Specular`] material each source adds its own highlight, `intensity · a ·
 /// strength · max(0, n·ĥ)^shininess` (`a = 1` for a directional light), its half vector
-/// `ĥ = normalize(l + v)` per draw for a directional light and per vertex (or face) for a point
-/// light, whose `l` varies.
+/// `ĥ = normalize(l + v)` per draw for a directional light and per vertex (or face: flat
+/// shading and per-pixel lighting) for a point light, whose `l` varies.
 ///
 /// Ranges: the intensity is clamped to `[0, 4]`, the range to `[0, 32768)` (raw `I16F16`,
 /// non-negative); positions and distances are raw `I16F16` (differences saturate at ±32768
@@ -220,6 +220,14 @@ impl LightSource {
 /// The pipeline's [`Light`] stays the first light with the ambient term; these add to it. An
 /// empty set (the default) draws exactly as before, at the same cost; sources of intensity 0 (or
 /// point lights of range 0) are left out of the draws, so they cost nothing either.
+///
+/// Flat shading lights a face at its centroid, Gouraud shading each vertex, and per-pixel
+/// lighting ([`Shading::Quadratic`](super::Shading), a [`Material`](super::Material) or a
+/// [`TexturedMaterial`](super::TexturedMaterial)) each pixel's normal, with a point light's
+/// direction and falloff taken at the face's centroid: within the bound
+/// [`Pipeline::with_lights`](super::Pipeline::with_lights) states of the light at each pixel's
+/// own surface point (a few LSB on finely subdivided meshes, tens of LSB on faces as large as
+/// their distance to the light).
 ///
 /// # Examples
 ///

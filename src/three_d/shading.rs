@@ -36,6 +36,13 @@
 //! the shininess, so it needs more than the 14 bits of the plain fill). Flat and Gouraud faces
 //! whose specular terms are all 0 take the plain fills: the same pixels as without a highlight.
 //!
+//! With the pipeline's [`Lights`](super::Lights), the quadratic fill lights each pixel by the
+//! first light and every source (a point light's direction, half vector and falloff taken at the
+//! face's centroid), the 16-bit normal renormalised once a light, the levels and highlights
+//! summed and saturating at 1 (`fill_quadratic_lights`, the highlighted fill's loops with the
+//! sources added out of line): as the textured per-pixel light sums them. Faces no source
+//! reaches take the fills above.
+//!
 //! ```
 //! use embedded_graphics::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
 //! use embedded_raster::three_d::{Scalar, Vec3};
@@ -60,7 +67,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::depth::{Blend, DepthTarget, ScreenVertex};
-use super::light::{Highlight, Light, Specular};
+use super::light::{Highlight, Light, PixelSource, Specular};
 use super::math::{
     inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
 };
@@ -736,6 +743,10 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Lit<'_> {
 /// With `q` the stepped normal rounded to 16 fractional bits (`|q| ≈ 2¹⁶`, each component
 /// within 2⁻¹⁷), `1/|q|` from [`inv_sqrt`] (relative error below 2⁻¹⁸) and `l`, `ĥ` in raw
 /// `I16F16`, each cosine is within about 2⁻¹⁵ of the exact one of the stepped normal.
+///
+/// With the pipeline's other lights (`sources`), each lights the same normal and
+/// adds its highlight ([`add_sources`]; a draw without a highlight has one of strength 0): the
+/// fill of a face they reach shares this one's loops.
 struct Shiny<'l> {
     lit: Lit<'l>,
     /// Light direction and half vector, raw `I16F16`.
@@ -743,6 +754,7 @@ struct Shiny<'l> {
     h: [i32; 3],
     specular: Specular,
     threshold: u32,
+    sources: &'l [PixelSource],
 }
 
 impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
@@ -760,14 +772,41 @@ impl<C: GouraudColor> DepthPixel<C, 3> for Shiny<'_> {
         });
         let highlight = Some((&self.h, &self.specular, self.threshold));
         let (diffuse, specular) = pixel_terms(q, &self.l, highlight);
-        let level = self.lit.light.level_of_diffuse(diffuse);
-        highlighted_channels::<C>(self.lit.base, level, specular)
+        let mut terms = (self.lit.light.level_of_diffuse(diffuse), specular);
+        if !self.sources.is_empty() {
+            terms = add_sources(q, terms, self.sources, (&self.specular, self.threshold));
+        }
+        highlighted_channels::<C>(self.lit.base, terms.0, terms.1)
     }
 
     #[inline(always)]
     fn advance(&mut self) {
         DepthPixel::<C, 3>::advance(&mut self.lit);
     }
+}
+
+/// The pipeline's other lights ([`Lights`](super::Lights)) added to a pixel's light level and
+/// highlight (16 fractional bits each) of the normal `q` (as [`pixel_terms`] takes it): each
+/// source's `weight · max(0, n̂·lᵢ)` and `weight · strength · max(0, n̂·ĥᵢ)^shininess` (a point
+/// light's direction and weight taken at the face's centroid,
+/// [`LightRig::pixel_sources`](super::light::LightRig)), each sum saturating at 1, as the
+/// textured per-pixel light sums them. Out of line: the single-light fill's loop only tests
+/// whether there are any, and the firmware has one copy of it.
+#[inline(never)]
+fn add_sources(
+    q: [i32; 3],
+    (mut level, mut specular): (u32, u32),
+    sources: &[PixelSource],
+    (highlight, threshold): (&Specular, u32),
+) -> (u32, u32) {
+    for s in sources {
+        let (d, sp) = pixel_terms(q, &s.l, Some((&s.h, highlight, threshold)));
+        // Below 2¹⁸·2¹⁶ each.
+        let weigh = |v: u32| ((u64::from(s.weight) * u64::from(v) + (1 << 15)) >> 16) as u32;
+        level = level.saturating_add(weigh(d)).min(1 << 16);
+        specular = specular.saturating_add(weigh(sp)).min(1 << 16);
+    }
+    (level, specular)
 }
 
 /// The diffuse cosine `max(0, n̂·l)` and the Blinn-Phong term `strength · max(0, n̂·ĥ)^shininess`
@@ -1078,8 +1117,9 @@ pub(crate) fn fill_quadratic<C: GouraudColor, R: RowWindow>(
 }
 
 /// [`fill_quadratic`] with the Blinn-Phong highlight `highlight` (its half vector in the space
-/// of `normals` and `light`) added per pixel.
-#[inline(never)]
+/// of `normals` and `light`) added per pixel: [`fill_quadratic_lights`] without other lights
+/// (one copy of the loops for both).
+#[inline(always)]
 pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
@@ -1087,6 +1127,35 @@ pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     normals: &QuadraticNormals,
     light: &Light,
     highlight: &Highlight,
+    color: C,
+) {
+    fill_quadratic_lights(
+        target,
+        clip,
+        vertices,
+        normals,
+        light,
+        Some(highlight),
+        &[],
+        color,
+    );
+}
+
+/// [`fill_quadratic`] lit by `light` and the pipeline's other lights `sources` (as
+/// [`LightRig::pixel_sources`](super::light::LightRig) gives them for the face),
+/// with the Blinn-Phong highlight `highlight` if any (its half vector, like the sources', in
+/// the space of `normals` and `light`), per pixel: [`fill_quadratic_specular`]'s loops
+/// ([`Shiny`], a highlight of strength 0 without one).
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fill_quadratic_lights<C: GouraudColor, R: RowWindow>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    vertices: [&ScreenVertex; 3],
+    normals: &QuadraticNormals,
+    light: &Light,
+    highlight: Option<&Highlight>,
+    sources: &[PixelSource],
     color: C,
 ) {
     let Some(setup) = TriangleSetup::new(vertices.map(|v| v.position())) else {
@@ -1104,12 +1173,18 @@ pub(crate) fn fill_quadratic_specular<C: GouraudColor, R: RowWindow>(
     };
     // Unit vectors: within ±2¹⁶ a component.
     let unit = |v: Vec3| v.to_bits().map(|c| c.clamp(-(1 << 16), 1 << 16));
+    // Without a highlight, one of strength 0 whose threshold no cosine reaches: no power.
+    let (h, specular, threshold) = match highlight {
+        Some(h) => (unit(h.half), h.specular, h.threshold),
+        None => ([0; 3], Specular::new(Scalar::ZERO, 0), (1 << 16) + 1),
+    };
     let shiny = Shiny {
         lit,
         l: unit(light.direction),
-        h: unit(highlight.half),
-        specular: highlight.specular,
-        threshold: highlight.threshold,
+        h,
+        specular,
+        threshold,
+        sources,
     };
     let bary = [[u16::MAX, 0], [0, u16::MAX], [0, 0]];
     let attributes = with_depth(vertices, bary, [DEPTH_HALF; 2]);
