@@ -304,207 +304,294 @@ fn opaque_and_transparent_ends() {
     }
 }
 
-/// A translucent mesh (`Material::with_opacity`) over an opaque one: where the mesh drawn opaque
-/// would write a pixel, the pixel is that colour blended over the one there at the opacity;
-/// elsewhere, and the whole depth buffer, untouched. Every shading, with and without a
-/// highlight, with the first light alone and with more (`Lights`: a point light and a
-/// directional one); the same pixels with a vertex scratch, in bands of several heights (with
-/// and without a scratch) and from mesh bins.
+/// The frame the translucent-mesh tests draw over: 96 × 72, a torus lit Gouraud, and the
+/// camera and light of the translucent meshes in front of it.
+mod over_torus {
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBand, DepthBands};
+    use embedded_raster::three_d::meshes::torus::TORUS;
+    use embedded_raster::three_d::{Angle, MeshTarget, ProjectedVertex};
+    use embedded_raster::Vec3;
+    use embedded_raster::{DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline, Shading};
+
+    pub const W: u32 = 96;
+    pub const H: u32 = 72;
+    const N: usize = (W * H) as usize;
+
+    /// The camera and light of the scene; `model` places a mesh.
+    pub fn pipeline(model: Mat4) -> Pipeline {
+        let camera = Mat4::perspective(Angle::from_degrees(55), 4.0 / 3.0, 0.5, 20).unwrap()
+            * Mat4::look_at(Vec3::new(0.3, 0.8, 3.2), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
+        let viewport = Rectangle::new(Point::zero(), Size::new(W, H));
+        Pipeline::new(
+            model,
+            camera,
+            viewport,
+            Light::new(Vec3::new(-0.4, 1.0, 0.8), 0.2),
+        )
+    }
+
+    /// A translucent mesh, drawn opaque or at its opacity by every path.
+    pub trait Glass {
+        /// Vertices of the mesh (a scratch's length).
+        fn vertices(&self) -> usize;
+        /// Draws the mesh opaque (`opaque`) or translucent into `target`.
+        fn draw(&self, opaque: bool, target: &mut impl MeshTarget<Rgb565>);
+        /// [`draw`](Self::draw) of the translucent mesh with a vertex scratch.
+        fn draw_with(&self, target: &mut impl MeshTarget<Rgb565>, scratch: &mut [ProjectedVertex]);
+        /// Renders the bands of `layout` from mesh bins: the torus's, then the mesh's.
+        fn render_bins(&self, bands: &mut DepthBands<'_, Rgb565>, out: &mut [Rgb565]);
+    }
+
+    /// Copies each band into `out`, the frame's pixels.
+    pub fn into_frame(
+        out: &mut [Rgb565],
+    ) -> impl FnMut(&Rectangle, &[Rgb565]) -> Result<(), ()> + '_ {
+        move |rect: &Rectangle, px: &[Rgb565]| {
+            let start = (rect.top_left.y as u32 * W) as usize;
+            out[start..start + px.len()].copy_from_slice(px);
+            Ok(())
+        }
+    }
+
+    /// The torus behind, opaque.
+    pub fn behind() -> (Pipeline, Material<Rgb565>) {
+        (
+            pipeline(Mat4::rotation_x(Angle::from_degrees(70))),
+            Material::new(Rgb565::new(25, 30, 4), Shading::Gouraud),
+        )
+    }
+
+    /// Draws the torus behind into a band.
+    pub fn draw_behind(band: &mut DepthBand<'_, Rgb565>) {
+        let (pipeline, base) = behind();
+        band.clear(Rgb565::BLACK);
+        pipeline.draw_mesh(&TORUS, &base, band);
+    }
+
+    /// `glass` at `opacity` over the torus: where it drawn opaque would write a pixel, the pixel
+    /// is that colour blended over the one there; elsewhere, and the whole depth buffer,
+    /// untouched. The same pixels with a vertex scratch, in bands of several heights (with and
+    /// without a scratch) and from mesh bins.
+    pub fn check(glass: &impl Glass, opacity: u8, case: &str) {
+        let (behind, base) = behind();
+        let (mut colors, mut depth) = (vec![Rgb565::BLACK; N], vec![0u16; N]);
+        let mut target = DepthTarget::new(&mut colors, &mut depth, W, H).unwrap();
+        behind.draw_mesh(&TORUS, &base, &mut target);
+        let (before, before_depth) = (
+            target.framebuffer().pixels().to_vec(),
+            target.depth().to_vec(),
+        );
+        // The mesh drawn opaque over a copy: where and what it would draw.
+        let (mut oc, mut od) = (before.clone(), before_depth.clone());
+        let mut opaque = DepthTarget::new_uncleared(&mut oc, &mut od, W, H).unwrap();
+        glass.draw(true, &mut opaque);
+        let (drawn, drawn_depth) = (
+            opaque.framebuffer().pixels().to_vec(),
+            opaque.depth().to_vec(),
+        );
+        glass.draw(false, &mut target);
+        assert!(target.depth() == &before_depth[..], "depth written, {case}");
+        let mut blended = 0;
+        for i in 0..N {
+            let want = if drawn_depth[i] != before_depth[i] {
+                blended += 1;
+                drawn[i].blend(before[i], opacity)
+            } else {
+                before[i]
+            };
+            assert_eq!(target.framebuffer().pixels()[i], want, "pixel {i}, {case}");
+        }
+        assert!(blended > N / 20, "{blended}");
+        let whole = target.framebuffer().pixels().to_vec();
+
+        let mut scratch = vec![ProjectedVertex::EMPTY; glass.vertices()];
+        let mut with = (before.clone(), before_depth.clone());
+        let mut t = DepthTarget::new_uncleared(&mut with.0, &mut with.1, W, H).unwrap();
+        glass.draw_with(&mut t, &mut scratch);
+        assert!(t.framebuffer().pixels() == &whole[..], "scratch, {case}");
+        assert!(
+            t.depth() == &before_depth[..],
+            "depth written with a scratch, {case}"
+        );
+
+        for rows in [5, 16, 72] {
+            let layout = BandLayout::new(Size::new(W, H), rows).unwrap();
+            let (mut cb, mut db) = (
+                vec![Rgb565::BLACK; layout.buffer_len()],
+                vec![0; layout.buffer_len()],
+            );
+            let mut bands =
+                DepthBands::new(ColorBands::new(layout, &mut cb).unwrap(), &mut db).unwrap();
+            let mut out = vec![Rgb565::BLACK; N];
+            bands
+                .render(&mut Callback(into_frame(&mut out)), |band| {
+                    draw_behind(band);
+                    if rows == 16 {
+                        glass.draw_with(band, &mut scratch);
+                    } else {
+                        glass.draw(false, band);
+                    }
+                })
+                .unwrap();
+            assert!(out == whole, "{rows}-row bands, {case}");
+            let mut binned = vec![Rgb565::BLACK; N];
+            glass.render_bins(&mut bands, &mut binned);
+            assert!(binned == whole, "{rows}-row bins, {case}");
+        }
+    }
+}
+
+/// A translucent mesh (`Material::with_opacity`) over an opaque one (`over_torus::check`):
+/// every shading, with and without a highlight, with the first light alone and with more
+/// (`Lights`: a point light and a directional one).
 #[test]
 fn translucent_meshes_blend_where_nearer_and_keep_depth() {
-    use embedded_graphics::primitives::Rectangle;
-    use embedded_raster::band::{BandLayout, BinEntry, ColorBands, DepthBands, MeshBin};
+    use embedded_raster::band::{BinEntry, Callback, DepthBands, MeshBin};
     use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
-    use embedded_raster::three_d::{Angle, LightSource, Lights, ProjectedVertex};
-    use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3};
+    use embedded_raster::three_d::{LightSource, Lights, MeshTarget, ProjectedVertex};
+    use embedded_raster::{Mat4, Material, Pipeline, Shading, Specular, Vec3};
+    use over_torus::{behind, into_frame, Glass};
 
-    let (w, h) = (96u32, 72u32);
-    let n = (w * h) as usize;
-    let camera = Mat4::perspective(Angle::from_degrees(55), 4.0 / 3.0, 0.5, 20).unwrap()
-        * Mat4::look_at(Vec3::new(0.3, 0.8, 3.2), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
-    let light = Light::new(Vec3::new(-0.4, 1.0, 0.8), 0.2);
-    let behind = Pipeline::new(
-        Mat4::rotation_x(Angle::from_degrees(70)),
-        camera,
-        viewport,
-        light,
-    );
-    let first = Pipeline::new(
-        Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7),
-        camera,
-        viewport,
-        light,
-    );
+    struct Untextured(Pipeline, Material<Rgb565>);
+
+    impl Glass for Untextured {
+        fn vertices(&self) -> usize {
+            ICOSPHERE.vertices.len()
+        }
+
+        fn draw(&self, opaque: bool, target: &mut impl MeshTarget<Rgb565>) {
+            let material = if opaque {
+                self.1.with_opacity(255)
+            } else {
+                self.1
+            };
+            self.0.draw_mesh(&ICOSPHERE, &material, target);
+        }
+
+        fn draw_with(&self, target: &mut impl MeshTarget<Rgb565>, scratch: &mut [ProjectedVertex]) {
+            self.0
+                .draw_mesh_with(&ICOSPHERE, &self.1, target, scratch)
+                .unwrap();
+        }
+
+        fn render_bins(&self, bands: &mut DepthBands<'_, Rgb565>, out: &mut [Rgb565]) {
+            let (pipeline, base) = behind();
+            let layout = *bands.layout();
+            let (mut s0, mut s1) = (
+                vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
+                vec![ProjectedVertex::EMPTY; self.vertices()],
+            );
+            let (mut e0, mut e1) = (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
+            let mut under =
+                MeshBin::new(&pipeline, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
+            let mut glass =
+                MeshBin::new(&self.0, &ICOSPHERE, &self.1, &layout, &mut s1, &mut e1).unwrap();
+            bands
+                .render(&mut Callback(into_frame(out)), |band| {
+                    band.clear(Rgb565::BLACK);
+                    under.draw(band).unwrap();
+                    glass.draw(band).unwrap();
+                })
+                .unwrap();
+        }
+    }
+
+    let first =
+        over_torus::pipeline(Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7));
     let lights = Lights::new()
         .with(LightSource::point(Vec3::new(0.9, 0.7, 1.5), 0.9, 2.5))
         .with(LightSource::directional(Vec3::new(1, -0.5, 0.3), 0.3));
-    let base = Material::new(Rgb565::new(25, 30, 4), Shading::Gouraud);
-    for (front, shading) in [first, first.with_lights(lights)]
-        .into_iter()
-        .flat_map(|p| {
-            [
-                Shading::Unlit,
-                Shading::Flat,
-                Shading::Gouraud,
-                Shading::Quadratic,
-            ]
-            .map(|s| (p, s))
-        })
-    {
-        for specular in [None, Some(Specular::new(0.6, 24))] {
-            let mut glass = Material::new(Rgb565::new(6, 50, 31), shading);
-            glass.specular = specular;
-            for opacity in [0u8, 77, 200, 254] {
-                let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
-                let mut target = DepthTarget::new(&mut colors, &mut depth, w, h).unwrap();
-                behind.draw_mesh(&TORUS, &base, &mut target);
-                let (before, before_depth) = (
-                    target.framebuffer().pixels().to_vec(),
-                    target.depth().to_vec(),
-                );
-                // The mesh drawn opaque over a copy: where and what it would draw.
-                let (mut oc, mut od) = (before.clone(), before_depth.clone());
-                let mut opaque = DepthTarget::new_uncleared(&mut oc, &mut od, w, h).unwrap();
-                front.draw_mesh(&ICOSPHERE, &glass, &mut opaque);
-                let (drawn, drawn_depth) = (
-                    opaque.framebuffer().pixels().to_vec(),
-                    opaque.depth().to_vec(),
-                );
-                let glass = glass.with_opacity(opacity);
-                front.draw_mesh(&ICOSPHERE, &glass, &mut target);
-                assert_eq!(target.depth(), &before_depth[..], "depth written");
-                let mut blended = 0;
-                for i in 0..n {
-                    let want = if drawn_depth[i] != before_depth[i] {
-                        blended += 1;
-                        drawn[i].blend(before[i], opacity)
-                    } else {
-                        before[i]
-                    };
-                    assert_eq!(
-                        target.framebuffer().pixels()[i],
-                        want,
-                        "{shading:?} pixel {i}"
+    for front in [first, first.with_lights(lights)] {
+        for shading in [
+            Shading::Unlit,
+            Shading::Flat,
+            Shading::Gouraud,
+            Shading::Quadratic,
+        ] {
+            for specular in [None, Some(Specular::new(0.6, 24))] {
+                let mut glass = Material::new(Rgb565::new(6, 50, 31), shading);
+                glass.specular = specular;
+                for opacity in [0u8, 77, 200, 254] {
+                    let case = format!("{shading:?}, {specular:?}, opacity {opacity}");
+                    over_torus::check(
+                        &Untextured(front, glass.with_opacity(opacity)),
+                        opacity,
+                        &case,
                     );
-                }
-                assert!(blended > n / 20, "{blended}");
-                let whole = target.framebuffer().pixels().to_vec();
-
-                // With a vertex scratch: the same pixels.
-                let mut scratch = vec![ProjectedVertex::EMPTY; TORUS.vertices.len()];
-                let mut with = (before.clone(), before_depth.clone());
-                let mut t = DepthTarget::new_uncleared(&mut with.0, &mut with.1, w, h).unwrap();
-                front
-                    .draw_mesh_with(&ICOSPHERE, &glass, &mut t, &mut scratch)
-                    .unwrap();
-                assert_eq!(t.framebuffer().pixels(), &whole[..], "scratch, {shading:?}");
-                assert_eq!(t.depth(), &before_depth[..], "depth written with a scratch");
-
-                // In bands (with and without a scratch) and from bins: the same pixels.
-                for rows in [5, 16, 72] {
-                    let layout = BandLayout::new(Size::new(w, h), rows).unwrap();
-                    let (mut cb, mut db) = (
-                        vec![Rgb565::BLACK; layout.buffer_len()],
-                        vec![0; layout.buffer_len()],
-                    );
-                    let mut bands =
-                        DepthBands::new(ColorBands::new(layout, &mut cb).unwrap(), &mut db)
-                            .unwrap();
-                    let mut out = vec![Rgb565::BLACK; n];
-                    bands
-                        .render(
-                            &mut embedded_raster::band::Callback(
-                                |rect: &Rectangle, px: &[Rgb565]| {
-                                    let start = (rect.top_left.y as u32 * w) as usize;
-                                    out[start..start + px.len()].copy_from_slice(px);
-                                    Ok::<(), ()>(())
-                                },
-                            ),
-                            |band| {
-                                band.clear(Rgb565::BLACK);
-                                behind.draw_mesh(&TORUS, &base, band);
-                                if rows == 16 {
-                                    front
-                                        .draw_mesh_with(&ICOSPHERE, &glass, band, &mut scratch)
-                                        .unwrap();
-                                } else {
-                                    front.draw_mesh(&ICOSPHERE, &glass, band);
-                                }
-                            },
-                        )
-                        .unwrap();
-                    assert_eq!(out, whole, "{rows}-row bands, {shading:?}");
-
-                    let (mut s0, mut s1) = (
-                        vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
-                        vec![ProjectedVertex::EMPTY; ICOSPHERE.vertices.len()],
-                    );
-                    let (mut e0, mut e1) =
-                        (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
-                    let mut opaque_bin =
-                        MeshBin::new(&behind, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
-                    let mut glass_bin =
-                        MeshBin::new(&front, &ICOSPHERE, &glass, &layout, &mut s1, &mut e1)
-                            .unwrap();
-                    let mut binned = vec![Rgb565::BLACK; n];
-                    bands
-                        .render(
-                            &mut embedded_raster::band::Callback(
-                                |rect: &Rectangle, px: &[Rgb565]| {
-                                    let start = (rect.top_left.y as u32 * w) as usize;
-                                    binned[start..start + px.len()].copy_from_slice(px);
-                                    Ok::<(), ()>(())
-                                },
-                            ),
-                            |band| {
-                                band.clear(Rgb565::BLACK);
-                                opaque_bin.draw(band).unwrap();
-                                glass_bin.draw(band).unwrap();
-                            },
-                        )
-                        .unwrap();
-                    assert_eq!(binned, whole, "{rows}-row bins, {shading:?}");
                 }
             }
         }
     }
 }
 
-/// A translucent textured mesh (`TexturedMaterial::with_opacity`) over an opaque one: as the
-/// untextured test above — where the mesh drawn opaque would write a pixel, that colour blended
-/// over the pixel there; elsewhere, and the depth buffer, untouched — for nearest and bilinear
-/// textures, power-of-two and not, every shading with and without a highlight; the same pixels
-/// with a vertex scratch, in bands (with and without it) and from mesh bins.
+/// A translucent textured mesh (`TexturedMaterial::with_opacity`) over an opaque one
+/// (`over_torus::check`): nearest and bilinear textures, power-of-two and not, every shading
+/// with and without a highlight.
 #[test]
 fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
-    use embedded_graphics::primitives::Rectangle;
-    use embedded_raster::band::{BandLayout, BinEntry, Callback, ColorBands, DepthBands, MeshBin};
+    use embedded_raster::band::{BinEntry, Callback, DepthBands, MeshBin};
     use embedded_raster::texture::{Filter, Rgb565Texels, Texture};
     use embedded_raster::three_d::meshes::{icosphere, torus::TORUS};
-    use embedded_raster::three_d::Angle;
-    use embedded_raster::three_d::{ProjectedVertex, TexCoord, TexturedMaterial};
-    use embedded_raster::{DepthTarget, Light, Mat4, Material, Pipeline, Shading, Specular, Vec3};
+    use embedded_raster::three_d::TexturedMaterial;
+    use embedded_raster::three_d::{Blended, Mesh, MeshTarget, ProjectedVertex, TexCoord};
+    use embedded_raster::{Mat4, Pipeline, Shading, Specular, Vec3};
+    use over_torus::{behind, into_frame, Glass};
 
-    let (w, h) = (80u32, 64u32);
-    let n = (w * h) as usize;
-    let camera = Mat4::perspective(Angle::from_degrees(55), 1.25, 0.5, 20).unwrap()
-        * Mat4::look_at(Vec3::new(0.3, 0.8, 3.0), Vec3::ZERO, Vec3::new(0, 1, 0)).unwrap();
-    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
-    let light = Light::new(Vec3::new(-0.4, 1.0, 0.8), 0.2);
-    let behind = Pipeline::new(
-        Mat4::rotation_x(Angle::from_degrees(70)),
-        camera,
-        viewport,
-        light,
+    struct Textured<'a>(
+        Pipeline,
+        &'a Mesh<'a>,
+        TexturedMaterial<'a, Rgb565Texels<'a>, Blended>,
     );
-    let front = Pipeline::new(
-        Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7),
-        camera,
-        viewport,
-        light,
-    );
-    let base = Material::new(Rgb565::new(25, 30, 4), Shading::Gouraud);
+
+    impl Glass for Textured<'_> {
+        fn vertices(&self) -> usize {
+            self.1.vertices.len()
+        }
+
+        fn draw(&self, opaque: bool, target: &mut impl MeshTarget<Rgb565>) {
+            if opaque {
+                let m = self.2;
+                let mut material = TexturedMaterial::new(m.texture, m.shading);
+                material.specular = m.specular;
+                self.0.draw_textured_mesh(self.1, &material, target);
+            } else {
+                self.0.draw_textured_mesh(self.1, &self.2, target);
+            }
+        }
+
+        fn draw_with(&self, target: &mut impl MeshTarget<Rgb565>, scratch: &mut [ProjectedVertex]) {
+            self.0
+                .draw_textured_mesh_with(self.1, &self.2, target, scratch)
+                .unwrap();
+        }
+
+        fn render_bins(&self, bands: &mut DepthBands<'_, Rgb565>, out: &mut [Rgb565]) {
+            let (pipeline, base) = behind();
+            let layout = *bands.layout();
+            let (mut s0, mut s1) = (
+                vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
+                vec![ProjectedVertex::EMPTY; self.vertices()],
+            );
+            let (mut e0, mut e1) = (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
+            let mut under =
+                MeshBin::new(&pipeline, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
+            let mut glass =
+                MeshBin::new_textured(&self.0, self.1, &self.2, &layout, &mut s1, &mut e1).unwrap();
+            bands
+                .render(&mut Callback(into_frame(out)), |band| {
+                    band.clear(Rgb565::BLACK);
+                    under.draw(band).unwrap();
+                    glass.draw(band).unwrap();
+                })
+                .unwrap();
+        }
+    }
+
+    let front =
+        over_torus::pipeline(Mat4::translation(Vec3::new(0.2, 0.1, 0.6)) * Mat4::scaling(0.7));
     // A sphere with texture coordinates from its positions (two turns around).
     let mut sphere = icosphere(1.0, 2);
     sphere.uvs = sphere
@@ -539,110 +626,8 @@ fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
                 glass.specular = specular;
                 let opacity = rng.below(255) as u8;
                 let case = format!("{kind}, {shading:?}, {specular:?}, opacity {opacity}");
-                let (mut colors, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
-                let mut target = DepthTarget::new(&mut colors, &mut depth, w, h).unwrap();
-                behind.draw_mesh(&TORUS, &base, &mut target);
-                let (before, before_depth) = (
-                    target.framebuffer().pixels().to_vec(),
-                    target.depth().to_vec(),
-                );
-                let (mut oc, mut od) = (before.clone(), before_depth.clone());
-                let mut opaque = DepthTarget::new_uncleared(&mut oc, &mut od, w, h).unwrap();
-                front.draw_textured_mesh(&sphere, &glass, &mut opaque);
-                let (drawn, drawn_depth) = (
-                    opaque.framebuffer().pixels().to_vec(),
-                    opaque.depth().to_vec(),
-                );
-                let glass = glass.with_opacity(opacity);
-                front.draw_textured_mesh(&sphere, &glass, &mut target);
-                assert_eq!(target.depth(), &before_depth[..], "depth written, {case}");
-                let mut blended = 0;
-                for i in 0..n {
-                    let want = if drawn_depth[i] != before_depth[i] {
-                        blended += 1;
-                        drawn[i].blend(before[i], opacity)
-                    } else {
-                        before[i]
-                    };
-                    assert_eq!(target.framebuffer().pixels()[i], want, "pixel {i}, {case}");
-                }
-                assert!(blended > n / 20, "{blended}");
-                let whole = target.framebuffer().pixels().to_vec();
-
-                let mut scratch = vec![ProjectedVertex::EMPTY; sphere.vertices.len()];
-                let mut with = (before.clone(), before_depth.clone());
-                let mut t = DepthTarget::new_uncleared(&mut with.0, &mut with.1, w, h).unwrap();
-                front
-                    .draw_textured_mesh_with(&sphere, &glass, &mut t, &mut scratch)
-                    .unwrap();
-                assert_eq!(t.framebuffer().pixels(), &whole[..], "scratch, {case}");
-                assert_eq!(t.depth(), &before_depth[..], "depth written with a scratch");
-
-                for rows in [5, 16, 64] {
-                    let layout = BandLayout::new(Size::new(w, h), rows).unwrap();
-                    let (mut cb, mut db) = (
-                        vec![Rgb565::BLACK; layout.buffer_len()],
-                        vec![0; layout.buffer_len()],
-                    );
-                    let mut bands =
-                        DepthBands::new(ColorBands::new(layout, &mut cb).unwrap(), &mut db)
-                            .unwrap();
-                    let mut out = vec![Rgb565::BLACK; n];
-                    bands
-                        .render(
-                            &mut Callback(|rect: &Rectangle, px: &[Rgb565]| {
-                                let start = (rect.top_left.y as u32 * w) as usize;
-                                out[start..start + px.len()].copy_from_slice(px);
-                                Ok::<(), ()>(())
-                            }),
-                            |band| {
-                                band.clear(Rgb565::BLACK);
-                                behind.draw_mesh(&TORUS, &base, band);
-                                if rows == 16 {
-                                    front
-                                        .draw_textured_mesh_with(
-                                            &sphere,
-                                            &glass,
-                                            band,
-                                            &mut scratch,
-                                        )
-                                        .unwrap();
-                                } else {
-                                    front.draw_textured_mesh(&sphere, &glass, band);
-                                }
-                            },
-                        )
-                        .unwrap();
-                    assert_eq!(out, whole, "{rows}-row bands, {case}");
-
-                    let (mut s0, mut s1) = (
-                        vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
-                        vec![ProjectedVertex::EMPTY; sphere.vertices.len()],
-                    );
-                    let (mut e0, mut e1) =
-                        (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
-                    let mut opaque_bin =
-                        MeshBin::new(&behind, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
-                    let mut glass_bin =
-                        MeshBin::new_textured(&front, &sphere, &glass, &layout, &mut s1, &mut e1)
-                            .unwrap();
-                    let mut binned = vec![Rgb565::BLACK; n];
-                    bands
-                        .render(
-                            &mut Callback(|rect: &Rectangle, px: &[Rgb565]| {
-                                let start = (rect.top_left.y as u32 * w) as usize;
-                                binned[start..start + px.len()].copy_from_slice(px);
-                                Ok::<(), ()>(())
-                            }),
-                            |band| {
-                                band.clear(Rgb565::BLACK);
-                                opaque_bin.draw(band).unwrap();
-                                glass_bin.draw(band).unwrap();
-                            },
-                        )
-                        .unwrap();
-                    assert_eq!(binned, whole, "{rows}-row bins, {case}");
-                }
+                let glass = Textured(front, &sphere, glass.with_opacity(opacity));
+                over_torus::check(&glass, opacity, &case);
             }
         }
     }
