@@ -310,7 +310,10 @@ mod over_torus {
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
-    use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBand, DepthBands};
+    use embedded_raster::band::MeshBin;
+    use embedded_raster::band::{
+        BandLayout, BinEntry, Callback, ColorBands, DepthBand, DepthBands,
+    };
     use embedded_raster::three_d::meshes::torus::TORUS;
     use embedded_raster::three_d::{Angle, MeshTarget, ProjectedVertex};
     use embedded_raster::Vec3;
@@ -333,6 +336,9 @@ mod over_torus {
         )
     }
 
+    /// A band's draw of a bin.
+    pub type BinDraw<'a> = Box<dyn FnMut(&mut DepthBand<'_, Rgb565>) + 'a>;
+
     /// A translucent mesh, drawn opaque or at its opacity by every path.
     pub trait Glass {
         /// Vertices of the mesh (a scratch's length).
@@ -341,8 +347,14 @@ mod over_torus {
         fn draw(&self, opaque: bool, target: &mut impl MeshTarget<Rgb565>);
         /// [`draw`](Self::draw) of the translucent mesh with a vertex scratch.
         fn draw_with(&self, target: &mut impl MeshTarget<Rgb565>, scratch: &mut [ProjectedVertex]);
-        /// Renders the bands of `layout` from mesh bins: the torus's, then the mesh's.
-        fn render_bins(&self, bands: &mut DepthBands<'_, Rgb565>, out: &mut [Rgb565]);
+        /// The translucent mesh's bin for `layout` (its vertices in `scratch`, its faces in
+        /// `storage`), as a band's draw.
+        fn bin<'a>(
+            &'a self,
+            layout: &BandLayout,
+            scratch: &'a mut [ProjectedVertex],
+            storage: &'a mut [BinEntry],
+        ) -> BinDraw<'a>;
     }
 
     /// Copies each band into `out`, the frame's pixels.
@@ -437,8 +449,23 @@ mod over_torus {
                 })
                 .unwrap();
             assert!(out == whole, "{rows}-row bands, {case}");
+            // From bins: the torus's, then the mesh's.
+            let (mut s0, mut s1) = (
+                vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
+                vec![ProjectedVertex::EMPTY; glass.vertices()],
+            );
+            let (mut e0, mut e1) = (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
+            let mut under =
+                MeshBin::new(&behind, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
+            let mut over = glass.bin(&layout, &mut s1, &mut e1);
             let mut binned = vec![Rgb565::BLACK; N];
-            glass.render_bins(&mut bands, &mut binned);
+            bands
+                .render(&mut Callback(into_frame(&mut binned)), |band| {
+                    band.clear(Rgb565::BLACK);
+                    under.draw(band).unwrap();
+                    over(band);
+                })
+                .unwrap();
             assert!(binned == whole, "{rows}-row bins, {case}");
         }
     }
@@ -449,11 +476,11 @@ mod over_torus {
 /// (`Lights`: a point light and a directional one).
 #[test]
 fn translucent_meshes_blend_where_nearer_and_keep_depth() {
-    use embedded_raster::band::{BinEntry, Callback, DepthBands, MeshBin};
-    use embedded_raster::three_d::meshes::{icosphere::ICOSPHERE, torus::TORUS};
+    use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
+    use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
     use embedded_raster::three_d::{LightSource, Lights, MeshTarget, ProjectedVertex};
     use embedded_raster::{Mat4, Material, Pipeline, Shading, Specular, Vec3};
-    use over_torus::{behind, into_frame, Glass};
+    use over_torus::Glass;
 
     struct Untextured(Pipeline, Material<Rgb565>);
 
@@ -477,25 +504,15 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
                 .unwrap();
         }
 
-        fn render_bins(&self, bands: &mut DepthBands<'_, Rgb565>, out: &mut [Rgb565]) {
-            let (pipeline, base) = behind();
-            let layout = *bands.layout();
-            let (mut s0, mut s1) = (
-                vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
-                vec![ProjectedVertex::EMPTY; self.vertices()],
-            );
-            let (mut e0, mut e1) = (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
-            let mut under =
-                MeshBin::new(&pipeline, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
-            let mut glass =
-                MeshBin::new(&self.0, &ICOSPHERE, &self.1, &layout, &mut s1, &mut e1).unwrap();
-            bands
-                .render(&mut Callback(into_frame(out)), |band| {
-                    band.clear(Rgb565::BLACK);
-                    under.draw(band).unwrap();
-                    glass.draw(band).unwrap();
-                })
-                .unwrap();
+        fn bin<'a>(
+            &'a self,
+            layout: &BandLayout,
+            scratch: &'a mut [ProjectedVertex],
+            storage: &'a mut [BinEntry],
+        ) -> over_torus::BinDraw<'a> {
+            let mut bin =
+                MeshBin::new(&self.0, &ICOSPHERE, &self.1, layout, scratch, storage).unwrap();
+            Box::new(move |band| bin.draw(band).unwrap())
         }
     }
 
@@ -532,13 +549,13 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
 /// with and without a highlight.
 #[test]
 fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
-    use embedded_raster::band::{BinEntry, Callback, DepthBands, MeshBin};
+    use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
     use embedded_raster::texture::{Filter, Rgb565Texels, Texture};
-    use embedded_raster::three_d::meshes::{icosphere, torus::TORUS};
+    use embedded_raster::three_d::meshes::icosphere;
     use embedded_raster::three_d::TexturedMaterial;
     use embedded_raster::three_d::{Blended, Mesh, MeshTarget, ProjectedVertex, TexCoord};
     use embedded_raster::{Mat4, Pipeline, Shading, Specular, Vec3};
-    use over_torus::{behind, into_frame, Glass};
+    use over_torus::Glass;
 
     struct Textured<'a>(
         Pipeline,
@@ -568,25 +585,15 @@ fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
                 .unwrap();
         }
 
-        fn render_bins(&self, bands: &mut DepthBands<'_, Rgb565>, out: &mut [Rgb565]) {
-            let (pipeline, base) = behind();
-            let layout = *bands.layout();
-            let (mut s0, mut s1) = (
-                vec![ProjectedVertex::EMPTY; TORUS.vertices.len()],
-                vec![ProjectedVertex::EMPTY; self.vertices()],
-            );
-            let (mut e0, mut e1) = (vec![BinEntry::EMPTY; 40_000], vec![BinEntry::EMPTY; 40_000]);
-            let mut under =
-                MeshBin::new(&pipeline, &TORUS, &base, &layout, &mut s0, &mut e0).unwrap();
-            let mut glass =
-                MeshBin::new_textured(&self.0, self.1, &self.2, &layout, &mut s1, &mut e1).unwrap();
-            bands
-                .render(&mut Callback(into_frame(out)), |band| {
-                    band.clear(Rgb565::BLACK);
-                    under.draw(band).unwrap();
-                    glass.draw(band).unwrap();
-                })
-                .unwrap();
+        fn bin<'a>(
+            &'a self,
+            layout: &BandLayout,
+            scratch: &'a mut [ProjectedVertex],
+            storage: &'a mut [BinEntry],
+        ) -> over_torus::BinDraw<'a> {
+            let mut bin =
+                MeshBin::new_textured(&self.0, self.1, &self.2, layout, scratch, storage).unwrap();
+            Box::new(move |band| bin.draw(band).unwrap())
         }
     }
 
