@@ -476,7 +476,7 @@ mod over_torus {
 /// (`Lights`: a point light and a directional one).
 #[test]
 fn translucent_meshes_blend_where_nearer_and_keep_depth() {
-    use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
+    use embedded_raster::band::{BandLayout, BinEntry, MeshBin};
     use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
     use embedded_raster::three_d::{LightSource, Lights, MeshTarget, ProjectedVertex};
     use embedded_raster::{Mat4, Material, Pipeline, Shading, Specular, Vec3};
@@ -549,7 +549,7 @@ fn translucent_meshes_blend_where_nearer_and_keep_depth() {
 /// with and without a highlight.
 #[test]
 fn translucent_textured_meshes_blend_where_nearer_and_keep_depth() {
-    use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
+    use embedded_raster::band::{BandLayout, BinEntry, MeshBin};
     use embedded_raster::texture::{Filter, Rgb565Texels, Texture};
     use embedded_raster::three_d::meshes::icosphere;
     use embedded_raster::three_d::TexturedMaterial;
