@@ -177,7 +177,8 @@ impl<C> Material<C> {
     /// ```
     /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
     /// use embedded_raster::three_d::meshes::icosphere::ICOSPHERE;
-    /// use embedded_raster::{Angle, DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
+    /// use embedded_raster::three_d::Angle;
+    /// use embedded_raster::{DepthTarget, GouraudColor, Light, Mat4, Material, Pipeline};
     /// use embedded_raster::{Shading, Vec3};
     ///
     /// let (mut pixels, mut depth) = ([Rgb565::BLUE; 32 * 32], [0u16; 32 * 32]);
