@@ -9,7 +9,7 @@
 //!   formats, on frames whose height is not a multiple of most band heights;
 //! * 3D: the bench scene's knot (6,144 faces) at 320×240, and meshes with every shading, culling
 //!   mode and near-plane clipping on viewports that are not the frame (offset, partly outside
-//!   it), drawn with `Pipeline::draw_mesh_with`, against `DepthBand::draw_mesh` (no bin, no
+//!   it), drawn with `Pipeline::draw_mesh_with`, against `Pipeline::draw_mesh` into a band (no bin, no
 //!   scratch), `draw_mesh_with` (no bin) and the `MeshBin`, colours and depths;
 //! * textured meshes (spot with its texture, in the bench frame and clipped by the near plane,
 //!   every shading and sampler, vertex colours, highlights, `Lights`) drawn with
@@ -259,9 +259,9 @@ fn knot_frame() -> (Vec<Rgb565>, Vec<u16>) {
 /// How a band draws a mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Mode {
-    /// `DepthBand::draw_mesh`: no bin, no scratch.
+    /// `Pipeline::draw_mesh` into a band: no bin, no scratch.
     EachFace,
-    /// `DepthBand::draw_mesh_with`: no bin, the vertices again per band.
+    /// `Pipeline::draw_mesh_with` into a band: no bin, the vertices again per band.
     Scratch,
     /// `MeshBin`.
     Bin,

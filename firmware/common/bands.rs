@@ -20,10 +20,10 @@ use crate::scene3d::{self, Model};
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
     /// No bin, no memory per vertex: each band runs the pipeline over every face
-    /// (`DepthBand::draw_mesh`).
+    /// (`Pipeline::draw_mesh` into a band).
     EachFace,
     /// No bin: each band transforms every vertex once into the scratch
-    /// (`DepthBand::draw_mesh_with`).
+    /// (`Pipeline::draw_mesh_with` into a band).
     Scratch,
     /// A `MeshBin`: vertices and faces once per frame, each band fills its own faces.
     Bin,

@@ -7,7 +7,7 @@ use embedded_graphics::prelude::*;
 use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
 use embedded_raster::three_d::{Material, Mesh, Pipeline, ProjectedVertex};
 
-/// The frame of `meshes` in the bands of `layout`: mode 0 `DepthBand::draw_mesh`, 1
+/// The frame of `meshes` in the bands of `layout`: mode 0 `Pipeline::draw_mesh` into a band, 1
 /// `draw_mesh_with`, 2 a `MeshBin`.
 pub fn banded(
     layout: &BandLayout,
