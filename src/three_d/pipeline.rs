@@ -1134,6 +1134,23 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         }
     }
 
+    /// The quadratic normal field (`field` of the face's world normals: normalised again, or
+    /// taken as unit vectors) on the triangle drawn: the face, or a fan's triangle `bary` of it.
+    fn normal_field(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: &[Vec3; 3],
+        bary: Option<[Bary; 3]>,
+        field: fn([Vec3; 3]) -> QuadraticNormals,
+    ) -> QuadraticNormals {
+        let normals = field(self.world_normals(mesh, idx, model));
+        match bary {
+            None => normals,
+            Some(bary) => normals.restricted(bary),
+        }
+    }
+
     /// The face's unit world-space normals at its vertices, for the quadratic field.
     fn world_normals(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [Vec3; 3] {
         let pipeline = self.pipeline;
@@ -1246,11 +1263,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 shading::draw_levels(target, clip, v, table);
             }
             Fill::Quadratic(color) => {
-                let normals = QuadraticNormals::new(self.world_normals(mesh, idx, &model()));
-                let normals = match bary {
-                    None => normals,
-                    Some(bary) => normals.restricted(bary),
-                };
+                let normals = self.normal_field(mesh, idx, &model(), bary, QuadraticNormals::new);
                 let light = &self.pipeline.light;
                 shading::fill_quadratic(target, clip, tri, &normals, light, *color);
             }
@@ -1303,11 +1316,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 }
             }
             Shading::Quadratic => {
-                let normals = QuadraticNormals::new(self.world_normals(mesh, idx, &model()));
-                let normals = match bary {
-                    None => normals,
-                    Some(bary) => normals.restricted(bary),
-                };
+                let normals = self.normal_field(mesh, idx, &model(), bary, QuadraticNormals::new);
                 let (light, tri) = (&self.pipeline.light, v.map(|v| v.screen()));
                 let highlight = &shiny.pixel;
                 shading::fill_quadratic_specular(
@@ -1350,11 +1359,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         target: &mut DepthTarget<'_, C>,
     ) {
         let model = model();
-        let normals = QuadraticNormals::new(self.world_normals(mesh, idx, &model));
-        let normals = match bary {
-            None => normals,
-            Some(bary) => normals.restricted(bary),
-        };
+        let normals = self.normal_field(mesh, idx, &model, bary, QuadraticNormals::new);
         let (clip, light, tri) = (&self.clip, &self.pipeline.light, v.map(|v| v.screen()));
         let sources = match &self.rig {
             Some(rig) => rig.pixel_sources(&model),
@@ -1472,11 +1477,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         target: &mut DepthTarget<'_, C>,
     ) {
         // World normals are unit vectors already.
-        let normals = QuadraticNormals::of_unit(self.world_normals(mesh, idx, &model()));
-        let normals = match bary {
-            None => normals,
-            Some(bary) => normals.restricted(bary),
-        };
+        let normals = self.normal_field(mesh, idx, &model(), bary, QuadraticNormals::of_unit);
         let sources = match &self.rig {
             Some(rig) => rig.pixel_sources(&model()),
             None => Default::default(),
