@@ -176,11 +176,7 @@ impl<'a> CoverageMask<'a> {
             // The framebuffer's part of the row: columns left of 0 skipped.
             if let Some(row) = framebuffer.clipped_span_mut(y - top, x0, x1 + 1) {
                 let skip = x0.min(0).unsigned_abs() as usize;
-                let cells = cells.get(skip..).unwrap_or(&[]);
-                match opacity {
-                    255 => blend_cells(cells, row, color),
-                    _ => blend_cells_at(cells, row, color, opacity),
-                }
+                blend_cells(cells.get(skip..).unwrap_or(&[]), row, color, opacity);
             }
             cells.fill(0);
         }
@@ -225,25 +221,16 @@ impl CoverageSink for CoverageMask<'_> {
     }
 }
 
-/// Blends `color` over `row` with the coverage in `cells` (one a pixel, 15 fractional bits).
-fn blend_cells<C: GouraudColor>(cells: &[u16], row: &mut [C], color: C) {
+/// Blends `color` at `opacity` over `row` with the coverage in `cells` (one a pixel, 15
+/// fractional bits), each pixel's alpha by [`alpha_of`]: at 255 the colour itself, at 0
+/// untouched.
+fn blend_cells<C: GouraudColor>(cells: &[u16], row: &mut [C], color: C, opacity: u8) {
     for (&cell, px) in cells.iter().zip(row.iter_mut()) {
-        let cell = u32::from(cell);
-        if cell >= CELL_FULL {
-            *px = color;
-        } else if cell > 0 {
-            // A cell's 15 fractional bits as the 16 of a coverage.
-            *px = color.blend(*px, alpha_of(cell << 1, 255));
-        }
-    }
-}
-
-/// [`blend_cells`] at `opacity` (below 255): a whole cell blends at `opacity` too.
-fn blend_cells_at<C: GouraudColor>(cells: &[u16], row: &mut [C], color: C, opacity: u8) {
-    for (&cell, px) in cells.iter().zip(row.iter_mut()) {
-        let alpha = alpha_of(u32::from(cell) << 1, opacity);
-        if alpha > 0 {
-            *px = color.blend(*px, alpha);
+        // A cell's 15 fractional bits as the 16 of a coverage.
+        match alpha_of(u32::from(cell) << 1, opacity) {
+            0 => {}
+            255 => *px = color,
+            alpha => *px = color.blend(*px, alpha),
         }
     }
 }
