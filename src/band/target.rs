@@ -11,7 +11,7 @@ use crate::draw::{
     skip_colors, AntiAliased, CoverageMask, GouraudTriangle, SliceFramebuffer, SolidTriangle,
     TexturedTriangle, Translucent,
 };
-use crate::raster::band::Band;
+use crate::raster::walk::Band;
 use crate::rect;
 use crate::texture::TexelSource;
 use crate::three_d::{DepthTarget, MeshTarget, MeshTargetParts, Pipeline, TargetClip};

@@ -35,7 +35,8 @@ use crate::raster::band::RowWindow;
 use crate::raster::compact::{CompactTriangle, TooLarge};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
-use crate::raster::walk::{Span, Spans};
+use crate::raster::walk::Span;
+use crate::raster::Spans;
 use crate::raster::{shade, shade_compact, SpanShader};
 
 /// A triangle vertex: sub-pixel position and colour.

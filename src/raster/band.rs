@@ -21,9 +21,11 @@ use embedded_graphics::primitives::Rectangle;
 use super::compact::{CompactTriangle, TooLarge};
 use super::edge::{first_centre_from, last_centre_to};
 use super::plane::{Attributes, Planes};
-use super::scan::{Kept, KeptWords, SmallScan};
-use super::shade::{fold_planes, shade, shade_general, SpanShader};
-use super::walk::Span;
+use super::runs::SmallScan;
+use super::scan::{Kept, KeptWords};
+use super::shade::{fold_planes, shade, shade_general};
+use super::sink::SpanShader;
+use super::walk::{Band, Span};
 use crate::arch::LANES;
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
 
@@ -76,36 +78,6 @@ impl RowWindow for AllRows {
     #[inline(always)]
     fn band(&self) -> Option<Band> {
         None
-    }
-}
-
-/// Rows `first ..= last` of a frame, drawn into a buffer whose row 0 is `first`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Band {
-    pub(crate) first: i32,
-    pub(crate) last: i32,
-}
-
-impl Band {
-    /// The rows of `y0 ..= y1` inside the band and how many rows of it come before them, or
-    /// `None` if none is inside.
-    #[inline(always)]
-    pub(crate) fn restrict(&self, y0: i32, y1: i32) -> Option<(i32, i32, u32)> {
-        let (start, end) = (y0.max(self.first), y1.min(self.last));
-        // start ≥ y0: the difference is below 2³².
-        (start <= end).then(|| (start, end, start.wrapping_sub(y0) as u32))
-    }
-
-    /// Row `y` of the frame as a row of the band's buffer.
-    #[inline(always)]
-    pub(crate) fn local(&self, y: i32) -> i32 {
-        y.wrapping_sub(self.first)
-    }
-
-    /// Whether pixel rows `top ..= bottom` meet the band.
-    #[inline(always)]
-    pub(crate) fn meets(&self, top: i32, bottom: i32) -> bool {
-        top <= self.last && bottom >= self.first
     }
 }
 

@@ -43,7 +43,7 @@
 use super::compact::CompactTriangle;
 use super::edge::owns_centres_on;
 use super::plane::Planes;
-use super::shade::SpanShader;
+use super::sink::SpanShader;
 use crate::arch::x86_64::{first_covered, ChannelRows};
 use crate::arch::LANES;
 use crate::fixed_point::SUBPIXEL_BITS;

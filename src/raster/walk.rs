@@ -13,7 +13,7 @@
 //! column and its remainders `u32`, whatever the vertices: a boundary is only read in rows within
 //! its edge's height, where its column lies between the edge's end points. The set-ups differ
 //! only in how they find a boundary's first column: the compact one
-//! ([`compact`](crate::raster::compact), bounding boxes under 2048 px) in 32 bits, the general
+//! (`compact.rs`, bounding boxes under 2048 px) in 32 bits, the general
 //! one here (any [`Coord`]) from the edge's exact value at the boundary's first row (`i64`, or
 //! `i128` for vertices beyond about two million pixels), divided once.
 //!
@@ -38,9 +38,7 @@ use core::ops::ControlFlow;
 
 use embedded_graphics::primitives::Rectangle;
 
-use crate::fixed_point::Coord;
 use crate::raster::arith::div_rem_u64;
-use crate::raster::compact::CompactTriangle;
 use crate::raster::edge::{first_centre_from, last_centre_to, last_row, TriangleSetup};
 
 /// A run of covered pixels `x_start..x_end` in row `y`.
@@ -531,6 +529,36 @@ fn general_boundary(a: i64, b: i64, k: i64) -> Boundary {
     )
 }
 
+/// Rows `first ..= last` of a frame, drawn into a buffer whose row 0 is `first`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Band {
+    pub(crate) first: i32,
+    pub(crate) last: i32,
+}
+
+impl Band {
+    /// The rows of `y0 ..= y1` inside the band and how many rows of it come before them, or
+    /// `None` if none is inside.
+    #[inline(always)]
+    pub(crate) fn restrict(&self, y0: i32, y1: i32) -> Option<(i32, i32, u32)> {
+        let (start, end) = (y0.max(self.first), y1.min(self.last));
+        // start ≥ y0: the difference is below 2³².
+        (start <= end).then(|| (start, end, start.wrapping_sub(y0) as u32))
+    }
+
+    /// Row `y` of the frame as a row of the band's buffer.
+    #[inline(always)]
+    pub(crate) fn local(&self, y: i32) -> i32 {
+        y.wrapping_sub(self.first)
+    }
+
+    /// Whether pixel rows `top ..= bottom` meet the band.
+    #[inline(always)]
+    pub(crate) fn meets(&self, top: i32, bottom: i32) -> bool {
+        top <= self.last && bottom >= self.first
+    }
+}
+
 /// A boundary that never limits a span: far left of any region (a start boundary) or far right
 /// (an end one).
 const fn open_boundary(end: bool) -> Boundary {
@@ -597,84 +625,12 @@ pub(crate) fn general_walk(setup: &TriangleSetup, region: &Region, rows: &Region
     }
 }
 
-/// Iterator over the covered spans of a triangle inside a clip rectangle, top to bottom: the
-/// walk of the compact set-up (bounding boxes under 2048 px) or of the general one.
-#[derive(Debug, Clone)]
-pub struct Spans {
-    walk: Walk,
-}
-
-impl Spans {
-    /// Spans of `setup` inside `region` (the general walk).
-    #[inline(always)]
-    pub(crate) fn new(setup: &TriangleSetup, region: Region) -> Spans {
-        Spans {
-            walk: general_walk(setup, &region, &region),
-        }
-    }
-
-    /// The spans of a walk (a compact triangle's).
-    #[inline(always)]
-    pub(crate) fn compact(walk: Walk) -> Spans {
-        Spans { walk }
-    }
-
-    /// Spans of the triangle `v` inside `clip` (empty for degenerate triangles).
-    #[inline(always)]
-    pub fn of_triangle(v: [(Coord, Coord); 3], clip: &Rectangle) -> Spans {
-        match CompactTriangle::classify(v, clip).walk() {
-            Ok((_, walk)) => Spans::compact(walk),
-            Err(None) => Spans::empty(),
-            Err(Some(region)) => Spans::general(v, &region),
-        }
-    }
-
-    /// [`of_triangle`](Self::of_triangle) through the general set-up over `region` (the
-    /// triangle's pixels inside the clip), out of line: the compact set-up's spans then start
-    /// in fewer instructions.
-    #[inline(never)]
-    fn general(v: [(Coord, Coord); 3], region: &Region) -> Spans {
-        // By reference: moving the setup out of the `Option` would copy it.
-        let setup = TriangleSetup::new(v);
-        setup
-            .as_ref()
-            .map_or_else(Spans::empty, |s| Spans::new(s, *region))
-    }
-
-    /// An iterator with no spans.
-    pub fn empty() -> Spans {
-        Spans {
-            walk: Walk::empty(),
-        }
-    }
-}
-
-impl Iterator for Spans {
-    type Item = Span;
-
-    #[inline]
-    fn next(&mut self) -> Option<Span> {
-        self.walk.next_span().map(|(span, _, _)| span)
-    }
-
-    /// The walk's state then lives in registers.
-    #[inline]
-    fn fold<B, F: FnMut(B, Span) -> B>(self, init: B, mut f: F) -> B {
-        self.walk.fold(init, |acc, span, _, _| f(acc, span))
-    }
-}
-
-/// Calls `f(y, x_start, x_end)` for every covered span of the triangle `v` inside `clip`
-/// (`x_end` exclusive), top to bottom. Degenerate triangles produce no spans.
-pub fn for_each_span(v: [(Coord, Coord); 3], clip: Rectangle, mut f: impl FnMut(i32, i32, i32)) {
-    for s in Spans::of_triangle(v, &clip) {
-        f(s.y, s.x_start, s.x_end);
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixed_point::Coord;
+    use crate::raster::compact::CompactTriangle;
+    use crate::raster::spans::{for_each_span, Spans};
 
     /// The last pixel of a length: `start + len − 1` clamped to `i32`, at the ends of both
     /// ranges and at random.

@@ -15,7 +15,7 @@ use super::clip::W_MIN;
 use super::math::Vec3;
 use super::vertex::VertexStage;
 use crate::raster::arith::mul_i32_wide;
-use crate::raster::band::Band;
+use crate::raster::walk::Band;
 
 /// Sub-pixels between the band's rows and its planes.
 const MARGIN: i64 = 2 << 8;

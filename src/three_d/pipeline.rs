@@ -85,8 +85,9 @@ use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, Verte
 use crate::arch;
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
-use crate::raster::band::{AllRows, Band, RowWindow};
+use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::scan::KeptWords;
+use crate::raster::walk::Band;
 use crate::texture::TexelSource;
 
 /// Which faces are skipped.

@@ -76,10 +76,12 @@ use crate::arch;
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
 use crate::raster::arith::mul_i32_wide;
-use crate::raster::band::{AllRows, Band, RowWindow};
+use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
-use crate::raster::scan::{KeptWords, SmallScan};
+use crate::raster::runs::SmallScan;
+use crate::raster::scan::KeptWords;
+use crate::raster::walk::Band;
 use crate::raster::{Span, SpanShader};
 
 /// How a mesh is lit.

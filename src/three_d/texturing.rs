@@ -103,7 +103,7 @@ use crate::color::GouraudColor;
 use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
-use crate::raster::scan::SmallScan;
+use crate::raster::runs::SmallScan;
 use crate::raster::{Span, SpanShader};
 use crate::texture::span::{PlaneMap, SampledLoop, Sampler};
 use crate::texture::{TexelCoord, TexelSource, Texture};
