@@ -74,6 +74,25 @@ impl ClipVolume {
         }
     }
 
+    /// Whether every point of the convex hull of `corners` (clip-space points, each the rounded
+    /// transform of a model-space point) is inside every plane once transformed and rounded the
+    /// same way: then no vertex of a mesh inside the corners' model-space box needs its
+    /// outcode.
+    ///
+    /// A plane's distance is a linear form `f` whose coefficients sum to `m` in magnitude (2
+    /// for near and far, 1 for `w`, `g + 256` for the guard planes), and rounding each
+    /// coordinate to the nearest integer moves `f` by at most `m/2`. The exact transform is
+    /// affine, so at a point of the hull it is the convex combination of the corners' exact
+    /// transforms: each corner's rounded distance at least `m` puts every exact one at least
+    /// `m/2`, the point's exact distance at least `m/2`, and its rounded one at least 0.
+    pub(crate) fn holds(&self, corners: &[[i32; 4]]) -> bool {
+        let [gx, gy] = self.guard.map(i64::from);
+        let margin = [2, 2, 1, gx + 256, gx + 256, gy + 256, gy + 256];
+        corners
+            .iter()
+            .all(|p| (0..PLANES).all(|k| self.distance(k, p) >= margin[k]))
+    }
+
     /// Bit `k` is set when `p` is outside plane `k`.
     #[inline(always)]
     pub(crate) fn outcode(&self, p: &[i32; 4]) -> u8 {

@@ -278,18 +278,18 @@ impl Pipeline {
     /// The screen position and depth of a clip-space point inside the view volume (within the
     /// near and far planes and the guard band), or `None` if it is outside.
     pub fn project(&self, clip: Vec4) -> Option<ScreenVertex> {
-        let stage = self.stage(0, None);
+        let stage = self.stage([0; 3], None);
         let p = clip.to_bits();
         (stage.volume.outcode(&p) == 0).then(|| stage.project(&p))
     }
 
-    /// The vertex stage of one draw, for positions within `bound` (raw) of the origin on each
-    /// axis.
-    fn stage(&self, bound: u32, light: Option<VertexLight>) -> VertexStage {
+    /// The vertex stage of one draw, for positions within `bounds` (raw) of the origin on the
+    /// `x`, `y` and `z` axes.
+    fn stage(&self, bounds: [u32; 3], light: Option<VertexLight>) -> VertexStage {
         let size = self.viewport.size;
         let corner = self.viewport.top_left;
         let viewport = ((corner.x, corner.y), (size.width, size.height));
-        VertexStage::new(&self.mvp, bound, viewport, light)
+        VertexStage::new(&self.mvp, bounds, viewport, light)
     }
 
     /// The unit world-space direction towards the viewer that specular highlights
@@ -501,12 +501,13 @@ pub(crate) fn fit_scratch<'s>(
         .ok_or(ScratchTooSmall { needed, given })
 }
 
-/// A bound on the magnitude of every raw coordinate of `positions`: the OR of them all (at
-/// least each, under twice the largest).
-fn bound(positions: &[Vec3]) -> u32 {
-    positions.iter().fold(0, |bits, p| {
+/// The largest magnitudes of the raw `x`, `y` and `z` of `positions`: the half sizes of the
+/// box around the origin that holds them (whose corners the vertex stage tests against the view
+/// volume).
+fn bounds(positions: &[Vec3]) -> [u32; 3] {
+    positions.iter().fold([0; 3], |[bx, by, bz], p| {
         let [x, y, z] = p.to_bits().map(i32::unsigned_abs);
-        bits | x | y | z
+        [bx.max(x), by.max(y), bz.max(z)]
     })
 }
 
@@ -694,7 +695,7 @@ where
         clip: TargetClip<R>,
     ) -> Self {
         let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
-        let stage = pipeline.stage(bound(mesh.vertices), None);
+        let stage = pipeline.stage(bounds(mesh.vertices), None);
         // A highlight of strength 0 is none: the same frame as without it.
         let specular = material
             .specular
@@ -775,7 +776,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         // stage.
         let vertex_rig = rig.is_some() && vertex_light.is_some();
         let vertex_light = vertex_light.filter(|_| rig.is_none());
-        let stage = pipeline.stage(bound(mesh.vertices), vertex_light);
+        let stage = pipeline.stage(bounds(mesh.vertices), vertex_light);
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),

@@ -379,6 +379,9 @@ pub(crate) struct VertexStage {
     mvp: [[i32; 4]; 4],
     /// No sum of the transform can leave ±2⁴⁶ for the mesh's positions: no saturation needed.
     direct: bool,
+    /// Every position within the bound is inside the view volume once transformed: the
+    /// vertices' outcodes are 0 without testing them.
+    inside: bool,
     pub(crate) volume: ClipVolume,
     /// The viewport's centre, sub-pixels (clamped to ±(2³¹ − 2²⁵): beyond, nothing is on a
     /// target anyway), and its half sizes times 2ᵉ (in `[2²², 2²³)` for the larger).
@@ -393,15 +396,16 @@ pub(crate) struct VertexStage {
 
 impl VertexStage {
     /// The stage of `mvp` into the viewport at `(x, y)` of `width × height` pixels, for
-    /// positions whose raw components are at most `bound` in magnitude, lighting vertices with
-    /// `light` when given.
+    /// positions whose raw components are at most `bounds` in magnitude (`x`, `y`, `z`),
+    /// lighting vertices with `light` when given.
     pub(crate) fn new(
         mvp: &Mat4,
-        bound: u32,
+        bounds: [u32; 3],
         ((x, y), (width, height)): ((i32, i32), (u32, u32)),
         light: Option<VertexLight>,
     ) -> Self {
         let mvp = mvp.to_bits();
+        let bound = bounds[0].max(bounds[1]).max(bounds[2]);
         let direct = mvp.iter().all(|row| {
             let linear: u64 = row[..3].iter().map(|m| u64::from(m.unsigned_abs())).sum();
             let translation = u64::from(row[3].unsigned_abs()) << SCALAR_BITS;
@@ -422,10 +426,28 @@ impl VertexStage {
         // not inlined (`opt-level` `"z"`).
         let centre =
             |corner: i32, half: i64| (i64::from(corner) * 256 + half).max(-limit).min(limit);
+        let volume = ClipVolume::new(width, height);
+        // The box of the positions, `±bounds`, inside the view volume: no vertex of the draw
+        // needs its outcode (eight corners transformed once a draw).
+        let inside = direct && i32::try_from(bound).is_ok() && {
+            let corners: [[i32; 4]; 8] = core::array::from_fn(|k| {
+                let p: [i32; 3] = core::array::from_fn(|axis| {
+                    let b = bounds[axis] as i32;
+                    if k >> axis & 1 == 0 {
+                        -b
+                    } else {
+                        b
+                    }
+                });
+                mvp.map(|row| direct_row(&row, &p))
+            });
+            volume.holds(&corners)
+        };
         VertexStage {
             mvp,
             direct,
-            volume: ClipVolume::new(width, height),
+            inside,
+            volume,
             centre: (centre(x, half.0) as i32, centre(y, half.1) as i32),
             half: ((half.0 as u32) << exponent, (half.1 as u32) << exponent),
             exponent,
@@ -559,11 +581,22 @@ impl VertexStage {
         }
     }
 
+    /// The outcode of the clip-space position of a vertex of the draw (0 without a test where
+    /// the draw's box is inside the view volume).
+    #[inline(always)]
+    fn outcode(&self, clip: &[i32; 4]) -> u8 {
+        if self.inside {
+            0
+        } else {
+            self.volume.outcode(clip)
+        }
+    }
+
     /// The vertex at `p` transformed, classified and projected (if inside), unlit.
     #[inline(always)]
     fn placed(&self, p: Vec3) -> ProjectedVertex {
         let clip = self.clip_position(p);
-        let code = self.volume.outcode(&clip);
+        let code = self.outcode(&clip);
         let screen = if code == 0 {
             self.project(&clip)
         } else {
@@ -582,7 +615,7 @@ impl VertexStage {
     #[inline(always)]
     pub(crate) fn textured_vertex(&self, p: Vec3) -> ProjectedVertex {
         let clip = self.clip_position(p);
-        let code = self.volume.outcode(&clip);
+        let code = self.outcode(&clip);
         if code != 0 {
             return ProjectedVertex {
                 code,
@@ -597,7 +630,7 @@ impl VertexStage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::three_d::{Angle, Scalar};
+    use crate::three_d::{Angle, Scalar, Vec3};
 
     #[test]
     fn rotations_are_recognised() {
@@ -613,6 +646,83 @@ mod tests {
             r * Mat4::scaling(Scalar::from_num(1.01))
         )));
         assert!(!is_rotation(&block(Mat4::from_bits([[0; 4]; 4]))));
+    }
+
+    /// A draw whose box of positions (`±bound` on each axis) is inside the view volume skips
+    /// the vertices' outcodes: every point of the box, transformed and rounded as a vertex is,
+    /// must then be inside. Random cameras, each box grown by bisection to the largest the
+    /// stage takes (its corners at the margins' edge of some plane), points at and near its
+    /// corners, on its edges and inside.
+    #[test]
+    fn a_box_inside_the_volume_needs_no_outcodes() {
+        let mut rng = crate::rng::Rng(0x6f75_7463_6f64_6573);
+        let viewport = ((0, 0), (320, 240));
+        let (mut boxes, mut points) = (0, 0);
+        for _ in 0..400 {
+            let degrees =
+                |rng: &mut crate::rng::Rng, lo, hi| Angle::from_degrees(rng.range(lo, hi) as i32);
+            let fov = degrees(&mut rng, 20, 120);
+            let near = rng.range_f64(0.05, 1.0);
+            let Some(projection) = Mat4::perspective(fov, 4.0 / 3.0, near, near * 40.0) else {
+                continue;
+            };
+            let scalar = |v: f64| Scalar::from_num(v);
+            let offset = Vec3::new(
+                scalar(rng.range_f64(-1.0, 1.0)),
+                scalar(rng.range_f64(-1.0, 1.0)),
+                scalar(-rng.range_f64(0.5, 8.0)),
+            );
+            let model = Mat4::translation(offset)
+                * Mat4::rotation_y(degrees(&mut rng, 0, 359))
+                * Mat4::rotation_x(degrees(&mut rng, -90, 90))
+                * Mat4::scaling(scalar(rng.range_f64(0.25, 4.0)));
+            let mvp = projection * model;
+            // The box's shape at random, its size by bisection.
+            let shape = [0; 3].map(|_| 1 + rng.below(4) as u32);
+            let sized = |size: u32| shape.map(|s| size * s / 4);
+            let holds = |size: u32| VertexStage::new(&mvp, sized(size), viewport, None).inside;
+            if !holds(0) {
+                continue;
+            }
+            let (mut lo, mut hi) = (0u32, 1 << 22);
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if holds(mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let bounds = sized(lo);
+            let stage = VertexStage::new(&mvp, bounds, viewport, None);
+            assert!(stage.inside);
+            boxes += 1;
+            let coordinate = |rng: &mut crate::rng::Rng, b: u32, kind: u64| {
+                let b = i64::from(b);
+                let sign = if rng.chance(2) { 1 } else { -1 };
+                match kind {
+                    // A corner's, one a little inside it, or anywhere along the axis.
+                    0 => b * sign,
+                    1 => (b - rng.range(0, 3)).max(0) * sign,
+                    _ => rng.range(-b, b),
+                }
+            };
+            for _ in 0..64 {
+                let [x, y, z] = core::array::from_fn(|axis| {
+                    let kind = rng.below(3);
+                    coordinate(&mut rng, bounds[axis], kind) as i32
+                });
+                let clip = stage.clip_position(Vec3::from_bits(x, y, z));
+                assert_eq!(
+                    stage.volume.outcode(&clip),
+                    0,
+                    "{mvp:?} bounds {bounds:?} at {x} {y} {z}"
+                );
+                points += 1;
+            }
+        }
+        assert!(boxes > 200, "{boxes} boxes");
+        assert!(points > 10_000);
     }
 
     #[test]
