@@ -621,6 +621,17 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
     }
 }
 
+/// What the face stage does with a face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Verdict {
+    /// Nothing (outside the view volume or a band's rows, culled, or of no area; counted).
+    Dropped,
+    /// Clip it: it crosses the view volume's boundary.
+    Clipped,
+    /// Fill it.
+    Drawn,
+}
+
 /// Why the face stage drops a face it does not reject outright.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Dropped {
@@ -936,6 +947,11 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 stats.invalid += 1;
                 continue;
             };
+            // Most faces end here: nothing else of them is read before.
+            let verdict = self.verdict([a, b, c], &mut stats);
+            if verdict == Verdict::Dropped {
+                continue;
+            }
             // Only flat shading, faces without normals and clipping need the positions again:
             // in range, as the scratch has one entry per vertex.
             let vertices = mesh.vertices;
@@ -943,13 +959,13 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 // By value: a closure holding the address of `idx` would keep it in memory
                 // every face, for the clipped ones.
                 let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
-                self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
+                self.kept_face(verdict, mesh, k, &idx, model, [a, b, c], sink, &mut stats);
             } else {
                 // The mesh's own indices: the copy of `idx` above is stored every face, and a
                 // host reading the three stored words back as one stalls its store forwarding.
                 let model =
                     move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
-                self.face(mesh, k, &idx, model, [a, b, c], sink, &mut stats);
+                self.kept_face(verdict, mesh, k, &idx, model, [a, b, c], sink, &mut stats);
             }
         }
         stats
@@ -1180,22 +1196,53 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         sink: &mut S,
         stats: &mut DrawStats,
     ) {
+        let verdict = self.verdict(v, stats);
+        self.kept_face(verdict, mesh, k, idx, model, v, sink, stats);
+    }
+
+    /// Hands the face a [`verdict`](Self::verdict) kept to `sink`: to clip or to fill.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn kept_face<S: FaceSink<C>>(
+        &self,
+        verdict: Verdict,
+        mesh: &Mesh<'_>,
+        k: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+        sink: &mut S,
+        stats: &mut DrawStats,
+    ) {
+        match verdict {
+            Verdict::Dropped => {}
+            Verdict::Clipped => {
+                // A copy for the call: the caller's indices need not be in memory otherwise.
+                let idx = *idx;
+                sink.clipped(self, mesh, k, &idx, model, v.map(|v| *v), stats);
+            }
+            Verdict::Drawn => sink.face(self, mesh, k, idx, model, v),
+        }
+    }
+
+    /// What the face stage does with the face of the projected vertices `v` (counted in
+    /// `stats`, unless it is to be clipped: the clipping counts it), decided from them alone,
+    /// before anything else of the face is read: most faces of a mesh end here.
+    #[inline(always)]
+    fn verdict(&self, v: [&ProjectedVertex; 3], stats: &mut DrawStats) -> Verdict {
         let codes = v.map(|v| v.outside());
         if codes[0] & codes[1] & codes[2] != 0 {
             stats.rejected += 1;
-            return;
+            return Verdict::Dropped;
         }
         if codes[0] | codes[1] | codes[2] != 0 {
-            // A copy for the call: the caller's indices need not be in memory otherwise.
-            let idx = *idx;
-            sink.clipped(self, mesh, k, &idx, model, v.map(|v| *v), stats);
-            return;
+            return Verdict::Clipped;
         }
         let [p0, p1, p2] = v.map(|v| v.position_bits());
         // A band's draw: nothing of a face outside its rows.
         if !self.clip.rows().touches([p0.1, p1.1, p2.1]) {
             stats.rejected += 1;
-            return;
+            return Verdict::Dropped;
         }
         // Inside the guard band every coordinate is within 2²⁵ sub-pixels of the viewport's
         // centre (itself clamped inside i32): the differences fit i32, their products i64.
@@ -1203,14 +1250,14 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         let area = d(p1.0, p0.0) * d(p2.1, p0.1) - d(p2.0, p0.0) * d(p1.1, p0.1);
         if area == 0 {
             stats.degenerate += 1;
-            return;
+            return Verdict::Dropped;
         }
         if !self.keeps(area < 0) {
             stats.culled += 1;
-            return;
+            return Verdict::Dropped;
         }
         stats.drawn += 1;
-        sink.face(self, mesh, k, idx, model, v);
+        Verdict::Drawn
     }
 
     /// Whether a face that is `front`-facing is drawn.
