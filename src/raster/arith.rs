@@ -67,14 +67,26 @@ pub(crate) fn mul_i32_wide(a: i32, b: i32) -> i64 {
     }
 }
 
-/// [`mul_i32_wide`] from limbs.
+/// [`mul_i32_wide`] from signed 16-bit limbs: `a = a₁·2¹⁶ + a₀` with `a₁ = a >> 16` signed and
+/// `a₀` the low half unsigned, so `a₁·b₁` (at most 2³⁰ in magnitude), `a₁·b₀` and `a₀·b₁` (below
+/// 2³¹) are exact `i32` products and `a₀·b₀` an exact `u32` one: four multiplies, no signs to
+/// fix.
 #[inline]
 fn mul_i32_wide_limbs(a: i32, b: i32) -> i64 {
-    let p = mul_32_limbs(a.unsigned_abs(), b.unsigned_abs()) as i64;
-    if (a < 0) != (b < 0) {
-        p.wrapping_neg()
+    let (a0, a1, b0, b1) = (a & 0xFFFF, a >> 16, b & 0xFFFF, b >> 16);
+    let low = (a0 as u32) * (b0 as u32);
+    let middle = i64::from(a1 * b0) + i64::from(a0 * b1);
+    (i64::from(a1 * b1) << 32) + (middle << 16) + i64::from(low)
+}
+
+/// `a · b` in full for 32-bit unsigned factors: without a long multiply from
+/// [`mul_32_limbs`] instead of a 64 × 64-bit library call.
+#[inline]
+pub(crate) fn mul_u32_wide(a: u32, b: u32) -> u64 {
+    if NO_LONG_MULTIPLY {
+        mul_32_limbs(a, b)
     } else {
-        p
+        u64::from(a) * u64::from(b)
     }
 }
 
@@ -198,12 +210,13 @@ fn reciprocal_63_newton(d: u32) -> u64 {
         .map_or(256, |&s| 256 + u64::from(s));
     // ≈ 2^16 / (d / 2^24) · 2^15 = 2^63 / d, to 8 bits.
     let mut x = seed << 23;
-    let d = u64::from(d);
-    let error = |x: u64| (1u64 << 63).wrapping_sub(d.wrapping_mul(x)) as i64;
+    // d·x modulo 2⁶⁴ for x < 2³³ (one 32 × 32-bit product and an addition: no 64 × 64-bit
+    // library call).
+    let error = |x: u64| (1u64 << 63).wrapping_sub(mul_u32_u33(d, x)) as i64;
     for _ in 0..2 {
         // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^49, no overflow.
         let e = error(x);
-        x = x.wrapping_add(((((x >> 16) as i64) * (e >> 24)) >> 23) as u64);
+        x = x.wrapping_add((wrapping_mul_i32(e >> 24, (x >> 16) as i32) >> 23) as u64);
     }
     // A few units off at most: step to the exact floor.
     let mut rem = error(x);

@@ -20,7 +20,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use core::num::NonZeroU32;
 
-use super::arith::{leading_zeros_32, reciprocal_63};
+use super::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
 use super::plane::{Attributes, Planes};
 pub(crate) use super::runs::SMALL;
 use super::runs::{run_by_scan, Edge, ReciprocalRuns, RowBound, RowRuns, SmallScan};
@@ -392,7 +392,7 @@ impl<const N: usize> SmallTriangle<N> {
 /// its halves, no 64-bit shift.
 #[inline(always)]
 fn scaled(n: i32, r: i32, s: u32) -> u32 {
-    let p = (i64::from(n) * i64::from(r)).wrapping_add(i64::from(1u32 << (s - 1)));
+    let p = mul_i32_wide(n, r).wrapping_add(i64::from(1u32 << (s - 1)));
     let (lo, hi) = (p as u32, (p >> 32) as u32);
     lo.wrapping_shr(s) | hi.wrapping_shl(32 - s)
 }
@@ -425,7 +425,7 @@ fn small_planes<const N: usize>(
     // 2⁸ for a first pixel in the box, and below 2³⁰ (else a sliver: `None`).
     // (l·r) >> (s + 29) in {−1, 0}, from the high word of the product (s + 29 > 32).
     let fits = |l: i32| {
-        let high = ((i64::from(l) * i64::from(r)) >> 32) as i32;
+        let high = (mul_i32_wide(l, r) >> 32) as i32;
         ((high >> (s - 3)) + 1) as u32 <= 1
     };
     if !fits(l1) || !fits(l2) {
@@ -451,7 +451,7 @@ fn small_planes<const N: usize>(
         }
         // 2⁻³² units: below 2⁴⁸. The vertex value `base·2²⁴` is a multiple of 2⁸: added after
         // the rounding shift, as `base·2¹⁶`, the same integer modulo 2³².
-        let v = i64::from(d1) * i64::from(b1) + i64::from(d2) * i64::from(b2);
+        let v = mul_i32_wide(d1, b1) + mul_i32_wide(d2, b2);
         let value = (((v + (1 << 7)) >> 8) as u32).wrapping_add((base as u32) << 16);
         let half = attributes.half[k];
         planes.set(

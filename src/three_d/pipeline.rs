@@ -85,6 +85,7 @@ use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, Verte
 use crate::arch;
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
+use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::scan::KeptWords;
 use crate::raster::walk::Band;
@@ -1246,8 +1247,10 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         }
         // Inside the guard band every coordinate is within 2²⁵ sub-pixels of the viewport's
         // centre (itself clamped inside i32): the differences fit i32, their products i64.
-        let d = |a: i32, b: i32| i64::from(a.wrapping_sub(b));
-        let area = d(p1.0, p0.0) * d(p2.1, p0.1) - d(p2.0, p0.0) * d(p1.1, p0.1);
+        // (On Cortex-M0 32 × 32-bit products from limbs: no 64 × 64-bit library calls.)
+        let d = |a: i32, b: i32| a.wrapping_sub(b);
+        let area =
+            mul_i32_wide(d(p1.0, p0.0), d(p2.1, p0.1)) - mul_i32_wide(d(p2.0, p0.0), d(p1.1, p0.1));
         if area == 0 {
             stats.degenerate += 1;
             return Verdict::Dropped;

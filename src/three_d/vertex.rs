@@ -22,7 +22,9 @@ use super::depth::{ScreenVertex, DEPTH_FAR};
 use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
 use crate::fixed_point::Coord;
-use crate::raster::arith::{leading_zeros_32, leading_zeros_64, mul_i32_wide, reciprocal_63};
+use crate::raster::arith::{
+    leading_zeros_32, leading_zeros_64, mul_i32_wide, mul_u32_wide, reciprocal_63,
+};
 
 /// Largest viewport side used for the mapping; larger viewports are treated as this size.
 const MAX_VIEWPORT: i64 = 65_535;
@@ -322,11 +324,11 @@ impl VertexLight {
     /// [`level`](Self::level) for a normal already in the light's space and of unit length.
     #[inline]
     pub(crate) fn level_of_unit(&self, n: Vec3) -> u16 {
-        let n = n.to_bits().map(i64::from);
-        let l = self.direction.map(i64::from);
+        let n = n.to_bits();
+        let l = self.direction;
         // Raw components (below 2³¹) times the light's (within ±2¹⁴): below 2⁴⁷, 30 fractional
         // bits.
-        let dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        let dot = mul_i32_wide(n[0], l[0]) + mul_i32_wide(n[1], l[1]) + mul_i32_wide(n[2], l[2]);
         // ⌊(dot + 2¹³)/2¹⁴⌋ clamped to [0, 2¹⁶ − 1]: the clamp before the shift, where the
         // upper bound is a 32-bit one.
         let rounded = dot + (1 << 13);
@@ -518,14 +520,15 @@ impl VertexStage {
         let (e, round) = (self.exponent, self.round);
         // 32 × 32-bit products throughout: h·2ᵉ < 2²³ and r < 2³², so k < 2³¹.
         let offset = |c: i32, half: u32| {
-            let k = ((u64::from(half) * u64::from(r)) >> 24) as i32;
-            (((i64::from(scale(c)) * i64::from(k) + round) >> 32) as i32) >> e
+            let k = (mul_u32_wide(half, r) >> 24) as i32;
+            (((mul_i32_wide(scale(c), k) + round) >> 32) as i32) >> e
         };
         let x = self.centre.0.wrapping_add(offset(p[0], self.half.0));
         let y = self.centre.1.wrapping_sub(offset(p[1], self.half.1));
         // 32767·z/w: |z| ≤ w < 2^(32−s), so z·2^(s−1) fits and the depth is in [0, 65534].
-        let kz = ((32767 * u64::from(r)) >> 16) as i32;
-        let dz = ((i64::from(p[2] << (s - 1)) * i64::from(kz) + (1 << 45)) >> 32) as i32 >> 14;
+        // 32767·r as (r << 15) − r: no 64-bit multiply.
+        let kz = (((u64::from(r) << 15) - u64::from(r)) >> 16) as i32;
+        let dz = ((mul_i32_wide(p[2] << (s - 1), kz) + (1 << 45)) >> 32) as i32 >> 14;
         let screen = ScreenVertex {
             x: Coord::from_bits(x),
             y: Coord::from_bits(y),
