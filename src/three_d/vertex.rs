@@ -21,6 +21,7 @@ use super::clip::{ClipVolume, W_MIN};
 use super::depth::{ScreenVertex, DEPTH_FAR};
 use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
+use crate::arch::NO_LONG_MULTIPLY;
 use crate::fixed_point::Coord;
 use crate::raster::arith::{
     leading_zeros_32, leading_zeros_64, mul_i32_wide, mul_u32_wide, reciprocal_63,
@@ -344,6 +345,14 @@ impl VertexLight {
     }
 }
 
+/// `⌊32767·r / 2¹⁶⌋` without a long multiply, from `r`'s halves `h`, `l`: `32767·h` plus
+/// `⌊32767·l / 2¹⁶⌋` (both 32-bit products; the first term is a whole multiple of 2¹⁶ of the
+/// dividend, so the floor is the second's).
+#[inline(always)]
+fn depth_scale_halves(r: u32) -> u32 {
+    32767 * (r >> 16) + ((32767 * (r & 0xFFFF)) >> 16)
+}
+
 /// A raw `I16F16` component as 14 fractional bits, clamped to `±1`.
 #[inline(always)]
 fn to_14_bits(c: i32) -> i32 {
@@ -526,8 +535,11 @@ impl VertexStage {
         let x = self.centre.0.wrapping_add(offset(p[0], self.half.0));
         let y = self.centre.1.wrapping_sub(offset(p[1], self.half.1));
         // 32767·z/w: |z| ≤ w < 2^(32−s), so z·2^(s−1) fits and the depth is in [0, 65534].
-        // 32767·r as (r << 15) − r: no 64-bit multiply.
-        let kz = (((u64::from(r) << 15) - u64::from(r)) >> 16) as i32;
+        let kz = if NO_LONG_MULTIPLY {
+            depth_scale_halves(r)
+        } else {
+            ((32767 * u64::from(r)) >> 16) as u32
+        } as i32;
         let dz = ((mul_i32_wide(p[2] << (s - 1), kz) + (1 << 45)) >> 32) as i32 >> 14;
         let screen = ScreenVertex {
             x: Coord::from_bits(x),
@@ -726,6 +738,25 @@ mod tests {
         }
         assert!(boxes > 200, "{boxes} boxes");
         assert!(points > 10_000);
+    }
+
+    /// The depth scale's halves form is the 64-bit product's floor, at the ends and at random.
+    #[test]
+    fn depth_scale_halves_is_the_floor() {
+        let check = |r: u32| {
+            assert_eq!(
+                u64::from(depth_scale_halves(r)),
+                (32767 * u64::from(r)) >> 16,
+                "{r}"
+            )
+        };
+        for r in [0, 1, 0xFFFF, 0x1_0000, 0x8000_0000, u32::MAX - 1, u32::MAX] {
+            check(r);
+        }
+        let mut rng = crate::rng::Rng(0x6b7a_0001);
+        for _ in 0..100_000 {
+            check(rng.next() as u32);
+        }
     }
 
     #[test]
