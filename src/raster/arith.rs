@@ -199,25 +199,26 @@ fn reciprocal_63_by_digits(d: u32) -> u64 {
     u64::from(q1) << 16 | u64::from(q0)
 }
 
-/// [`reciprocal_63`] without a division.
+/// [`reciprocal_63`] without a division or a long multiply: the reciprocal `y = ⌊2³¹ / h⌋` of
+/// `d`'s top half `h ∈ [2¹⁵, 2¹⁶)` ([`reciprocal_31`], 32-bit products), `x₀ = y·2¹⁶`, one
+/// Newton step, then an exact correction of the remainder.
 ///
-/// A 128-entry seed (8 bits), two Newton steps `x += x·(2^63 − d·x) / 2^63` (8 → 16 → 30+ bits;
-/// the error term `2^63 − d·x` is below 2⁵⁶ in magnitude, so its wrapping 64-bit value is exact),
-/// then an exact correction of the remainder.
+/// With `d = h·2¹⁶ + l` and `R = 2⁶³ / d`: `2⁴⁷ / (h + 1) < R ≤ 2⁴⁷ / h` and `x₀ ∈ (2⁴⁷ / h −
+/// 2¹⁶, 2⁴⁷ / h]`, so `x₀ − R ∈ (−2¹⁶, 2¹⁷]` and the error term `e = 2⁶³ − d·x₀` is within
+/// `±2⁴⁹` (exact in the wrapping 64-bit product). The step `x₁ = x₀ + ⌊y·⌊e / 2²⁰⌋ / 2²⁷⌋` (the
+/// Newton step's `x₀·e / 2⁶³` from `e`'s top bits, a 32 × 32-bit product) leaves `R − x₁`
+/// within `R·(2⁻¹⁴)² + 2` (under 18), a few units for most `d`; the remainder `2⁶³ − d·x₁`
+/// then steps `x₁` to the floor. For `d ≤ 2³¹`, `2³²` (the floor for `d = 2³¹`).
 fn reciprocal_63_newton(d: u32) -> u64 {
-    let seed = RECIPROCAL_SEED_8
-        .get(((d >> 24) as usize).wrapping_sub(128))
-        .map_or(256, |&s| 256 + u64::from(s));
-    // ≈ 2^16 / (d / 2^24) · 2^15 = 2^63 / d, to 8 bits.
-    let mut x = seed << 23;
+    if d <= 1 << 31 {
+        return 1 << 32;
+    }
+    // d > 2³¹: the top half is at least 2¹⁵, and y at most 2¹⁶.
+    let high = NonZeroU32::new(d >> 16).unwrap_or(NonZeroU32::MIN);
     // d·x modulo 2⁶⁴ for x < 2³³ (one 32 × 32-bit product and an addition: no 64 × 64-bit
     // library call).
     let error = |x: u64| (1u64 << 63).wrapping_sub(mul_u32_u33(d, x)) as i64;
-    for _ in 0..2 {
-        // x·e / 2^63 from x's top 17 bits (x < 2^33) and e's top bits: below 2^49, no overflow.
-        let e = error(x);
-        x = x.wrapping_add((wrapping_mul_i32(e >> 24, (x >> 16) as i32) >> 23) as u64);
-    }
+    let mut x = reciprocal_63_estimate(d, reciprocal_31(high));
     // A few units off at most: step to the exact floor.
     let mut rem = error(x);
     while rem < 0 {
@@ -231,11 +232,23 @@ fn reciprocal_63_newton(d: u32) -> u64 {
     x
 }
 
+/// The Newton step of [`reciprocal_63_newton`] from `y = ⌊2³¹ / h⌋` for `d`'s top half `h`:
+/// `x₁`, within 18 below or above `⌊2⁶³ / d⌋` for `d > 2³¹` (the test checks the bound).
+#[inline(always)]
+fn reciprocal_63_estimate(d: u32, y: u32) -> u64 {
+    let x0 = u64::from(y) << 16;
+    // d·x₀ = (d₁·y)·2³² + (d₀·y)·2¹⁶ for d's halves (y ≤ 2¹⁶: each product fits 32 bits).
+    let (high, low) = ((d >> 16) * y, (d & 0xFFFF) * y);
+    let product = (u64::from(high) << 32).wrapping_add(u64::from(low) << 16);
+    // |e| ≤ 2⁴⁹: e / 2²⁰ fits an i32, and y·(e / 2²⁰) is below 2⁴⁶ in magnitude.
+    let e = (1u64 << 63).wrapping_sub(product) as i64;
+    x0.wrapping_add((mul_i32_wide(y as i32, (e >> 20) as i32) >> 27) as u64)
+}
+
 /// `⌊2³¹ / q⌋` for `0 < q < 2¹⁶` without a division (the perspective chunks' reciprocal on
 /// ARMv6-M, `raster::perspective::lambdas`, where [`div_rem_u32`] takes a loop iteration a
 /// quotient bit: 17 to 18 of them, about 400 instructions, for the usual `q ∈ [2¹⁴, 2¹⁶)`): a
-/// seed from [`RECIPROCAL_SEED_8`] (the table of [`reciprocal_63_newton`], which the 3D code
-/// links anyway: no flash of its own), one Newton step, the quotient of its remainder from the
+/// seed from [`RECIPROCAL_SEED_8`], one Newton step, the quotient of its remainder from the
 /// same reciprocal, and one exact correction. All in 32-bit integers (five `muls`, no long
 /// product): on Cortex-M0 38 instructions with the call for `q ≥ 2¹⁵` (one more when the
 /// correction adds), about 4 more a halving below. Exact for every `q < 2¹⁶` (the test checks
@@ -259,7 +272,6 @@ fn reciprocal_63_newton(d: u32) -> u64 {
 ///    short by under `c·2⁻¹⁴` from `z` and under 1 from each floor: a few units at most, and by the
 ///    exhaustive test never more than one.
 /// 4. Correction: one more if that remainder is still `q` or more.
-#[cfg_attr(not(armv6m), allow(dead_code))]
 #[cfg_attr(armv6m, inline(never))]
 pub(crate) fn reciprocal_31(q: NonZeroU32) -> u32 {
     let q = q.get();
@@ -845,5 +857,28 @@ mod tests {
         for _ in 0..200_000 {
             check((rng.next() as u32) | 1 << 31);
         }
+    }
+
+    /// The Newton step before the correction is within its documented 18 of the floor: at the
+    /// ends of every top half's range and at random (the correction's loops stay short).
+    #[test]
+    fn reciprocal_63_estimate_is_close() {
+        let mut rng = crate::rng::Rng(0xbb67_ae85_84ca_a73b_u64);
+        let mut worst = 0;
+        let mut check = |d: u32| {
+            let exact = (1u64 << 63) / u64::from(d);
+            let y = (1u32 << 31) / (d >> 16);
+            let off = reciprocal_63_estimate(d, y).abs_diff(exact);
+            assert!(off < 18, "{d}: {off}");
+            worst = worst.max(off);
+        };
+        for h in (1u32 << 15)..(1 << 16) {
+            check(h << 16 | 1);
+            check(h << 16 | 0xFFFF);
+        }
+        for _ in 0..200_000 {
+            check((rng.next() as u32) | 1 << 31);
+        }
+        assert!(worst > 0);
     }
 }
