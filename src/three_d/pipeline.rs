@@ -889,7 +889,17 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 self.vertex(mesh, idx[1], model[1]),
                 self.vertex(mesh, idx[2], model[2]),
             );
-            self.face(mesh, k, &idx, || model, [&a, &b, &c], sink, &mut stats);
+            let verdict = self.verdict([&a, &b, &c], &mut stats);
+            self.kept_face(
+                verdict,
+                mesh,
+                k,
+                &idx,
+                || model,
+                [&a, &b, &c],
+                sink,
+                &mut stats,
+            );
         }
         stats
     }
@@ -1184,24 +1194,8 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         })
     }
 
-    /// Face `k` (vertices `idx` at `model`, projected `v`): rejected, culled, or handed to `sink`.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn face<S: FaceSink<C>>(
-        &self,
-        mesh: &Mesh<'_>,
-        k: usize,
-        idx: &[usize; 3],
-        model: impl Fn() -> [Vec3; 3] + Copy,
-        v: [&ProjectedVertex; 3],
-        sink: &mut S,
-        stats: &mut DrawStats,
-    ) {
-        let verdict = self.verdict(v, stats);
-        self.kept_face(verdict, mesh, k, idx, model, v, sink, stats);
-    }
-
-    /// Hands the face a [`verdict`](Self::verdict) kept to `sink`: to clip or to fill.
+    /// Hands face `k` (vertices `idx` at `model`, projected `v`) to `sink` as its
+    /// [`verdict`](Self::verdict) says: to clip or to fill (nothing if dropped).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn kept_face<S: FaceSink<C>>(
