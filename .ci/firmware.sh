@@ -73,7 +73,7 @@ QUADRATIC_TEXTURED_FRAME_LIMIT=24600000
 # fw_band has; the limit leaves 1.7 points for compilers, and the same source has measured a
 # point apart in two builds; +17.0 % at stop 41, the frame drawn whole 0.14 M faster and the
 # bin's frame 0.12 M), and the micro:bit's frame in 8-row bands without a bin at most this many
-# instructions (100.1 M measured at stop 41, 130.9 M before the M0's products from limbs).
+# instructions (97.6 M measured at stop 41, 130.9 M before the M0's products from limbs).
 BAND_BIN_OVERHEAD_LIMIT=18
 MICROBIT_BAND_FRAME_LIMIT=110000000
 
