@@ -377,11 +377,37 @@ fn is_rotation(r: &[[i32; 3]; 3]) -> bool {
 /// (32 × 32-bit products: on Cortex-M0, from limbs rather than 64 × 64-bit library calls.)
 #[inline(always)]
 fn direct_row(row: &[i32; 4], p: &[i32; 3]) -> i32 {
+    if NO_LONG_MULTIPLY {
+        return direct_row_limbs(row, p);
+    }
     let acc = mul_i32_wide(row[0], p[0])
         + mul_i32_wide(row[1], p[1])
         + mul_i32_wide(row[2], p[2])
         + (i64::from(row[3]) << SCALAR_BITS);
     ((acc + (1 << 15)) >> SCALAR_BITS) as i32
+}
+
+/// [`direct_row`] in 32-bit arithmetic from 16-bit limbs (Cortex-M0: no long multiply): the
+/// result `⌊(Σ mₖ·pₖ + t·2¹⁶ + 2¹⁵) / 2¹⁶⌋` fits an `i32`, so it is found modulo 2³² from the
+/// limbs' products — `mₖ = hₖ·2¹⁶ + lₖ` (`hₖ` signed, `lₖ` unsigned), likewise `pₖ` — as
+/// `Σ hₖ·h'ₖ·2¹⁶ + Σ (hₖ·l'ₖ + lₖ·h'ₖ) + t` plus the exact floor of the low products' part,
+/// `Σ ⌊lₖ·l'ₖ / 2¹⁶⌋ + ⌊(Σ (lₖ·l'ₖ mod 2¹⁶) + 2¹⁵) / 2¹⁶⌋`: twelve 32-bit multiplies, no
+/// 64-bit sums.
+#[inline(always)]
+fn direct_row_limbs(row: &[i32; 4], p: &[i32; 3]) -> i32 {
+    let (mut whole, mut fraction) = (row[3], 1u32 << 15);
+    for k in 0..3 {
+        let (m, v) = (row[k], p[k]);
+        let (ml, mh, vl, vh) = (m & 0xFFFF, m >> 16, v & 0xFFFF, v >> 16);
+        let low = (ml as u32) * (vl as u32);
+        whole = whole
+            .wrapping_add(mh.wrapping_mul(vh) << 16)
+            .wrapping_add(mh * vl)
+            .wrapping_add(ml * vh)
+            .wrapping_add((low >> 16) as i32);
+        fraction += low & 0xFFFF;
+    }
+    whole.wrapping_add((fraction >> 16) as i32)
 }
 
 /// What one draw needs to transform, project and light its vertices.
@@ -738,6 +764,31 @@ mod tests {
         }
         assert!(boxes > 200, "{boxes} boxes");
         assert!(points > 10_000);
+    }
+
+    /// The transform's row in 32-bit limbs is the 64-bit sum's rounded quotient: for rows and
+    /// points at random (any `i32`s: the quotient modulo 2³², the wrapping `i32` of the exact
+    /// value) and at the ends of the range.
+    #[test]
+    fn direct_row_limbs_is_the_rounded_sum() {
+        let exact = |row: &[i32; 4], p: &[i32; 3]| {
+            let sum: i128 = (0..3)
+                .map(|k| i128::from(row[k]) * i128::from(p[k]))
+                .sum::<i128>()
+                + (i128::from(row[3]) << 16)
+                + (1 << 15);
+            (sum >> 16) as i32
+        };
+        let mut rng = crate::rng::Rng(0x6d76_7072_6f77);
+        let value = |rng: &mut crate::rng::Rng| match rng.below(4) {
+            0 => [i32::MIN, i32::MAX, -1, 0, 1, 0xFFFF, -0x10000][rng.below(7) as usize],
+            _ => (rng.next() as i32) >> rng.below(32),
+        };
+        for _ in 0..300_000 {
+            let row = [0; 4].map(|_| value(&mut rng));
+            let p = [0; 3].map(|_| value(&mut rng));
+            assert_eq!(direct_row_limbs(&row, &p), exact(&row, &p), "{row:?} {p:?}");
+        }
     }
 
     /// The depth scale's halves form is the 64-bit product's floor, at the ends and at random.
