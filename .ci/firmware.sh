@@ -6,7 +6,7 @@
 #   * fw_nopanic and fw_nopanic_textures must link: their panic handler is an undefined symbol,
 #     so any panic path left in the drawing code after optimisation fails the build;
 #   * fw_scene and fw_nopanic run under QEMU and must exit with status 0 and print the same
-#     checksum as the host build of fw_scene (whose image tests/firmware_checksum.rs checks
+#     checksum as the host build of fw_scene (whose image tests/all/firmware_checksum.rs checks
 #     against an independent reference), and fw_nopanic_textures the same textured frames'
 #     checksums as its host build;
 #   * fw_bench counts instructions with SysTick under -icount; its tables go to
