@@ -29,7 +29,7 @@
 //!     SPOT_TEXTURE indexed4 256x256
 //! ```
 //!
-//! (`tests/texture_convert.rs` checks the file is what this gives).
+//! (`tests/all/texture_convert.rs` checks the file is what this gives).
 
 use std::path::Path;
 use std::process::ExitCode;

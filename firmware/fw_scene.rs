@@ -9,7 +9,7 @@
 //! cargo run --release --example fw_scene                                  # host: both sizes
 //! ```
 //!
-//! `.ci/firmware.sh` compares the firmware's line with the host's; `tests/firmware_checksum.rs`
+//! `.ci/firmware.sh` compares the firmware's line with the host's; `tests/all/firmware_checksum.rs`
 //! checks the host rendering of the same scene against an independent reference.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 

@@ -26,7 +26,7 @@
 //!   triangle covers the pixels of an embedded-graphics filled `Triangle` of the same points except
 //!   along its edges, where embedded-graphics also draws the pixels its outline passes through
 //!   and the top-left rule gives a pixel whose centre is on an edge to one side only (measured in
-//!   `tests/eg_placement.rs`; see [`SolidTriangle::at_pixel_centres`](crate::SolidTriangle::at_pixel_centres)).
+//!   `tests/all/eg_placement.rs`; see [`SolidTriangle::at_pixel_centres`](crate::SolidTriangle::at_pixel_centres)).
 //! * **Raw bits**: `Coord::from_bits(raw)` (`256` is one pixel), also in `const` items.
 //!
 //! `Coord` is the `fixed` crate's `I24F8`, so all of its methods apply: `from_num` (panics on

@@ -1,5 +1,5 @@
 //! The firmware test scene, shared with `#[path]` by the firmware examples (`fw_scene`,
-//! `fw_nopanic`) and by the host test `tests/firmware_checksum.rs`.
+//! `fw_nopanic`) and by the host test `tests/all/firmware_checksum.rs`.
 //!
 //! About 220 triangles, generated procedurally with integer arithmetic only (no tables that
 //! differ between targets, no floats): a jittered grid that overhangs every border, a 32-spoke fan

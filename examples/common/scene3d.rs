@@ -7,10 +7,10 @@
 //!
 //! * [`SPOT`]: Keenan Crane's cow, 5,856 faces (2,930 vertices), which its author released into
 //!   the public domain (`meshes/spot/README.txt`), stored in flash (`meshes/spot.rs`, converted
-//!   on the host from `meshes/spot/spot_triangulated.obj` by `tests/meshes.rs`, which checks it).
+//!   on the host from `meshes/spot/spot_triangulated.obj` by `tests/all/meshes.rs`, which checks it).
 //! * [`KNOT`]: a tube around the trefoil knot, 6,144 faces (3,072 vertices) whose radius swells
 //!   and narrows along it, stored in flash (`meshes/knot.rs`, generated on the host by
-//!   `meshes::torus_knot` and checked by `tests/meshes.rs`). It overlaps itself, so the depth
+//!   `meshes::torus_knot` and checked by `tests/all/meshes.rs`). It overlaps itself, so the depth
 //!   test decides many pixels.
 //! * the torus of [`torus`]: 10,000 faces (5,000 vertices), generated at start-up in fixed point
 //!   (the same bits on every target), into RAM the caller provides.

@@ -6,10 +6,10 @@
 //!
 //! * [`SPOT_TEXTURED`]: the mesh with its texture coordinates (3,225 vertices: the texture's
 //!   seams split some), stored in flash (`meshes/spot_textured.rs`, converted from the OBJ by
-//!   `tests/meshes.rs`, which checks it).
+//!   `tests/all/meshes.rs`, which checks it).
 //! * [`SPOT_TEXTURE`]: the texture box-filtered to 256 × 256 and reduced to 16 colours, 4 bits a
 //!   texel in flash (32 KB; `textures/spot_texture.rs`, generated from `textures/spot_texture.png`
-//!   by `texture::convert` and checked by `tests/texture_convert.rs`), drawn as it is or expanded
+//!   by `texture::convert` and checked by `tests/all/texture_convert.rs`), drawn as it is or expanded
 //!   once into 256 × 256 Rgb565 texels in RAM ([`expand`], 128 KB) as TGX's frame draws it.
 
 use embedded_graphics::pixelcolor::Rgb565;

@@ -15,7 +15,7 @@
 //! by their alpha (the colour of a transparent vertex does not show) and the alpha with them, and
 //! each channel is `P + d·(1 − α)` for the premultiplied colour `P` and alpha `α` there. Both are
 //! within 1 LSB of the exact f64 blend (of the barycentric `P` and `α`, for an alpha per vertex;
-//! see `tests/alpha.rs`).
+//! see `tests/all/alpha.rs`).
 //!
 
 use embedded_graphics::draw_target::DrawTarget;

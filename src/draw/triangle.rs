@@ -352,7 +352,7 @@ impl<C: PixelColor> SolidTriangle<C> {
     /// passes through (a shared edge is drawn by both neighbours), while here a pixel is drawn
     /// when its centre is inside, and one whose centre lies exactly on an edge goes to one
     /// neighbour only (the top-left rule). Measured against embedded-graphics over 3,000 random
-    /// triangles of 4 to 70 pixels (`tests/eg_placement.rs`): 282,390 pixels drawn by both, none
+    /// triangles of 4 to 70 pixels (`tests/all/eg_placement.rs`): 282,390 pixels drawn by both, none
     /// drawn only here, 46,562 only by embedded-graphics, all with centres within ½ pixel of the
     /// triangle (its outline). Placing the points at pixel corners instead
     /// ([`Vertex::at_pixel_corner`]) shifts the triangle by half a pixel up and left and differs
@@ -798,7 +798,7 @@ mod tests {
     /// further span: into a target over 10⁹ pixels a side that fails its first call, with
     /// triangles across the whole `Coord` range (exact planes; the Gouraud walk went on through
     /// billions of chunks for 10 s and more, issue #32 item 11) and a small one. The spans are
-    /// counted as the walk hands them over (`tests/draw_errors.rs` has the user's view).
+    /// counted as the walk hands them over (`tests/all/draw_errors.rs` has the user's view).
     #[test]
     fn a_failed_draw_walks_no_further() {
         const FAR: i32 = (1 << 23) - 1;

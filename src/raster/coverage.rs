@@ -17,7 +17,7 @@
 //! Each edge is normalised once a triangle to a line `A·u + B·v + C` with `|A|, |B| < 2¹²` and
 //! `C` in 16 fractional bits of a pixel, so the arithmetic a pixel is 32- and 64-bit; the
 //! direction's truncation moves the line by under 2⁻¹¹ px across a square, and coverage is
-//! rounded to 2⁻¹⁶: every area within 2⁻⁹ of the exact one (`tests/antialias.rs` checks it
+//! rounded to 2⁻¹⁶: every area within 2⁻⁹ of the exact one (`tests/all/antialias.rs` checks it
 //! against the `f64` polygon clip of `reference::pixel_area`).
 //!
 //! Rows and their runs come from the same conditions solved for the column: a square can be cut

@@ -230,7 +230,7 @@ impl Pipeline {
     /// `I·(ε + 1.54·ρ/r)` of the light at each pixel's own surface point, and the highlight
     /// within `I·strength·min(1, shininess·ε/|l̂ + v̂| + 1.54·ρ/r)` (`1.54/r` bounds the
     /// falloff's slope, `ε` the direction's turn; away from the light's terminator, where the
-    /// highlight is cut). Measured (`tests/lights.rs`,
+    /// highlight is cut). Measured (`tests/all/lights.rs`,
     /// `quadratic_lights_are_lit_per_pixel`, Rgb888): on an icosphere of radius 1 whose faces
     /// reach `ρ ≤ 0.09` from their centroids, lit by two point lights (`ε` up to 0.15) and a
     /// directional one, at most 9.4 LSB off the exact per-pixel light without a highlight and

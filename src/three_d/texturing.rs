@@ -28,7 +28,7 @@
 //! the same lengths from thresholds found once a span), and lies
 //! inside an aligned chunk of 16 (so the coordinates' chords are never longer than with chunks
 //! of 16). So every colour is within 1 LSB of the texel times the exact perspective-correct
-//! level (tested in `tests/perspective.rs` on random faces whose `w` changes by 1:20 across a
+//! level (tested in `tests/all/perspective.rs` on random faces whose `w` changes by 1:20 across a
 //! few pixels, where chords of 16 pixels would be up to 58 LSB off, and on grazing floors:
 //! within 0.65 LSB). Steep faces pay for it with shorter chunks (`fw_texture_bench`'s lit
 //! triangles, `w` 1:3 across 128 pixels: chords of 16 would be 2.1 levels off, chunks of 8).
@@ -63,7 +63,7 @@
 //! So the normal departs from the exact field at the exact barycentrics only by the
 //! barycentrics' own error: `δ` (above) at the chunk ends, plus the chord's departure between
 //! them (`L²/4 · |λ′| · |q′|/q`, the texel coordinates' bound with a barycentric as the
-//! attribute). Measured against the f64 per-pixel evaluation (`tests/textured_mesh.rs`,
+//! attribute). Measured against the f64 per-pixel evaluation (`tests/all/textured_mesh.rs`,
 //! `quadratic_texels_are_lit_per_pixel`, Rgb888, each pixel's tolerance from those bounds): on
 //! grazing floors with curved normals at most 0.98 LSB (per vertex: up to 115 LSB, beyond the
 //! tolerance at 98 % of the pixels); on faces whose highlight lies inside them (shininess 24 to

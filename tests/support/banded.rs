@@ -1,5 +1,5 @@
-//! Band rendering of a list of meshes, shared by the lighting suites (tests/specular.rs,
-//! tests/lights.rs): the frame put together from its bands.
+//! Band rendering of a list of meshes, shared by the lighting suites (tests/all/specular.rs,
+//! tests/all/lights.rs): the frame put together from its bands.
 #![allow(dead_code)]
 
 use embedded_graphics::pixelcolor::Rgb888;

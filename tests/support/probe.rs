@@ -1,5 +1,5 @@
 //! Reading an implementation's texel coordinates to a fraction of a texel through a coordinate
-//! texture (tests/perspective.rs and tests/textured_mesh.rs, each with its `probe`).
+//! texture (tests/all/perspective.rs and tests/all/textured_mesh.rs, each with its `probe`).
 
 #![allow(dead_code)]
 

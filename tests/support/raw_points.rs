@@ -1,6 +1,6 @@
 //! Random raw (sub-pixel: 256 a pixel) vertex positions for the 2D fill tests
-//! (tests/coverage_random.rs, tests/perspective.rs, tests/same_pixels.rs, tests/textured.rs,
-//! tests/alpha.rs, tests/antialias.rs).
+//! (tests/all/coverage_random.rs, tests/all/perspective.rs, tests/all/same_pixels.rs, tests/all/textured.rs,
+//! tests/all/alpha.rs, tests/all/antialias.rs).
 //! Needs the suite's `mod rng`.
 
 #![allow(dead_code)]

@@ -1,5 +1,5 @@
-//! The f64 ray-casting reference of the 3D pipeline tests (tests/pipeline.rs, where it is
-//! described, and tests/textured_mesh.rs): f64 matrices, one camera and object placement in both
+//! The f64 ray-casting reference of the 3D pipeline tests (tests/all/pipeline.rs, where it is
+//! described, and tests/all/textured_mesh.rs): f64 matrices, one camera and object placement in both
 //! arithmetics (`View`) and the ray through a pixel centre against a face (`View::hit`); and the
 //! flat grid meshes both draw (`flat_grid`).
 
@@ -9,9 +9,7 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_raster::three_d::meshes::MeshData;
 use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
 
-#[path = "vec_f64.rs"]
-mod vec_f64;
-pub use vec_f64::{cross, dot, sub};
+pub use crate::vec_f64::{cross, dot, sub};
 
 /// Pixel centres closer than this to a face's boundary may go either way.
 pub const MARGIN: f64 = 0.02;

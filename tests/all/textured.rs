@@ -22,7 +22,7 @@
 //! The reference textures are built from the raw texel data by hand (5-6-5 words split into
 //! their fields, palette indices looked up), never through the `TexelSource`s under test.
 //!
-//! Run with `cargo test --release --features reference --test textured -- --nocapture` to see
+//! Run with `cargo test --release --features reference --test all textured:: -- --nocapture` to see
 //! the statistics.
 
 use std::convert::Infallible;
@@ -42,12 +42,10 @@ use embedded_raster::texture::{
 };
 use embedded_raster::{Coord, GouraudColor, SliceFramebuffer, TexturedTriangle, TexturedVertex};
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
-#[path = "support/raw_points.rs"]
-mod raw_points;
+use crate::raw_points;
 use raw_points::{extreme, sliver, Screen, MAX, MIN};
 
 /// The screen: wider than tall, small enough for thousands of triangles a second.
@@ -80,7 +78,7 @@ const WRAPS: [(Wrap, RefWrap); 3] = [
 
 impl Rng {
     /// A colour with random channels.
-    fn color<C: GouraudColor>(&mut self) -> C {
+    fn uniform_color<C: GouraudColor>(&mut self) -> C {
         C::from_channels(core::array::from_fn(|k| {
             self.below(u64::from(C::MAX[k]) + 1) as u8
         }))
@@ -740,7 +738,7 @@ fn check_triangle<S, C>(
             texture.filter()
         )
     };
-    let background: Vec<C> = (0..PIXELS).map(|_| rng.color()).collect();
+    let background: Vec<C> = (0..PIXELS).map(|_| rng.uniform_color()).collect();
     // Channel 0 changed at every pixel (every format here has at least 5 bits of it).
     let other: Vec<C> = background
         .iter()
@@ -1116,7 +1114,7 @@ impl Visit for Paths<'_> {
                 })
                 .collect();
             let what = || format!("{name}, scene {scene:?}");
-            let background: Vec<C> = (0..PIXELS).map(|_| rng.color()).collect();
+            let background: Vec<C> = (0..PIXELS).map(|_| rng.uniform_color()).collect();
 
             let mut want = background.clone();
             let mut fb = SliceFramebuffer::new(&mut want, W, H).unwrap();

@@ -25,16 +25,13 @@ use embedded_raster::three_d::{
 };
 use embedded_raster::GouraudColor;
 
-#[path = "support/vec_f64.rs"]
-mod vec_f64;
+use crate::vec_f64;
 use vec_f64::{dot, normalize};
 
-#[path = "support/banded.rs"]
-mod banded;
+use crate::banded;
 use banded::banded;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

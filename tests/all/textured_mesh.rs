@@ -1,7 +1,7 @@
 //! Textured meshes in the fixed-point 3D pipeline (`Pipeline::draw_textured_mesh`, its scratch
 //! form and the band renderer's, with and without a `MeshBin`) against an independent f64 reference.
 //!
-//! The reference is the ray caster of tests/pipeline.rs (tests/support/raycast.rs): for every pixel
+//! The reference is the ray caster of tests/all/pipeline.rs (tests/support/raycast.rs): for every pixel
 //! it casts the ray through the pixel centre in eye space (f64 model-view from the same angles and
 //! positions) and intersects it with every face. It decides which face a pixel shows — or that
 //! rounding may decide it (a boundary within `MARGIN` px, near-equal depths: those pixels are left
@@ -12,7 +12,7 @@
 //! Texel coordinates are observed through a *coordinate texture* (256 × 256 Rgb888, texel
 //! `(i, j)` = `(i, j, K)`), so that a pixel tells which texel it took; `probe` reads them to
 //! 1/512 texel by redrawing with every texture coordinate moved by `j/256` texel (the idea of
-//! tests/perspective.rs).
+//! tests/all/perspective.rs).
 //!
 //! The tolerance on an interpolated attribute (`tolerance`) is the larger of what the two fills
 //! of src/three_d/texturing.rs may make of it:
@@ -31,7 +31,7 @@
 //! `Scene::position_error`) times the attribute's gradient. `vertices_match_f64` checks the
 //! input bounds.
 //!
-//! Run with `cargo test --features reference --test textured_mesh -- --nocapture` to see the
+//! Run with `cargo test --features reference --test all textured_mesh:: -- --nocapture` to see the
 //! statistics.
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
@@ -50,19 +50,16 @@ use embedded_raster::three_d::{
     TexturedMaterial,
 };
 
-#[path = "support/raycast.rs"]
-mod raycast;
+use crate::raycast;
 use raycast::{
     apply, bits3, cross, dot, fl, flat_grid, fx, mul, radians, rot_x, rot_y, sub, View, M, MARGIN,
     V,
 };
 
-#[path = "support/probe.rs"]
-mod probe;
+use crate::probe;
 use probe::unwrap_near;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 const W: u32 = 128;
@@ -82,13 +79,13 @@ const K: u8 = 0x5a;
 const UNIT: f64 = 65_536.0;
 
 impl Rng {
-    fn angle(&mut self) -> Angle {
+    fn any_angle(&mut self) -> Angle {
         Angle(self.next() as u16)
     }
 }
 
 // ---------------------------------------------------------------------------------------------
-// f64 geometry (the ray caster of tests/pipeline.rs: tests/support/raycast.rs)
+// f64 geometry (the ray caster of tests/all/pipeline.rs: tests/support/raycast.rs)
 // ---------------------------------------------------------------------------------------------
 
 fn normalize(v: V) -> V {
@@ -321,7 +318,7 @@ enum Verdict {
     },
 }
 
-/// The verdict on every pixel of the screen (row-major), as tests/pipeline.rs decides it, and
+/// The verdict on every pixel of the screen (row-major), as tests/all/pipeline.rs decides it, and
 /// where each face's spans may lie.
 fn verdicts(scene: &Scene, faces: &[RefFace]) -> (Vec<Verdict>, Spans) {
     // (face, margin, depth, depth tolerance) of every face that may cover each pixel.
@@ -519,7 +516,7 @@ fn texel_at(
         let e = exact(scene, f, span, values, (i, j), UNIT);
         let own = spread_of(values);
         // The 2D textured fill's planes: within `s + 1/128` texel, `s` the spread over 32 639
-        // (tests/textured.rs).
+        // (tests/all/textured.rs).
         let rounding = own / 32_639.0 + 1.0 / 128.0;
         let d = affine.map(|r| departure(r, own, AFFINE_TEXELS));
         (e.value, tolerance(scene, f, &e, spread, d, rounding))
@@ -712,7 +709,7 @@ fn decode(frame: &Frame) -> Vec<Option<(u32, u32)>> {
 /// The implementation's texel coordinates at each written pixel, modulo 256 texels and to
 /// within `1/(2·steps)` texel: the mesh drawn with the coordinate texture, then again with
 /// every texture coordinate moved by `j/steps` texel (`u` up, `v` down: texel `x` and `y` both
-/// grow) for `j = 1, 2, …` (`probe::coordinates`, shared with tests/perspective.rs).
+/// grow) for `j = 1, 2, …` (`probe::coordinates`, shared with tests/all/perspective.rs).
 fn probe(
     pipeline: &Pipeline,
     mesh: &MeshData,
@@ -815,8 +812,8 @@ fn unclipped_cases(rng: &mut Rng) -> Vec<Case> {
             fov: 60,
             near: 0.5,
             far: 20.0,
-            yaw: rng.angle(),
-            pitch: rng.angle(),
+            yaw: rng.any_angle(),
+            pitch: rng.any_angle(),
             position: [
                 rng.range_f64(-1.0, 1.0),
                 rng.range_f64(-0.7, 0.7),
@@ -840,7 +837,7 @@ fn unclipped_cases(rng: &mut Rng) -> Vec<Case> {
 fn clipped_cases(rng: &mut Rng) -> Vec<Case> {
     let mut cases = Vec::new();
     for n in 0..16 {
-        let (yaw, pitch) = (rng.angle(), rng.angle());
+        let (yaw, pitch) = (rng.any_angle(), rng.any_angle());
         let (name, mesh, pose) = match n % 4 {
             0 => (
                 "floor",
@@ -2363,8 +2360,8 @@ fn odd_inputs_stay_inside_the_untextured_coverage() {
             fov: [40, 70, 100][round % 3],
             near: [0.1, 0.3, 1.0][round / 3 % 3],
             far: 20.0,
-            yaw: rng.angle(),
-            pitch: rng.angle(),
+            yaw: rng.any_angle(),
+            pitch: rng.any_angle(),
             position: [
                 rng.range_f64(-2.0, 2.0),
                 rng.range_f64(-2.0, 2.0),

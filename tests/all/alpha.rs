@@ -21,16 +21,13 @@ use embedded_raster::{
     Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
 
-#[path = "support/readable_target.rs"]
-mod readable_target;
+use crate::readable_target;
 use readable_target::ReadableTarget;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
-#[path = "support/raw_points.rs"]
-mod raw_points;
+use crate::raw_points;
 use raw_points::mixed_triangle;
 
 const W: u32 = 61;

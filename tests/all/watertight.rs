@@ -24,8 +24,7 @@ const MAX: i64 = i32::MAX as i64;
 
 type Tri = [(i32, i32); 3];
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 /// A `DrawTarget` that counts how often each pixel is drawn and panics on any pixel outside its

@@ -27,7 +27,7 @@
 //! barycentrics. Exact quantities are additionally compared with plain `i128` computations here.
 //!
 //! No-panic properties are checked with proptest; run this file also without `--release`
-//! (`cargo test --test geometry`: the test profile keeps overflow checks) so that an arithmetic
+//! (`cargo test --test all geometry::`: the test profile keeps overflow checks) so that an arithmetic
 //! overflow would panic instead of wrapping.
 
 use std::collections::BTreeMap;
@@ -639,8 +639,7 @@ fn check_bary3(t: &Triangle3, p: Point3, st: &mut Stats) {
 // Random inputs (deterministic)
 // ------------------------------------------------------------------------------------------------
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 impl Rng {

@@ -13,8 +13,7 @@ use embedded_raster::three_d::{DepthTarget, ScreenVertex, DEPTH_CLEAR};
 use embedded_raster::three_d::{Scalar, Vec3};
 use embedded_raster::{Coord, SliceFramebuffer, SolidTriangle};
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 impl Rng {

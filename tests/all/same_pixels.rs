@@ -32,12 +32,10 @@ use embedded_raster::{
     Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle, SpanColors, Vertex,
 };
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
-#[path = "support/raw_points.rs"]
-mod raw_points;
+use crate::raw_points;
 use raw_points::{extreme, sliver, Screen, MAX, MIN};
 
 /// The targets (width, height) and how many triangles each gets per colour format. The 320-pixel

@@ -6,10 +6,10 @@
 //! image must have exactly the reference's coverage (solid colours exact, Gouraud colours within
 //! 1 LSB per channel). `.ci/firmware.sh` then checks that every board's firmware prints the same
 //! checksum as the host build of `fw_scene` (`cargo run --release --example fw_scene`); this test
-//! prints those values too (`cargo test --release --test firmware_checksum -- --nocapture`).
+//! prints those values too (`cargo test --release --test all firmware_checksum:: -- --nocapture`).
 
 #[allow(dead_code)]
-#[path = "../examples/common/scene.rs"]
+#[path = "../../examples/common/scene.rs"]
 mod scene;
 
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};

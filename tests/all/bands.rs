@@ -13,7 +13,7 @@
 //!   scratch), `draw_mesh_with` (no bin) and the `MeshBin`, colours and depths;
 //! * textured meshes (spot with its texture, in the bench frame and clipped by the near plane,
 //!   every shading and sampler, vertex colours, highlights, `Lights`) drawn with
-//!   `Pipeline::draw_textured_mesh_with`, against a `MeshBin::new_textured` (tests/textured_mesh.rs
+//!   `Pipeline::draw_textured_mesh_with`, against a `MeshBin::new_textured` (tests/all/textured_mesh.rs
 //!   has the bin beside the bin-less band draws over its own suite of poses).
 //!
 //! And the renderers' contracts: one `fill_contiguous` of the band's rectangle per band, the
@@ -37,16 +37,11 @@ use embedded_raster::{
     Coord, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
 };
 
-#[allow(dead_code)]
-#[path = "../examples/common/scene3d.rs"]
-mod scene3d;
+use crate::scene3d;
 
-#[allow(dead_code)]
-#[path = "../examples/common/textured3d.rs"]
-mod textured3d;
+use crate::textured3d;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 const MIN: i64 = i32::MIN as i64;

@@ -15,7 +15,7 @@ use embedded_raster::texture::{
 };
 use png::{BitDepth, ColorType};
 
-#[path = "../examples/common/textures/spot_texture.rs"]
+#[path = "../../examples/common/textures/spot_texture.rs"]
 mod spot_texture;
 
 /// A PNG of `data` (rows packed as PNG packs them), with an optional palette and `tRNS`.

@@ -21,7 +21,7 @@
 //! perspective-correct) is checked channel by channel against `texel × level` at the reference
 //! texel and level (`check_lit`).
 //!
-//! Run with `cargo test --features reference --test perspective -- --nocapture` to see the
+//! Run with `cargo test --features reference --test all perspective:: -- --nocapture` to see the
 //! statistics.
 
 use std::fmt::Write as _;
@@ -43,16 +43,13 @@ use embedded_raster::three_d::{
 };
 use embedded_raster::{Coord, GouraudColor};
 
-#[path = "support/probe.rs"]
-mod probe;
+use crate::probe;
 use probe::unwrap_near;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
-#[path = "support/raw_points.rs"]
-mod raw_points;
+use crate::raw_points;
 use raw_points::{sliver, Screen, MAX, MIN};
 
 const W: i32 = 160;

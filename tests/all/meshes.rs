@@ -8,8 +8,7 @@ use embedded_raster::three_d::meshes::{icosphere, to_f64, torus, torus_knot, Mes
 use embedded_raster::three_d::obj;
 use embedded_raster::three_d::{Mesh, Vec3};
 
-#[path = "support/vec_f64.rs"]
-mod vec_f64;
+use crate::vec_f64;
 use vec_f64::{cross, dot, normalize, sub};
 
 /// The text without whitespace and trailing commas (which rustfmt adds or drops with the
@@ -562,8 +561,7 @@ fn obj_carries_colours_and_texture_coordinates() {
     );
 }
 
-#[path = "support/colored_quad.rs"]
-mod colored_quad;
+use crate::colored_quad;
 
 #[test]
 fn rust_source_carries_colours_and_texture_coordinates() {

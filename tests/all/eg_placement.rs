@@ -13,8 +13,7 @@ use embedded_graphics::{
 };
 use embedded_raster::{SliceFramebuffer, SolidTriangle, Vertex};
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 const W: u32 = 64;

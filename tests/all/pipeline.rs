@@ -31,12 +31,10 @@ use embedded_raster::three_d::{Light, Material, Shading};
 const W: u32 = 128;
 const H: u32 = 96;
 
-#[path = "support/raycast.rs"]
-mod raycast;
+use crate::raycast;
 use raycast::{apply, bits3, cross, dot, fl, flat_grid, fx, sub, View, MARGIN, V};
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 impl Rng {

@@ -25,16 +25,13 @@ use embedded_raster::three_d::{
 };
 use embedded_raster::GouraudColor;
 
-#[path = "support/vec_f64.rs"]
-mod vec_f64;
+use crate::vec_f64;
 use vec_f64::{dot, normalize};
 
-#[path = "support/banded.rs"]
-mod banded;
+use crate::banded;
 use banded::banded;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
 /// `LightSource::falloff` against `(1 − d²/r²)²` in f64 for ranges from 1/16 to 30000 and
@@ -447,7 +444,7 @@ struct PixelTally {
 }
 
 /// The fixed-point per-pixel cosine's own error (nodes rounded to `I16F16`, the stepped field,
-/// the 16-bit normal and `inv_sqrt`): 2⁻¹³, as `tests/textured_mesh.rs` bounds it.
+/// the 16-bit normal and `inv_sqrt`): 2⁻¹³, as `tests/all/textured_mesh.rs` bounds it.
 const COSINE_ERROR: f64 = 1.0 / 8192.0;
 
 /// The quadratic normal field `Σ Nᵢbᵢ(2bᵢ − 1) + Σ 4N̂ᵢⱼbᵢbⱼ` of unit normals `n` at

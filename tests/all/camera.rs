@@ -4,12 +4,10 @@
 
 use embedded_raster::three_d::{Angle, Mat4, Scalar, Vec3};
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
-#[path = "support/vec_f64.rs"]
-mod vec_f64;
+use crate::vec_f64;
 use vec_f64::{cross, dot, normalize};
 
 type M = [[f64; 4]; 4];

@@ -6,7 +6,7 @@
 //! reference's exact barycentric interpolation. Triangles range from sub-pixel to the full `i32`
 //! raw range, with slivers, (near-)collinear, snapped, axis-aligned and extreme-valued vertices.
 //!
-//! Run with `cargo test --release --features reference --test coverage_random -- --nocapture`
+//! Run with `cargo test --release --features reference --test all coverage_random:: -- --nocapture`
 //! to see the statistics.
 
 use std::fmt::Debug;
@@ -25,12 +25,10 @@ const N: usize = (W * H) as usize;
 /// Allowed deviation from the exact interpolated channel value, in LSB.
 const TOLERANCE: f64 = 1.0 + 1e-9;
 
-#[path = "support/rng.rs"]
-mod rng;
+use crate::rng;
 use rng::Rng;
 
-#[path = "support/raw_points.rs"]
-mod raw_points;
+use crate::raw_points;
 use raw_points::{sliver, Screen, MAX, MIN};
 
 const RAW: Screen = Screen::new(W as i64, H as i64);
