@@ -22,7 +22,7 @@ use core::num::NonZeroU32;
 
 use super::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
 use super::plane::{Attributes, Planes};
-pub(crate) use super::runs::SMALL;
+use super::runs::SMALL;
 use super::runs::{run_by_scan, Edge, ReciprocalRuns, RowBound, RowRuns, SmallScan};
 use super::sink::SpanShader;
 use super::walk::{bounds, Band, Region, Span};
