@@ -195,6 +195,7 @@ pub mod band;
 pub mod color;
 pub mod draw;
 pub mod fixed_point;
+pub mod paint;
 pub mod raster;
 mod rect;
 pub mod texture;

@@ -469,6 +469,22 @@ impl GouraudColor for BinaryColor {
     }
 }
 
+/// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
+/// pixel on Cortex-M4 against 3 for `slice::fill`, which LLVM leaves as one store per iteration
+/// for 16-bit colours on Thumb.
+// One copy for every fill on Cortex-M0 (flash; a call a span).
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline)]
+pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
+    let mut quads = row.chunks_exact_mut(4);
+    for quad in &mut quads {
+        quad.fill(color);
+    }
+    for px in quads.into_remainder() {
+        *px = color;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

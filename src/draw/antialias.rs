@@ -16,9 +16,10 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use super::framebuffer::{fill_row, SliceFramebuffer};
+use super::framebuffer::SliceFramebuffer;
 use super::translucent::OnBackground;
 use super::triangle::SolidTriangle;
+use crate::color::fill_row;
 use crate::color::{BlendSource, GouraudColor};
 use crate::raster::coverage::{cover, CoverageSink, FULL};
 

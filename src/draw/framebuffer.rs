@@ -24,6 +24,7 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
 use crate::arch::{LANES, SIZE_OVER_SPEED};
+use crate::color::fill_row;
 use crate::rect;
 
 /// Drops the next `n` items of `colors`; `false` if it ran out first. In steps of at most
@@ -38,22 +39,6 @@ pub(crate) fn skip_colors<I: Iterator>(colors: &mut I, mut n: u64) -> bool {
         n -= step as u64;
     }
     true
-}
-
-/// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
-/// pixel on Cortex-M4 against 3 for `slice::fill`, which LLVM leaves as one store per iteration
-/// for 16-bit colours on Thumb.
-// One copy for every fill on Cortex-M0 (flash; a call a span).
-#[cfg_attr(armv6m, inline(never))]
-#[cfg_attr(not(armv6m), inline)]
-pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
-    let mut quads = row.chunks_exact_mut(4);
-    for quad in &mut quads {
-        quad.fill(color);
-    }
-    for px in quads.into_remainder() {
-        *px = color;
-    }
 }
 
 /// Why [`SliceFramebuffer::new`] or [`DepthTarget::new`](crate::DepthTarget::new) refused its

@@ -16,9 +16,10 @@ mod textured;
 mod translucent;
 mod triangle;
 
+pub use crate::color::fill_row;
 pub use antialias::AntiAliased;
 pub(crate) use framebuffer::skip_colors;
-pub use framebuffer::{fill_row, FramebufferError, SliceFramebuffer};
+pub use framebuffer::{FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;
 pub use mask::CoverageMask;
 #[cfg(feature = "png")]

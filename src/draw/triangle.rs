@@ -27,8 +27,9 @@ use core::marker::PhantomData;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
-use super::framebuffer::{fill_row, SliceFramebuffer};
+use super::framebuffer::SliceFramebuffer;
 use crate::arch::LANES;
+use crate::color::fill_row;
 use crate::color::{restart_value, GouraudColor, SpanSteps};
 use crate::fixed_point::{pixel_centre, pixel_corner, Coord, ToCoord};
 use crate::raster::band::RowWindow;
