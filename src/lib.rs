@@ -207,11 +207,12 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    AntiAliased, CoverageMask, FramebufferError, GouraudTriangle, OnBackground, ShadedSpans,
-    SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle, TexturedVertex, Translucent,
-    Vertex,
+    AntiAliased, CoverageMask, FilledPolygon, FramebufferError, GouraudTriangle, OnBackground,
+    Polygon, PolygonFull, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors,
+    TexturedTriangle, TexturedVertex, Translucent, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
+pub use raster::FillRule;
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
     Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline, Scalar,
@@ -251,9 +252,11 @@ pub use three_d::{
 pub mod prelude {
     pub use crate::color::GouraudColor;
     pub use crate::draw::{
-        GouraudTriangle, SliceFramebuffer, SolidTriangle, TexturedTriangle, TexturedVertex, Vertex,
+        GouraudTriangle, Polygon, SliceFramebuffer, SolidTriangle, TexturedTriangle,
+        TexturedVertex, Vertex,
     };
     pub use crate::fixed_point::{pixel_centre, pixel_corner, Coord, ToCoord};
+    pub use crate::raster::FillRule;
     pub use crate::texture::{Filter, Texture, Wrap};
     pub use crate::three_d::{
         Bounds, Cull, Degrees, DepthTarget, DrawStats, Light, LightSource, Lights, Mat4, Material,

@@ -12,6 +12,7 @@ mod image;
 mod mask;
 #[cfg(feature = "png")]
 mod png_file;
+mod polygon;
 mod textured;
 mod translucent;
 mod triangle;
@@ -24,6 +25,7 @@ pub(crate) use image::draw_rows;
 pub use mask::CoverageMask;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
+pub use polygon::{FilledPolygon, Polygon, PolygonFull};
 pub use textured::{TexturedTriangle, TexturedVertex};
 pub use translucent::{OnBackground, Translucent};
 pub use triangle::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};

@@ -25,6 +25,9 @@
 //!   draws them all at once sees them.
 //! * `sink` — the span shaders (`SpanShader`, like tiny-skia's `Blitter`): what every walk
 //!   hands its covered spans to (solid fill, a colour format's span loop, `fill_contiguous`, …).
+//! * `polygon` — polygons of any number of contours under the non-zero or even-odd rule: each
+//!   edge's crossing of the rows stepped exactly, the runs between them handed to a span shader
+//!   (the triangles' fill rule, for any orientation).
 //! * `scan` — small triangles (under 16 px) for shaders that opt in: each row's run found by
 //!   testing its pixels' edge values, the same spans without the walk's divisions.
 //! * `tiny` (x86-64) — triangles under 8 px drawn a row of lanes at a time.
@@ -40,6 +43,7 @@ pub(crate) mod coverage;
 pub(crate) mod edge;
 pub(crate) mod perspective;
 pub(crate) mod plane;
+pub(crate) mod polygon;
 pub(crate) mod runs;
 pub(crate) mod scan;
 mod shade;
@@ -51,6 +55,7 @@ pub(crate) mod walk;
 
 pub use compact::{TooLarge, LIMIT as COMPACT_LIMIT};
 pub use plane::{MAX_CHUNK, STEP_BITS};
+pub use polygon::FillRule;
 #[cfg(test)]
 pub(crate) use shade::Counting;
 pub(crate) use shade::{shade, shade_compact};

@@ -62,6 +62,7 @@ mod perspective;
 mod pipeline;
 #[cfg(feature = "png")]
 mod png_files;
+mod polygon;
 #[cfg(feature = "reference")]
 mod proptest_raster;
 mod same_pixels;
