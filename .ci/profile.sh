@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Instruction profile of the rasterizer on an emulated Cortex-M (developer tool, not part of CI).
 #
-#   bash .ci/profile.sh <target> <solid|gouraud|aa>-<large|small|tiny> [functions] [blocks]
+#   bash .ci/profile.sh <target> <solid|gouraud|aa|polygon>-<large|small|tiny> [functions] [blocks]
 #   bash .ci/profile.sh <target> mesh-<knot|torus>[-faces] [functions] [blocks]
 #   bash .ci/profile.sh thumbv6m-none-eabi gouraud-tiny 20 10
 #
@@ -35,7 +35,7 @@ case $profile in
         ;;
 esac
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+[ -n "${KEEP_LOG:-}" ] || trap 'rm -f "$log"' EXIT; echo "log: $log" >&2
 qemu-system-arm "${machine[@]}" -nographic -semihosting-config enable=on,target=native \
     -icount shift=0,align=off,sleep=off -d in_asm,exec,nochain -D "$log" -kernel "$elf" >/dev/null
 args=("$elf" "$log" "$functions")

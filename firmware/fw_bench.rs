@@ -21,7 +21,7 @@
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{PrimitiveStyle, Triangle};
-use embedded_raster::{Coord, GouraudTriangle, SolidTriangle, Vertex};
+use embedded_raster::{Coord, GouraudTriangle, Polygon, SolidTriangle, Vertex};
 
 #[allow(dead_code)]
 #[path = "../examples/common/scene.rs"]
@@ -65,6 +65,14 @@ impl BenchTriangle {
             self.corners.map(|(x, y)| (centre(x), centre(y))),
             self.colors[0],
         )
+    }
+
+    /// The solid triangle as a polygon: the same pixels, through the polygon's scan.
+    fn polygon(&self) -> Polygon<3> {
+        let mut polygon = Polygon::new();
+        // Three vertices fit three slots.
+        let _ = polygon.add_contour(&self.solid().points);
+        polygon
     }
 
     fn eg(&self) -> Triangle {
@@ -197,10 +205,13 @@ enum Renderer {
     AlphaDrawInto,
     /// `SolidTriangle::anti_aliased().draw_into`: edges blended with their exact coverage.
     AntiAliasedDrawInto,
+    /// `Polygon::filled(color).draw` and `draw_into` of the triangle's three corners.
+    PolygonDraw,
+    PolygonDrawInto,
     EgTriangle,
 }
 
-const RENDERERS: [Renderer; 8] = [
+const RENDERERS: [Renderer; 10] = [
     Renderer::SolidDraw,
     Renderer::SolidDrawInto,
     Renderer::GouraudDraw,
@@ -208,6 +219,8 @@ const RENDERERS: [Renderer; 8] = [
     Renderer::OpacityDrawInto,
     Renderer::AlphaDrawInto,
     Renderer::AntiAliasedDrawInto,
+    Renderer::PolygonDraw,
+    Renderer::PolygonDrawInto,
     Renderer::EgTriangle,
 ];
 
@@ -225,6 +238,8 @@ impl Renderer {
             Renderer::OpacityDrawInto => "SolidTriangle::with_opacity draw_into",
             Renderer::AlphaDrawInto => "GouraudTriangle::with_alpha draw_into",
             Renderer::AntiAliasedDrawInto => "SolidTriangle::anti_aliased draw_into",
+            Renderer::PolygonDraw => "Polygon::filled draw",
+            Renderer::PolygonDrawInto => "Polygon::filled draw_into",
             Renderer::EgTriangle => "e-g Triangle (fill)",
         }
     }
@@ -247,6 +262,9 @@ impl Renderer {
                 .draw(target),
             Renderer::AntiAliasedDrawInto => {
                 t.solid().anti_aliased().over(Rgb565::BLACK).draw(target)
+            }
+            Renderer::PolygonDraw | Renderer::PolygonDrawInto => {
+                t.polygon().filled(t.colors[0]).draw(target)
             }
             Renderer::EgTriangle => t
                 .eg()
@@ -349,6 +367,16 @@ mod firmware {
             Renderer::AntiAliasedDrawInto => {
                 for t in set.triangles() {
                     t.solid().anti_aliased().draw_into(fb);
+                }
+            }
+            Renderer::PolygonDraw => {
+                for t in set.triangles() {
+                    let _ = t.polygon().filled(t.colors[0]).draw(fb);
+                }
+            }
+            Renderer::PolygonDrawInto => {
+                for t in set.triangles() {
+                    t.polygon().filled(t.colors[0]).draw_into(fb);
                 }
             }
             Renderer::EgTriangle => {

@@ -11,7 +11,7 @@
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_raster::{Coord, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex};
+use embedded_raster::{Coord, GouraudTriangle, Polygon, SliceFramebuffer, SolidTriangle, Vertex};
 
 #[allow(dead_code)]
 #[path = "../examples/common/scene.rs"]
@@ -72,6 +72,11 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
             if gouraud {
                 let v = [0, 1, 2].map(|k| Vertex::new(centre(t[k].0), centre(t[k].1), colors[k]));
                 GouraudTriangle::new(v).draw_into(fb);
+            } else if PROFILE.starts_with("polygon") {
+                let corners = t.map(|(x, y)| (centre(x), centre(y)));
+                if let Ok(polygon) = Polygon::<3>::from_points(&corners) {
+                    polygon.filled(Rgb565::RED).draw_into(fb);
+                }
             } else if PROFILE.starts_with("aa") {
                 SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
                     .anti_aliased()

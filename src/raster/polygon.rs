@@ -20,7 +20,9 @@
 
 use embedded_graphics::primitives::Rectangle;
 
-use super::arith::{div_floor_wide, div_rem_u64};
+use core::num::{NonZeroU32, NonZeroU64};
+
+use super::arith::{div_rem_u32, div_rem_u64, mul_u32_wide};
 use super::edge::{first_centre_from, last_centre_before};
 use super::sink::SpanShader;
 use super::walk::Span;
@@ -63,8 +65,14 @@ impl FillRule {
 }
 
 /// A polygon edge as a row's crossing: the first column whose centre counts as right of it,
-/// stepped a row at a time. With `D = 256·dy` and the crossing's exact numerator `n` (the
-/// column is `⌈n / D⌉`), `n = column·D − error`, `0 ≤ error < D`.
+/// stepped a row at a time.
+///
+/// At the centre `y_c` of a row the columns right of the edge from `(x_a, y_a)` down to
+/// `(x_b, y_b)` are those with `256·i + 128 ≥ x_a + (y_c − y_a)·dx/dy`, i.e. `i ≥ n / D` with
+/// `n = (y_c − y_a)·dx + (x_a − 128)·dy` and `D = 256·dy`: the column is `⌈n / D⌉`, and
+/// `column·D − n` is its exact error, in `[0, D)`. A row adds `256·dx = ⌊dx/dy⌋·D + 256·(dx mod
+/// dy)` to `n`, a multiple of 256 like `D`, so the error's low eight bits never change and its
+/// high part `error` (in `[0, dy)`) carries it: every field fits 32 bits for any `Coord`.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct EdgeCrossing {
     /// First and last row it crosses (clipped).
@@ -76,16 +84,15 @@ pub(crate) struct EdgeCrossing {
     /// `⌊dx / dy⌋`: the column's whole step a row (wrapping: it fits an `i32` whenever the edge
     /// crosses two rows or more, `dy > 256`).
     step: i32,
-    error: i64,
-    /// `256·(dx mod dy)`: what the error loses a row.
-    fraction: i64,
-    denominator: i64,
+    /// `⌊(column·D − n) / 256⌋`, in `[0, dy)`.
+    error: u32,
+    /// `dx mod dy`: what the error loses a row, and `dy − fraction`, what it gains when that
+    /// carries the column one further.
+    fraction: u32,
+    carry: u32,
     /// +1 for an edge going down the screen, −1 up.
     winding: i32,
 }
-
-/// Coordinates below this magnitude (2²⁹ sub-pixels) set up in `i64`: every product below 2⁶⁰.
-const NARROW: i64 = 1 << 29;
 
 impl EdgeCrossing {
     /// The edge from `a` to `b` (raw sub-pixels) over the rows `top ..= bottom`, set up at its
@@ -102,78 +109,67 @@ impl EdgeCrossing {
         if first > last {
             return None;
         }
-        let (xa, ya, xb, yb) = (i64::from(xa), i64::from(ya), i64::from(xb), i64::from(yb));
-        let (dx, dy) = (xb - xa, yb - ya);
-        let denominator = dy << SUBPIXEL_BITS;
-        // The crossing at the first row's centre `yc`: the columns `i` right of it are those
-        // with `256·i + 128 ≥ xa + (yc − ya)·dx/dy`, i.e. `i ≥ n / D` with
-        // `n = (yc − ya)·dx + (xa − 128)·dy`.
+        // dy in 1 .. 2³², |dx| below 2³²; the first row's centre is `k` below `y_a`, k < dy.
+        let dy = yb.abs_diff(ya);
+        let dx = i64::from(xb) - i64::from(xa);
+        let rows = NonZeroU32::new(dy)?;
         let yc = (i64::from(first) << SUBPIXEL_BITS) + HALF_PIXEL;
-        let narrow = [xa, ya, xb, yb].iter().all(|v| v.abs() < NARROW);
-        let (column, error) = if narrow {
-            // |yc − ya| < dy < 2³⁰, |dx| < 2³⁰, |xa − 128| < 2²⁹ + 128: below 2⁶¹.
-            ceil_div((yc - ya) * dx + (xa - HALF_PIXEL) * dy, denominator)
+        let k = (yc - i64::from(ya)) as u32;
+        // ⌊dx / dy⌋ and dx mod dy.
+        let (q, r) = div_rem_u32(dx.unsigned_abs() as u32, rows);
+        let (step, fraction) = match (dx < 0, r) {
+            (false, _) => (i64::from(q), r),
+            (true, 0) => (-i64::from(q), 0),
+            (true, _) => (-i64::from(q) - 1, dy - r),
+        };
+        // n = dy·(k·step + x_a − 128) + k·fraction; with k·fraction = g·dy + h (h < dy),
+        // n = dy·t + h where t = k·step + x_a − 128 + g: |k·step| < |dx| + dy < 2³³.
+        let spill = mul_u32_wide(k, fraction);
+        let (g, h) = if spill >> 32 == 0 {
+            div_rem_u32(spill as u32, rows)
         } else {
-            ceil_div_wide(
-                i128::from(yc - ya) * i128::from(dx) + i128::from(xa - HALF_PIXEL) * i128::from(dy),
-                denominator,
-            )
+            let (g, h) = div_rem_u64(spill, NonZeroU64::from(rows));
+            (g as u32, h as u32)
         };
-        // ⌊dx / dy⌋ and the remainder, by the unsigned division (dy > 0, |dx| < 2³³).
-        let (q, r) = div_rem_u64(dx.unsigned_abs(), nonzero(dy));
-        let (q, r) = (q as i64, r as i64);
-        let (step, rest) = match (dx < 0, r) {
-            (false, _) => (q, r),
-            (true, 0) => (-q, 0),
-            (true, _) => (-q - 1, dy - r),
+        let t = i64::from(k) * step + i64::from(xa) - HALF_PIXEL + i64::from(g);
+        // ⌈n / D⌉ = ⌈(t + h/dy) / 256⌉: t's own ceiling if h = 0, else ⌊t / 256⌋ + 1.
+        let column = if h == 0 {
+            -((-t) >> SUBPIXEL_BITS)
+        } else {
+            (t >> SUBPIXEL_BITS) + 1
         };
+        // column·D − n = (256·column − t)·dy − h, with 256·column − t in 0 ..= 256.
+        let over = ((column << SUBPIXEL_BITS) - t) as u32;
+        let error = (mul_u32_wide(over, dy) - u64::from(h)) >> SUBPIXEL_BITS;
         Some(EdgeCrossing {
             first,
             last,
-            column,
+            column: column as i32,
             step: step as i32,
-            error,
-            fraction: rest << SUBPIXEL_BITS,
-            denominator,
+            error: error as u32,
+            fraction,
+            carry: dy - fraction,
             winding,
         })
     }
 
-    /// To the next row's crossing: `n` grows by `256·dx = step·D + fraction`.
+    /// To the next row's crossing: `n` grows by `⌊dx/dy⌋·D + 256·(dx mod dy)`.
     #[inline(always)]
     fn advance(&mut self) {
         self.column = self.column.wrapping_add(self.step);
-        self.error -= self.fraction;
-        if self.error < 0 {
-            self.error += self.denominator;
+        if self.error < self.fraction {
+            self.error = self.error.wrapping_add(self.carry);
             self.column = self.column.wrapping_add(1);
+        } else {
+            self.error -= self.fraction;
         }
     }
-}
 
-fn nonzero(d: i64) -> core::num::NonZeroU64 {
-    core::num::NonZeroU64::new(d.unsigned_abs()).unwrap_or(core::num::NonZeroU64::MIN)
-}
-
-/// `(⌈n / d⌉, ⌈n / d⌉·d − n)` for `d > 0`; the quotient is a column (it fits an `i32`).
-fn ceil_div(n: i64, d: i64) -> (i32, i64) {
-    let (q, r) = div_rem_u64(n.unsigned_abs(), nonzero(d));
-    let (q, r) = (q as i64, r as i64);
-    let (column, error) = match (n < 0, r) {
-        (true, _) => (-q, r),
-        (false, 0) => (q, 0),
-        (false, _) => (q + 1, d - r),
-    };
-    (column as i32, error)
-}
-
-/// [`ceil_div`] of an `i128` numerator, out of line: only coordinates beyond ±2²¹ px need it.
-#[inline(never)]
-#[cold]
-fn ceil_div_wide(n: i128, d: i64) -> (i32, i64) {
-    let column = div_floor_wide(-n, i128::from(d)).wrapping_neg();
-    let error = column * i128::from(d) - n;
-    (column as i32, error as i64)
+    /// The column at the current row.
+    #[cfg(test)]
+    fn column(&self) -> i32 {
+        self.column
+    }
 }
 
 /// Sorts `edges` by their first row: a heap sort (no recursion, no allocation, no panic path).
@@ -222,6 +218,48 @@ fn sort_by_column(edges: &mut [EdgeCrossing]) {
     }
 }
 
+/// The rows `y ..= stop` between edges `a` and `b`, the only ones crossing them: each row's run
+/// between the two columns, then both step (past `stop` too). `true` if the shader stopped.
+#[inline(always)]
+fn two_edges<S: SpanShader<0>>(
+    a: &mut EdgeCrossing,
+    b: &mut EdgeCrossing,
+    mut y: i32,
+    stop: i32,
+    (left, right): (i32, i32),
+    shader: &mut S,
+    steps: &S::Steps,
+) -> bool {
+    let (mut p, mut q) = (*a, *b);
+    loop {
+        let (l, r) = if p.column <= q.column {
+            (p.column, q.column)
+        } else {
+            (q.column, p.column)
+        };
+        let (l, r) = (l.clamp(left, right), r.clamp(left, right));
+        if l < r {
+            let span = Span {
+                y,
+                x_start: l,
+                x_end: r,
+            };
+            shader.span(steps, span, []);
+            if shader.stopped() {
+                return true;
+            }
+        }
+        p.advance();
+        q.advance();
+        if y >= stop {
+            break;
+        }
+        y += 1;
+    }
+    (*a, *b) = (p, q);
+    false
+}
+
 /// Hands the covered spans inside `clip` of the polygon whose edges `edges` yields (pairs of
 /// raw sub-pixel points; each contour closed by its last edge) to `shader`, top to bottom and
 /// left to right, under `rule`. `scratch` holds one crossing an edge: edges past its length
@@ -254,6 +292,12 @@ pub(crate) fn fill_polygon<S: SpanShader<0>>(
     };
     sort_by_first_row(edges);
     let steps = shader.prepare([]);
+    // Inside where `winding & mask ≠ 0`: every bit for the non-zero rule, the lowest for
+    // even-odd.
+    let mask = match rule {
+        FillRule::NonZero => -1,
+        FillRule::EvenOdd => 1,
+    };
     // edges[..active] cross the current row; edges[next..] are still to come, sorted by their
     // first row; the slots between are free (active ≤ next).
     let (mut active, mut next) = (0, 0);
@@ -269,6 +313,10 @@ pub(crate) fn fill_polygon<S: SpanShader<0>>(
             active += 1;
             next += 1;
         }
+        // The last row before another edge starts.
+        let upcoming = edges
+            .get(next)
+            .map_or(i32::MAX, |e| e.first.saturating_sub(1));
         let Some(row) = edges.get_mut(..active) else {
             return;
         };
@@ -281,54 +329,69 @@ pub(crate) fn fill_polygon<S: SpanShader<0>>(
                 None => return,
             }
         }
-        sort_by_column(row);
-        // The runs where the winding number is inside: at each column where it changes from
-        // outside to inside a span starts, where it changes back the span ends.
-        let (mut winding, mut start) = (0, left);
-        let mut crossings = row.iter().peekable();
-        while let Some(edge) = crossings.next() {
-            let was_inside = rule.inside(winding);
-            winding += edge.winding;
-            // All the crossings at one column before the inside test.
-            while let Some(same) = crossings.next_if(|e| e.column == edge.column) {
-                winding += same.winding;
+        if let [a, b] = row {
+            // Two edges (every row of a convex polygon, most of a simple one): a closed
+            // polygon's crossings of a row sum to zero, so their windings are +1 and −1 and the
+            // run between them is inside under either rule. Rows go by in a tight loop until
+            // one of them ends or another edge starts.
+            let stop = a.last.min(b.last).min(upcoming);
+            if two_edges(a, b, y, stop, (left, right), shader, &steps) {
+                return;
             }
-            let column = edge.column.clamp(left, right);
-            match (was_inside, rule.inside(winding)) {
-                (false, true) => start = column,
-                (true, false) if column > start => {
-                    shader.span(
-                        &steps,
-                        Span {
+            y = stop;
+        } else {
+            sort_by_column(row);
+            // The runs where the winding number is inside: where it changes from outside to
+            // inside a span starts, where it changes back the span ends; the crossings at one
+            // column are summed before the test.
+            let (mut winding, mut inside, mut start) = (0, false, left);
+            let mut crossings = row.iter().peekable();
+            while let Some(edge) = crossings.next() {
+                winding += edge.winding;
+                if crossings.peek().is_some_and(|e| e.column == edge.column) {
+                    continue;
+                }
+                if (winding & mask != 0) != inside {
+                    inside = !inside;
+                    let column = edge.column.clamp(left, right);
+                    if inside {
+                        start = column;
+                    } else if column > start {
+                        let span = Span {
                             y,
                             x_start: start,
                             x_end: column,
-                        },
-                        [],
-                    );
-                    if shader.stopped() {
-                        return;
+                        };
+                        shader.span(&steps, span, []);
+                        if shader.stopped() {
+                            return;
+                        }
                     }
                 }
-                _ => {}
             }
-        }
-        // To the next row: the edges ending here leave, the others step.
-        let mut kept = 0;
-        for i in 0..active {
-            let Some(&edge) = edges.get(i) else { break };
-            if edge.last > y {
-                let mut edge = edge;
+            for edge in row.iter_mut() {
                 edge.advance();
-                if let Some(slot) = edges.get_mut(kept) {
-                    *slot = edge;
-                }
-                kept += 1;
             }
         }
-        active = kept;
-        if active == 0 && next >= edges.len() {
-            return;
+        // To the next row (every edge has stepped): those that ended on this one leave.
+        let ended = edges
+            .get(..active)
+            .is_some_and(|row| row.iter().any(|e| e.last == y));
+        if ended {
+            let mut kept = 0;
+            for i in 0..active {
+                let Some(&edge) = edges.get(i) else { break };
+                if edge.last > y {
+                    if let Some(slot) = edges.get_mut(kept) {
+                        *slot = edge;
+                    }
+                    kept += 1;
+                }
+            }
+            active = kept;
+            if active == 0 && next >= edges.len() {
+                return;
+            }
         }
         y += 1;
     }
@@ -338,21 +401,38 @@ pub(crate) fn fill_polygon<S: SpanShader<0>>(
 mod tests {
     use super::*;
 
+    /// Every row's column of random edges (huge ones too) against `⌈n / D⌉` in `i128`.
     #[test]
-    fn ceil_division_is_exact() {
+    fn crossings_step_exactly() {
         let mut rng = crate::random(7);
-        for _ in 0..100_000 {
-            let n = (rng() as i64) >> (rng() % 40);
-            let d = ((rng() >> 24) as i64 >> (rng() % 40)).max(1);
-            let (q, e) = ceil_div(n >> 3, d);
-            let exact = (i128::from(n >> 3) + i128::from(d) - 1).div_euclid(i128::from(d));
-            if exact.abs() < i128::from(i32::MAX) {
-                assert_eq!(i128::from(q), exact, "{n} / {d}");
-                assert_eq!(i128::from(e), exact * i128::from(d) - i128::from(n >> 3));
-            }
-            let (qw, ew) = ceil_div_wide(i128::from(n >> 3), d);
-            if exact.abs() < i128::from(i32::MAX) {
-                assert_eq!((i128::from(qw), ew), (exact, e));
+        for case in 0..20_000 {
+            let mut coordinate = || {
+                let v = rng() as i32;
+                match case % 3 {
+                    0 => v,
+                    1 => v >> 12,
+                    _ => v >> 20,
+                }
+            };
+            let (a, b) = ((coordinate(), coordinate()), (coordinate(), coordinate()));
+            let top = (a.1.min(b.1) >> 8) + (rng() % 5) as i32 - 2;
+            let Some(mut edge) = EdgeCrossing::new(a, b, top, top + 40) else {
+                continue;
+            };
+            let (up, down) = if a.1 < b.1 { (a, b) } else { (b, a) };
+            let (xa, ya, dx, dy) = (
+                i128::from(up.0),
+                i128::from(up.1),
+                i128::from(down.0) - i128::from(up.0),
+                i128::from(down.1) - i128::from(up.1),
+            );
+            for row in edge.first..=edge.last {
+                let yc = i128::from(row) * 256 + 128;
+                let n = (yc - ya) * dx + (xa - 128) * dy;
+                let d = 256 * dy;
+                let exact = (n + d - 1).div_euclid(d);
+                assert_eq!(i128::from(edge.column()), exact, "{a:?} {b:?} row {row}");
+                edge.advance();
             }
         }
     }

@@ -390,7 +390,11 @@ fn polygons_sharing_an_edge_never_both_cover_a_pixel() {
         let mut second: Vec<(i32, i32)> = points[cut..].to_vec();
         second.push(points[0]);
         let rule = [FillRule::NonZero, FillRule::EvenOdd][rng.below(2) as usize];
-        let whole = coverage(&polygon_of::<16>(std::slice::from_ref(&points)), rule, &clip());
+        let whole = coverage(
+            &polygon_of::<16>(std::slice::from_ref(&points)),
+            rule,
+            &clip(),
+        );
         let a = coverage(&polygon_of::<16>(&[first]), rule, &clip());
         let b = coverage(&polygon_of::<16>(&[second]), rule, &clip());
         let sum: Vec<u8> = a.iter().zip(&b).map(|(a, b)| a + b).collect();
