@@ -174,7 +174,14 @@ impl EdgeCrossing {
 
 /// Sorts `edges` by their first row: a heap sort (no recursion, no allocation, no panic path).
 fn sort_by_first_row(edges: &mut [EdgeCrossing]) {
-    let key = |edges: &[EdgeCrossing], i: usize| edges.get(i).map_or(i32::MAX, |e| e.first);
+    // Swaps only inside the slice: the indices below always are, and the check lets the
+    // optimiser drop `swap`'s panic.
+    let swap = |edges: &mut [EdgeCrossing], i: usize, j: usize| {
+        if i < edges.len() && j < edges.len() {
+            edges.swap(i, j);
+        }
+    };
+    let key = |edges: &[EdgeCrossing], i: usize| edges.get(i).map_or(i32::MIN, |e| e.first);
     let sift_down = |edges: &mut [EdgeCrossing], mut root: usize, end: usize| loop {
         let mut child = 2 * root + 1;
         if child >= end {
@@ -186,7 +193,7 @@ fn sort_by_first_row(edges: &mut [EdgeCrossing]) {
         if key(edges, root) >= key(edges, child) {
             return;
         }
-        edges.swap(root, child);
+        swap(edges, root, child);
         root = child;
     };
     let n = edges.len();
@@ -194,7 +201,7 @@ fn sort_by_first_row(edges: &mut [EdgeCrossing]) {
         sift_down(edges, root, n);
     }
     for end in (1..n).rev() {
-        edges.swap(0, end);
+        swap(edges, 0, end);
         sift_down(edges, 0, end);
     }
 }
@@ -237,7 +244,7 @@ fn two_edges<S: SpanShader<0>>(
         } else {
             (q.column, p.column)
         };
-        let (l, r) = (l.clamp(left, right), r.clamp(left, right));
+        let (l, r) = (l.max(left).min(right), r.max(left).min(right));
         if l < r {
             let span = Span {
                 y,
@@ -353,7 +360,7 @@ pub(crate) fn fill_polygon<S: SpanShader<0>>(
                 }
                 if (winding & mask != 0) != inside {
                     inside = !inside;
-                    let column = edge.column.clamp(left, right);
+                    let column = edge.column.max(left).min(right);
                     if inside {
                         start = column;
                     } else if column > start {
