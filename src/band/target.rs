@@ -8,9 +8,10 @@ use embedded_graphics::Pixel;
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
-    skip_colors, AntiAliased, CoverageMask, GouraudTriangle, SliceFramebuffer, SolidTriangle,
-    TexturedTriangle, Translucent,
+    skip_colors, AntiAliased, CoverageMask, FilledPolygon, GouraudTriangle, SliceFramebuffer,
+    SolidTriangle, TexturedTriangle, Translucent,
 };
+use crate::paint::Paint;
 use crate::raster::walk::Band;
 use crate::rect;
 use crate::texture::TexelSource;
@@ -149,6 +150,19 @@ impl<C: GouraudColor> BandDrawable<C> for Translucent<GouraudTriangle<C>> {
 
     fn rows(&self) -> Option<(i32, i32)> {
         rows_of(self.shape().vertices.map(|v| v.y))
+    }
+}
+
+impl<C: PixelColor, P: Paint<Color = C>, const N: usize> BandDrawable<C>
+    for FilledPolygon<'_, N, P>
+{
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let rect = band.rect();
+        self.draw_rows(&mut band.pixels, &rect);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        FilledPolygon::rows(self)
     }
 }
 

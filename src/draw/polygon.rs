@@ -242,6 +242,7 @@ impl<const N: usize, P: Paint> FilledPolygon<'_, N, P> {
         let mut shader = PaintIntoSlice {
             framebuffer,
             paint: &self.paint,
+            top: 0,
         };
         fill_polygon(
             self.polygon.edges(),
@@ -250,6 +251,41 @@ impl<const N: usize, P: Paint> FilledPolygon<'_, N, P> {
             &clip,
             &mut shader,
         );
+    }
+
+    /// Draws the rows of `rect` (frame coordinates) into `framebuffer`, whose first row is the
+    /// frame's row `rect`'s top (a band's buffer): the frame's pixels there, as the crossings
+    /// are exact at any first row.
+    pub(crate) fn draw_rows(
+        &self,
+        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
+        rect: &embedded_graphics::primitives::Rectangle,
+    ) {
+        let mut scratch = [EdgeCrossing::default(); N];
+        let mut shader = PaintIntoSlice {
+            framebuffer,
+            paint: &self.paint,
+            top: rect.top_left.y,
+        };
+        fill_polygon(
+            self.polygon.edges(),
+            &mut scratch,
+            self.rule,
+            rect,
+            &mut shader,
+        );
+    }
+
+    /// The first and last rows it may cover (a superset), `None` if none: those between its
+    /// highest and lowest vertex.
+    pub fn rows(&self) -> Option<(i32, i32)> {
+        let ys = self.polygon.points().iter().map(|p| p.1.to_bits());
+        let (top, bottom) = (ys.clone().min()?, ys.max()?);
+        let (first, last) = (
+            crate::raster::edge::first_centre_from(top),
+            crate::raster::edge::last_centre_before(bottom),
+        );
+        (first <= last).then_some((first, last))
     }
 }
 
@@ -279,10 +315,12 @@ impl<const N: usize, P: Paint> Drawable for FilledPolygon<'_, N, P> {
     }
 }
 
-/// The span shader of [`FilledPolygon::draw_into`]: the paint's row fill of each span.
+/// The span shader of [`FilledPolygon::draw_into`]: the paint's row fill of each span, into
+/// the framebuffer's row `y − top` (a band's buffer starts at the frame's row `top`).
 struct PaintIntoSlice<'f, 'a, 'p, P: Paint> {
     framebuffer: &'f mut SliceFramebuffer<'a, P::Color>,
     paint: &'p P,
+    top: i32,
 }
 
 impl<P: Paint> SpanShader<0> for PaintIntoSlice<'_, '_, '_, P> {
@@ -293,11 +331,12 @@ impl<P: Paint> SpanShader<0> for PaintIntoSlice<'_, '_, '_, P> {
 
     #[inline(always)]
     fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
-        // The spans are clipped to the framebuffer.
-        if let Some(row) = self
-            .framebuffer
-            .clipped_span_mut(span.y, span.x_start, span.x_end)
-        {
+        // The spans are clipped to the framebuffer's rows in the frame.
+        if let Some(row) = self.framebuffer.clipped_span_mut(
+            span.y.wrapping_sub(self.top),
+            span.x_start,
+            span.x_end,
+        ) {
             self.paint.paint_row(span.y, span.x_start, row);
         }
     }

@@ -448,3 +448,54 @@ fn the_store_reports_its_capacity() {
         .for_each_span(FillRule::NonZero, &clip(), |_, _, _| spans += 1);
     assert_eq!(spans, 0);
 }
+
+/// Bands of every height, drawn directly and through a bin, give the frame's pixels.
+#[test]
+fn bands_and_bins_equal_the_whole_frame() {
+    use embedded_raster::band::{BandLayout, BinEntry, ColorBand, TriangleBin};
+    let mut rng = Rng(0x5eed_0008);
+    for case in 0..60 {
+        let polygons: Vec<Polygon<24>> = (0..1 + rng.below(4))
+            .map(|_| {
+                let contours: Vec<Vec<(i32, i32)>> = (0..1 + rng.below(3))
+                    .map(|_| {
+                        let len = 3 + rng.below(6) as usize;
+                        rng.contour(len, W)
+                    })
+                    .collect();
+                polygon_of::<24>(&contours)
+            })
+            .collect();
+        let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE, Rgb565::YELLOW];
+        let rule = [FillRule::NonZero, FillRule::EvenOdd][case % 2];
+        let fills: Vec<_> = polygons
+            .iter()
+            .zip(colors)
+            .map(|(p, c)| p.filled(c).with_rule(rule))
+            .collect();
+        let mut whole = vec![Rgb565::BLACK; (W * H) as usize];
+        let mut fb = SliceFramebuffer::new(&mut whole, W, H).unwrap();
+        for f in &fills {
+            f.draw_into(&mut fb);
+        }
+        for height in 1..=H {
+            let layout = BandLayout::new(Size::new(W, H), height).unwrap();
+            let mut rows = vec![Rgb565::BLACK; (W * height) as usize];
+            let mut binned = rows.clone();
+            let mut storage = vec![BinEntry::EMPTY; (fills.len() + 1) * layout.count() as usize];
+            let mut bin = TriangleBin::new(&layout, &fills, &mut storage).unwrap();
+            for index in 0..layout.count() {
+                let mut band = ColorBand::new(&mut rows, &layout, index).unwrap();
+                band.clear(Rgb565::BLACK);
+                band.draw_all(&fills);
+                let start = (band.rect().top_left.y as u32 * W) as usize;
+                let len = band.pixels().len();
+                assert_eq!(band.pixels(), &whole[start..start + len], "band {index} of {height}");
+                let mut band = ColorBand::new(&mut binned, &layout, index).unwrap();
+                band.clear(Rgb565::BLACK);
+                bin.draw(&mut band).unwrap();
+                assert_eq!(band.pixels(), &whole[start..start + len], "binned {index} of {height}");
+            }
+        }
+    }
+}
