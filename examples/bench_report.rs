@@ -32,6 +32,11 @@
 //! prints `Collected : <instructions of 20 frames>`. `bench_report pictures <dir>` writes both
 //! renderers' frames as PPM files and prints where their coverage differs.
 //!
+//! Then filled polygons against tiny-skia 0.12's aliased fill (`examples/common/polygon_peer.rs`):
+//! pixel rates and pixels off the exact winding rule; `bench_report polygons` prints only that
+//! part, `bench_report polygons <ours|tiny-skia> <set> <nonzero|evenodd> [passes]` fills one set
+//! inside `polygon_passes` for callgrind.
+//!
 //! Last, anti-aliased fills against tiny-skia 0.12 (`examples/common/aa_peer.rs`): pixel rates,
 //! coverage error against the exact area and seam dips; `bench_report aa` prints only that part.
 //! `bench_report aa <ours|tiny-skia|ours-aliased> <size class id> [passes]` only fills that set
@@ -58,6 +63,9 @@ mod euc3d;
 
 #[path = "common/aa_peer.rs"]
 mod aa_peer;
+
+#[path = "common/polygon_peer.rs"]
+mod polygon_peer;
 
 // The f64 reference (exact pixel areas for the anti-aliasing report), compiled in directly so
 // that the example needs no cargo feature (it is `embedded_raster::reference` with `reference`).
@@ -168,6 +176,14 @@ fn main() {
         ["aa"] => {
             print!("{}", aa_peer::report_aa());
             return;
+        }
+        ["polygons"] => {
+            print!("{}", polygon_peer::report_polygons());
+            return;
+        }
+        ["polygons", who, set, rule, rest @ ..] => {
+            let passes = rest.first().map_or(200, |p| p.parse().expect("passes"));
+            return polygon_peer::profile_polygons(who, set, rule, passes);
         }
         ["aa", method, class, rest @ ..] => {
             let passes = rest.first().map_or(200, |p| p.parse().expect("passes"));
@@ -362,6 +378,8 @@ fn main() {
 
     md.push('\n');
     md.push_str(&report_3d());
+    md.push('\n');
+    md.push_str(&polygon_peer::report_polygons());
     md.push('\n');
     md.push_str(&aa_peer::report_aa());
 

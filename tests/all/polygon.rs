@@ -490,11 +490,19 @@ fn bands_and_bins_equal_the_whole_frame() {
                 band.draw_all(&fills);
                 let start = (band.rect().top_left.y as u32 * W) as usize;
                 let len = band.pixels().len();
-                assert_eq!(band.pixels(), &whole[start..start + len], "band {index} of {height}");
+                assert_eq!(
+                    band.pixels(),
+                    &whole[start..start + len],
+                    "band {index} of {height}"
+                );
                 let mut band = ColorBand::new(&mut binned, &layout, index).unwrap();
                 band.clear(Rgb565::BLACK);
                 bin.draw(&mut band).unwrap();
-                assert_eq!(band.pixels(), &whole[start..start + len], "binned {index} of {height}");
+                assert_eq!(
+                    band.pixels(),
+                    &whole[start..start + len],
+                    "binned {index} of {height}"
+                );
             }
         }
     }
