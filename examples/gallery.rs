@@ -8,7 +8,9 @@
 //! * `antialias.png` — the same shapes aliased, anti-aliased triangle by triangle, and as one
 //!   coverage mask, at 4×;
 //! * `translucent.png` — a Gouraud scene under translucent triangles: one opacity, an alpha per
-//!   vertex, and an anti-aliased one.
+//!   vertex, and an anti-aliased one;
+//! * `polygons.png` — filled polygons: a self-intersecting star under the non-zero and the
+//!   even-odd rule, and a shape with holes (two contours inside an outline), at 3×.
 //!
 //! Run with `cargo run --release --example gallery`.
 
@@ -22,7 +24,8 @@ use embedded_graphics::{
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use embedded_raster::{
-    Coord, CoverageMask, GouraudTriangle, SliceFramebuffer, SolidTriangle, Vertex,
+    Coord, CoverageMask, FillRule, GouraudTriangle, Polygon, SliceFramebuffer, SolidTriangle,
+    Vertex,
 };
 
 // The f64 reference, compiled in directly so that the example needs no cargo feature
@@ -351,6 +354,78 @@ fn translucent_picture() {
     save(&display, 2, "translucent.png");
 }
 
+/// The points of a regular star polygon {n/k} around `(cx, cy)`: every `k`-th of `n` points on
+/// a circle, so the contour crosses itself (winding numbers up to `k` inside).
+fn star_polygon(cx: f64, cy: f64, r: f64, n: usize, k: usize, turn: f64) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let t = turn + (i * k % n) as f64 * std::f64::consts::TAU / n as f64;
+            (cx + r * t.sin(), cy - r * t.cos())
+        })
+        .collect()
+}
+
+fn polygons_picture() {
+    let (w, h) = (88u32, 96u32);
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(3 * w + 8, h));
+    let background = Rgb565::new(3, 8, 6);
+    let label = MonoTextStyle::new(&FONT_5X8, Rgb565::WHITE);
+    let star = star_polygon(44.3, 42.6, 38.2, 9, 4, 0.1);
+    for panel in 0..3 {
+        let mut pixels = vec![background; (w * h) as usize];
+        let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
+        let text = match panel {
+            0 | 1 => {
+                let polygon = Polygon::<9>::from_points(&star).unwrap();
+                let (rule, text) = if panel == 0 {
+                    (FillRule::NonZero, "non-zero")
+                } else {
+                    (FillRule::EvenOdd, "even-odd")
+                };
+                polygon
+                    .filled(Rgb565::CSS_GOLD)
+                    .with_rule(rule)
+                    .draw_into(&mut fb);
+                text
+            }
+            _ => {
+                // An outline with two holes: the holes run the other way round, so both rules
+                // cut them.
+                let mut shape = Polygon::<24>::new();
+                let outline = star_polygon(44.0, 43.0, 40.5, 12, 1, 0.13);
+                let outline: Vec<(f64, f64)> = outline
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &(x, y))| {
+                        let s = if i % 2 == 0 { 1.0 } else { 0.72 };
+                        (44.0 + (x - 44.0) * s, 43.0 + (y - 43.0) * s)
+                    })
+                    .collect();
+                shape.add_contour(&outline).unwrap();
+                let mut hole = star_polygon(31.7, 36.2, 9.4, 6, 1, 0.0);
+                hole.reverse();
+                shape.add_contour(&hole).unwrap();
+                let mut slot = vec![(48.3, 47.1), (61.8, 47.1), (61.8, 63.4), (48.3, 63.4)];
+                slot.reverse();
+                shape.add_contour(&slot).unwrap();
+                shape.filled(Rgb565::CSS_LIGHT_SKY_BLUE).draw_into(&mut fb);
+                "holes"
+            }
+        };
+        let at = Point::new(panel * (w as i32 + 4), 0);
+        Image::new(&fb, at).draw(&mut display).unwrap();
+        Text::with_alignment(
+            text,
+            at + Point::new(w as i32 / 2, h as i32 - 3),
+            label,
+            Alignment::Center,
+        )
+        .draw(&mut display)
+        .unwrap();
+    }
+    save(&display, 3, "polygons.png");
+}
+
 fn main() {
     std::fs::create_dir_all("docs").expect("create docs/");
     gouraud();
@@ -358,4 +433,5 @@ fn main() {
     heatmap();
     antialias_picture();
     translucent_picture();
+    polygons_picture();
 }
