@@ -33,8 +33,8 @@ use crate::raster::{FillRule, SpanShader};
 /// are inside. Vertices are [`Coord`]s (1/256 px), any value: far off-screen parts are clipped
 /// exactly.
 ///
-/// Drawing it ([`filled`](Self::filled)) keeps one edge crossing (40 bytes) for each vertex on
-/// the stack: `40·N` bytes, 2.5 KiB for `N = 64`.
+/// Drawing it ([`filled`](Self::filled)) keeps one edge crossing (32 bytes) for each vertex on
+/// the stack: `32·N` bytes, 2 KiB for `N = 64`.
 ///
 /// # Examples
 ///

@@ -444,6 +444,12 @@ mod tests {
         }
     }
 
+    /// The size the polygon's docs state for a crossing (`Polygon`: 32 bytes a vertex).
+    #[test]
+    fn a_crossing_is_32_bytes() {
+        assert_eq!(core::mem::size_of::<EdgeCrossing>(), 32);
+    }
+
     #[test]
     fn heap_sort_orders_by_first_row() {
         let mut rng = crate::random(3);
