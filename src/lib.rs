@@ -207,9 +207,9 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    AntiAliased, CoverageMask, FilledPolygon, FramebufferError, GouraudTriangle, OnBackground,
-    Polygon, PolygonFull, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors,
-    TexturedTriangle, TexturedVertex, Translucent, Vertex,
+    AntiAliased, CoverageMask, FilledPolygon, FramebufferError, GouraudTriangle, Line,
+    OnBackground, Polygon, PolygonFull, Polyline, ShadedSpans, SliceFramebuffer, SolidTriangle,
+    SpanColors, TexturedTriangle, TexturedVertex, Translucent, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use raster::FillRule;

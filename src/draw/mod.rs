@@ -9,7 +9,9 @@
 mod antialias;
 mod framebuffer;
 mod image;
+mod line;
 mod mask;
+mod painted;
 #[cfg(feature = "png")]
 mod png_file;
 mod polygon;
@@ -22,6 +24,7 @@ pub use antialias::AntiAliased;
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;
+pub use line::{Line, Polyline};
 pub use mask::CoverageMask;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;

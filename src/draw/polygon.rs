@@ -20,11 +20,11 @@
 use embedded_graphics::prelude::*;
 
 use super::framebuffer::SliceFramebuffer;
+use super::painted::{Calls, PaintIntoSlice, PaintToTarget};
 use crate::fixed_point::{Coord, ToCoord};
 use crate::paint::Paint;
 use crate::raster::polygon::{fill_polygon, EdgeCrossing};
-use crate::raster::walk::Span;
-use crate::raster::{FillRule, SpanShader};
+use crate::raster::FillRule;
 
 /// A polygon of up to `N` vertices in one or more closed contours, stored inline (no heap).
 ///
@@ -312,76 +312,5 @@ impl<const N: usize, P: Paint> Drawable for FilledPolygon<'_, N, P> {
             &mut shader,
         );
         shader.result
-    }
-}
-
-/// The span shader of [`FilledPolygon::draw_into`]: the paint's row fill of each span, into
-/// the framebuffer's row `y − top` (a band's buffer starts at the frame's row `top`).
-struct PaintIntoSlice<'f, 'a, 'p, P: Paint> {
-    framebuffer: &'f mut SliceFramebuffer<'a, P::Color>,
-    paint: &'p P,
-    top: i32,
-}
-
-impl<P: Paint> SpanShader<0> for PaintIntoSlice<'_, '_, '_, P> {
-    type Steps = ();
-
-    #[inline(always)]
-    fn prepare(&mut self, _: [u32; 0]) {}
-
-    #[inline(always)]
-    fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
-        // The spans are clipped to the framebuffer's rows in the frame.
-        if let Some(row) = self.framebuffer.clipped_span_mut(
-            span.y.wrapping_sub(self.top),
-            span.x_start,
-            span.x_end,
-        ) {
-            self.paint.paint_row(span.y, span.x_start, row);
-        }
-    }
-}
-
-/// The span shader of [`FilledPolygon`]'s [`Drawable::draw`]: the paint's `draw_row` a span,
-/// stopping at the first error.
-struct PaintToTarget<'t, 'p, D: DrawTarget, P> {
-    target: &'t mut D,
-    paint: &'p P,
-    result: Result<(), D::Error>,
-}
-
-impl<D: DrawTarget, P: Paint<Color = D::Color>> SpanShader<0> for PaintToTarget<'_, '_, D, P> {
-    type Steps = ();
-
-    #[inline(always)]
-    fn prepare(&mut self, _: [u32; 0]) {}
-
-    #[inline(always)]
-    fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
-        if self.result.is_ok() {
-            self.result = self
-                .paint
-                .draw_row(self.target, span.y, span.x_start, span.len());
-        }
-    }
-
-    #[inline(always)]
-    fn stopped(&self) -> bool {
-        self.result.is_err()
-    }
-}
-
-/// A closure as a span shader ([`Polygon::for_each_span`]).
-struct Calls<F>(F);
-
-impl<F: FnMut(i32, i32, i32)> SpanShader<0> for Calls<F> {
-    type Steps = ();
-
-    #[inline(always)]
-    fn prepare(&mut self, _: [u32; 0]) {}
-
-    #[inline(always)]
-    fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
-        (self.0)(span.y, span.x_start, span.x_end);
     }
 }

@@ -28,6 +28,8 @@
 //! * `polygon` — polygons of any number of contours under the non-zero or even-odd rule: each
 //!   edge's crossing of the rows stepped exactly, the runs between them handed to a span shader
 //!   (the triangles' fill rule, for any orientation).
+//! * `line` — thin lines under the diamond-exit rule: the crossing stepped along the major
+//!   axis, the exact test near the ends.
 //! * `scan` — small triangles (under 16 px) for shaders that opt in: each row's run found by
 //!   testing its pixels' edge values, the same spans without the walk's divisions.
 //! * `tiny` (x86-64) — triangles under 8 px drawn a row of lanes at a time.
@@ -41,6 +43,7 @@ pub(crate) mod band;
 pub(crate) mod compact;
 pub(crate) mod coverage;
 pub(crate) mod edge;
+pub(crate) mod line;
 pub(crate) mod perspective;
 pub(crate) mod plane;
 pub(crate) mod polygon;

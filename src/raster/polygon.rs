@@ -99,6 +99,19 @@ impl EdgeCrossing {
     /// first row there; `None` if it crosses none of them (horizontal edges, edges between two
     /// centres' heights, edges outside).
     fn new(a: (i32, i32), b: (i32, i32), top: i32, bottom: i32) -> Option<EdgeCrossing> {
+        Self::biased(a, b, top, bottom, HALF_PIXEL)
+    }
+
+    /// [`new`](Self::new) with the column `⌈(x − bias) / 256⌉` of the crossing `x` (`new`'s
+    /// bias is 128: the first centre at or right of it; a line's is 256: the pixel whose
+    /// centre is within `(−128, 128]` of it, plus one).
+    pub(crate) fn biased(
+        a: (i32, i32),
+        b: (i32, i32),
+        top: i32,
+        bottom: i32,
+        bias: i64,
+    ) -> Option<EdgeCrossing> {
         let (winding, (xa, ya), (xb, yb)) = match a.1.cmp(&b.1) {
             core::cmp::Ordering::Less => (1, a, b),
             core::cmp::Ordering::Greater => (-1, b, a),
@@ -131,7 +144,7 @@ impl EdgeCrossing {
             let (g, h) = div_rem_u64(spill, NonZeroU64::from(rows));
             (g as u32, h as u32)
         };
-        let t = i64::from(k) * step + i64::from(xa) - HALF_PIXEL + i64::from(g);
+        let t = i64::from(k) * step + i64::from(xa) - bias + i64::from(g);
         // ⌈n / D⌉ = ⌈(t + h/dy) / 256⌉: t's own ceiling if h = 0, else ⌊t / 256⌋ + 1.
         let column = if h == 0 {
             -((-t) >> SUBPIXEL_BITS)
@@ -155,7 +168,7 @@ impl EdgeCrossing {
 
     /// To the next row's crossing: `n` grows by `⌊dx/dy⌋·D + 256·(dx mod dy)`.
     #[inline(always)]
-    fn advance(&mut self) {
+    pub(crate) fn advance(&mut self) {
         self.column = self.column.wrapping_add(self.step);
         if self.error < self.fraction {
             self.error = self.error.wrapping_add(self.carry);
@@ -166,9 +179,14 @@ impl EdgeCrossing {
     }
 
     /// The column at the current row.
-    #[cfg(test)]
-    fn column(&self) -> i32 {
+    #[inline(always)]
+    pub(crate) fn column(&self) -> i32 {
         self.column
+    }
+
+    /// The first and last row it crosses (clipped).
+    pub(crate) fn rows(&self) -> (i32, i32) {
+        (self.first, self.last)
     }
 }
 

@@ -54,6 +54,7 @@ mod geometry;
 mod imports;
 #[cfg(feature = "reference")]
 mod lights;
+mod line;
 #[cfg(feature = "std")]
 mod meshes;
 #[cfg(feature = "reference")]
