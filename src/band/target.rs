@@ -8,9 +8,10 @@ use embedded_graphics::Pixel;
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
-    skip_colors, AntiAliased, CoverageMask, FilledPolygon, GouraudTriangle, SliceFramebuffer,
-    SolidTriangle, TexturedTriangle, Translucent,
+    skip_colors, AntiAliased, CoverageMask, FilledPolygon, GouraudTriangle, Line, Polyline,
+    SliceFramebuffer, SolidTriangle, TexturedTriangle, Translucent,
 };
+use crate::fixed_point::ToCoord;
 use crate::paint::Paint;
 use crate::raster::walk::Band;
 use crate::rect;
@@ -163,6 +164,28 @@ impl<C: PixelColor, P: Paint<Color = C>, const N: usize> BandDrawable<C>
 
     fn rows(&self) -> Option<(i32, i32)> {
         FilledPolygon::rows(self)
+    }
+}
+
+impl<C: PixelColor, P: Paint<Color = C>> BandDrawable<C> for Line<P> {
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let rect = band.rect();
+        self.draw_rows(&mut band.pixels, &rect);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        Line::rows(self)
+    }
+}
+
+impl<C: PixelColor, T: ToCoord + Copy, P: Paint<Color = C>> BandDrawable<C> for Polyline<'_, T, P> {
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let rect = band.rect();
+        self.draw_rows(&mut band.pixels, &rect);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        Polyline::rows(self)
     }
 }
 

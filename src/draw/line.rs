@@ -74,6 +74,27 @@ impl<P: Paint> Line<P> {
         draw_line(raw(self.start), raw(self.end), &clip, &mut shader);
     }
 
+    /// Draws the rows of `rect` (frame coordinates) into `framebuffer`, whose first row is the
+    /// frame's row `rect`'s top (a band's buffer): the frame's pixels there.
+    pub(crate) fn draw_rows(
+        &self,
+        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
+        rect: &Rectangle,
+    ) {
+        let mut shader = PaintIntoSlice {
+            framebuffer,
+            paint: &self.paint,
+            top: rect.top_left.y,
+        };
+        draw_line(raw(self.start), raw(self.end), rect, &mut shader);
+    }
+
+    /// The first and last rows it may draw (a superset).
+    pub fn rows(&self) -> Option<(i32, i32)> {
+        let (a, b) = (self.start.1.to_bits(), self.end.1.to_bits());
+        Some(((a.min(b) >> 8) - 1, (a.max(b) >> 8) + 1))
+    }
+
     /// Calls `f(y, x_start, x_end)` for each run of the line's pixels inside `clip` that lie on
     /// one row (`x_end` exclusive).
     pub fn for_each_span(&self, clip: &Rectangle, f: impl FnMut(i32, i32, i32)) {
@@ -138,14 +159,30 @@ impl<'a, T: ToCoord + Copy, P: Paint> Polyline<'a, T, P> {
     /// Draws into a [`SliceFramebuffer`]: the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, P::Color>) {
         let clip = framebuffer.bounding_box();
+        self.draw_rows(framebuffer, &clip);
+    }
+
+    /// [`Line::draw_rows`] of each segment.
+    pub(crate) fn draw_rows(
+        &self,
+        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
+        rect: &Rectangle,
+    ) {
         let mut shader = PaintIntoSlice {
             framebuffer,
             paint: &self.paint,
-            top: 0,
+            top: rect.top_left.y,
         };
         for (a, b) in self.lines() {
-            draw_line(a, b, &clip, &mut shader);
+            draw_line(a, b, rect, &mut shader);
         }
+    }
+
+    /// The first and last rows it may draw (a superset), `None` for fewer than two points.
+    pub fn rows(&self) -> Option<(i32, i32)> {
+        let ys = self.points.iter().map(|p| p.1.to_coord().to_bits());
+        (self.points.len() >= 2).then_some(())?;
+        Some(((ys.clone().min()? >> 8) - 1, (ys.max()? >> 8) + 1))
     }
 }
 
