@@ -35,7 +35,9 @@
 //! Then filled polygons against tiny-skia 0.12's aliased fill (`examples/common/polygon_peer.rs`):
 //! pixel rates and pixels off the exact winding rule; `bench_report polygons` prints only that
 //! part, `bench_report polygons <ours|tiny-skia> <set> <nonzero|evenodd> [passes]` fills one set
-//! inside `polygon_passes` for callgrind.
+//! inside `polygon_passes` for callgrind. Then thin lines against embedded-graphics' `Line` and
+//! `Polyline` (`examples/common/line_peer.rs`; `bench_report lines`, and `bench_report lines
+//! <ours|eg> <set> [passes]` inside `line_passes`).
 //!
 //! Last, anti-aliased fills against tiny-skia 0.12 (`examples/common/aa_peer.rs`): pixel rates,
 //! coverage error against the exact area and seam dips; `bench_report aa` prints only that part.
@@ -66,6 +68,9 @@ mod aa_peer;
 
 #[path = "common/polygon_peer.rs"]
 mod polygon_peer;
+
+#[path = "common/line_peer.rs"]
+mod line_peer;
 
 // The f64 reference (exact pixel areas for the anti-aliasing report), compiled in directly so
 // that the example needs no cargo feature (it is `embedded_raster::reference` with `reference`).
@@ -180,6 +185,14 @@ fn main() {
         ["polygons"] => {
             print!("{}", polygon_peer::report_polygons());
             return;
+        }
+        ["lines"] => {
+            print!("{}", line_peer::report_lines());
+            return;
+        }
+        ["lines", who, set, rest @ ..] => {
+            let passes = rest.first().map_or(200, |p| p.parse().expect("passes"));
+            return line_peer::profile_lines(who, set, passes);
         }
         ["polygons", who, set, rule, rest @ ..] => {
             let passes = rest.first().map_or(200, |p| p.parse().expect("passes"));
@@ -380,6 +393,8 @@ fn main() {
     md.push_str(&report_3d());
     md.push('\n');
     md.push_str(&polygon_peer::report_polygons());
+    md.push('\n');
+    md.push_str(&line_peer::report_lines());
     md.push('\n');
     md.push_str(&aa_peer::report_aa());
 

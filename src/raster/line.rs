@@ -30,19 +30,30 @@ const HALF: i64 = HALF_PIXEL;
 /// `n / d` with `d > 0` and whether the bound is strict.
 #[derive(Clone, Copy)]
 struct Bound {
-    n: i128,
-    d: i128,
+    n: i64,
+    d: i64,
     strict: bool,
 }
 
 impl Bound {
-    /// `self < other` as numbers (cross-multiplied: both denominators are positive).
+    /// How `self` compares with `other` as numbers (cross-multiplied: both denominators are
+    /// positive): in 64 bits where the products fit (the segment measured from its end nearer
+    /// the pixel: always, but for segments over 2²⁰ px), else in 128.
+    #[inline]
+    fn cmp(self, other: Bound) -> core::cmp::Ordering {
+        match (self.n.checked_mul(other.d), other.n.checked_mul(self.d)) {
+            (Some(l), Some(r)) => l.cmp(&r),
+            _ => (i128::from(self.n) * i128::from(other.d))
+                .cmp(&(i128::from(other.n) * i128::from(self.d))),
+        }
+    }
+
     fn below(self, other: Bound) -> bool {
-        self.n * other.d < other.n * self.d
+        self.cmp(other).is_lt()
     }
 
     fn equals(self, other: Bound) -> bool {
-        self.n * other.d == other.n * self.d
+        self.cmp(other).is_eq()
     }
 }
 
@@ -62,8 +73,8 @@ fn meets_diamond(p: (i64, i64), d: (i64, i64), y_major: bool) -> bool {
     };
     // α·u + β·v ≤ 128 (the lower edges, included) or < 128 (the upper ones).
     for (alpha, beta, strict) in [(1, 1, false), (-1, 1, false), (1, -1, true), (-1, -1, true)] {
-        let a = i128::from(alpha * p.0 + beta * p.1 - HALF);
-        let b = i128::from(alpha * d.0 + beta * d.1);
+        let a = alpha * p.0 + beta * p.1 - HALF;
+        let b = alpha * d.0 + beta * d.1;
         // a + b·t ≤ 0 (or < 0).
         if b == 0 {
             if a > 0 || (strict && a == 0) {
@@ -116,8 +127,17 @@ fn draws(p0: (i64, i64), p1: (i64, i64), (i, j): (i64, i64), y_major: bool) -> b
     let c = (centre(i), centre(j));
     let start = (p0.0 - c.0, p0.1 - c.1);
     let end = (p1.0 - c.0, p1.1 - c.1);
+    if in_diamond(end, y_major) {
+        return false;
+    }
+    // The segment as a set, from its end nearer the pixel (small offsets: 64-bit bounds).
     let d = (p1.0 - p0.0, p1.1 - p0.1);
-    meets_diamond(start, d, y_major) && !in_diamond(end, y_major)
+    let far = |q: (i64, i64)| q.0.unsigned_abs() + q.1.unsigned_abs();
+    if far(start) <= far(end) {
+        meets_diamond(start, d, y_major)
+    } else {
+        meets_diamond(end, (-d.0, -d.1), y_major)
+    }
 }
 
 /// Runs of consecutive pixels along a row, merged before they reach the shader.
@@ -129,28 +149,26 @@ struct Runs<'s, S: SpanShader<0>> {
 }
 
 impl<S: SpanShader<0>> Runs<'_, S> {
-    /// Pixel `(x, y)` (dropped outside the clip). `false` once the shader has stopped.
+    /// Pixels `x0 .. x1` of row `y` (clipped; `x0 < x1`), merged with the run before when they
+    /// continue it. `false` once the shader has stopped.
     #[inline(always)]
-    fn pixel(&mut self, x: i32, y: i32) -> bool {
-        let (x0, y0, x1, y1) = self.clip;
-        if x < x0 || x >= x1 || y < y0 || y >= y1 {
+    fn span(&mut self, y: i32, x0: i32, x1: i32) -> bool {
+        let (cx0, cy0, cx1, cy1) = self.clip;
+        let (x0, x1) = (x0.max(cx0), x1.min(cx1));
+        if x0 >= x1 || y < cy0 || y >= cy1 {
             return true;
         }
         if let Some(run) = &mut self.run {
-            if run.y == y && run.x_end == x {
-                run.x_end += 1;
-                return true;
-            }
-            if run.y == y && run.x_start == x + 1 {
-                run.x_start = x;
+            if run.y == y && run.x_end == x0 {
+                run.x_end = x1;
                 return true;
             }
         }
         self.flush() && {
             self.run = Some(Span {
                 y,
-                x_start: x,
-                x_end: x + 1,
+                x_start: x0,
+                x_end: x1,
             });
             true
         }
@@ -204,59 +222,108 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
     };
     // The major-axis indices whose diamonds the segment can reach, inside the clip.
     let (lo, hi) = (ma.0.min(mb.0), ma.0.max(mb.0));
-    let first = ((lo >> SUBPIXEL_BITS) - 1).max(clip_lo);
-    let last = ((hi >> SUBPIXEL_BITS) + 1).min(clip_hi);
-    // An index is near an end when its diamond's major extent reaches past either end point:
-    // there the exact test decides; elsewhere the crossing does.
-    let near_end = |k: i32| {
-        let c = (i64::from(k) << SUBPIXEL_BITS) + HALF;
-        c - HALF <= i64::from(lo) || c + HALF >= i64::from(hi)
-    };
-    // The minor index `⌈(minor − 256) / 256⌉` at each major centre: the pixel whose diamond's
-    // diagonal the line crosses (bottom or right corner included).
-    let mut crossing = EdgeCrossing::biased((ma.1, ma.0), (mb.1, mb.0), first, last, 2 * HALF);
+    // Those whose diamond's major extent [256k, 256k + 256] meets [lo, hi].
+    let first = (((i64::from(lo) + 255) >> SUBPIXEL_BITS) as i32 - 1).max(clip_lo);
+    let last = (hi >> SUBPIXEL_BITS).min(clip_hi);
+    if first > last {
+        return;
+    }
+    // The inner indices, whose diamonds' major extent lies strictly between the ends
+    // (`c − 128 > lo`, `c + 128 < hi`): there the line crosses the diamond's diagonal and goes
+    // on, and the crossing decides. Near the ends the exact test does.
+    let inner_first = (lo >> SUBPIXEL_BITS) + 1;
+    let inner_last = (i64::from(hi) - 257) >> SUBPIXEL_BITS;
+    let (inner_first, inner_last) = (inner_first.max(first), (inner_last as i32).min(last));
+    let pixel = |k: i32, m: i32| if y_major { (m, k) } else { (k, m) };
     let (d_major, d_minor) = (
         i64::from(mb.0) - i64::from(ma.0),
         i64::from(mb.1) - i64::from(ma.1),
     );
-    let mut k = first;
-    while k <= last {
-        let stepped = crossing.as_mut().and_then(|c| {
-            let (f, l) = c.rows();
-            (f..=l).contains(&k).then(|| {
-                let m = c.column();
-                c.advance();
-                m
-            })
-        });
-        let pixel = |m: i32| if y_major { (m, k) } else { (k, m) };
-        if near_end(k) {
-            // The minor indices the segment can reach over this diamond (a pixel to spare on
-            // each side: the test is exact, the candidates need only include the pixels).
-            let c = (i64::from(k) << SUBPIXEL_BITS) + HALF;
-            let along = |major: i64| {
-                let major = major.clamp(i64::from(lo), i64::from(hi));
-                let num = i128::from(major - i64::from(ma.0)) * i128::from(d_minor);
-                let offset = num.checked_div(i128::from(d_major)).unwrap_or(0);
-                i64::from(ma.1) + i64::try_from(offset).unwrap_or(0)
-            };
-            let (m0, m1) = (along(c - HALF), along(c + HALF));
-            let from = ((m0.min(m1) - HALF) >> SUBPIXEL_BITS) - 1;
-            let to = ((m0.max(m1) + HALF) >> SUBPIXEL_BITS) + 1;
-            for m in from..=to {
-                let Ok(m) = i32::try_from(m) else { continue };
-                let (x, y) = pixel(m);
-                if draws(a, b, (i64::from(x), i64::from(y)), y_major) && !runs.pixel(x, y) {
-                    return;
-                }
+    // The exact test on the pixels of index `k` the segment can reach.
+    let near_end = |k: i32, runs: &mut Runs<'_, S>| -> bool {
+        let c = (i64::from(k) << SUBPIXEL_BITS) + HALF;
+        // The segment's minor coordinate at a major coordinate (clamped to it), within a
+        // sub-pixel (truncated).
+        // From the end nearer `c`: |major − e| is a few pixels, the product far below 2⁶³.
+        let e = if (c - i64::from(ma.0)).abs() <= (c - i64::from(mb.0)).abs() {
+            ma
+        } else {
+            mb
+        };
+        let along = |major: i64| {
+            let major = major.clamp(i64::from(lo), i64::from(hi));
+            let offset = (major - i64::from(e.0))
+                .saturating_mul(d_minor)
+                .checked_div(d_major)
+                .unwrap_or(0);
+            i64::from(e.1).saturating_add(offset)
+        };
+        let (m0, m1) = (along(c - HALF), along(c + HALF));
+        // Pixels whose diamond's minor extent [256m, 256m + 256] meets [min − 1, max + 1].
+        let from = ((m0.min(m1) - 1 + 255) >> SUBPIXEL_BITS) - 1;
+        let to = (m0.max(m1) + 1) >> SUBPIXEL_BITS;
+        for m in from..=to {
+            let Ok(m) = i32::try_from(m) else { continue };
+            let (x, y) = pixel(k, m);
+            if draws(a, b, (i64::from(x), i64::from(y)), y_major) && !runs.span(y, x, x + 1) {
+                return false;
             }
-        } else if let Some(m) = stepped {
-            let (x, y) = pixel(m);
-            if !runs.pixel(x, y) {
+        }
+        true
+    };
+    if inner_first > inner_last {
+        for k in first..=last {
+            if !near_end(k, &mut runs) {
                 return;
             }
         }
-        k += 1;
+        runs.flush();
+        return;
+    }
+    for k in first..inner_first {
+        if !near_end(k, &mut runs) {
+            return;
+        }
+    }
+    // The minor index `⌈(minor − 256) / 256⌉` at each major centre: the pixel whose diamond's
+    // diagonal the line crosses (bottom or right corner included).
+    if let Some(mut crossing) = EdgeCrossing::biased(
+        (ma.1, ma.0),
+        (mb.1, mb.0),
+        inner_first,
+        inner_last,
+        2 * HALF,
+    ) {
+        if y_major {
+            for k in inner_first..=inner_last {
+                let m = crossing.column();
+                crossing.advance();
+                if !runs.span(k, m, m + 1) {
+                    return;
+                }
+            }
+        } else {
+            // Runs of columns on one row.
+            let (mut start, mut row) = (inner_first, crossing.column());
+            for k in inner_first..=inner_last {
+                let m = crossing.column();
+                crossing.advance();
+                if m != row {
+                    if !runs.span(row, start, k) {
+                        return;
+                    }
+                    (start, row) = (k, m);
+                }
+            }
+            if !runs.span(row, start, inner_last + 1) {
+                return;
+            }
+        }
+    }
+    for k in inner_last + 1..=last {
+        if !near_end(k, &mut runs) {
+            return;
+        }
     }
     runs.flush();
 }

@@ -183,11 +183,6 @@ impl EdgeCrossing {
     pub(crate) fn column(&self) -> i32 {
         self.column
     }
-
-    /// The first and last row it crosses (clipped).
-    pub(crate) fn rows(&self) -> (i32, i32) {
-        (self.first, self.last)
-    }
 }
 
 /// Sorts `edges` by their first row: a heap sort (no recursion, no allocation, no panic path).

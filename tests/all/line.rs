@@ -330,7 +330,11 @@ fn bands_and_bins_equal_the_whole_frame() {
                 band.draw(&polyline);
                 let start = (band.rect().top_left.y as u32 * W) as usize;
                 let len = band.pixels().len();
-                assert_eq!(band.pixels(), &whole[start..start + len], "band {index} of {height}");
+                assert_eq!(
+                    band.pixels(),
+                    &whole[start..start + len],
+                    "band {index} of {height}"
+                );
             }
         }
     }
