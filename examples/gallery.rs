@@ -10,7 +10,9 @@
 //! * `translucent.png` — a Gouraud scene under translucent triangles: one opacity, an alpha per
 //!   vertex, and an anti-aliased one;
 //! * `polygons.png` — filled polygons: a self-intersecting star under the non-zero and the
-//!   even-odd rule, and a shape with holes (two contours inside an outline), at 3×.
+//!   even-odd rule, and a shape with holes (two contours inside an outline), at 3×;
+//! * `lines.png` — thin lines: a plot of sub-pixel polylines, and a fan of lines from a
+//!   sub-pixel centre, at 3×.
 //!
 //! Run with `cargo run --release --example gallery`.
 
@@ -24,8 +26,8 @@ use embedded_graphics::{
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use embedded_raster::{
-    Coord, CoverageMask, FillRule, GouraudTriangle, Polygon, SliceFramebuffer, SolidTriangle,
-    Vertex,
+    Coord, CoverageMask, FillRule, GouraudTriangle, Line, Polygon, Polyline, SliceFramebuffer,
+    SolidTriangle, Vertex,
 };
 
 // The f64 reference, compiled in directly so that the example needs no cargo feature
@@ -426,6 +428,48 @@ fn polygons_picture() {
     save(&display, 3, "polygons.png");
 }
 
+fn lines_picture() {
+    let (w, h) = (120u32, 80u32);
+    let mut pixels = vec![Rgb565::new(3, 8, 6); (w * h) as usize];
+    let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
+    let grid = Rgb565::new(6, 14, 10);
+    for k in 0..6 {
+        let y = 8.5 + 12.0 * f64::from(k);
+        Line::new((6.5, y), (76.5, y), grid).draw_into(&mut fb);
+    }
+    Line::new((6.5, 4.5), (6.5, 70.5), Rgb565::WHITE).draw_into(&mut fb);
+    Line::new((6.5, 70.5), (77.5, 70.5), Rgb565::WHITE).draw_into(&mut fb);
+    // Two series at sub-pixel points: a damped wave and a slow rise.
+    let wave: Vec<(f64, f64)> = (0..=70)
+        .map(|i| {
+            let x = f64::from(i);
+            (6.5 + x, 38.0 - 28.0 * (x / 5.3).sin() * (-x / 45.0).exp())
+        })
+        .collect();
+    Polyline::new(&wave, Rgb565::CSS_GOLD).draw_into(&mut fb);
+    let rise: Vec<(f64, f64)> = (0..=14)
+        .map(|i| {
+            let x = 5.0 * f64::from(i);
+            (6.5 + x, 66.0 - 0.012 * x * x - 2.5 * (x / 2.0).sin())
+        })
+        .collect();
+    Polyline::new(&rise, Rgb565::CSS_LIGHT_SKY_BLUE).draw_into(&mut fb);
+    // A fan of 24 lines from one sub-pixel point, each leaving the point's pixel.
+    let (cx, cy) = (99.3, 39.6);
+    for k in 0..24 {
+        let t = f64::from(k) * std::f64::consts::TAU / 24.0;
+        Line::new(
+            (cx, cy),
+            (cx + 18.5 * t.cos(), cy + 30.0 * t.sin()),
+            Rgb565::CSS_TOMATO,
+        )
+        .draw_into(&mut fb);
+    }
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(w, h));
+    Image::new(&fb, Point::zero()).draw(&mut display).unwrap();
+    save(&display, 3, "lines.png");
+}
+
 fn main() {
     std::fs::create_dir_all("docs").expect("create docs/");
     gouraud();
@@ -434,4 +478,5 @@ fn main() {
     antialias_picture();
     translucent_picture();
     polygons_picture();
+    lines_picture();
 }
