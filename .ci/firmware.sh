@@ -170,10 +170,11 @@ run_ok() {
 }
 
 # Checks the `textures` lines of fw_nopanic_textures's `output` (`what` in messages) against the host's:
-# the 2D and 3D textured frames, and draw_textured_mesh's frame ("3d-mesh") except on the
-# micro:bit (its flash has no room for that draw at opt-level 3).
+# the 2D and 3D textured frames, the 2D shapes (polygons, lines, strokes), and
+# draw_textured_mesh's frame ("3d-mesh") except on the micro:bit (its flash has no room for that
+# draw at opt-level 3).
 check_textures() {
-    local what=$1 output=$2 machine=$3 got kind line want kinds=(2d 3d)
+    local what=$1 output=$2 machine=$3 got kind line want kinds=(2d shapes 3d)
     [ "$machine" = microbit ] || kinds+=(3d-mesh)
     got=$(printf '%s\n' "$output" | grep '^textures ' || true)
     [ "$(printf '%s\n' "$got" | grep -c '^textures ')" -eq "${#kinds[@]}" ] ||

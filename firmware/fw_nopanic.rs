@@ -10,8 +10,7 @@
 //!
 //! It draws the shared scene (checksum printed like `fw_scene`, so the run is checked too), the
 //! same triangles in other colour formats through both `draw` and `draw_into`, their spans
-//! under arbitrary clip rectangles, the same corners as polygons (with a second contour, both
-//! entry points and their spans) and as lines and polylines, the framebuffer's `DrawTarget` fills on arbitrary
+//! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
 //! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
 //! shading and culling, with and without a specular highlight, opaque matrices, viewport and
 //! lights, with the first light alone and with point and directional lights). Textured drawing
@@ -58,8 +57,8 @@ mod firmware {
         ProjectedVertex, Scalar, Shading, Specular, Vec3,
     };
     use embedded_raster::{
-        raster::for_each_span, FillRule, GouraudColor, GouraudTriangle, Line, Polygon, Polyline,
-        SliceFramebuffer, SolidTriangle, Vertex,
+        raster::for_each_span, GouraudColor, GouraudTriangle, SliceFramebuffer, SolidTriangle,
+        Vertex,
     };
 
     use crate::plain_print::{decimal, hex, print};
@@ -117,42 +116,6 @@ mod firmware {
             }
             // Spans under an arbitrary clip rectangle.
             let clip = black_box(Rectangle::new(Point::new(-3, 2), Size::new(40, 9)));
-            // The shape's corners as a polygon with a second, opaque contour: both entry
-            // points, either rule, its spans under the clip.
-            let corners = black_box(shape.raw_positions()).map(|(x, y)| {
-                (
-                    embedded_raster::Coord::from_bits(x),
-                    embedded_raster::Coord::from_bits(y),
-                )
-            });
-            let mut polygon = Polygon::<8>::new();
-            let _ = polygon.add_contour(&corners);
-            let _ =
-                polygon.add_contour(&black_box([corners[2], corners[0], corners[1], corners[0]]));
-            let rule = black_box(FillRule::EvenOdd);
-            if let Some(fb) = rgb888.as_mut() {
-                let fill = polygon
-                    .filled(black_box(Rgb888::new(9, 200, 40)))
-                    .with_rule(rule);
-                let _ = fill.draw(fb);
-                fill.draw_into(fb);
-            }
-            polygon.for_each_span(rule, &clip, |_, x0, x1| {
-                spans = spans.wrapping_add(x1.wrapping_sub(x0) as u32);
-            });
-            // Its edges as lines and a polyline.
-            if let Some(fb) = gray8.as_mut() {
-                let line = Line::new(corners[0], corners[1], black_box(Gray8::new(200)));
-                let _ = line.draw(fb);
-                line.draw_into(fb);
-                let outline = black_box([corners[0], corners[1], corners[2], corners[0]]);
-                let polyline = Polyline::new(&outline, black_box(Gray8::new(90)));
-                let _ = polyline.draw(fb);
-                polyline.draw_into(fb);
-                line.for_each_span(&clip, |_, x0, x1| {
-                    spans = spans.wrapping_add(x1.wrapping_sub(x0) as u32);
-                });
-            }
             for_each_span(
                 black_box(shape.raw_positions()).map(|(x, y)| {
                     (

@@ -2,7 +2,8 @@
 //! (`firmware/common/texture_scene.rs`): 2D `TexturedTriangle`s through `draw` and `draw_into`
 //! with every wrap mode and filter; a textured mesh through `draw_textured_mesh_with` with every
 //! shading, vertex colours and highlights, perspective-correct faces among its own, and
-//! `three_d::draw_textured`; on the MPS2 boards also `draw_textured_mesh`, which the micro:bit's
+//! `three_d::draw_textured`; the 2D shapes too (polygons, thin and stroked lines: `fw_nopanic`
+//! is at the micro:bit's flash limit); on the MPS2 boards also `draw_textured_mesh`, which the micro:bit's
 //! flash has no room for at opt-level 3. Its `textures` checksum lines must be the host build's
 //! (`cargo run --release --example fw_nopanic_textures` prints them; `.ci/firmware.sh` compares
 //! them on every board, at opt-level 3, "s" and "z"). A firmware of its own: with the rest of
@@ -69,6 +70,16 @@ mod firmware {
         textures_line(b"2d", texture_scene::SIZE_2D, checksum);
     }
 
+    /// The 2D shapes (polygons, lines, strokes), out of line like [`two_d`].
+    #[inline(never)]
+    fn shapes() {
+        const PIXELS: usize =
+            (texture_scene::SIZE_SHAPES.0 * texture_scene::SIZE_SHAPES.1) as usize;
+        let mut pixels = [Rgb565::new(0, 0, 0); PIXELS];
+        let checksum = texture_scene::render_shapes(&mut pixels);
+        textures_line(b"shapes", texture_scene::SIZE_SHAPES, checksum);
+    }
+
     #[entry]
     fn main() -> ! {
         static mut COLORS_3D: [Rgb565; PIXELS_3D] = [Rgb565::new(0, 0, 0); PIXELS_3D];
@@ -77,6 +88,7 @@ mod firmware {
         crate::stack::paint_run();
 
         two_d();
+        shapes();
         let checksum = texture_scene::render_3d(COLORS_3D, DEPTH_3D, SCRATCH);
         textures_line(b"3d", texture_scene::SIZE_3D, checksum);
         // Not on the micro:bit, whose flash it would overflow at opt-level 3.
@@ -102,6 +114,10 @@ fn main() {
     let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
     let checksum = texture_scene::render_2d(&mut pixels);
     println!("textures 2d {w}x{h} fnv1a=0x{checksum:08x}");
+    let (w, h) = texture_scene::SIZE_SHAPES;
+    let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
+    let checksum = texture_scene::render_shapes(&mut pixels);
+    println!("textures shapes {w}x{h} fnv1a=0x{checksum:08x}");
     let (w, h) = texture_scene::SIZE_3D;
     let (mut colors, mut depths) = (
         vec![Rgb565::BLACK; (w * h) as usize],

@@ -207,9 +207,9 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    AntiAliased, CoverageMask, FilledPolygon, FramebufferError, GouraudTriangle, Line,
+    AntiAliased, Cap, CoverageMask, FilledPolygon, FramebufferError, GouraudTriangle, Join, Line,
     OnBackground, Polygon, PolygonFull, Polyline, ShadedSpans, SliceFramebuffer, SolidTriangle,
-    SpanColors, TexturedTriangle, TexturedVertex, Translucent, Vertex,
+    SpanColors, Stroke, Stroked, TexturedTriangle, TexturedVertex, Translucent, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use raster::FillRule;

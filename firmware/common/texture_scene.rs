@@ -376,3 +376,66 @@ pub fn render_3d(
 pub fn render_3d_mesh(colors: &mut [Rgb565], depths: &mut [u16]) -> u32 {
     render(colors, depths, &mut [], &[mesh])
 }
+
+// ---- 2D shapes -----------------------------------------------------------------------------
+// Polygons, thin lines and strokes share this firmware (fw_nopanic is at the micro:bit's flash
+// limit): the same opaque inputs, the same checksum comparison with the host.
+
+/// The shapes frame's size (pixels).
+pub const SIZE_SHAPES: (u32, u32) = (48, 40);
+
+/// Random polygons (up to three contours, sometimes far outside or at the ends of the `Coord`
+/// range) under both rules, polylines thin and stroked with every cap and join, through both
+/// `draw_into` and `Drawable::draw`, into `pixels` (at least [`SIZE_SHAPES`]); its FNV-1a.
+pub fn render_shapes(pixels: &mut [Rgb565]) -> u32 {
+    use embedded_raster::{Cap, FillRule, Join, Line, Polygon, Polyline, Stroke};
+    let (w, h) = black_box(SIZE_SHAPES);
+    let Ok(mut fb) = SliceFramebuffer::new(pixels, w, h) else {
+        return 0;
+    };
+    let _ = fb.clear(black_box(Rgb565::new(2, 5, 9)));
+    let mut random = Random(black_box(0x5a4e_0030));
+    let coordinate = |random: &mut Random| match random.next() % 8 {
+        0 => Coord::from_bits(random.next() as i32),
+        1 => Coord::from_bits(random.range(-40 * 256, 4000) << 4),
+        _ => Coord::from_bits(random.range(-1024, 60 * 256 / 2) * 2),
+    };
+    for k in 0..24u32 {
+        let color = Rgb565::new((k * 7 % 32) as u8, (k * 13 % 64) as u8, (k * 5 % 32) as u8);
+        let mut polygon = Polygon::<12>::new();
+        for _ in 0..1 + random.next() % 3 {
+            for _ in 0..1 + random.next() % 4 {
+                let _ = polygon.push((coordinate(&mut random), coordinate(&mut random)));
+            }
+            polygon.close();
+        }
+        let rule = black_box([FillRule::NonZero, FillRule::EvenOdd][k as usize % 2]);
+        let fill = polygon.filled(color).with_rule(rule);
+        if k % 3 == 0 {
+            let _ = fill.draw(&mut fb);
+        } else {
+            fill.draw_into(&mut fb);
+        }
+        let points: [(Coord, Coord); 4] =
+            core::array::from_fn(|_| (coordinate(&mut random), coordinate(&mut random)));
+        let line = Polyline::new(&points, black_box(Rgb565::WHITE));
+        let single = Line::new(points[0], points[1], black_box(Rgb565::YELLOW));
+        let stroke = Stroke::new(black_box(Coord::from_bits(random.range(0, 1400))))
+            .with_cap(black_box(
+                [Cap::Butt, Cap::Square, Cap::Round][k as usize % 3],
+            ))
+            .with_join(black_box(
+                [Join::Miter, Join::Bevel, Join::Round][k as usize / 3 % 3],
+            ));
+        if k % 2 == 0 {
+            line.stroked(stroke).draw_into(&mut fb);
+            line.draw_into(&mut fb);
+            single.draw_into(&mut fb);
+        } else {
+            let _ = line.stroked(stroke).draw(&mut fb);
+            let _ = line.draw(&mut fb);
+            let _ = single.stroked(stroke).draw(&mut fb);
+        }
+    }
+    hash_colors(0x811c_9dc5, fb.pixels())
+}

@@ -9,7 +9,7 @@ use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
     skip_colors, AntiAliased, CoverageMask, FilledPolygon, GouraudTriangle, Line, Polyline,
-    SliceFramebuffer, SolidTriangle, TexturedTriangle, Translucent,
+    SliceFramebuffer, SolidTriangle, Stroked, TexturedTriangle, Translucent,
 };
 use crate::fixed_point::ToCoord;
 use crate::paint::Paint;
@@ -186,6 +186,17 @@ impl<C: PixelColor, T: ToCoord + Copy, P: Paint<Color = C>> BandDrawable<C> for 
 
     fn rows(&self) -> Option<(i32, i32)> {
         Polyline::rows(self)
+    }
+}
+
+impl<C: PixelColor, T: ToCoord + Copy, P: Paint<Color = C>> BandDrawable<C> for Stroked<'_, T, P> {
+    fn draw_band(&self, band: &mut ColorBand<'_, C>) {
+        let rect = band.rect();
+        self.draw_rows(&mut band.pixels, &rect);
+    }
+
+    fn rows(&self) -> Option<(i32, i32)> {
+        Stroked::rows(self)
     }
 }
 

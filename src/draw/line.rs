@@ -19,6 +19,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::SliceFramebuffer;
 use super::painted::{Calls, PaintIntoSlice, PaintToTarget};
+use super::stroke::{Stroke, Stroked, StrokedPoints};
 use crate::fixed_point::{Coord, ToCoord};
 use crate::paint::Paint;
 use crate::raster::line::draw_line;
@@ -95,6 +96,15 @@ impl<P: Paint> Line<P> {
         Some(((a.min(b) >> 8) - 1, (a.max(b) >> 8) + 1))
     }
 
+    /// The line drawn `stroke.width` wide with its caps: a polygon.
+    pub fn stroked(self, stroke: Stroke) -> Stroked<'static, Coord, P> {
+        Stroked {
+            points: StrokedPoints::Line([self.start, self.end]),
+            paint: self.paint,
+            stroke,
+        }
+    }
+
     /// Calls `f(y, x_start, x_end)` for each run of the line's pixels inside `clip` that lie on
     /// one row (`x_end` exclusive).
     pub fn for_each_span(&self, clip: &Rectangle, f: impl FnMut(i32, i32, i32)) {
@@ -147,6 +157,15 @@ impl<'a, T: ToCoord + Copy, P: Paint> Polyline<'a, T, P> {
     /// The polyline through `points` (`f32`, `f64` or [`Coord`] pairs) in `paint`.
     pub fn new(points: &'a [(T, T)], paint: P) -> Self {
         Polyline { points, paint }
+    }
+
+    /// The polyline drawn `stroke.width` wide with its caps and joins: polygons.
+    pub fn stroked(self, stroke: Stroke) -> Stroked<'a, T, P> {
+        Stroked {
+            points: StrokedPoints::Slice(self.points),
+            paint: self.paint,
+            stroke,
+        }
     }
 
     fn lines(&self) -> impl Iterator<Item = ((i32, i32), (i32, i32))> + '_ {

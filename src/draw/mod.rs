@@ -15,6 +15,7 @@ mod painted;
 #[cfg(feature = "png")]
 mod png_file;
 mod polygon;
+mod stroke;
 mod textured;
 mod translucent;
 mod triangle;
@@ -29,6 +30,7 @@ pub use mask::CoverageMask;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
 pub use polygon::{FilledPolygon, Polygon, PolygonFull};
+pub use stroke::{Cap, Join, Stroke, Stroked};
 pub use textured::{TexturedTriangle, TexturedVertex};
 pub use translucent::{OnBackground, Translucent};
 pub use triangle::{GouraudTriangle, ShadedSpans, SolidTriangle, SpanColors, Vertex};

@@ -157,7 +157,7 @@ impl<const N: usize> Polygon<N> {
 
     /// The edges, as pairs of raw sub-pixel points: each vertex to the next of its contour, and
     /// each contour's last back to its first.
-    fn edges(&self) -> impl Iterator<Item = ((i32, i32), (i32, i32))> + '_ {
+    pub(crate) fn edges(&self) -> impl Iterator<Item = ((i32, i32), (i32, i32))> + '_ {
         let raw = |(x, y): (Coord, Coord)| (x.to_bits(), y.to_bits());
         let points = self.points();
         let ends = self.ends.get(..self.len).unwrap_or(&[]);

@@ -251,7 +251,7 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
             mb
         };
         let along = |major: i64| {
-            let major = major.clamp(i64::from(lo), i64::from(hi));
+            let major = major.max(i64::from(lo)).min(i64::from(hi));
             let offset = (major - i64::from(e.0))
                 .saturating_mul(d_minor)
                 .checked_div(d_major)

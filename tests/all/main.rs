@@ -70,6 +70,7 @@ mod same_pixels;
 mod shading;
 #[cfg(feature = "reference")]
 mod specular;
+mod stroke;
 #[cfg(feature = "png")]
 mod texture_convert;
 #[cfg(feature = "reference")]
