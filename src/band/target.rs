@@ -8,8 +8,8 @@ use embedded_graphics::Pixel;
 use super::{check_buffer, BandError, BandLayout};
 use crate::color::GouraudColor;
 use crate::draw::{
-    skip_colors, AntiAliased, CoverageMask, FilledPolygon, GouraudTriangle, Line, Polyline,
-    SliceFramebuffer, SolidTriangle, Stroked, TexturedTriangle, Translucent,
+    draw_shape_rows, skip_colors, AntiAliased, CoverageMask, FilledPolygon, GouraudTriangle, Line,
+    Polyline, SliceFramebuffer, SolidTriangle, Stroked, TexturedTriangle, Translucent,
 };
 use crate::fixed_point::ToCoord;
 use crate::paint::Paint;
@@ -159,7 +159,7 @@ impl<C: PixelColor, P: Paint<Color = C>, const N: usize> BandDrawable<C>
 {
     fn draw_band(&self, band: &mut ColorBand<'_, C>) {
         let rect = band.rect();
-        self.draw_rows(&mut band.pixels, &rect);
+        draw_shape_rows(self, &mut band.pixels, &rect);
     }
 
     fn rows(&self) -> Option<(i32, i32)> {
@@ -170,7 +170,7 @@ impl<C: PixelColor, P: Paint<Color = C>, const N: usize> BandDrawable<C>
 impl<C: PixelColor, P: Paint<Color = C>> BandDrawable<C> for Line<P> {
     fn draw_band(&self, band: &mut ColorBand<'_, C>) {
         let rect = band.rect();
-        self.draw_rows(&mut band.pixels, &rect);
+        draw_shape_rows(self, &mut band.pixels, &rect);
     }
 
     fn rows(&self) -> Option<(i32, i32)> {
@@ -181,7 +181,7 @@ impl<C: PixelColor, P: Paint<Color = C>> BandDrawable<C> for Line<P> {
 impl<C: PixelColor, T: ToCoord + Copy, P: Paint<Color = C>> BandDrawable<C> for Polyline<'_, T, P> {
     fn draw_band(&self, band: &mut ColorBand<'_, C>) {
         let rect = band.rect();
-        self.draw_rows(&mut band.pixels, &rect);
+        draw_shape_rows(self, &mut band.pixels, &rect);
     }
 
     fn rows(&self) -> Option<(i32, i32)> {
@@ -192,7 +192,7 @@ impl<C: PixelColor, T: ToCoord + Copy, P: Paint<Color = C>> BandDrawable<C> for 
 impl<C: PixelColor, T: ToCoord + Copy, P: Paint<Color = C>> BandDrawable<C> for Stroked<'_, T, P> {
     fn draw_band(&self, band: &mut ColorBand<'_, C>) {
         let rect = band.rect();
-        self.draw_rows(&mut band.pixels, &rect);
+        draw_shape_rows(self, &mut band.pixels, &rect);
     }
 
     fn rows(&self) -> Option<(i32, i32)> {

@@ -18,11 +18,12 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::SliceFramebuffer;
-use super::painted::{Calls, PaintIntoSlice, PaintToTarget};
+use super::painted::{draw, draw_rows, Calls, PaintedShape};
 use super::stroke::{Stroke, Stroked, StrokedPoints};
 use crate::fixed_point::{Coord, ToCoord};
 use crate::paint::Paint;
 use crate::raster::line::draw_line;
+use crate::raster::SpanShader;
 
 /// A thin line from `start` to `end` (sub-pixel points, any [`Coord`]), one pixel wide.
 ///
@@ -67,27 +68,7 @@ impl<P: Paint> Line<P> {
     /// Draws into a [`SliceFramebuffer`]: the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, P::Color>) {
         let clip = framebuffer.bounding_box();
-        let mut shader = PaintIntoSlice {
-            framebuffer,
-            paint: &self.paint,
-            top: 0,
-        };
-        draw_line(raw(self.start), raw(self.end), &clip, &mut shader);
-    }
-
-    /// Draws the rows of `rect` (frame coordinates) into `framebuffer`, whose first row is the
-    /// frame's row `rect`'s top (a band's buffer): the frame's pixels there.
-    pub(crate) fn draw_rows(
-        &self,
-        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
-        rect: &Rectangle,
-    ) {
-        let mut shader = PaintIntoSlice {
-            framebuffer,
-            paint: &self.paint,
-            top: rect.top_left.y,
-        };
-        draw_line(raw(self.start), raw(self.end), rect, &mut shader);
+        draw_rows(self, framebuffer, &clip);
     }
 
     /// The first and last rows it may draw (a superset).
@@ -116,19 +97,24 @@ fn raw((x, y): (Coord, Coord)) -> (i32, i32) {
     (x.to_bits(), y.to_bits())
 }
 
+impl<P: Paint> PaintedShape for Line<P> {
+    type Paint = P;
+
+    fn paint(&self) -> &P {
+        &self.paint
+    }
+
+    fn spans<S: SpanShader<0>>(&self, clip: &Rectangle, shader: &mut S) {
+        draw_line(raw(self.start), raw(self.end), clip, shader);
+    }
+}
+
 impl<P: Paint> Drawable for Line<P> {
     type Color = P::Color;
     type Output = ();
 
     fn draw<D: DrawTarget<Color = P::Color>>(&self, target: &mut D) -> Result<(), D::Error> {
-        let clip = target.bounding_box();
-        let mut shader = PaintToTarget {
-            target,
-            paint: &self.paint,
-            result: Ok(()),
-        };
-        draw_line(raw(self.start), raw(self.end), &clip, &mut shader);
-        shader.result
+        draw(self, target)
     }
 }
 
@@ -178,23 +164,7 @@ impl<'a, T: ToCoord + Copy, P: Paint> Polyline<'a, T, P> {
     /// Draws into a [`SliceFramebuffer`]: the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, P::Color>) {
         let clip = framebuffer.bounding_box();
-        self.draw_rows(framebuffer, &clip);
-    }
-
-    /// [`Line::draw_rows`] of each segment.
-    pub(crate) fn draw_rows(
-        &self,
-        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
-        rect: &Rectangle,
-    ) {
-        let mut shader = PaintIntoSlice {
-            framebuffer,
-            paint: &self.paint,
-            top: rect.top_left.y,
-        };
-        for (a, b) in self.lines() {
-            draw_line(a, b, rect, &mut shader);
-        }
+        draw_rows(self, framebuffer, &clip);
     }
 
     /// The first and last rows it may draw (a superset), `None` for fewer than two points.
@@ -205,23 +175,28 @@ impl<'a, T: ToCoord + Copy, P: Paint> Polyline<'a, T, P> {
     }
 }
 
+impl<T: ToCoord + Copy, P: Paint> PaintedShape for Polyline<'_, T, P> {
+    type Paint = P;
+
+    fn paint(&self) -> &P {
+        &self.paint
+    }
+
+    fn spans<S: SpanShader<0>>(&self, clip: &Rectangle, shader: &mut S) {
+        for (a, b) in self.lines() {
+            if shader.stopped() {
+                break;
+            }
+            draw_line(a, b, clip, shader);
+        }
+    }
+}
+
 impl<T: ToCoord + Copy, P: Paint> Drawable for Polyline<'_, T, P> {
     type Color = P::Color;
     type Output = ();
 
     fn draw<D: DrawTarget<Color = P::Color>>(&self, target: &mut D) -> Result<(), D::Error> {
-        let clip = target.bounding_box();
-        let mut shader = PaintToTarget {
-            target,
-            paint: &self.paint,
-            result: Ok(()),
-        };
-        for (a, b) in self.lines() {
-            draw_line(a, b, &clip, &mut shader);
-            if shader.result.is_err() {
-                break;
-            }
-        }
-        shader.result
+        draw(self, target)
     }
 }

@@ -12,6 +12,7 @@ mod image;
 mod line;
 mod mask;
 mod painted;
+pub(crate) use painted::draw_rows as draw_shape_rows;
 #[cfg(feature = "png")]
 mod png_file;
 mod polygon;

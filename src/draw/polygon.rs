@@ -18,13 +18,14 @@
 //! ```
 
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::SliceFramebuffer;
-use super::painted::{Calls, PaintIntoSlice, PaintToTarget};
+use super::painted::{draw, draw_rows, Calls, PaintedShape};
 use crate::fixed_point::{Coord, ToCoord};
 use crate::paint::Paint;
 use crate::raster::polygon::{fill_polygon, EdgeCrossing};
-use crate::raster::FillRule;
+use crate::raster::{FillRule, SpanShader};
 
 /// A polygon of up to `N` vertices in one or more closed contours, stored inline (no heap).
 ///
@@ -190,12 +191,7 @@ impl<const N: usize> Polygon<N> {
 
     /// Calls `f(y, x_start, x_end)` for each covered span inside `clip` under `rule`, top to
     /// bottom, left to right (`x_end` exclusive).
-    pub fn for_each_span(
-        &self,
-        rule: FillRule,
-        clip: &embedded_graphics::primitives::Rectangle,
-        f: impl FnMut(i32, i32, i32),
-    ) {
+    pub fn for_each_span(&self, rule: FillRule, clip: &Rectangle, f: impl FnMut(i32, i32, i32)) {
         let mut scratch = [EdgeCrossing::default(); N];
         let mut shader = Calls(f);
         fill_polygon(self.edges(), &mut scratch, rule, clip, &mut shader);
@@ -238,42 +234,7 @@ impl<const N: usize, P: Paint> FilledPolygon<'_, N, P> {
     /// [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, P::Color>) {
         let clip = framebuffer.bounding_box();
-        let mut scratch = [EdgeCrossing::default(); N];
-        let mut shader = PaintIntoSlice {
-            framebuffer,
-            paint: &self.paint,
-            top: 0,
-        };
-        fill_polygon(
-            self.polygon.edges(),
-            &mut scratch,
-            self.rule,
-            &clip,
-            &mut shader,
-        );
-    }
-
-    /// Draws the rows of `rect` (frame coordinates) into `framebuffer`, whose first row is the
-    /// frame's row `rect`'s top (a band's buffer): the frame's pixels there, as the crossings
-    /// are exact at any first row.
-    pub(crate) fn draw_rows(
-        &self,
-        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
-        rect: &embedded_graphics::primitives::Rectangle,
-    ) {
-        let mut scratch = [EdgeCrossing::default(); N];
-        let mut shader = PaintIntoSlice {
-            framebuffer,
-            paint: &self.paint,
-            top: rect.top_left.y,
-        };
-        fill_polygon(
-            self.polygon.edges(),
-            &mut scratch,
-            self.rule,
-            rect,
-            &mut shader,
-        );
+        draw_rows(self, framebuffer, &clip);
     }
 
     /// The first and last rows it may cover (a superset), `None` if none: those between its
@@ -289,6 +250,19 @@ impl<const N: usize, P: Paint> FilledPolygon<'_, N, P> {
     }
 }
 
+impl<const N: usize, P: Paint> PaintedShape for FilledPolygon<'_, N, P> {
+    type Paint = P;
+
+    fn paint(&self) -> &P {
+        &self.paint
+    }
+
+    fn spans<S: SpanShader<0>>(&self, clip: &Rectangle, shader: &mut S) {
+        let mut scratch = [EdgeCrossing::default(); N];
+        fill_polygon(self.polygon.edges(), &mut scratch, self.rule, clip, shader);
+    }
+}
+
 impl<const N: usize, P: Paint> Drawable for FilledPolygon<'_, N, P> {
     type Color = P::Color;
     type Output = ();
@@ -297,20 +271,6 @@ impl<const N: usize, P: Paint> Drawable for FilledPolygon<'_, N, P> {
     where
         D: DrawTarget<Color = P::Color>,
     {
-        let clip = target.bounding_box();
-        let mut scratch = [EdgeCrossing::default(); N];
-        let mut shader = PaintToTarget {
-            target,
-            paint: &self.paint,
-            result: Ok(()),
-        };
-        fill_polygon(
-            self.polygon.edges(),
-            &mut scratch,
-            self.rule,
-            &clip,
-            &mut shader,
-        );
-        shader.result
+        draw(self, target)
     }
 }

@@ -11,7 +11,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::SliceFramebuffer;
-use super::painted::{PaintIntoSlice, PaintToTarget};
+use super::painted::{draw, draw_rows, PaintedShape};
 use super::polygon::Polygon;
 use crate::fixed_point::{Coord, ToCoord};
 use crate::paint::Paint;
@@ -308,25 +308,10 @@ impl<T: ToCoord + Copy, P: Paint> Stroked<'_, T, P> {
         }
     }
 
-    fn fill<S: SpanShader<0>>(&self, clip: &Rectangle, shader: &mut S) {
-        let mut scratch = [EdgeCrossing::default(); PIECE];
-        self.each_piece(|polygon| {
-            if !shader.stopped() {
-                fill_polygon(
-                    polygon.edges(),
-                    &mut scratch,
-                    FillRule::NonZero,
-                    clip,
-                    shader,
-                );
-            }
-        });
-    }
-
     /// Draws into a [`SliceFramebuffer`]: the same pixels as [`Drawable::draw`].
     pub fn draw_into(&self, framebuffer: &mut SliceFramebuffer<'_, P::Color>) {
         let clip = framebuffer.bounding_box();
-        self.draw_rows(framebuffer, &clip);
+        draw_rows(self, framebuffer, &clip);
     }
 
     /// The first and last rows it may draw (a superset): its points' and the width's.
@@ -349,20 +334,28 @@ impl<T: ToCoord + Copy, P: Paint> Stroked<'_, T, P> {
                 .for_each(|p| f(p.1.to_coord().to_bits().into())),
         }
     }
+}
 
-    /// Draws the rows of `rect` (frame coordinates) into `framebuffer`, whose first row is the
-    /// frame's row `rect`'s top (a band's buffer).
-    pub(crate) fn draw_rows(
-        &self,
-        framebuffer: &mut SliceFramebuffer<'_, P::Color>,
-        rect: &Rectangle,
-    ) {
-        let mut shader = PaintIntoSlice {
-            framebuffer,
-            paint: &self.paint,
-            top: rect.top_left.y,
-        };
-        self.fill(rect, &mut shader);
+impl<T: ToCoord + Copy, P: Paint> PaintedShape for Stroked<'_, T, P> {
+    type Paint = P;
+
+    fn paint(&self) -> &P {
+        &self.paint
+    }
+
+    fn spans<S: SpanShader<0>>(&self, clip: &Rectangle, shader: &mut S) {
+        let mut scratch = [EdgeCrossing::default(); PIECE];
+        self.each_piece(|polygon| {
+            if !shader.stopped() {
+                fill_polygon(
+                    polygon.edges(),
+                    &mut scratch,
+                    FillRule::NonZero,
+                    clip,
+                    shader,
+                );
+            }
+        });
     }
 }
 
@@ -371,14 +364,7 @@ impl<T: ToCoord + Copy, P: Paint> Drawable for Stroked<'_, T, P> {
     type Output = ();
 
     fn draw<D: DrawTarget<Color = P::Color>>(&self, target: &mut D) -> Result<(), D::Error> {
-        let clip = target.bounding_box();
-        let mut shader = PaintToTarget {
-            target,
-            paint: &self.paint,
-            result: Ok(()),
-        };
-        self.fill(&clip, &mut shader);
-        shader.result
+        draw(self, target)
     }
 }
 
