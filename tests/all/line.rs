@@ -292,7 +292,6 @@ fn draw_and_draw_into_agree() {
 /// Bands of every height, directly and through a bin, give the frame's pixels.
 #[test]
 fn bands_and_bins_equal_the_whole_frame() {
-    use embedded_raster::band::{BandLayout, BinEntry, ColorBand, TriangleBin};
     let mut rng = Rng(0x11e5_0006);
     for _ in 0..40 {
         let points: Vec<(Coord, Coord)> = (0..2 + rng.below(6))
@@ -313,29 +312,13 @@ fn bands_and_bins_equal_the_whole_frame() {
             .collect();
         let polyline = Polyline::new(&points, Rgb565::RED);
         let mut whole = vec![Rgb565::BLACK; (W * H) as usize];
-        let mut fb = SliceFramebuffer::new(&mut whole, W, H).unwrap();
+        polyline.draw_into(&mut SliceFramebuffer::new(&mut whole, W, H).unwrap());
+        let mut only_lines = vec![Rgb565::BLACK; (W * H) as usize];
+        let mut fb = SliceFramebuffer::new(&mut only_lines, W, H).unwrap();
         for l in &lines {
             l.draw_into(&mut fb);
         }
-        polyline.draw_into(&mut fb);
-        for height in 1..=H {
-            let layout = BandLayout::new(Size::new(W, H), height).unwrap();
-            let mut rows = vec![Rgb565::BLACK; (W * height) as usize];
-            let mut storage = vec![BinEntry::EMPTY; (lines.len() + 1) * layout.count() as usize];
-            let mut bin = TriangleBin::new(&layout, &lines, &mut storage).unwrap();
-            for index in 0..layout.count() {
-                let mut band = ColorBand::new(&mut rows, &layout, index).unwrap();
-                band.clear(Rgb565::BLACK);
-                bin.draw(&mut band).unwrap();
-                band.draw(&polyline);
-                let start = (band.rect().top_left.y as u32 * W) as usize;
-                let len = band.pixels().len();
-                assert_eq!(
-                    band.pixels(),
-                    &whole[start..start + len],
-                    "band {index} of {height}"
-                );
-            }
-        }
+        crate::banded::check_bands_2d(&lines, &only_lines, Size::new(W, H));
+        crate::banded::check_bands_2d(&[polyline], &whole, Size::new(W, H));
     }
 }

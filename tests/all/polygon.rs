@@ -452,7 +452,6 @@ fn the_store_reports_its_capacity() {
 /// Bands of every height, drawn directly and through a bin, give the frame's pixels.
 #[test]
 fn bands_and_bins_equal_the_whole_frame() {
-    use embedded_raster::band::{BandLayout, BinEntry, ColorBand, TriangleBin};
     let mut rng = Rng(0x5eed_0008);
     for case in 0..60 {
         let polygons: Vec<Polygon<24>> = (0..1 + rng.below(4))
@@ -478,32 +477,6 @@ fn bands_and_bins_equal_the_whole_frame() {
         for f in &fills {
             f.draw_into(&mut fb);
         }
-        for height in 1..=H {
-            let layout = BandLayout::new(Size::new(W, H), height).unwrap();
-            let mut rows = vec![Rgb565::BLACK; (W * height) as usize];
-            let mut binned = rows.clone();
-            let mut storage = vec![BinEntry::EMPTY; (fills.len() + 1) * layout.count() as usize];
-            let mut bin = TriangleBin::new(&layout, &fills, &mut storage).unwrap();
-            for index in 0..layout.count() {
-                let mut band = ColorBand::new(&mut rows, &layout, index).unwrap();
-                band.clear(Rgb565::BLACK);
-                band.draw_all(&fills);
-                let start = (band.rect().top_left.y as u32 * W) as usize;
-                let len = band.pixels().len();
-                assert_eq!(
-                    band.pixels(),
-                    &whole[start..start + len],
-                    "band {index} of {height}"
-                );
-                let mut band = ColorBand::new(&mut binned, &layout, index).unwrap();
-                band.clear(Rgb565::BLACK);
-                bin.draw(&mut band).unwrap();
-                assert_eq!(
-                    band.pixels(),
-                    &whole[start..start + len],
-                    "binned {index} of {height}"
-                );
-            }
-        }
+        crate::banded::check_bands_2d(&fills, &whole, Size::new(W, H));
     }
 }

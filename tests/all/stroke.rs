@@ -267,10 +267,9 @@ fn draw_and_draw_into_agree() {
         .all(|&c| c == Rgb565::BLACK || c == Rgb565::RED));
 }
 
-/// Bands of every height give the frame's pixels.
+/// Bands of every height, directly and through a bin, give the frame's pixels.
 #[test]
 fn bands_equal_the_whole_frame() {
-    use embedded_raster::band::{BandLayout, ColorBand};
     let mut rng = Rng(0x57e0_0004);
     for case in 0..30 {
         let points = rng.stroke_points();
@@ -280,21 +279,6 @@ fn bands_equal_the_whole_frame() {
         let line = Polyline::new(&points, Rgb565::GREEN).stroked(stroke);
         let mut whole = vec![Rgb565::BLACK; (W * H) as usize];
         line.draw_into(&mut SliceFramebuffer::new(&mut whole, W, H).unwrap());
-        for height in 1..=H {
-            let layout = BandLayout::new(Size::new(W, H), height).unwrap();
-            let mut rows = vec![Rgb565::BLACK; (W * height) as usize];
-            for index in 0..layout.count() {
-                let mut band = ColorBand::new(&mut rows, &layout, index).unwrap();
-                band.clear(Rgb565::BLACK);
-                band.draw(&line);
-                let start = (band.rect().top_left.y as u32 * W) as usize;
-                let len = band.pixels().len();
-                assert_eq!(
-                    band.pixels(),
-                    &whole[start..start + len],
-                    "band {index} of {height}"
-                );
-            }
-        }
+        crate::banded::check_bands_2d(&[line], &whole, Size::new(W, H));
     }
 }

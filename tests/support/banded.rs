@@ -2,7 +2,7 @@
 //! tests/all/lights.rs): the frame put together from its bands.
 #![allow(dead_code)]
 
-use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_raster::band::{BandLayout, BinEntry, DepthBand, MeshBin};
 use embedded_raster::three_d::{Material, Mesh, Pipeline, ProjectedVertex};
@@ -54,4 +54,40 @@ pub fn banded(
         all_depth.extend_from_slice(band.depth());
     }
     (all_colors, all_depth)
+}
+
+/// Checks that `items` drawn into bands of every height from 1 to `size`'s, each band directly
+/// (`ColorBand::draw_all`) and through a `TriangleBin`, give the rows of `whole` (the frame
+/// drawn at once).
+pub fn check_bands_2d<T: embedded_raster::band::BandDrawable<Rgb565>>(
+    items: &[T],
+    whole: &[Rgb565],
+    size: Size,
+) {
+    use embedded_raster::band::{ColorBand, TriangleBin};
+    for height in 1..=size.height {
+        let layout = BandLayout::new(size, height).unwrap();
+        let mut rows = vec![Rgb565::BLACK; (size.width * height) as usize];
+        let mut binned = rows.clone();
+        let mut storage = vec![BinEntry::EMPTY; (items.len() + 1) * layout.count() as usize];
+        let mut bin = TriangleBin::new(&layout, items, &mut storage).unwrap();
+        for index in 0..layout.count() {
+            for (buffer, through_bin) in [(&mut rows, false), (&mut binned, true)] {
+                let mut band = ColorBand::new(buffer, &layout, index).unwrap();
+                band.clear(Rgb565::BLACK);
+                if through_bin {
+                    bin.draw(&mut band).unwrap();
+                } else {
+                    band.draw_all(items);
+                }
+                let start = (band.rect().top_left.y as u32 * size.width) as usize;
+                let len = band.pixels().len();
+                assert_eq!(
+                    band.pixels(),
+                    &whole[start..start + len],
+                    "band {index} of {height} rows (bin: {through_bin})"
+                );
+            }
+        }
+    }
 }
