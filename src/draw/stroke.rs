@@ -5,7 +5,8 @@
 //! half-width extension or a disk). Every piece is a polygon filled under the exact rule, so a
 //! piece's edges are exact; the pieces' corners are rounded to 1/256 px and the disks are
 //! 32-gons (within `r·(1 − cos(π/32))`, 0.5 % of the half-width, of the circle). Pieces overlap
-//! where they meet: an opaque paint draws the union.
+//! where they meet: an opaque paint draws the union, a translucent one
+//! ([`paint::Translucent`](crate::paint::Translucent)) blends the overlaps twice.
 
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
