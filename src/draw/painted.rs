@@ -77,7 +77,10 @@ impl<P: Paint> SpanShader<0> for PaintIntoSlice<'_, '_, '_, P> {
             span.x_start,
             span.x_end,
         ) {
-            self.paint.paint_row(span.y, span.x_start, row);
+            match (self.paint.uniform(), row) {
+                (Some(color), [pixel]) => *pixel = color,
+                (_, row) => self.paint.paint_row(span.y, span.x_start, row),
+            }
         }
     }
 }

@@ -30,6 +30,14 @@ pub trait Paint {
     /// Sets `row` to the colours of pixels `x .. x + row.len()` of row `y`.
     fn paint_row(&self, y: i32, x: i32, row: &mut [Self::Color]);
 
+    /// The one colour of every pixel, for a paint that has one (a plain colour): the shapes
+    /// then store it into one-pixel runs (a steep line's) without a row fill. `None` (the
+    /// default) for paints that vary or read the pixels under them.
+    #[inline(always)]
+    fn uniform(&self) -> Option<Self::Color> {
+        None
+    }
+
     /// Draws pixels `x .. x + len` of row `y` into `target` (inside its bounds) with the colours
     /// [`paint_row`](Self::paint_row) gives them.
     fn draw_row<D>(&self, target: &mut D, y: i32, x: i32, len: u32) -> Result<(), D::Error>
@@ -44,6 +52,11 @@ impl<C: PixelColor> Paint for C {
     #[inline(always)]
     fn paint_row(&self, _y: i32, _x: i32, row: &mut [C]) {
         fill_row(row, *self);
+    }
+
+    #[inline(always)]
+    fn uniform(&self) -> Option<C> {
+        Some(*self)
     }
 
     #[inline(always)]

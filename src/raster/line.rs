@@ -224,6 +224,7 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
     let (lo, hi) = (ma.0.min(mb.0), ma.0.max(mb.0));
     // Those whose diamond's major extent [256k, 256k + 256] meets [lo, hi].
     let first = (((i64::from(lo) + 255) >> SUBPIXEL_BITS) as i32 - 1).max(clip_lo);
+    // At most `clip_hi`, below `i32::MAX`: `last + 1` does not overflow.
     let last = (hi >> SUBPIXEL_BITS).min(clip_hi);
     if first > last {
         return;
@@ -262,7 +263,7 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
         // Pixels whose diamond's minor extent [256m, 256m + 256] meets [min − 1, max + 1].
         let from = ((m0.min(m1) - 1 + 255) >> SUBPIXEL_BITS) - 1;
         let to = (m0.max(m1) + 1) >> SUBPIXEL_BITS;
-        for m in from..=to {
+        for m in from..to + 1 {
             let Ok(m) = i32::try_from(m) else { continue };
             let (x, y) = pixel(k, m);
             if draws(a, b, (i64::from(x), i64::from(y)), y_major) && !runs.span(y, x, x + 1) {
@@ -272,7 +273,7 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
         true
     };
     if inner_first > inner_last {
-        for k in first..=last {
+        for k in first..last + 1 {
             if !near_end(k, &mut runs) {
                 return;
             }
@@ -295,17 +296,19 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
         2 * HALF,
     ) {
         if y_major {
-            for k in inner_first..=inner_last {
+            // One pixel a row; the rows are inside the clip, the column may not be.
+            let (left, right) = (runs.clip.0, runs.clip.2);
+            for k in inner_first..inner_last + 1 {
                 let m = crossing.column();
                 crossing.advance();
-                if !runs.span(k, m, m + 1) {
+                if m >= left && m < right && !runs.span(k, m, m + 1) {
                     return;
                 }
             }
         } else {
             // Runs of columns on one row.
             let (mut start, mut row) = (inner_first, crossing.column());
-            for k in inner_first..=inner_last {
+            for k in inner_first..inner_last + 1 {
                 let m = crossing.column();
                 crossing.advance();
                 if m != row {
@@ -320,7 +323,7 @@ pub(crate) fn draw_line<S: SpanShader<0>>(
             }
         }
     }
-    for k in inner_last + 1..=last {
+    for k in inner_last + 1..last + 1 {
         if !near_end(k, &mut runs) {
             return;
         }
