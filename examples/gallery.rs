@@ -11,8 +11,8 @@
 //!   vertex, and an anti-aliased one;
 //! * `polygons.png` — filled polygons: a self-intersecting star under the non-zero and the
 //!   even-odd rule, and a shape with holes (two contours inside an outline), at 3×;
-//! * `lines.png` — thin lines: a plot of sub-pixel polylines, and a fan of lines from a
-//!   sub-pixel centre, at 3×.
+//! * `lines.png` — lines: a plot of a thin and a 2.5 px wide polyline (round joins and caps) at
+//!   sub-pixel points, and a fan of thin lines from one sub-pixel point, at 3×.
 //!
 //! Run with `cargo run --release --example gallery`.
 
@@ -26,8 +26,8 @@ use embedded_graphics::{
 };
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use embedded_raster::{
-    Coord, CoverageMask, FillRule, GouraudTriangle, Line, Polygon, Polyline, SliceFramebuffer,
-    SolidTriangle, Vertex,
+    Cap, Coord, CoverageMask, FillRule, GouraudTriangle, Join, Line, Polygon, Polyline,
+    SliceFramebuffer, SolidTriangle, Stroke, Vertex,
 };
 
 // The f64 reference, compiled in directly so that the example needs no cargo feature
@@ -453,7 +453,10 @@ fn lines_picture() {
             (6.5 + x, 66.0 - 0.012 * x * x - 2.5 * (x / 2.0).sin())
         })
         .collect();
-    Polyline::new(&rise, Rgb565::CSS_LIGHT_SKY_BLUE).draw_into(&mut fb);
+    let stroke = Stroke::new(2.5).with_cap(Cap::Round).with_join(Join::Round);
+    Polyline::new(&rise, Rgb565::CSS_LIGHT_SKY_BLUE)
+        .stroked(stroke)
+        .draw_into(&mut fb);
     // A fan of 24 lines from one sub-pixel point, each leaving the point's pixel.
     let (cx, cy) = (99.3, 39.6);
     for k in 0..24 {
