@@ -212,6 +212,7 @@ pub use draw::{
     Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
+pub use paint::{LinearGradient, Paint, RadialGradient, Stop};
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{
     Bounds, Cull, DepthTarget, Light, LightSource, Lights, Mat4, Material, Mesh, Pipeline, Scalar,
