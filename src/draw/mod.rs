@@ -10,6 +10,7 @@ mod antialias;
 mod framebuffer;
 mod image;
 mod mask;
+mod painted;
 #[cfg(feature = "png")]
 mod png_file;
 mod textured;
@@ -22,6 +23,7 @@ pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;
 pub use mask::CoverageMask;
+pub use painted::PaintedTriangle;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
 pub use textured::{TexturedTriangle, TexturedVertex};

@@ -411,3 +411,95 @@ fn long_rows() {
         check::<Rgb888>(&Kind::Radial(s, r), &stops, false, (-20_000, 100, 70_000));
     }
 }
+
+/// Gradient-filled triangles: `draw_into` and `draw` (into a framebuffer and into a target with
+/// only `draw_iter`) give the same pixels, on exactly a `SolidTriangle`'s, each within 1 LSB of
+/// the gradient.
+#[test]
+fn painted_triangles() {
+    use embedded_raster::{PaintedTriangle, SliceFramebuffer, SolidTriangle};
+    let (w, h) = (48u32, 40u32);
+    let mut rng = Rng(8);
+    for case in 0..400 {
+        let mut corner = || {
+            let range = if case % 5 == 0 { 3000 } else { 60 };
+            (
+                Coord::from_bits(rng.range(-range * 256, range * 256) as i32),
+                Coord::from_bits(rng.range(-range * 256, range * 256) as i32),
+            )
+        };
+        let points = [corner(), corner(), corner()];
+        let (s, e) = (point(&mut rng, 60), point(&mut rng, 60));
+        let radius = rng.range(256, 60 * 256) as i32;
+        let stops = radial_stops::<Rgb565>(&mut rng, 3, radius);
+        let st = stops_of::<Rgb565, 3>(&stops);
+        let bits = |(a, b): (i32, i32)| (Coord::from_bits(a), Coord::from_bits(b));
+        let dithered = rng.chance(3);
+        let (kind, a, b, c) = if rng.chance(2) {
+            let mut g = LinearGradient::new(bits(s), bits(e), st);
+            if dithered {
+                g = g.dithered();
+            }
+            let t = PaintedTriangle { points, paint: g };
+            let (a, b, c) = draw_three(&t, w, h);
+            (Kind::Linear(s, e), a, b, c)
+        } else {
+            let mut g = RadialGradient::new(bits(s), Coord::from_bits(radius), st);
+            if dithered {
+                g = g.dithered();
+            }
+            let t = PaintedTriangle { points, paint: g };
+            let (a, b, c) = draw_three(&t, w, h);
+            (Kind::Radial(s, radius), a, b, c)
+        };
+        assert_eq!(a, b, "draw_into and draw differ");
+        assert_eq!(a, c, "draw into a framebuffer and into draw_iter differ");
+        // Coverage: a solid triangle's, in a colour no gradient pixel can be… checked by a mask.
+        let mut solid = vec![BinaryColor::Off; (w * h) as usize];
+        let mut fb = SliceFramebuffer::new(&mut solid, w, h).unwrap();
+        SolidTriangle {
+            points,
+            color: BinaryColor::On,
+        }
+        .draw_into(&mut fb);
+        let background = Rgb565::new(1, 2, 3);
+        for (i, (&got, &covered)) in a.iter().zip(&solid).enumerate() {
+            let (x, y) = ((i as u32 % w) as i32, (i as u32 / w) as i32);
+            if covered == BinaryColor::Off {
+                assert_eq!(
+                    got, background,
+                    "pixel ({x}, {y}) drawn outside the triangle"
+                );
+                continue;
+            }
+            let exact = kind.exact(&stops, x, y);
+            if dithered {
+                assert!(dither_ok(got, exact), "({x}, {y}): {got:?} vs {exact:?}");
+            } else {
+                assert!(
+                    error(got, exact) <= ROUNDED,
+                    "({x}, {y}): {got:?} vs {exact:?}"
+                );
+            }
+        }
+    }
+}
+
+/// The triangle drawn by `draw_into`, by `draw` into a framebuffer and by `draw` into a target
+/// with only `draw_iter`, over the same background.
+fn draw_three<P: Paint<Color = Rgb565>>(
+    t: &embedded_raster::PaintedTriangle<P>,
+    w: u32,
+    h: u32,
+) -> (Vec<Rgb565>, Vec<Rgb565>, Vec<Rgb565>) {
+    use embedded_raster::SliceFramebuffer;
+    let background = Rgb565::new(1, 2, 3);
+    let mut a = vec![background; (w * h) as usize];
+    t.draw_into(&mut SliceFramebuffer::new(&mut a, w, h).unwrap());
+    let mut b = vec![background; (w * h) as usize];
+    t.draw(&mut SliceFramebuffer::new(&mut b, w, h).unwrap())
+        .unwrap();
+    let mut c = ReadableTarget::new(w, h, vec![background; (w * h) as usize]);
+    t.draw(&mut c).unwrap();
+    (a, b, c.pixels)
+}
