@@ -19,9 +19,10 @@
 //! paints black (channels 0). A zero-length gradient (start = end, radius 0) paints the last
 //! stop's colour everywhere, as CSS does.
 //!
-//! Each pixel gets its channels rounded to nearest from within 1/16 LSB of that exact value (so
-//! within 1 LSB of it: the floor or the ceiling), given the conditions of each gradient's
-//! documentation. Which segment a pixel falls in is decided exactly, in integers: a pixel on a
+//! Each pixel gets its channels rounded to nearest from within 1/32 LSB (linear) or 1/4 LSB
+//! (radial) of that exact value, so within 1 LSB of it (the floor or the ceiling), given the
+//! conditions of each gradient's documentation; dithered, the floor or the ceiling of a value
+//! that near the exact one. Which segment a pixel falls in is decided exactly, in integers: a pixel on a
 //! stop's line or circle gets the later segment's colour.
 //!
 //! # Drawing
@@ -379,7 +380,7 @@ struct LinearSegment {
 ///
 /// # Accuracy
 ///
-/// Within 1 LSB (rounded to nearest from within 1/16 LSB of the exact channel value, segments
+/// Within 1 LSB (rounded to nearest from within 1/32 LSB of the exact channel value, segments
 /// decided exactly) at every pixel centre when `end − start` is at most 16,384 pixels on each
 /// axis. Longer gradients are scaled down to that (their direction rounded to 1/256 pixel in
 /// 16,384): `t` then has a relative error under 2⁻²¹ of the pixel's distance from `start` over
@@ -700,7 +701,8 @@ const MAX_CHORD: i32 = 14;
 /// Which segment a pixel is in is decided exactly (squared distances in 128 bits). Along a row
 /// the distance is computed by an integer square root, to 2⁻¹⁶ pixel, at the ends of chords and
 /// linearly between them; each chord is short enough that the distance's curvature moves a
-/// colour at most 1/8 LSB off the exact one. So pixels are within 1 LSB of the exact gradient
+/// colour at most 1/4 LSB off the exact one (a chord of `w` pixels on a row `h` from the centre,
+/// at distances of at least `d`, is off by at most `w²·h²/(8·d³)` pixels). So pixels are within 1 LSB of the exact gradient
 /// (the floor or the ceiling of the exact value) where the pixel is within 46,000 pixels of the
 /// centre on each axis and the colour changes by at most 4,096 LSB per pixel of distance (for
 /// 8-bit channels: segments at least 1/16 pixel wide; coincident stops are exact edges).
@@ -732,10 +734,20 @@ pub struct RadialGradient<C, const N: usize> {
     dithered: bool,
 }
 
-/// `⌈log₂ v⌉` (0 for 0 and 1).
+/// A lower bound of `16·log₂ v` (within 1.5; for `v ≥ 1`): the bit length and the next four
+/// bits as the mantissa (`log₂(1 + f) ≥ f`).
 #[inline(always)]
-fn log2_ceil(v: u64) -> i32 {
-    64 - v.saturating_sub(1).leading_zeros() as i32
+fn log16_below(v: u64) -> i32 {
+    let v = v.max(1);
+    let lz = v.leading_zeros();
+    let mantissa = ((v << lz) >> 59) & 15;
+    16 * (63 - lz as i32) + mantissa as i32
+}
+
+/// An upper bound of `16·log₂ v` (within 3; `log₂(1 + f) ≤ f + 0.09`).
+#[inline(always)]
+fn log16_above(v: u64) -> i32 {
+    log16_below(v) + 3
 }
 
 /// `⌊log₂ v⌋` (−1 for 0).
@@ -779,8 +791,8 @@ impl<C: GouraudColor, const N: usize> RadialGradient<C, N> {
             if let Some((before, from)) = previous {
                 let de = u64::from(e - before);
                 segment.width = Recip::new(de * r);
-                // A chord of 2^j pixels is within 1/8 LSB where
-                // 2^(2j) · h² · Δ · 2³² ≤ dmin³ · Δe · r (h the row's offset from the centre,
+                // A chord of 2^j pixels is within 1/4 LSB where
+                // 2^(2j) · h² · Δ · 2³¹ ≤ dmin³ · Δe · r (h the row's offset from the centre,
                 // dmin the chord's least distance, r in sub-pixel units, Δe in 65536ths, Δ the
                 // largest channel change): the part that depends on the segment alone.
                 let delta = from
@@ -792,7 +804,7 @@ impl<C: GouraudColor, const N: usize> RadialGradient<C, N> {
                 segment.flatness = if delta == 0 {
                     i32::MAX / 4
                 } else {
-                    log2_floor(de) + log2_floor(r) - log2_ceil(delta) - 32
+                    log16_below(de) + log16_below(r) - log16_above(delta) - 31 * 16
                 };
             }
             previous = Some((e, color));
@@ -965,7 +977,7 @@ impl<C: GouraudColor, const N: usize> RadialGradient<C, N> {
     }
 
     /// `j` such that a chord of `2^j` pixels from the pixel `near` from the centre horizontally
-    /// (`h` vertically; sub-pixel units) keeps the segment's colours within 1/8 LSB:
+    /// (`h` vertically; sub-pixel units) keeps the segment's colours within 1/4 LSB:
     /// `2j + 2·log₂ h ≤ 3·log₂ dmin + flatness` with `dmin` the chord's least distance.
     #[inline(always)]
     fn chord_bits(&self, near: u64, h: u64, falling: bool, flatness: i32) -> i32 {
@@ -973,17 +985,12 @@ impl<C: GouraudColor, const N: usize> RadialGradient<C, N> {
             // The distance is linear along the row (or the colour constant).
             return MAX_CHORD;
         }
-        let hh = 2 * log2_ceil(h);
-        let fits = |j: i32| {
-            let d = if falling {
-                near.saturating_sub(1 << (8 + j))
-            } else {
-                near
-            };
-            2 * j + hh <= 3 * log2_floor(d.max(h)) + flatness
-        };
-        let mut j = MAX_CHORD;
-        while j > 0 && !fits(j) {
+        // In sixteenths of a bit: 32·j ≤ 3·log₂ dmin − 2·log₂ h + flatness.
+        let budget = |d: u64| 3 * log16_below(d.max(h)) - 2 * log16_above(h) + flatness;
+        // dmin where the chord starts: the least on a growing distance, the most on a falling
+        // one, which then is checked at the chord's far end.
+        let mut j = (budget(near) / 32).clamp(0, MAX_CHORD);
+        while falling && j > 0 && 32 * j > budget(near.saturating_sub(1 << (8 + j))) {
             j -= 1;
         }
         j

@@ -3,9 +3,9 @@
 //! any position; degenerate and huge inputs; `draw_row` against `paint_row`; ordered dithering.
 //!
 //! "Within 1 LSB": each channel is the floor or the ceiling of the exact value; the plain
-//! gradients round to nearest from within 1/8 LSB (linear: 2⁻⁵), so the check is
-//! `|got − exact| ≤ ½ + 1/8`. Dithered: each channel is `⌊v + θ⌋` for a Bayer threshold θ of the
-//! pixel, `v` within 1/8 LSB of the exact value: `⌊exact − 1/8⌋ ≤ got ≤ ⌈exact + 1/8⌉`.
+//! gradients round to nearest from within 1/4 LSB (radial; linear: 2⁻⁵), so the check is
+//! `|got − exact| ≤ ½ + 1/4`. Dithered: each channel is `⌊v + θ⌋` for a Bayer threshold θ of the
+//! pixel, `v` within 1/4 LSB of the exact value: `⌊exact − 1/4⌋ ≤ got ≤ ⌈exact + 1/4⌉`.
 
 use std::fmt::Debug;
 
@@ -24,9 +24,9 @@ use crate::rng::Rng;
 /// Stops a test gradient has at most.
 const MAX_STOPS: usize = 5;
 /// Tolerance of a rounded channel (see the module).
-const ROUNDED: f64 = 0.5 + 1.0 / 8.0;
+const ROUNDED: f64 = 0.5 + 1.0 / 4.0;
 /// Tolerance of the value a dithered channel is the floor or the ceiling of.
-const DITHERED: f64 = 1.0 / 8.0;
+const DITHERED: f64 = 1.0 / 4.0;
 
 type Stops = Vec<(u32, [u8; 3])>;
 
