@@ -435,7 +435,14 @@ impl LinearPlane {
         let py = (i64::from(y) << SUB) + 128 - self.s.1;
         // |p − s| < 2⁴¹, |d| ≤ 2²²: each product fits.
         let dot = (px * self.d.0).saturating_add(py * self.d.1);
-        dot.saturating_mul(1 << 16)
+        // Saturated by a test and a shift, not a checked multiply (a library call on ARMv6-M).
+        if dot.unsigned_abs() >> 47 == 0 {
+            dot << 16
+        } else if dot < 0 {
+            i64::MIN
+        } else {
+            i64::MAX
+        }
     }
 }
 
@@ -546,14 +553,14 @@ impl<C: GouraudColor, const N: usize> LinearGradient<C, N> {
                 above.map_or(left, |a| {
                     let gap = a.threshold.saturating_sub(u) as u64; // > 0
                     run_to(plane, gap, left, |m| {
-                        u.saturating_add(plane.du.saturating_mul(m as i64 - 1)) < a.threshold
+                        u.saturating_add(plane.du * (m as i64 - 1)) < a.threshold
                     })
                 })
             } else if plane.du < 0 {
                 below.map_or(left, |b| {
                     let gap = u.saturating_sub(b.threshold) as u64 + 1; // > 0
                     run_to(plane, gap, left, |m| {
-                        u.saturating_add(plane.du.saturating_mul(m as i64 - 1)) >= b.threshold
+                        u.saturating_add(plane.du * (m as i64 - 1)) >= b.threshold
                     })
                 })
             } else {
@@ -578,7 +585,8 @@ impl<C: GouraudColor, const N: usize> LinearGradient<C, N> {
 
 /// The pixels from one whose parameter is `gap` (> 0) short of a threshold (in the direction
 /// the row goes) to the first at or past it, at most `left`: the quotient by the reciprocal, then
-/// corrected with `inside(m)` (whether the `m`-th pixel is still short of it).
+/// corrected with `inside(m)` (whether the `m`-th pixel is still short of it). `m ≤ 2¹⁵` and
+/// `|du| ≤ 2⁴⁶`: `du·(m − 1)` fits an `i64`.
 #[inline(always)]
 fn run_to(plane: &LinearPlane, gap: u64, left: usize, inside: impl Fn(usize) -> bool) -> usize {
     // ⌈gap / |du|⌉ pixels, give or take one.
