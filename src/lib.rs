@@ -207,9 +207,9 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    AntiAliased, CoverageMask, FramebufferError, GouraudTriangle, OnBackground, PaintedTriangle,
-    ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle, TexturedVertex,
-    Translucent, Vertex,
+    AntiAliased, CoverageMask, DitheredTriangle, FramebufferError, GouraudTriangle, OnBackground,
+    PaintedTriangle, ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, TexturedTriangle,
+    TexturedVertex, Translucent, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
 pub use paint::{LinearGradient, Paint, RadialGradient, Stop};

@@ -7,6 +7,7 @@
 //! saves itself as a PNG file.
 
 mod antialias;
+mod dithered;
 mod framebuffer;
 mod image;
 mod mask;
@@ -19,6 +20,7 @@ mod triangle;
 
 pub use crate::color::fill_row;
 pub use antialias::AntiAliased;
+pub use dithered::DitheredTriangle;
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;

@@ -672,7 +672,7 @@ pub(crate) fn fill_dithered<C: GouraudColor>(
 
 /// The dithered colour of stepped values `v` (+½ included) at pixel `(x, y)`.
 #[inline(always)]
-fn dithered_color<C: GouraudColor>(v: [u32; 3], x: i32, y: i32) -> C {
+pub(crate) fn dithered_color<C: GouraudColor>(v: [u32; 3], x: i32, y: i32) -> C {
     let o = bayer_offset(x, y);
     C::from_channels(core::array::from_fn(|k| {
         let max = u32::from(C::MAX[k]);

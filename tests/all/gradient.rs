@@ -503,3 +503,69 @@ fn draw_three<P: Paint<Color = Rgb565>>(
     t.draw(&mut c).unwrap();
     (a, b, c.pixels)
 }
+
+/// Dithered Gouraud triangles: the plain triangle's pixels, `draw_into` and `draw` equal, each
+/// channel the floor or the ceiling of the exact interpolation (within 1/32 LSB: the planes'
+/// error is under 2⁻⁹).
+#[test]
+fn dithered_gouraud_triangles() {
+    use embedded_raster::reference;
+    use embedded_raster::{GouraudTriangle, SliceFramebuffer, Vertex};
+    fn case<C: GouraudColor + Debug>(rng: &mut Rng, w: u32, h: u32) {
+        let range = if rng.chance(5) { 2000 } else { 50 };
+        let vertices: [Vertex<C>; 3] = core::array::from_fn(|_| {
+            let c = core::array::from_fn(|k| rng.below(u64::from(C::MAX[k]) + 1) as u8);
+            Vertex::new(
+                Coord::from_bits(rng.range(-range * 256, range * 256) as i32),
+                Coord::from_bits(rng.range(-range * 256, range * 256) as i32),
+                C::from_channels(c),
+            )
+        });
+        let t = GouraudTriangle::new(vertices);
+        let background = C::from_channels([1, 1, 1]);
+        let n = (w * h) as usize;
+        let (mut a, mut b) = (vec![background; n], vec![background; n]);
+        t.dithered()
+            .draw_into(&mut SliceFramebuffer::new(&mut a, w, h).unwrap());
+        t.dithered()
+            .draw(&mut SliceFramebuffer::new(&mut b, w, h).unwrap())
+            .unwrap();
+        let mut c = ReadableTarget::new(w, h, vec![background; n]);
+        t.dithered().draw(&mut c).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(a, c.pixels);
+        let raw = vertices.map(|v| (v.x.to_bits(), v.y.to_bits()));
+        let channels = vertices.map(|v| v.color.channels().map(f64::from));
+        let mut covers = vec![false; n];
+        reference::for_each_covered(raw, 0, 0, w as i32, h as i32, |x, y| {
+            covers[(y as u32 * w + x as u32) as usize] = true;
+        });
+        for (i, (&got, &covered)) in a.iter().zip(&covers).enumerate() {
+            let (x, y) = ((i as u32 % w) as i32, (i as u32 / w) as i32);
+            if !covered {
+                assert_eq!(got, background, "({x}, {y}) drawn outside");
+                continue;
+            }
+            let exact = reference::interpolate(raw, channels, x, y).unwrap();
+            let g = got.channels();
+            for k in 0..C::CHANNELS {
+                let g = f64::from(g[k]);
+                assert!(
+                    (exact[k] - 1.0 / 32.0).floor() <= g && g <= (exact[k] + 1.0 / 32.0).ceil(),
+                    "{}: ({x}, {y}) channel {k}: {g} vs {}",
+                    std::any::type_name::<C>(),
+                    exact[k]
+                );
+            }
+        }
+    }
+    let mut rng = Rng(9);
+    for _ in 0..300 {
+        match rng.below(4) {
+            0 => case::<Rgb565>(&mut rng, 40, 32),
+            1 => case::<Bgr565>(&mut rng, 40, 32),
+            2 => case::<Rgb888>(&mut rng, 40, 32),
+            _ => case::<Gray4>(&mut rng, 40, 32),
+        }
+    }
+}
