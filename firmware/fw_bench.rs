@@ -206,8 +206,6 @@ enum Renderer {
     AlphaDrawInto,
     /// `SolidTriangle::anti_aliased().draw_into`: edges blended with their exact coverage.
     AntiAliasedDrawInto,
-    /// `GouraudTriangle::dithered().draw_into`: ordered dithering.
-    GouraudDitheredDrawInto,
     /// `PaintedTriangle::draw_into` with a linear gradient of three stops across the screen.
     LinearDrawInto,
     /// The same gradient dithered.
@@ -219,7 +217,7 @@ enum Renderer {
     EgTriangle,
 }
 
-const RENDERERS: [Renderer; 13] = [
+const RENDERERS: [Renderer; 12] = [
     Renderer::SolidDraw,
     Renderer::SolidDrawInto,
     Renderer::GouraudDraw,
@@ -227,7 +225,6 @@ const RENDERERS: [Renderer; 13] = [
     Renderer::OpacityDrawInto,
     Renderer::AlphaDrawInto,
     Renderer::AntiAliasedDrawInto,
-    Renderer::GouraudDitheredDrawInto,
     Renderer::LinearDrawInto,
     Renderer::LinearDitheredDrawInto,
     Renderer::RadialDrawInto,
@@ -272,7 +269,6 @@ impl Renderer {
             Renderer::OpacityDrawInto => "SolidTriangle::with_opacity draw_into",
             Renderer::AlphaDrawInto => "GouraudTriangle::with_alpha draw_into",
             Renderer::AntiAliasedDrawInto => "SolidTriangle::anti_aliased draw_into",
-            Renderer::GouraudDitheredDrawInto => "GouraudTriangle::dithered draw_into",
             Renderer::LinearDrawInto => "PaintedTriangle linear draw_into",
             Renderer::LinearDitheredDrawInto => "PaintedTriangle linear dithered draw_into",
             Renderer::RadialDrawInto => "PaintedTriangle radial draw_into",
@@ -305,7 +301,6 @@ impl Renderer {
             Renderer::AntiAliasedDrawInto => {
                 t.solid().anti_aliased().over(Rgb565::BLACK).draw(target)
             }
-            Renderer::GouraudDitheredDrawInto => t.gouraud().dithered().draw(target),
             Renderer::LinearDrawInto => t.painted(&paints.linear).draw(target),
             Renderer::LinearDitheredDrawInto => t.painted(&paints.linear.dithered()).draw(target),
             Renderer::RadialDrawInto => t.painted(&paints.radial).draw(target),
@@ -411,11 +406,6 @@ mod firmware {
             Renderer::AntiAliasedDrawInto => {
                 for t in set.triangles() {
                     t.solid().anti_aliased().draw_into(fb);
-                }
-            }
-            Renderer::GouraudDitheredDrawInto => {
-                for t in set.triangles() {
-                    t.gouraud().dithered().draw_into(fb);
                 }
             }
             Renderer::LinearDrawInto => {
