@@ -21,7 +21,8 @@
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{PrimitiveStyle, Triangle};
-use embedded_raster::{Coord, GouraudTriangle, Polygon, SolidTriangle, Vertex};
+use embedded_raster::paint::{LinearGradient, RadialGradient, Stop, STOP_ONE};
+use embedded_raster::{Coord, GouraudTriangle, PaintedTriangle, Polygon, SolidTriangle, Vertex};
 
 #[allow(dead_code)]
 #[path = "../examples/common/scene.rs"]
@@ -73,6 +74,14 @@ impl BenchTriangle {
         // Three vertices fit three slots.
         let _ = polygon.add_contour(&self.solid().points);
         polygon
+    }
+
+    fn painted<P: embedded_raster::Paint<Color = Rgb565> + Copy>(
+        &self,
+        paint: &P,
+    ) -> PaintedTriangle<P> {
+        let centre = |i: i32| Coord::from_bits(i * 256 + 128);
+        PaintedTriangle::new(self.corners.map(|(x, y)| (centre(x), centre(y))), *paint)
     }
 
     fn eg(&self) -> Triangle {
@@ -208,10 +217,18 @@ enum Renderer {
     /// `Polygon::filled(color).draw` and `draw_into` of the triangle's three corners.
     PolygonDraw,
     PolygonDrawInto,
+    /// `PaintedTriangle::draw_into` with a linear gradient of three stops across the screen.
+    LinearDrawInto,
+    /// The same gradient dithered.
+    LinearDitheredDrawInto,
+    /// `PaintedTriangle::draw_into` with a radial gradient of three stops.
+    RadialDrawInto,
+    /// The same gradient dithered.
+    RadialDitheredDrawInto,
     EgTriangle,
 }
 
-const RENDERERS: [Renderer; 10] = [
+const RENDERERS: [Renderer; 14] = [
     Renderer::SolidDraw,
     Renderer::SolidDrawInto,
     Renderer::GouraudDraw,
@@ -221,8 +238,35 @@ const RENDERERS: [Renderer; 10] = [
     Renderer::AntiAliasedDrawInto,
     Renderer::PolygonDraw,
     Renderer::PolygonDrawInto,
+    Renderer::LinearDrawInto,
+    Renderer::LinearDitheredDrawInto,
+    Renderer::RadialDrawInto,
+    Renderer::RadialDitheredDrawInto,
     Renderer::EgTriangle,
 ];
+
+/// The gradients of the painted renderers, made once for a screen (their set-up divides).
+struct Paints {
+    linear: LinearGradient<Rgb565, 3>,
+    radial: RadialGradient<Rgb565, 3>,
+}
+
+impl Paints {
+    /// A diagonal gradient across the `w × h` screen and a radial one around a point left of its
+    /// centre out to its width, each through red, green and blue.
+    fn new(w: i32, h: i32) -> Self {
+        let stops = [
+            Stop::new(0, Rgb565::new(31, 8, 2)),
+            Stop::new(STOP_ONE * 2 / 5, Rgb565::new(3, 60, 9)),
+            Stop::new(STOP_ONE, Rgb565::new(1, 12, 30)),
+        ];
+        let at = |x: i32, y: i32| (Coord::from_bits(x * 256), Coord::from_bits(y * 256));
+        Paints {
+            linear: LinearGradient::new(at(0, 0), at(w, h), stops),
+            radial: RadialGradient::new(at(w * 2 / 5, h / 2), Coord::from_bits(w * 256), stops),
+        }
+    }
+}
 
 /// The translucent renderers' opacity and alphas per vertex.
 const OPACITY: u8 = 160;
@@ -240,13 +284,22 @@ impl Renderer {
             Renderer::AntiAliasedDrawInto => "SolidTriangle::anti_aliased draw_into",
             Renderer::PolygonDraw => "Polygon::filled draw",
             Renderer::PolygonDrawInto => "Polygon::filled draw_into",
+            Renderer::LinearDrawInto => "PaintedTriangle linear draw_into",
+            Renderer::LinearDitheredDrawInto => "PaintedTriangle linear dithered draw_into",
+            Renderer::RadialDrawInto => "PaintedTriangle radial draw_into",
+            Renderer::RadialDitheredDrawInto => "PaintedTriangle radial dithered draw_into",
             Renderer::EgTriangle => "e-g Triangle (fill)",
         }
     }
 
     /// Draws `t` through any draw target (`draw_into` needs a `SliceFramebuffer`; elsewhere it
     /// falls back to `draw`, which covers the same pixels).
-    fn draw_generic<D: DrawTarget<Color = Rgb565>>(self, t: &BenchTriangle, target: &mut D) {
+    fn draw_generic<D: DrawTarget<Color = Rgb565>>(
+        self,
+        t: &BenchTriangle,
+        paints: &Paints,
+        target: &mut D,
+    ) {
         let _ = match self {
             Renderer::SolidDraw | Renderer::SolidDrawInto => t.solid().draw(target),
             Renderer::GouraudDraw | Renderer::GouraudDrawInto => t.gouraud().draw(target),
@@ -266,6 +319,10 @@ impl Renderer {
             Renderer::PolygonDraw | Renderer::PolygonDrawInto => {
                 t.polygon().filled(t.colors[0]).draw(target)
             }
+            Renderer::LinearDrawInto => t.painted(&paints.linear).draw(target),
+            Renderer::LinearDitheredDrawInto => t.painted(&paints.linear.dithered()).draw(target),
+            Renderer::RadialDrawInto => t.painted(&paints.radial).draw(target),
+            Renderer::RadialDitheredDrawInto => t.painted(&paints.radial.dithered()).draw(target),
             Renderer::EgTriangle => t
                 .eg()
                 .into_styled(PrimitiveStyle::with_fill(t.colors[0]))
@@ -305,13 +362,13 @@ impl DrawTarget for Counter {
 /// Covered pixels of one pass over `set` (untimed). Not inlined: keeps the counting draws' stack
 /// frames out of the benchmark loop's.
 #[inline(never)]
-fn count_pixels(renderer: Renderer, set: &Set, (w, h): (u32, u32)) -> u32 {
+fn count_pixels(renderer: Renderer, set: &Set, paints: &Paints, (w, h): (u32, u32)) -> u32 {
     let mut counter = Counter {
         size: Size::new(w, h),
         pixels: 0,
     };
     for t in set.triangles() {
-        renderer.draw_generic(t, &mut counter);
+        renderer.draw_generic(t, paints, &mut counter);
     }
     counter.pixels
 }
@@ -331,8 +388,8 @@ mod firmware {
     use crate::clock::{calibrate, measure, Ratio};
     use crate::{board, clock, scene};
 
-    fn run(renderer: Renderer, set: &Set, fb: &mut SliceFramebuffer<'_, Rgb565>) {
-        let set = black_box(set);
+    fn run(renderer: Renderer, set: &Set, paints: &Paints, fb: &mut SliceFramebuffer<'_, Rgb565>) {
+        let (set, paints) = (black_box(set), black_box(paints));
         match renderer {
             Renderer::SolidDraw => {
                 for t in set.triangles() {
@@ -379,6 +436,28 @@ mod firmware {
                     t.polygon().filled(t.colors[0]).draw_into(fb);
                 }
             }
+            Renderer::LinearDrawInto => {
+                for t in set.triangles() {
+                    t.painted(&paints.linear).draw_into(fb);
+                }
+            }
+            Renderer::LinearDitheredDrawInto => {
+                let paint = paints.linear.dithered();
+                for t in set.triangles() {
+                    t.painted(&paint).draw_into(fb);
+                }
+            }
+            Renderer::RadialDrawInto => {
+                for t in set.triangles() {
+                    t.painted(&paints.radial).draw_into(fb);
+                }
+            }
+            Renderer::RadialDitheredDrawInto => {
+                let paint = paints.radial.dithered();
+                for t in set.triangles() {
+                    t.painted(&paint).draw_into(fb);
+                }
+            }
             Renderer::EgTriangle => {
                 for t in set.triangles() {
                     let _ = t
@@ -401,6 +480,7 @@ mod firmware {
     ) -> [(u64, u64, u64); RENDERERS.len()] {
         let size = fb.size();
         let set = &make_set(index, size.width as i32, size.height as i32);
+        let paints = &Paints::new(size.width as i32, size.height as i32);
         let mut totals = [(0, 0, 0); RENDERERS.len()];
         for (total, &renderer) in totals.iter_mut().zip(&RENDERERS) {
             if renderer == Renderer::EgTriangle && set.name == "huge" {
@@ -408,9 +488,9 @@ mod firmware {
                 hprintln!("| {} | {} | – | – | – | – | – |", renderer.name(), set.name);
                 continue;
             }
-            let pixels = count_pixels(renderer, set, (size.width, size.height));
-            run(renderer, set, fb); // warm-up, untimed
-            let ticks = measure(set.reps, || run(renderer, set, fb));
+            let pixels = count_pixels(renderer, set, paints, (size.width, size.height));
+            run(renderer, set, paints, fb); // warm-up, untimed
+            let ticks = measure(set.reps, || run(renderer, set, paints, fb));
             let instructions = clock::instructions(ticks, (cal_instructions, cal_ticks));
             let passes = u64::from(set.reps);
             let n = set.triangles().len() as u64;
@@ -631,8 +711,9 @@ fn main() {
         println!("{width}×{height}:");
         for index in 0..SETS {
             let set = make_set(index, width as i32, height as i32);
+            let paints = Paints::new(width as i32, height as i32);
             for renderer in RENDERERS {
-                let pixels = count_pixels(renderer, &set, (width, height));
+                let pixels = count_pixels(renderer, &set, &paints, (width, height));
                 println!(
                     "  {:<28} {:<6} {:>3} triangles {:>6} pixels ({:.2} px/triangle), {} passes in firmware",
                     renderer.name(),

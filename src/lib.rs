@@ -207,11 +207,13 @@ pub mod reference;
 
 pub use color::{GouraudColor, SpanSteps};
 pub use draw::{
-    AntiAliased, Cap, CoverageMask, FilledPolygon, FramebufferError, GouraudTriangle, Join, Line,
-    OnBackground, Polygon, PolygonFull, Polyline, ShadedSpans, SliceFramebuffer, SolidTriangle,
-    SpanColors, Stroke, Stroked, TexturedTriangle, TexturedVertex, Translucent, Vertex,
+    AntiAliased, Cap, CoverageMask, DitheredTriangle, FilledPolygon, FramebufferError,
+    GouraudTriangle, Join, Line, OnBackground, PaintedTriangle, Polygon, PolygonFull, Polyline,
+    ShadedSpans, SliceFramebuffer, SolidTriangle, SpanColors, Stroke, Stroked, TexturedTriangle,
+    TexturedVertex, Translucent, Vertex,
 };
 pub use fixed_point::{Coord, ToCoord};
+pub use paint::{LinearGradient, Paint, RadialGradient, Stop};
 pub use raster::FillRule;
 pub use texture::{Filter, Texture, Wrap};
 pub use three_d::{

@@ -7,11 +7,13 @@
 //! saves itself as a PNG file.
 
 mod antialias;
+mod dithered;
 mod framebuffer;
 mod image;
 mod line;
 mod mask;
 mod painted;
+mod painted_triangle;
 pub(crate) use painted::draw_rows as draw_shape_rows;
 #[cfg(feature = "png")]
 mod png_file;
@@ -23,11 +25,13 @@ mod triangle;
 
 pub use crate::color::fill_row;
 pub use antialias::AntiAliased;
+pub use dithered::DitheredTriangle;
 pub(crate) use framebuffer::skip_colors;
 pub use framebuffer::{FramebufferError, SliceFramebuffer};
 pub(crate) use image::draw_rows;
 pub use line::{Line, Polyline};
 pub use mask::CoverageMask;
+pub use painted_triangle::PaintedTriangle;
 #[cfg(feature = "png")]
 pub(crate) use png_file::write_png;
 pub use polygon::{FilledPolygon, Polygon, PolygonFull};

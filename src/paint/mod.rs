@@ -18,6 +18,11 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::color::{fill_row, BlendSource, GouraudColor};
 
+mod gradient;
+
+pub(crate) use gradient::{dithered_color, fill_dithered};
+pub use gradient::{LinearGradient, RadialGradient, Stop, STOP_ONE};
+
 /// The colours of a shape's pixels, by position: a plain colour, or a gradient.
 ///
 /// The shapes that take a paint ([`Polygon`](crate::Polygon)'s fills) hand it each covered span

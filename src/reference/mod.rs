@@ -50,6 +50,7 @@
 use core::cmp::Ordering;
 
 mod area;
+pub mod gradient;
 pub mod lights;
 pub mod texture;
 

@@ -51,6 +51,8 @@ mod eg_placement;
 mod errors;
 mod firmware_checksum;
 mod geometry;
+#[cfg(feature = "reference")]
+mod gradient;
 mod imports;
 #[cfg(feature = "reference")]
 mod lights;
