@@ -275,7 +275,7 @@ TEXTURE_EXPECTED=$(cargo run "${deny[@]}" --quiet --release --example fw_texture
 echo "--- host textured frames (cargo run --release --example fw_nopanic_textures)"
 TEXTURES=$(cargo run "${deny[@]}" --quiet --release --example fw_nopanic_textures)
 printf '%s\n' "$TEXTURES"
-[ "$(printf '%s\n' "$TEXTURES" | grep -c '^textures ')" -eq 3 ] || fail "no host textured frames"
+[ "$(printf '%s\n' "$TEXTURES" | grep -c '^textures ')" -eq 4 ] || fail "no host textured frames"
 
 bench=$(mktemp)
 trap 'rm -f "$bench"; stop_warm_up' EXIT
