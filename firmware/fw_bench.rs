@@ -477,7 +477,7 @@ mod firmware {
         index: usize,
         fb: &mut SliceFramebuffer<'_, Rgb565>,
         (cal_instructions, cal_ticks): (u64, u64),
-    ) -> [(u64, u64, u64); RENDERERS.len()] {
+    ) -> [(u32, u32, u32); RENDERERS.len()] {
         let size = fb.size();
         let set = &make_set(index, size.width as i32, size.height as i32);
         let paints = &Paints::new(size.width as i32, size.height as i32);
@@ -504,7 +504,14 @@ mod firmware {
                 Ratio(instructions, u64::from(pixels) * passes),
                 Ratio(instructions, n * passes)
             );
-            *total = (instructions, u64::from(pixels) * passes, n * passes);
+            // 32 bits a figure (saturated; a set's passes stay far below): with fourteen
+            // renderers and five sets, the micro:bit's stack has no room for 64.
+            let narrow = |v: u64| u32::try_from(v).unwrap_or(u32::MAX);
+            *total = (
+                narrow(instructions),
+                narrow(u64::from(pixels) * passes),
+                narrow(n * passes),
+            );
         }
         totals
     }
@@ -637,11 +644,11 @@ mod firmware {
         );
         hprintln!("|---|---|---:|---:|---:|---:|---:|");
         // Totals over all passes per set and renderer: (instructions, pixels, triangles).
-        let mut totals = [[(0u64, 0u64, 0u64); RENDERERS.len()]; SETS];
+        let mut totals = [[(0u32, 0u32, 0u32); RENDERERS.len()]; SETS];
         for (index, row) in totals.iter_mut().enumerate() {
             *row = bench_set(index, &mut fb, (cal_instructions, cal_ticks));
         }
-        let [large, small, tiny, huge, medium] = totals;
+        let [large, small, tiny, huge, medium] = &totals;
         hprintln!(
             "\n| renderer | instr/pixel, large | instr/pixel, small (16 px²) | setup: instr/triangle, \
              tiny (0–1 px) | setup: small minus large per-pixel | instr/triangle, huge (general \
@@ -649,20 +656,21 @@ mod firmware {
         );
         hprintln!("|---|---:|---:|---:|---:|---:|---:|");
         for (r, &renderer) in RENDERERS.iter().enumerate() {
-            let (lt, lp, _) = large[r];
-            let (st, sp, sn) = small[r];
+            let wide = |(a, b, c): (u32, u32, u32)| (u64::from(a), u64::from(b), u64::from(c));
+            let (lt, lp, _) = wide(large[r]);
+            let (st, sp, sn) = wide(small[r]);
             // Small-set instructions not explained by the large-set per-pixel rate.
             let explained = (sp * lt).checked_div(lp).unwrap_or(0);
-            let (ht, _, hn) = huge[r];
+            let (ht, _, hn) = wide(huge[r]);
             hprintln!(
                 "| {} | {} | {} | {} | {} | {} | {} |",
                 renderer.name(),
                 Ratio(lt, lp),
                 Ratio(st, sp),
-                Ratio(tiny[r].0, tiny[r].2),
+                Ratio(wide(tiny[r]).0, wide(tiny[r]).2),
                 Ratio(st.saturating_sub(explained), sn),
                 Ratio(ht, hn),
-                Ratio(medium[r].0, medium[r].1)
+                Ratio(wide(medium[r]).0, wide(medium[r]).1)
             );
         }
 
