@@ -372,7 +372,7 @@ struct LinearSegment {
 }
 
 /// A linear gradient: `t` grows from 0 at `start` to 1 at `end`, constant across lines
-/// perpendicular to `end − start`; colours by [`Stop`]s (see the [module](self) for the exact
+/// perpendicular to `end − start`; colours by [`Stop`]s (see the [module](crate::paint::gradient) for the exact
 /// gradient, padding, coincident and out-of-order stops).
 ///
 /// `N` stops live in the gradient (a caller-sized array), each with its segment's set-up,
@@ -701,7 +701,7 @@ struct RadialSegment {
 const MAX_CHORD: i32 = 14;
 
 /// A radial gradient: `t` is the distance from `centre` over `radius` (0 at the centre, 1 on the
-/// circle); colours by [`Stop`]s (see the [module](self) for the exact gradient, padding,
+/// circle); colours by [`Stop`]s (see the [module](crate::paint::gradient) for the exact gradient, padding,
 /// coincident and out-of-order stops).
 ///
 /// # Accuracy

@@ -18,7 +18,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::color::{fill_row, BlendSource, GouraudColor};
 
-mod gradient;
+pub mod gradient;
 
 pub(crate) use gradient::{dithered_color, fill_dithered};
 pub use gradient::{LinearGradient, RadialGradient, Stop, STOP_ONE};
