@@ -185,15 +185,19 @@ impl EdgeCrossing {
     }
 }
 
+/// Exchanges `edges[i]` and `edges[j]` (`i < j`; nothing if `j` is outside): without
+/// `slice::swap`, whose bounds check stays where it is not inlined (opt-level "z").
+#[inline]
+fn swap(edges: &mut [EdgeCrossing], i: usize, j: usize) {
+    if let Some((left, right)) = edges.split_at_mut_checked(j) {
+        if let (Some(a), Some(b)) = (left.get_mut(i), right.first_mut()) {
+            core::mem::swap(a, b);
+        }
+    }
+}
+
 /// Sorts `edges` by their first row: a heap sort (no recursion, no allocation, no panic path).
 fn sort_by_first_row(edges: &mut [EdgeCrossing]) {
-    // Swaps only inside the slice: the indices below always are, and the check lets the
-    // optimiser drop `swap`'s panic.
-    let swap = |edges: &mut [EdgeCrossing], i: usize, j: usize| {
-        if i < edges.len() && j < edges.len() {
-            edges.swap(i, j);
-        }
-    };
     let key = |edges: &[EdgeCrossing], i: usize| edges.get(i).map_or(i32::MIN, |e| e.first);
     let sift_down = |edges: &mut [EdgeCrossing], mut root: usize, end: usize| loop {
         let mut child = 2 * root + 1;
@@ -232,7 +236,7 @@ fn sort_by_column(edges: &mut [EdgeCrossing]) {
             if a.column <= b.column {
                 break;
             }
-            edges.swap(j - 1, j);
+            swap(edges, j - 1, j);
             j -= 1;
         }
     }
