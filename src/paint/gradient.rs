@@ -601,31 +601,46 @@ fn run_to(plane: &LinearPlane, gap: u64, left: usize, inside: impl Fn(usize) -> 
     m
 }
 
+/// A gradient's `paint_row`: `chunk(x, out)` paints [`CHUNK`] pixels at most from column `x`.
+fn paint_row_in_chunks<C>(mut chunk: impl FnMut(i32, &mut IntoRow<'_, C>), x: i32, row: &mut [C]) {
+    let mut at = x;
+    for part in row.chunks_mut(CHUNK) {
+        chunk(at, &mut IntoRow(part));
+        at = at.wrapping_add(CHUNK as i32);
+    }
+}
+
+/// A gradient's `draw_row`: the same chunks drawn into `target`, until the first error.
+fn draw_row_in_chunks<D: DrawTarget>(
+    mut chunk: impl FnMut(i32, &mut ToTarget<'_, D>),
+    target: &mut D,
+    (x, y): (i32, i32),
+    len: u32,
+) -> Result<(), D::Error> {
+    let mut done = 0;
+    while done < len {
+        let n = (len - done).min(CHUNK as u32);
+        let at = x.wrapping_add(done as i32);
+        let mut out = ToTarget::new(target, (at, y), n);
+        chunk(at, &mut out);
+        out.result?;
+        done += n;
+    }
+    Ok(())
+}
+
 impl<C: GouraudColor, const N: usize> Paint for LinearGradient<C, N> {
     type Color = C;
 
     fn paint_row(&self, y: i32, x: i32, row: &mut [C]) {
-        let mut at = x;
-        for chunk in row.chunks_mut(CHUNK) {
-            self.paint_chunk(y, at, &mut IntoRow(chunk));
-            at = at.wrapping_add(CHUNK as i32);
-        }
+        paint_row_in_chunks(|at, out| self.paint_chunk(y, at, out), x, row);
     }
 
     fn draw_row<D>(&self, target: &mut D, y: i32, x: i32, len: u32) -> Result<(), D::Error>
     where
         D: DrawTarget<Color = C>,
     {
-        let mut done = 0;
-        while done < len {
-            let n = (len - done).min(CHUNK as u32);
-            let at = x.wrapping_add(done as i32);
-            let mut out = ToTarget::new(target, (at, y), n);
-            self.paint_chunk(y, at, &mut out);
-            out.result?;
-            done += n;
-        }
-        Ok(())
+        draw_row_in_chunks(|at, out| self.paint_chunk(y, at, out), target, (x, y), len)
     }
 }
 
@@ -1009,26 +1024,13 @@ impl<C: GouraudColor, const N: usize> Paint for RadialGradient<C, N> {
     type Color = C;
 
     fn paint_row(&self, y: i32, x: i32, row: &mut [C]) {
-        let mut at = x;
-        for chunk in row.chunks_mut(CHUNK) {
-            self.paint_chunk(y, at, &mut IntoRow(chunk));
-            at = at.wrapping_add(CHUNK as i32);
-        }
+        paint_row_in_chunks(|at, out| self.paint_chunk(y, at, out), x, row);
     }
 
     fn draw_row<D>(&self, target: &mut D, y: i32, x: i32, len: u32) -> Result<(), D::Error>
     where
         D: DrawTarget<Color = C>,
     {
-        let mut done = 0;
-        while done < len {
-            let n = (len - done).min(CHUNK as u32);
-            let at = x.wrapping_add(done as i32);
-            let mut out = ToTarget::new(target, (at, y), n);
-            self.paint_chunk(y, at, &mut out);
-            out.result?;
-            done += n;
-        }
-        Ok(())
+        draw_row_in_chunks(|at, out| self.paint_chunk(y, at, out), target, (x, y), len)
     }
 }
