@@ -2,7 +2,7 @@
 //! knot, 320×240 Rgb565 with z, Gouraud) drawn in bands of 8, 16, 32 and 240 rows, each band
 //! handed to a display stand-in that hashes it, in the three modes of
 //! `firmware/common/bands.rs` (no bin per face, no bin with the vertex scratch, a `MeshBin`),
-//! against the frame drawn whole with the scratch; instructions counted by SysTick under QEMU's
+//! against the frame drawn whole with the scratch; instructions counted by SysTick (or `minstret`) under QEMU's
 //! `-icount` (`firmware/common/clock.rs`), and the RAM each mode takes.
 //!
 //! ```text
@@ -50,8 +50,8 @@ const HEIGHTS: [u32; 4] = [8, 16, 32, 240];
 mod firmware {
     use core::hint::black_box;
 
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::hprintln;
+    use crate::board::entry;
+    use crate::board::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_raster::band::BinEntry;
     use embedded_raster::three_d::{DepthTarget, ProjectedVertex};
@@ -65,15 +65,24 @@ mod firmware {
     /// Bands at one row (the most a layout of the frame has) plus every face.
     const BIN: usize = 240 + 6144;
 
+    static mut COLORS: [Rgb565; PIXELS] = [Rgb565::new(0, 0, 0); PIXELS];
+    static mut DEPTH: [u16; PIXELS] = [0; PIXELS];
+    static mut SCRATCH: [ProjectedVertex; VERTICES] = [ProjectedVertex::EMPTY; VERTICES];
+    static mut BIN_STORAGE: [BinEntry; BIN] = [BinEntry::EMPTY; BIN];
+
     #[entry]
     fn main() -> ! {
-        static mut COLORS: [Rgb565; PIXELS] = [Rgb565::new(0, 0, 0); PIXELS];
-        static mut DEPTH: [u16; PIXELS] = [0; PIXELS];
-        static mut SCRATCH: [ProjectedVertex; VERTICES] = [ProjectedVertex::EMPTY; VERTICES];
-        static mut BIN_STORAGE: [BinEntry; BIN] = [BinEntry::EMPTY; BIN];
+        // SAFETY: `main` runs once and never returns: the statics' only references.
+        let (colors, depth, scratch, bin_storage) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(COLORS),
+                &mut *core::ptr::addr_of_mut!(DEPTH),
+                &mut *core::ptr::addr_of_mut!(SCRATCH),
+                &mut *core::ptr::addr_of_mut!(BIN_STORAGE),
+            )
+        };
 
-        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
-        clock::start(&mut cp.SYST);
+        clock::start();
         let calibration = clock::calibrate();
         let mesh = &scene3d::KNOT;
         let (w, h) = SIZE;
@@ -99,10 +108,10 @@ mod firmware {
                 match mode {
                     Some(mode) => {
                         let buffers = Buffers {
-                            colors: &mut COLORS[..],
-                            depth: &mut DEPTH[..],
-                            scratch: &mut SCRATCH[..],
-                            bin: &mut BIN_STORAGE[..],
+                            colors: &mut colors[..],
+                            depth: &mut depth[..],
+                            scratch: &mut scratch[..],
+                            bin: &mut bin_storage[..],
                         };
                         // Through `black_box`: every mode and both kinds of run linked, as
                         // in the benchmark (the code LLVM makes of one depends on the others).
@@ -110,9 +119,9 @@ mod firmware {
                         black_box(bands::render(Model::Knot, mesh, rows, mode, buffers, hash).ok());
                     }
                     None => {
-                        let mut target = DepthTarget::new(&mut COLORS[..], &mut DEPTH[..], w, h)
+                        let mut target = DepthTarget::new(&mut colors[..], &mut depth[..], w, h)
                             .expect("buffers fit");
-                        whole(&mut target, SCRATCH);
+                        whole(&mut target, scratch);
                     }
                 }
             }
@@ -120,12 +129,12 @@ mod firmware {
         }
 
         let mut target =
-            DepthTarget::new(&mut COLORS[..], &mut DEPTH[..], w, h).expect("buffers fit");
-        whole(&mut target, SCRATCH);
+            DepthTarget::new(&mut colors[..], &mut depth[..], w, h).expect("buffers fit");
+        whole(&mut target, scratch);
         let want = Seen::of_frame(target.framebuffer().pixels(), target.depth());
         let full = clock::instructions(
             clock::measure(1, || {
-                whole(&mut target, SCRATCH);
+                whole(&mut target, scratch);
             }),
             calibration,
         );
@@ -138,10 +147,10 @@ mod firmware {
             for (j, mode) in Mode::ALL.into_iter().enumerate() {
                 let mut run = |hash| {
                     let buffers = Buffers {
-                        colors: &mut COLORS[..],
-                        depth: &mut DEPTH[..],
-                        scratch: &mut SCRATCH[..],
-                        bin: &mut BIN_STORAGE[..],
+                        colors: &mut colors[..],
+                        depth: &mut depth[..],
+                        scratch: &mut scratch[..],
+                        bin: &mut bin_storage[..],
                     };
                     bands::render(Model::Knot, black_box(mesh), rows, mode, buffers, hash)
                 };
@@ -157,7 +166,7 @@ mod firmware {
             }
         }
 
-        hprintln!("\n### Band rendering, {}\n", board::BOARD);
+        hprintln!("\n### Band rendering, {}\n", board::name());
         hprintln!(
             "The knot frame drawn whole (with the vertex scratch): {} instructions.\n",
             full

@@ -58,7 +58,7 @@ const BAND: usize = scene3d::SIZE.0 as usize * ROWS as usize;
 mod firmware {
     use core::hint::black_box;
 
-    use cortex_m_rt::entry;
+    use crate::board::entry;
     use embedded_graphics::pixelcolor::Rgb565;
 
     use crate::bands::{self, Buffers, Mode, Seen};
@@ -77,22 +77,27 @@ mod firmware {
         print(b"\n");
     }
 
+    static mut COLORS: [Rgb565; BAND] = [Rgb565::new(0, 0, 0); BAND];
+    static mut DEPTH: [u16; BAND] = [0; BAND];
+
     #[entry]
     fn main() -> ! {
-        static mut COLORS: [Rgb565; BAND] = [Rgb565::new(0, 0, 0); BAND];
-        static mut DEPTH: [u16; BAND] = [0; BAND];
+        // SAFETY: `main` runs once and never returns: the statics' only references.
+        let (colors, depth) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(COLORS),
+                &mut *core::ptr::addr_of_mut!(DEPTH),
+            )
+        };
         stack::paint_run();
 
-        let Some(mut cp) = cortex_m::Peripherals::take() else {
-            board::exit(false)
-        };
-        clock::start(&mut cp.SYST);
+        clock::start();
         let calibration = clock::calibrate();
         let mesh = &scene3d::KNOT;
         let mut frame = |hash| {
             let buffers = Buffers {
-                colors: &mut COLORS[..],
-                depth: &mut DEPTH[..],
+                colors: &mut colors[..],
+                depth: &mut depth[..],
                 scratch: &mut [],
                 bin: &mut [],
             };

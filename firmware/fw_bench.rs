@@ -1,4 +1,5 @@
-//! Firmware benchmark: instructions per covered pixel and per triangle, counted by SysTick under
+//! Firmware benchmark: instructions per covered pixel and per triangle, counted by SysTick (or
+//! RISC-V's `minstret`) under
 //! QEMU's `-icount` (every executed instruction advances the virtual clock by exactly 1 ns, so the
 //! counts are deterministic), plus the stack depth of each draw call.
 //!
@@ -8,7 +9,7 @@
 //! cargo run --release --target thumbv6m-none-eabi    --example fw_bench   # micro:bit
 //! ```
 //!
-//! Instructions are counted by SysTick (`firmware/common/clock.rs`). Each case draws a set of
+//! Instructions are counted by SysTick or `minstret` (`firmware/common/clock.rs`). Each case draws a set of
 //! triangles into a `SliceFramebuffer<Rgb565>`, repeated so that it runs for at least ~10⁵
 //! instructions; the covered pixels are counted exactly in a separate, untimed pass through a counting draw target.
 //! Vertices sit on pixel centres, so embedded-graphics' integer `Triangle` (filled with
@@ -377,8 +378,8 @@ fn count_pixels(renderer: Renderer, set: &Set, paints: &Paints, (w, h): (u32, u3
 mod firmware {
     use core::hint::black_box;
 
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::hprintln;
+    use crate::board::entry;
+    use crate::board::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::PrimitiveStyle;
@@ -519,9 +520,10 @@ mod firmware {
     // ---- stack depth -------------------------------------------------------------------------
 
     extern "C" {
-        /// Lowest address the stack may reach (end of .bss/.uninit), from cortex-m-rt's link.x.
-        static _stack_end: u32;
-        /// Initial stack pointer (top of RAM), from cortex-m-rt's link.x.
+        /// Lowest address the stack may reach (end of .bss/.uninit, the heap's start), from the
+        /// runtime's link.x (cortex-m-rt's or riscv-rt's).
+        static __sheap: u32;
+        /// Initial stack pointer (top of RAM), from the runtime's link.x.
         static _stack_start: u32;
     }
 
@@ -532,7 +534,7 @@ mod firmware {
     /// Lowest stack address to paint and scan: `window` bytes below `sp`, at most down to the
     /// end of the stack.
     fn stack_floor(sp: usize, window: usize) -> usize {
-        let end = core::ptr::addr_of!(_stack_end) as usize;
+        let end = core::ptr::addr_of!(__sheap) as usize;
         end.max(sp.saturating_sub(window))
     }
 
@@ -543,7 +545,7 @@ mod firmware {
     /// Paints up to `window` bytes of free stack below the caller's stack pointer.
     #[inline(never)]
     fn paint_below_sp(window: usize) {
-        let sp = cortex_m::register::msp::read() as usize;
+        let sp = board::stack_pointer();
         let top = sp - MARGIN;
         let mut p = stack_floor(sp, window);
         while p + 4 <= top {
@@ -572,7 +574,7 @@ mod firmware {
         shape: &scene::Shape,
     ) -> Option<usize> {
         paint_below_sp(WINDOW);
-        let sp = cortex_m::register::msp::read() as usize;
+        let sp = board::stack_pointer();
         black_box(f)(fb, shape);
         let floor = stack_floor(sp, WINDOW);
         let p = lowest_touched(floor, sp);
@@ -617,26 +619,29 @@ mod firmware {
         }),
     ];
 
+    static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+
     #[entry]
     fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        // SAFETY: `main` runs once and never returns: the static's only reference.
+        let pixels = unsafe { &mut *core::ptr::addr_of_mut!(PIXELS) };
         let (width, height) = board::SIZE;
-        let mut fb = SliceFramebuffer::new(PIXELS, width, height).expect("framebuffer size");
+        let mut fb = SliceFramebuffer::new(pixels, width, height).expect("framebuffer size");
         // Paint all free stack now; at the end, the deepest point the benchmark reached shows,
         // and touching the end of the stack (running into .bss) fails the run.
         paint_below_sp(usize::MAX);
-        let main_sp = cortex_m::register::msp::read() as usize;
-        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
-        clock::start(&mut cp.SYST);
+        let main_sp = board::stack_pointer();
+        clock::start();
 
         let (cal_instructions, cal_ticks) = calibrate();
 
-        hprintln!("### {}\n", board::BOARD);
+        hprintln!("### {}\n", board::name());
         hprintln!(
-            "Framebuffer {}×{} Rgb565 (`SliceFramebuffer`); SysTick {} instructions/tick \
+            "Framebuffer {}×{} Rgb565 (`SliceFramebuffer`); {} {} instructions/tick \
              (calibrated); QEMU `-icount shift=0`.\n",
             width,
             height,
+            clock::SOURCE,
             Ratio(cal_instructions, cal_ticks)
         );
         hprintln!(
@@ -676,7 +681,7 @@ mod firmware {
 
         // Stack depth of one draw call, worst case over every shape of the test scene (including
         // vertices at the ends of the Coord range). SysTick is off so its frames don't count.
-        clock::stop(&mut cp.SYST);
+        clock::stop();
         hprintln!(
             "\n| draw call | max stack, bytes (over the {} scene triangles) |",
             {
@@ -699,7 +704,7 @@ mod firmware {
                 None => hprintln!("| {} | > {} |", name, WINDOW),
             }
         }
-        let end = core::ptr::addr_of!(_stack_end) as usize;
+        let end = core::ptr::addr_of!(__sheap) as usize;
         let stack_top = core::ptr::addr_of!(_stack_start) as usize;
         let deepest = lowest_touched(end, main_sp);
         hprintln!(

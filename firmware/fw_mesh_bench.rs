@@ -1,6 +1,6 @@
 //! Firmware benchmark of the 3D pipeline: the frame of `examples/common/scene3d.rs` (320×240
 //! Rgb565, 16-bit z-buffer, back faces culled, Gouraud, colour and depth cleared) for each bench
-//! mesh, in instructions counted by SysTick under QEMU's `-icount` (`firmware/common/clock.rs`).
+//! mesh, in instructions counted by SysTick (or `minstret`) under QEMU's `-icount` (`firmware/common/clock.rs`).
 //!
 //! ```text
 //! cargo run --release --target thumbv7em-none-eabihf --example fw_mesh_bench   # mps2-an386, M4F
@@ -43,8 +43,8 @@ mod clock;
 mod firmware {
     use core::hint::black_box;
 
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::hprintln;
+    use crate::board::entry;
+    use crate::board::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_raster::three_d::{DepthTarget, ProjectedVertex, Vec3};
     use embedded_raster::three_d::{LightSource, Lights, Material, Scalar, Shading, Specular};
@@ -55,31 +55,49 @@ mod firmware {
     use crate::textured3d::{self, Textured, TexturedLine, TEXELS};
     use crate::{board, clock};
 
-    /// The instruction set this build runs.
-    #[cfg(not(target_has_atomic = "32"))]
-    const CODE: &str = "thumbv6m-none-eabi (Cortex-M0 code)";
-    #[cfg(all(target_has_atomic = "32", target_abi = "eabihf"))]
-    const CODE: &str = "thumbv7em-none-eabihf (Cortex-M4F code)";
-    #[cfg(all(target_has_atomic = "32", not(target_abi = "eabihf")))]
-    const CODE: &str = "thumbv7m-none-eabi (Cortex-M3 code)";
+    /// The instruction set this build runs (the Cortex-M0 code runs on the Cortex-M3 board).
+    fn code() -> &'static str {
+        if cfg!(armv6m) {
+            "thumbv6m-none-eabi (Cortex-M0 code)"
+        } else if cfg!(armv8m) {
+            "thumbv8m.main-none-eabihf (Cortex-M33 code)"
+        } else if cfg!(armv7em) {
+            "thumbv7em-none-eabihf (Cortex-M4F code)"
+        } else if cfg!(armv7m) {
+            "thumbv7m-none-eabi (Cortex-M3 code)"
+        } else {
+            board::name()
+        }
+    }
+
+    static mut COLORS: [Rgb565; PIXELS] = [Rgb565::new(0, 0, 0); PIXELS];
+    static mut DEPTH: [u16; PIXELS] = [0; PIXELS];
+    static mut TORUS_V: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
+    static mut TORUS_N: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
+    static mut TORUS_I: [[u16; 3]; TORUS_FACES] = [[0; 3]; TORUS_FACES];
+    static mut SCRATCH: [ProjectedVertex; MAX_VERTICES] = [ProjectedVertex::EMPTY; MAX_VERTICES];
+    static mut TEXTURE: [u16; TEXELS] = [0; TEXELS];
 
     #[entry]
     fn main() -> ! {
-        static mut COLORS: [Rgb565; PIXELS] = [Rgb565::new(0, 0, 0); PIXELS];
-        static mut DEPTH: [u16; PIXELS] = [0; PIXELS];
-        static mut TORUS_V: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
-        static mut TORUS_N: [Vec3; TORUS_VERTICES] = [Vec3::ZERO; TORUS_VERTICES];
-        static mut TORUS_I: [[u16; 3]; TORUS_FACES] = [[0; 3]; TORUS_FACES];
-        static mut SCRATCH: [ProjectedVertex; MAX_VERTICES] =
-            [ProjectedVertex::EMPTY; MAX_VERTICES];
-        static mut TEXTURE: [u16; TEXELS] = [0; TEXELS];
+        // SAFETY: `main` runs once and never returns: the statics' only references.
+        let (colors, depth, torus_v, torus_n, torus_i, scratch, texture) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(COLORS),
+                &mut *core::ptr::addr_of_mut!(DEPTH),
+                &mut *core::ptr::addr_of_mut!(TORUS_V),
+                &mut *core::ptr::addr_of_mut!(TORUS_N),
+                &mut *core::ptr::addr_of_mut!(TORUS_I),
+                &mut *core::ptr::addr_of_mut!(SCRATCH),
+                &mut *core::ptr::addr_of_mut!(TEXTURE),
+            )
+        };
 
-        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
-        clock::start(&mut cp.SYST);
+        clock::start();
         let calibration = clock::calibrate();
-        let torus = scene3d::torus(TORUS_V, TORUS_N, TORUS_I);
+        let torus = scene3d::torus(torus_v, torus_n, torus_i);
         let (width, height) = SIZE;
-        let mut target = DepthTarget::new(COLORS, DEPTH, width, height).expect("buffers fit");
+        let mut target = DepthTarget::new(colors, depth, width, height).expect("buffers fit");
 
         if let Some(kind) = option_env!("MESH_PROFILE").and_then(|p| p.strip_prefix("textured")) {
             // Profiling build: a textured frame alone (`textured`: nearest; `textured-quadratic`:
@@ -88,10 +106,10 @@ mod firmware {
                 "-quadratic" => Textured::QuadraticSpecular,
                 _ => Textured::Nearest,
             };
-            textured3d::expand(TEXTURE);
+            textured3d::expand(texture);
             for _ in 0..4 {
-                let scratch = Some(&mut SCRATCH[..]);
-                black_box(textured3d::render(frame, TEXTURE, &mut target, scratch));
+                let scratch = Some(&mut scratch[..]);
+                black_box(textured3d::render(frame, texture, &mut target, scratch));
             }
             board::exit(true)
         }
@@ -106,7 +124,7 @@ mod firmware {
             };
             let mesh = model.mesh(&torus);
             for _ in 0..4 {
-                let scratch = (!profile.ends_with("faces")).then_some(&mut SCRATCH[..]);
+                let scratch = (!profile.ends_with("faces")).then_some(&mut scratch[..]);
                 black_box(scene3d::render(
                     model,
                     black_box(mesh),
@@ -122,13 +140,13 @@ mod firmware {
         for (k, model) in Model::ALL.into_iter().enumerate() {
             let mesh = model.mesh(&torus);
             // Untimed frames for the counts and the checksums, then the timed ones.
-            let stats = scene3d::render(model, mesh, &mut target, Some(&mut SCRATCH[..]));
+            let stats = scene3d::render(model, mesh, &mut target, Some(&mut scratch[..]));
             let covered = scene3d::covered(target.depth());
             let checksum = scene3d::checksum(target.framebuffer().pixels(), target.depth());
             scene3d::render(model, mesh, &mut target, None);
             same &= checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
             let with = clock::measure(1, || {
-                let scratch = Some(&mut SCRATCH[..]);
+                let scratch = Some(&mut scratch[..]);
                 black_box(scene3d::render(
                     model,
                     black_box(mesh),
@@ -154,7 +172,7 @@ mod firmware {
         let mut poses = [0u64; TURNTABLE_POSES as usize];
         let mut pose = 0;
         let spot = Model::Spot.mesh(&torus);
-        let turntable = scene3d::turntable_checksum(spot, &mut target, &mut SCRATCH[..], |frame| {
+        let turntable = scene3d::turntable_checksum(spot, &mut target, &mut scratch[..], |frame| {
             poses[pose] = clock::instructions(clock::measure(1, || frame()), calibration);
             pose += 1;
         });
@@ -186,7 +204,7 @@ mod firmware {
             for (j, (pipeline, material)) in frames.into_iter().enumerate() {
                 let ticks = clock::measure(1, || {
                     target.clear(scene3d::BACKGROUND);
-                    let scratch = &mut SCRATCH[..];
+                    let scratch = &mut scratch[..];
                     let _ =
                         black_box(pipeline.draw_mesh_with(spot, &material, &mut target, scratch));
                 });
@@ -194,19 +212,19 @@ mod firmware {
             }
         }
         // The textured frames: counts and checksums untimed, then timed with the scratch.
-        textured3d::expand(TEXTURE);
+        textured3d::expand(texture);
         let mut textured = [None, None, None, None, None, None];
         for (k, frame) in Textured::ALL.into_iter().enumerate() {
-            let stats = textured3d::render(frame, TEXTURE, &mut target, Some(&mut SCRATCH[..]));
+            let stats = textured3d::render(frame, texture, &mut target, Some(&mut scratch[..]));
             let covered = scene3d::covered(target.depth());
             let checksum = scene3d::checksum(target.framebuffer().pixels(), target.depth());
-            textured3d::render(frame, TEXTURE, &mut target, None);
+            textured3d::render(frame, texture, &mut target, None);
             same &= checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
             let ticks = clock::measure(1, || {
-                let scratch = Some(&mut SCRATCH[..]);
+                let scratch = Some(&mut scratch[..]);
                 black_box(textured3d::render(
                     black_box(frame),
-                    TEXTURE,
+                    texture,
                     &mut target,
                     scratch,
                 ));
@@ -226,7 +244,7 @@ mod firmware {
         for (line, _) in textured.iter().flatten() {
             hprintln!("{}", line);
         }
-        hprintln!("\n### 3D frame, {}\n", CODE);
+        hprintln!("\n### 3D frame, {}\n", code());
         hprintln!(
             "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px | without scratch |"
         );

@@ -46,7 +46,7 @@ mod stack;
 mod firmware {
     use core::hint::black_box;
 
-    use cortex_m_rt::entry;
+    use crate::board::entry;
     use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
     use embedded_graphics::prelude::*;
@@ -137,16 +137,25 @@ mod firmware {
         black_box(binary.as_ref().map(|f| f.pixels()));
     }
 
+    static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+    static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
+    static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+
     #[entry]
     fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
-        static mut DEPTH_3D: [u16; SMALL_PIXELS] = [0; SMALL_PIXELS];
-        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+        // SAFETY: `main` runs once and never returns: the statics' only references.
+        let (pixels, depth_3d, scratch) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(PIXELS),
+                &mut *core::ptr::addr_of_mut!(DEPTH_3D),
+                &mut *core::ptr::addr_of_mut!(SCRATCH),
+            )
+        };
         crate::stack::paint_run();
 
         // The scene, exactly as fw_scene draws it but into a framebuffer of opaque size.
         let (width, height) = black_box(board::SIZE);
-        let Ok(mut fb) = SliceFramebuffer::new(PIXELS, width, height) else {
+        let Ok(mut fb) = SliceFramebuffer::new(pixels, width, height) else {
             board::exit(false)
         };
         scene::render(&mut fb);
@@ -193,7 +202,7 @@ mod firmware {
             black_box(Scalar::from_bits(20 << 16)),
         );
         if let (Ok(mut target), Some(projection)) = (
-            DepthTarget::new(colors_3d, DEPTH_3D, sw, sh),
+            DepthTarget::new(colors_3d, depth_3d, sw, sh),
             black_box(projection),
         ) {
             let model = black_box(Mat4::rotation_y(Angle::from_degrees(30)));
@@ -217,12 +226,12 @@ mod firmware {
                 let material = Material::new(black_box(Rgb565::WHITE), black_box(shading));
                 let mesh = black_box(&ICOSPHERE);
                 black_box(pipeline.draw_mesh(mesh, &material, &mut target));
-                let _ = black_box(pipeline.draw_mesh_with(mesh, &material, &mut target, SCRATCH));
+                let _ = black_box(pipeline.draw_mesh_with(mesh, &material, &mut target, scratch));
                 // With a highlight.
                 let specular = Specular::new(black_box(Scalar::from_bits(1 << 15)), black_box(24));
                 let shiny = material.with_specular(specular);
                 black_box(pipeline.draw_mesh(mesh, &shiny, &mut target));
-                let _ = black_box(pipeline.draw_mesh_with(mesh, &shiny, &mut target, SCRATCH));
+                let _ = black_box(pipeline.draw_mesh_with(mesh, &shiny, &mut target, scratch));
                 // With more lights: point and directional, opaque.
                 let lights = black_box(
                     Lights::new()
@@ -238,7 +247,7 @@ mod firmware {
                 );
                 let lit = pipeline.with_lights(lights);
                 black_box(lit.draw_mesh(mesh, &material, &mut target));
-                let _ = black_box(lit.draw_mesh_with(mesh, &shiny, &mut target, SCRATCH));
+                let _ = black_box(lit.draw_mesh_with(mesh, &shiny, &mut target, scratch));
             }
             black_box(target.depth());
         }

@@ -36,7 +36,7 @@ mod stack;
 
 #[cfg(target_os = "none")]
 mod firmware {
-    use cortex_m_rt::entry;
+    use crate::board::entry;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_raster::three_d::ProjectedVertex;
 
@@ -80,21 +80,30 @@ mod firmware {
         textures_line(b"shapes", texture_scene::SIZE_SHAPES, checksum);
     }
 
+    static mut COLORS_3D: [Rgb565; PIXELS_3D] = [Rgb565::new(0, 0, 0); PIXELS_3D];
+    static mut DEPTH_3D: [u16; PIXELS_3D] = [0; PIXELS_3D];
+    static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+
     #[entry]
     fn main() -> ! {
-        static mut COLORS_3D: [Rgb565; PIXELS_3D] = [Rgb565::new(0, 0, 0); PIXELS_3D];
-        static mut DEPTH_3D: [u16; PIXELS_3D] = [0; PIXELS_3D];
-        static mut SCRATCH: [ProjectedVertex; 42] = [ProjectedVertex::EMPTY; 42];
+        // SAFETY: `main` runs once and never returns: the statics' only references.
+        let (colors_3d, depth_3d, scratch) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(COLORS_3D),
+                &mut *core::ptr::addr_of_mut!(DEPTH_3D),
+                &mut *core::ptr::addr_of_mut!(SCRATCH),
+            )
+        };
         crate::stack::paint_run();
 
         two_d();
         shapes();
-        let checksum = texture_scene::render_3d(COLORS_3D, DEPTH_3D, SCRATCH);
+        let checksum = texture_scene::render_3d(colors_3d, depth_3d, scratch);
         textures_line(b"3d", texture_scene::SIZE_3D, checksum);
         // Not on the micro:bit, whose flash it would overflow at opt-level 3.
-        #[cfg(target_has_atomic = "32")]
+        #[cfg(not(armv6m))]
         {
-            let checksum = texture_scene::render_3d_mesh(COLORS_3D, DEPTH_3D);
+            let checksum = texture_scene::render_3d_mesh(colors_3d, depth_3d);
             textures_line(b"3d-mesh", texture_scene::SIZE_3D, checksum);
         }
         crate::stack::report();

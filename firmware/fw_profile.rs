@@ -92,13 +92,16 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
 #[cfg(target_os = "none")]
 mod firmware {
     use super::*;
-    use cortex_m_rt::entry;
+    use crate::board::entry;
+
+    static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::BLACK; board::PIXELS];
 
     #[entry]
     fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::BLACK; board::PIXELS];
+        // SAFETY: `main` runs once and never returns: the static's only reference.
+        let pixels = unsafe { &mut *core::ptr::addr_of_mut!(PIXELS) };
         let (w, h) = board::SIZE;
-        if let Ok(mut fb) = SliceFramebuffer::new(PIXELS, w, h) {
+        if let Ok(mut fb) = SliceFramebuffer::new(pixels, w, h) {
             draw(&mut fb);
         }
         board::exit(true)

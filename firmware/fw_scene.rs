@@ -32,8 +32,8 @@ mod stack;
 
 #[cfg(target_os = "none")]
 mod firmware {
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::hprintln;
+    use crate::board::entry;
+    use crate::board::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_raster::SliceFramebuffer;
 
@@ -45,12 +45,15 @@ mod firmware {
             || (board::SIZE.0 == scene::MICROBIT_SIZE.0 && board::SIZE.1 == scene::MICROBIT_SIZE.1)
     );
 
+    static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+
     #[entry]
     fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+        // SAFETY: `main` runs once and never returns: the static's only reference.
+        let pixels = unsafe { &mut *core::ptr::addr_of_mut!(PIXELS) };
         crate::stack::paint_run();
         let (width, height) = board::SIZE;
-        let mut fb = SliceFramebuffer::new(PIXELS, width, height).expect("framebuffer size");
+        let mut fb = SliceFramebuffer::new(pixels, width, height).expect("framebuffer size");
         scene::render(&mut fb);
         let checksum = scene::checksum(fb.pixels());
         let line = scene::ChecksumLine {

@@ -1,5 +1,5 @@
 //! Firmware benchmark of textured triangles: instructions per covered pixel on large triangles,
-//! counted by SysTick under QEMU's `-icount` (see `fw_bench`), for each texturing path.
+//! counted by SysTick (or `minstret`) under QEMU's `-icount` (see `fw_bench`), for each texturing path.
 //!
 //! ```text
 //! cargo run --release --target thumbv7em-none-eabihf --example fw_texture_bench   # mps2-an386
@@ -395,8 +395,8 @@ mod stack;
 mod firmware {
     use core::hint::black_box;
 
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::hprintln;
+    use crate::board::entry;
+    use crate::board::hprintln;
 
     use super::*;
     use crate::clock::{calibrate, measure, Ratio};
@@ -405,21 +405,28 @@ mod firmware {
     /// Passes per measurement.
     const REPS: u32 = 4;
 
+    static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
+    static mut DEPTH: [u16; board::PIXELS] = [0; board::PIXELS];
+
     #[entry]
     fn main() -> ! {
-        static mut PIXELS: [Rgb565; board::PIXELS] = [Rgb565::new(0, 0, 0); board::PIXELS];
-        static mut DEPTH: [u16; board::PIXELS] = [0; board::PIXELS];
+        // SAFETY: `main` runs once and never returns: the statics' only references.
+        let (pixels, depth) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(PIXELS),
+                &mut *core::ptr::addr_of_mut!(DEPTH),
+            )
+        };
         crate::stack::paint_run();
         let (width, height) = board::SIZE;
-        let Ok(mut fb) = DepthTarget::new(PIXELS, DEPTH, width, height) else {
+        let Ok(mut fb) = DepthTarget::new(pixels, depth, width, height) else {
             board::exit(false)
         };
-        let mut cp = cortex_m::Peripherals::take().expect("core peripherals");
-        clock::start(&mut cp.SYST);
+        clock::start();
         let cal = calibrate();
         let pixels = u64::from(count_pixels(width, height));
 
-        hprintln!("### {}\n", board::BOARD);
+        hprintln!("### {}\n", board::name());
         hprintln!(
             "Textured large triangles ({} px a pass) into {}×{} Rgb565; 64×64 texture; QEMU \
              `-icount shift=0`.\n",

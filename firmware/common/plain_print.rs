@@ -1,13 +1,18 @@
 //! Output to the host's stdout over semihosting without formatting machinery, so that the
 //! firmware proving the drawing code panic-free links no panic path of its own.
 
-use cortex_m_semihosting::hio;
-
 /// Writes `text` (nothing if the host does not answer).
+#[cfg(target_arch = "arm")]
 pub fn print(text: &[u8]) {
-    if let Ok(mut out) = hio::hstdout() {
+    if let Ok(mut out) = cortex_m_semihosting::hio::hstdout() {
         let _ = out.write_all(text);
     }
+}
+
+/// Writes `text` to the host's console.
+#[cfg(target_arch = "riscv32")]
+pub fn print(text: &[u8]) {
+    crate::board::print(text);
 }
 
 /// Writes `n` in decimal.

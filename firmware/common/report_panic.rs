@@ -2,7 +2,7 @@
 //! that CI sees a failed run rather than a hang. (The firmware that proves the drawing code
 //! panic-free links `nopanic.rs` instead.)
 
-use cortex_m_semihosting::hprintln;
+use crate::board::hprintln;
 
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {

@@ -10,13 +10,12 @@
 
 use core::hint::black_box;
 
-use cortex_m_rt::entry;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_raster::three_d::DepthTarget;
 use embedded_raster::{Coord, SliceFramebuffer};
 
-use crate::board;
+use crate::board::{self, entry};
 
 #[path = "nopanic.rs"]
 mod nopanic;

@@ -21,9 +21,9 @@ const PAINT: u32 = 0x5afe_57ac;
 const DEPTH: usize = 64 * 1024;
 
 extern "C" {
-    /// The end of the statics (cortex-m-rt's heap start): the stack grows down towards it.
+    /// The end of the statics (the runtime's heap start): the stack grows down towards it.
     static mut __sheap: u32;
-    /// The top of the stack (its initial pointer), from cortex-m-rt's link.x.
+    /// The top of the stack (its initial pointer), from the runtime's link.x.
     static _stack_start: u32;
 }
 
@@ -66,7 +66,7 @@ fn floor(sp: usize) -> usize {
 #[allow(dead_code)] // not every firmware reports its run
 #[inline(never)]
 pub fn paint_run() {
-    let sp = cortex_m::register::msp::read() as usize;
+    let sp = crate::board::stack_pointer();
     let bottom = floor(sp);
     paint(bottom, (sp - 256) & !3);
     RUN_BOTTOM.store(bottom, Ordering::Relaxed);
@@ -84,7 +84,7 @@ pub fn high_water() -> (u32, u32) {
     if bottom == 0 {
         return (0, size);
     }
-    let sp = cortex_m::register::msp::read() as usize;
+    let sp = crate::board::stack_pointer();
     let lowest = lowest_changed(bottom, (sp - 256) & !3).min(RUN_LOWEST.load(Ordering::Relaxed));
     (start.saturating_sub(lowest) as u32, size)
 }
@@ -104,7 +104,7 @@ pub fn report() {
 /// Runs `f` and returns its result with the bytes of stack it took below the caller's frame.
 #[allow(dead_code)] // not every firmware measures a call
 pub fn measure<T>(f: &mut impl FnMut() -> T) -> (T, u32) {
-    let sp = cortex_m::register::msp::read() as usize;
+    let sp = crate::board::stack_pointer();
     let bottom = floor(sp);
     // This function's own frame (and the calls below) stay unpainted.
     let top = (sp - 256) & !3;
