@@ -294,3 +294,86 @@ fn the_comparison_sees_one_wrong_pixel() {
     panel.replay(&swapped);
     assert_ne!(first_difference(&want, &panel.frame(W, H), W.into()), None);
 }
+
+/// A command byte and its parameters, as the bus carries them.
+fn command(code: u8, parameters: &[u8]) -> Vec<Byte> {
+    let mut bytes = vec![Byte {
+        data: false,
+        value: code,
+    }];
+    bytes.extend(parameters.iter().map(|&value| Byte { data: true, value }));
+    bytes
+}
+
+/// The model by hand, from the datasheets' descriptions: a 3 × 2 window written with 7 pixels
+/// fills it row by row and wraps to its first pixel; the high byte comes first; BGR swaps the
+/// colour's ends; INVON complements; the exchanged address space is 320 columns wide.
+#[test]
+fn the_panel_model_follows_the_datasheets() {
+    let setup = [
+        command(0x01, &[]),
+        command(0x11, &[]),
+        command(0x3A, &[0x55]),
+        command(0x29, &[]),
+        command(0x2A, &[0, 2, 0, 4]),
+        command(0x2B, &[0, 1, 0, 2]),
+    ]
+    .concat();
+    let words: [u16; 7] = [0xF800, 0x07E0, 0x001F, 0x0001, 0x0020, 0x0800, 0xFFFF];
+    let pixels: Vec<u8> = words.iter().flat_map(|w| w.to_be_bytes()).collect();
+    let write = command(0x2C, &pixels);
+
+    let mut panel = Panel::st7789();
+    panel.replay(&setup);
+    assert!(panel.ready());
+    panel.replay(&write);
+    let frame = panel.frame(240, 320);
+    let at = |x: usize, y: usize| frame[y * 240 + x];
+    // The seventh pixel wrapped onto the first.
+    assert_eq!(at(2, 1), Some(Rgb565::WHITE));
+    assert_eq!(at(3, 1), Some(Rgb565::GREEN));
+    assert_eq!(at(4, 1), Some(Rgb565::BLUE));
+    assert_eq!(at(2, 2), Some(Rgb565::new(0, 0, 1)));
+    assert_eq!(at(3, 2), Some(Rgb565::new(0, 1, 0)));
+    assert_eq!(at(4, 2), Some(Rgb565::new(1, 0, 0)));
+    assert_eq!(frame.iter().filter(|p| p.is_some()).count(), 6);
+
+    // BGR: the first five bits are blue.
+    let mut bgr = Panel::st7789();
+    bgr.replay(&[setup.clone(), command(0x36, &[0x08]), write.clone()].concat());
+    assert_eq!(bgr.frame(240, 320)[240 + 3], Some(Rgb565::GREEN));
+    assert_eq!(bgr.frame(240, 320)[240 + 4], Some(Rgb565::RED));
+    // INVON: complemented.
+    let mut inverted = Panel::st7789();
+    inverted.replay(&[setup.clone(), command(0x21, &[]), write.clone()].concat());
+    assert_eq!(inverted.frame(240, 320)[240 + 2], Some(Rgb565::BLACK));
+
+    // MV: columns up to 319, pages up to 239; the host's column 319 is the memory's last row.
+    let mut exchanged = Panel::st7789();
+    let last = [
+        setup.clone(),
+        command(0x36, &[0x20]),
+        command(0x2A, &[1, 0x3F, 1, 0x3F]),
+        command(0x2B, &[0, 0, 0, 0]),
+        command(0x2C, &[0xF8, 0x00]),
+    ]
+    .concat();
+    exchanged.replay(&last);
+    assert_eq!(exchanged.frame(320, 240)[319], Some(Rgb565::RED));
+    assert_eq!(exchanged.portrait()[319 * 240], Some(Rgb565::RED));
+}
+
+/// Column 319 is outside the address space without MADCTL's exchange.
+#[test]
+#[should_panic(expected = "outside the 240 × 320 address space")]
+fn the_panel_model_rejects_a_window_outside_memory() {
+    let mut panel = Panel::st7789();
+    panel.replay(
+        &[
+            command(0x3A, &[0x55]),
+            command(0x2A, &[1, 0x3F, 1, 0x3F]),
+            command(0x2C, &[0, 0]),
+        ]
+        .concat(),
+    );
+}
