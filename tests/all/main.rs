@@ -46,6 +46,7 @@ mod bands;
 mod camera;
 #[cfg(feature = "reference")]
 mod coverage_random;
+mod display_driver;
 mod draw_errors;
 mod eg_placement;
 mod errors;
