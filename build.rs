@@ -11,6 +11,15 @@
 //! * `sse2_rows`: x86-64, whose baseline SSE2 draws tiny triangles a row of lanes at a time.
 //!
 //! ARMv6-M is recognised as ARM without 32-bit atomics (there is no `target_feature` for it).
+//!
+//! And links the measuring firmware (this package's examples in `firmware/`, for bare-metal
+//! targets) for the QEMU board each target runs on (`.cargo/config.toml` has the runners): the
+//! runtime's `link.x`, after a board's layout where it is not the MPS2 one of `memory.x` — the
+//! micro:bit's for `thumbv6m` (or the MPS2 one with `EMBEDDED_RASTER_FIRMWARE_LAYOUT=mps2`, for
+//! the frames its 16 KiB cannot hold), mps2-an505's for `thumbv8m.main`, QEMU `virt`'s for
+//! RISC-V. As link arguments of this package's examples they reach neither the library nor any
+//! crate that depends on it (a board crate such as `boards/pico-lcd2` links its own), as
+//! `.cargo/config.toml`'s rustflags would.
 use std::env;
 
 fn main() {
@@ -18,12 +27,12 @@ fn main() {
         println!("cargo::rustc-check-cfg=cfg({name})");
     }
     let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
+    let target = env::var("TARGET").unwrap_or_default();
     let atomics = env::var("CARGO_CFG_TARGET_HAS_ATOMIC").unwrap_or_default();
     let has_atomic_32 = atomics.split(',').any(|w| w == "32");
     match arch.as_str() {
         "arm" if has_atomic_32 => {
             println!("cargo::rustc-cfg=armv7m");
-            let target = env::var("TARGET").unwrap_or_default();
             if target.starts_with("thumbv7em") {
                 println!("cargo::rustc-cfg=armv7em");
             }
@@ -34,6 +43,24 @@ fn main() {
         "arm" => println!("cargo::rustc-cfg=armv6m"),
         "x86_64" => println!("cargo::rustc-cfg=sse2_rows"),
         _ => {}
+    }
+    if env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("none") {
+        let layout = env::var("EMBEDDED_RASTER_FIRMWARE_LAYOUT").unwrap_or_default();
+        let board = if target.starts_with("thumbv6m") && layout != "mps2" {
+            Some("microbit")
+        } else if target.starts_with("thumbv8m.main") {
+            Some("an505")
+        } else if arch == "riscv32" {
+            Some("riscv")
+        } else {
+            None
+        };
+        let dir = env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
+        if let Some(board) = board {
+            println!("cargo::rustc-link-arg-examples=-T{dir}/firmware/{board}/memory.x");
+        }
+        println!("cargo::rustc-link-arg-examples=-Tlink.x");
+        println!("cargo::rerun-if-env-changed=EMBEDDED_RASTER_FIRMWARE_LAYOUT");
     }
     println!("cargo::rerun-if-changed=build.rs");
 }

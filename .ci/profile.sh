@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Instruction profile of the rasterizer on an emulated Cortex-M (developer tool, not part of CI).
+# Instruction profile of the rasterizer on an emulated Cortex-M or RISC-V (developer tool, not part of CI).
 #
 #   bash .ci/profile.sh <target> <solid|gouraud|aa|polygon>-<large|small|tiny> [functions] [blocks]
 #   bash .ci/profile.sh <target> mesh-<knot|torus>[-faces] [functions] [blocks]
@@ -18,6 +18,8 @@ case $target in
     thumbv7em-none-eabihf) machine=(-machine mps2-an386 -cpu cortex-m4) ;;
     thumbv7m-none-eabi) machine=(-machine mps2-an385 -cpu cortex-m3) ;;
     thumbv6m-none-eabi) machine=(-machine microbit -cpu cortex-m0) ;;
+    thumbv8m.main-none-eabihf) machine=(-machine mps2-an505 -cpu cortex-m33) ;;
+    riscv32imc-unknown-none-elf | riscv32imac-unknown-none-elf) machine=(-machine virt -bios none) ;;
     *) echo "unknown target $target" >&2; exit 2 ;;
 esac
 export PATH="$PATH:$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
@@ -25,7 +27,7 @@ case $profile in
     mesh-*)
         example=fw_mesh_bench dir=target/profile-mesh
         [ "$target" = thumbv6m-none-eabi ] && machine=(-machine mps2-an385 -cpu cortex-m3)
-        MESH_PROFILE=${profile#mesh-} RUSTFLAGS="-C link-arg=-Tlink.x" \
+        MESH_PROFILE=${profile#mesh-} EMBEDDED_RASTER_FIRMWARE_LAYOUT=mps2 \
             cargo build -q --release --target "$target" --target-dir "$dir" --example "$example"
         elf=$dir/$target/release/examples/$example
         ;;
@@ -36,7 +38,9 @@ case $profile in
 esac
 log=$(mktemp)
 [ -n "${KEEP_LOG:-}" ] || trap 'rm -f "$log"' EXIT; echo "log: $log" >&2
-qemu-system-arm "${machine[@]}" -nographic -semihosting-config enable=on,target=native \
+qemu=qemu-system-arm
+[[ $target != riscv32* ]] || qemu=qemu-system-riscv32
+"$qemu" "${machine[@]}" -nographic -semihosting-config enable=on,target=native \
     -icount shift=0,align=off,sleep=off -d in_asm,exec,nochain -D "$log" -kernel "$elf" >/dev/null
 args=("$elf" "$log" "$functions")
 [ "$blocks" -gt 0 ] && args+=("$blocks")

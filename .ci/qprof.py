@@ -8,7 +8,9 @@ elf, log = sys.argv[1], sys.argv[2]
 syms = []
 for line in subprocess.run(['llvm-nm', '-n', '--demangle', elf], capture_output=True, text=True).stdout.splitlines():
     parts = line.split(' ', 2)
-    if len(parts) == 3 and parts[1] in 'tTWw':
+    # RISC-V objects keep the assembler's local labels (`.L0`, `.Lpcrel_hi3`) as symbols: not
+    # functions.
+    if len(parts) == 3 and parts[1] in 'tTWw' and not parts[2].startswith('.L'):
         syms.append((int(parts[0], 16) & ~1, parts[2]))
 addrs = [a for a, _ in syms]
 tb_len = {}

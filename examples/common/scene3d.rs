@@ -124,6 +124,11 @@ pub fn turntable(step: i32) -> Pipeline {
     posed(spot_pose(Angle::from_turns(step, TURNTABLE_POSES)))
 }
 
+/// The pipeline of spot's frame turned by `yaw` on the turntable (the board examples' spin).
+pub fn spot_turned(yaw: Angle) -> Pipeline {
+    posed(spot_pose(yaw))
+}
+
 /// The background colour.
 pub const BACKGROUND: Rgb565 = Rgb565::new(3, 6, 4);
 

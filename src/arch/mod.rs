@@ -1,10 +1,11 @@
 //! Target-specific code, and the target facts the portable code branches on.
 //!
 //! Every `target_arch` decision of the crate is here or in `build.rs`, which names the targets
-//! as `cfg`s (`armv6m`, `armv7m`, `sse2_rows`). The portable code asks the constants below; the
-//! instruction-level code (SSE2 intrinsics, Thumb-1 assembly) lives in one file per target, each
-//! computing exactly what a portable function computes (tested on the host, and by the firmware
-//! checksums in CI).
+//! as `cfg`s (`armv6m`, `armv7m`, `armv7em`, `armv8m`, `sse2_rows`). The portable code asks the
+//! constants below; the instruction-level code (SSE2 intrinsics, Thumb assembly) lives in one
+//! file per target, each computing exactly what a portable function computes (tested on the
+//! host, and by the firmware checksums in CI). RISC-V has no file yet: its `riscv32` targets
+//! take the portable code, as a microcontroller ([`MCU`]).
 
 #[cfg(armv6m)]
 pub(crate) mod thumbv6m;
@@ -46,9 +47,11 @@ pub(crate) const NO_LONG_MULTIPLY: bool = cfg!(armv6m);
 /// few halving steps).
 pub(crate) const NO_CLZ: bool = cfg!(armv6m);
 
-/// A Cortex-M core: branches are cheap and predictable, loops are not vectorised, and code size
-/// matters more than a host's branch predictor.
-pub(crate) const CORTEX_M: bool = cfg!(any(armv6m, armv7m));
+/// A microcontroller core — Cortex-M, or RV32 (RISC-V's `riscv32` targets): branches are cheap
+/// and predictable, loops are not vectorised, a 32-bit division (where there is a divider) costs
+/// a few multiplies rather than a host's tens of cycles, and code size matters more than a
+/// host's branch predictor.
+pub(crate) const MCU: bool = cfg!(any(armv6m, armv7m, target_arch = "riscv32"));
 
 /// ARMv6-M: the parts with the least flash (16–32 KB on a micro:bit's nRF51), where a loop's
 /// second copy for speed costs more than it saves: code size first where the two conflict.

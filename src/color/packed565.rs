@@ -23,7 +23,7 @@ pub(super) const PACKED_RUN: usize = 128;
 /// step the same lanes one pixel at a time (the same pixels). On x86 LLVM vectorises the packed
 /// loop and its set-up costs ~150 instructions a span; on Cortex-M the check alone costs more
 /// than it saves.
-const SHORT_SPAN: Option<usize> = if arch::CORTEX_M { None } else { Some(4) };
+const SHORT_SPAN: Option<usize> = if arch::MCU { None } else { Some(4) };
 
 /// Fractional bits of the 5-6-5 loop's channels in raw order (top, middle, bottom): each channel
 /// fills a 16-bit lane with its integer bits on top.

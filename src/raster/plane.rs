@@ -416,7 +416,7 @@ impl GradientScale {
             self.exact(m)
         };
         let q = q as i64;
-        if crate::arch::CORTEX_M {
+        if crate::arch::MCU {
             if n < 0 {
                 q.wrapping_neg()
             } else {

@@ -26,7 +26,7 @@ use super::runs::SMALL;
 use super::runs::{run_by_scan, Edge, ReciprocalRuns, RowBound, RowRuns, SmallScan};
 use super::sink::SpanShader;
 use super::walk::{bounds, Band, Region, Span};
-use crate::arch::{CORTEX_M, HAS_DIVIDER};
+use crate::arch::{HAS_DIVIDER, MCU};
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
 
 /// A small triangle set up over a clip rectangle: its pixel region, edges and planes.
@@ -139,7 +139,7 @@ impl<const N: usize> SmallTriangle<N> {
         let mut y = self.y0;
         let mut reciprocal_runs = ReciprocalRuns::new(&runs);
         for _ in 0..self.rows + 1 {
-            let (start, column) = if HAS_DIVIDER && !CORTEX_M {
+            let (start, column) = if HAS_DIVIDER && !MCU {
                 let run = reciprocal_runs.run();
                 reciprocal_runs.advance();
                 run

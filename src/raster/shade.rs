@@ -16,7 +16,7 @@ use super::edge::TriangleSetup;
 use super::plane::{Attributes, ExactPlanes, GeneralPlanes, Planes, MAX_CHUNK};
 pub(crate) use super::sink::{SpanShader, SpanSink};
 use super::walk::{general_walk, Band, Region, Span, Walk};
-use crate::arch::CORTEX_M;
+use crate::arch::MCU;
 use crate::fixed_point::Coord;
 
 /// Walks the triangle `v` inside `clip` and hands `shader` its covered spans with the planes
@@ -234,7 +234,7 @@ fn fold_general<T, const N: usize>(
     planes: &GeneralPlanes<N>,
     shader: &mut dyn SpanSink<N, Steps = T>,
 ) {
-    if CORTEX_M {
+    if MCU {
         let steps = shader.begin(match planes {
             GeneralPlanes::Stepped(p) => p.step(),
             GeneralPlanes::Exact(p) => p.step(),

@@ -966,7 +966,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             // Only flat shading, faces without normals and clipping need the positions again:
             // in range, as the scratch has one entry per vertex.
             let vertices = mesh.vertices;
-            if arch::CORTEX_M {
+            if arch::MCU {
                 // By value: a closure holding the address of `idx` would keep it in memory
                 // every face, for the clipped ones.
                 let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
