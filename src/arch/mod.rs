@@ -47,6 +47,16 @@ pub(crate) const NO_LONG_MULTIPLY: bool = cfg!(armv6m);
 /// few halving steps).
 pub(crate) const NO_CLZ: bool = cfg!(armv6m);
 
+/// A perspective span's chunks find their lengths from thresholds set once a span and their
+/// alignment from a table, not by counting bits a chunk (`raster::perspective`): where there is
+/// no `clz` instruction — ARMv6-M, and RV32 without the Zbb extension, whose leading-zero count
+/// LLVM expands inline (about 20 instructions). Elsewhere on RV32 the inline count stays: it
+/// beats [`NO_CLZ`]'s halving steps (a tiny triangle's set-up 453 instructions against 544).
+pub(crate) const CHUNKS_BY_THRESHOLDS: bool = cfg!(any(
+    armv6m,
+    all(target_arch = "riscv32", not(target_feature = "zbb"))
+));
+
 /// A microcontroller core — Cortex-M, or RV32 (RISC-V's `riscv32` targets): branches are cheap
 /// and predictable, loops are not vectorised, a 32-bit division (where there is a divider) costs
 /// a few multiplies rather than a host's tens of cycles, and code size matters more than a

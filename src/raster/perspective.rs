@@ -20,7 +20,7 @@ use super::arith::{
     div_rem_u32, leading_zeros_32, leading_zeros_64, mul_i32_wide, mul_u32_u33, reciprocal_31,
 };
 use super::plane::Attributes;
-use crate::arch::{HAS_DIVIDER, NO_CLZ, NO_LONG_MULTIPLY};
+use crate::arch::{CHUNKS_BY_THRESHOLDS, HAS_DIVIDER, NO_LONG_MULTIPLY};
 use core::num::{NonZeroU16, NonZeroU32};
 
 /// Margin added to every vertex value, so that the planes' rounding error (under one unit)
@@ -294,7 +294,7 @@ fn chunk_shift_from(
 /// a byte of [`ALIGNED`].
 #[inline(always)]
 fn aligned_shift(offset: u32) -> u32 {
-    if NO_CLZ {
+    if CHUNKS_BY_THRESHOLDS {
         u32::from(ALIGNED[(offset % CHUNK) as usize])
     } else if offset == 0 {
         CHUNK_SHIFT
@@ -419,7 +419,8 @@ pub(crate) struct Chunks {
     left: u32,
     /// The span's [`chunk_room`].
     room: i32,
-    /// Its [`chunk_thresholds`] where a chunk's length is found from them ([`NO_CLZ`]).
+    /// Its [`chunk_thresholds`] where a chunk's length is found from them
+    /// ([`CHUNKS_BY_THRESHOLDS`]).
     thresholds: [u32; CHUNK_SHIFT as usize],
     /// Pixels from the span's first to the current chunk's.
     offset: u32,
@@ -436,7 +437,7 @@ impl Chunks {
             at: lambdas(values),
             left: len,
             room,
-            thresholds: if NO_CLZ && room < NO_LIMIT {
+            thresholds: if CHUNKS_BY_THRESHOLDS && room < NO_LIMIT {
                 chunk_thresholds(room)
             } else {
                 [0; CHUNK_SHIFT as usize]
@@ -463,7 +464,7 @@ impl Iterator for Chunks {
             self.offset,
         );
         let full = 1
-            << if NO_CLZ {
+            << if CHUNKS_BY_THRESHOLDS {
                 chunk_shift_by(&self.thresholds, room, q, dq, left, offset)
             } else {
                 chunk_shift(room, q, dq, left, offset)
