@@ -8,6 +8,9 @@
 //!   is optional, so not `armv7em` (measured with it, `-C target-cpu=cortex-m33`: no faster).
 //! * `armv7em`: ARMv7E-M (Cortex-M4/M7, the `thumbv7em` targets) — also the DSP extension's
 //!   16-bit lane instructions (`uxtb16`, `uxtab16`), which the Cortex-M3 lacks.
+//! * `rv32`: RISC-V's 32-bit targets with the M extension (`riscv32imc`, `riscv32imac`, …) —
+//!   a multiplier and a divider, 31 registers, no `clz` without Zbb; the rows of a small lit 3D
+//!   face are assembly. (Without M, as `riscv32i`, the portable code.)
 //! * `sse2_rows`: x86-64, whose baseline SSE2 draws tiny triangles a row of lanes at a time.
 //!
 //! ARMv6-M is recognised as ARM without 32-bit atomics (there is no `target_feature` for it).
@@ -23,12 +26,13 @@
 use std::env;
 
 fn main() {
-    for name in ["armv6m", "armv7m", "armv7em", "armv8m", "sse2_rows"] {
+    for name in ["armv6m", "armv7m", "armv7em", "armv8m", "rv32", "sse2_rows"] {
         println!("cargo::rustc-check-cfg=cfg({name})");
     }
     let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
     let target = env::var("TARGET").unwrap_or_default();
     let atomics = env::var("CARGO_CFG_TARGET_HAS_ATOMIC").unwrap_or_default();
+    let features = env::var("CARGO_CFG_TARGET_FEATURE").unwrap_or_default();
     let has_atomic_32 = atomics.split(',').any(|w| w == "32");
     match arch.as_str() {
         "arm" if has_atomic_32 => {
@@ -41,6 +45,7 @@ fn main() {
             }
         }
         "arm" => println!("cargo::rustc-cfg=armv6m"),
+        "riscv32" if features.split(',').any(|f| f == "m") => println!("cargo::rustc-cfg=rv32"),
         "x86_64" => println!("cargo::rustc-cfg=sse2_rows"),
         _ => {}
     }

@@ -157,20 +157,27 @@ declare -A RADIAL_TARGET=([cortex-m4]=191)
 # * the Cortex-M7 board runs the Cortex-M4F build: the same instructions, the M4's limits;
 # * the Cortex-M33 (thumbv8m.main: the ARMv7-M Thumb-2 loops, without the DSP lanes) measured
 #   2.58 solid, 8.95 Gouraud, 2.72 polygons, 10.55 nearest textured, 25.29 and 46.78 perspective;
-# * RISC-V (the portable loops; RV32IMC and RV32IMAC run the same instructions, the drawing code
-#   using no atomics) measured 2.63 solid, 10.31 Gouraud, 2.81 polygons, 16.75 nearest
-#   textured, 32.19 and 66.04 perspective, unlit and lit.
-SOLID_TARGET+=([cortex-m7]=3 [cortex-m33]=3 [rv32imc]=2.9 [rv32imac]=2.9)
+# * RISC-V (RV32IMC and RV32IMAC run the same instructions, the drawing code using no atomics;
+#   `arch::riscv32`'s loops for the lit 3D rows, the opacity blend and the fills, the portable
+#   ones elsewhere) measured 2.40 solid, 10.32 Gouraud, 2.59 polygons, 12.59 opacity, 37.54
+#   alpha per vertex, 32.57 anti-aliased, 16.78 nearest textured, 31.67 and 63.84 perspective,
+#   unlit and lit (2.63, 2.81 and 15.52 with the portable fill and blend); the M33 7.53
+#   opacity, 23.60 alpha and 29.71 anti-aliased.
+SOLID_TARGET+=([cortex-m7]=3 [cortex-m33]=3 [rv32imc]=2.65 [rv32imac]=2.65)
 GOURAUD_TARGET+=([cortex-m7]=10 [cortex-m33]=10 [rv32imc]=11.4 [rv32imac]=11.4)
-POLYGON_TARGET+=([cortex-m7]=3.1 [cortex-m33]=3.1 [rv32imc]=3.1 [rv32imac]=3.1)
+POLYGON_TARGET+=([cortex-m7]=3.1 [cortex-m33]=3.1 [rv32imc]=2.85 [rv32imac]=2.85)
+OPACITY_TARGET+=([cortex-m7]=7.7 [cortex-m33]=8.3 [rv32imc]=13.9 [rv32imac]=13.9)
+ALPHA_TARGET+=([cortex-m7]=26.0 [cortex-m33]=26.0 [rv32imc]=41.3 [rv32imac]=41.3)
+ANTIALIAS_TARGET+=([cortex-m7]=32.3 [cortex-m33]=32.3 [rv32imc]=35.8 [rv32imac]=35.8)
 TEXTURE_TARGET+=([cortex-m7]=12 [cortex-m33]=12 [rv32imc]=18.5 [rv32imac]=18.5)
 PERSPECTIVE_TARGET+=([cortex-m7]=27 [cortex-m33]=27 [rv32imc]=35.5 [rv32imac]=35.5)
 PERSPECTIVE_LIT_TARGET+=([cortex-m7]=52 [cortex-m33]=52 [rv32imc]=72.7 [rv32imac]=72.7)
 # Their 3D frames: the Cortex-M33's and M7's are the M4's limits (spot 3.00 M and the knot
-# 3.72 M measured on the M33); RISC-V's spot 3.50 M and knot 4.23 M (4.41 M and 5.50 M while
-# RV32 took the host's reciprocal row bounds: three 64-bit library divisions a face).
-RISCV_SPOT_FRAME_LIMIT=3850000
-RISCV_MESH_FRAME_LIMIT=4650000
+# 3.72 M measured on the M33); RISC-V's spot 3.32 M and knot 4.05 M (3.50 M and 4.23 M before
+# `arch::riscv32`'s lit rows and fills; 4.41 M and 5.50 M while RV32 took the host's reciprocal
+# row bounds: three 64-bit library divisions a face).
+RISCV_SPOT_FRAME_LIMIT=3650000
+RISCV_MESH_FRAME_LIMIT=4460000
 
 fail() {
     echo "FAIL: $*" >&2

@@ -1,12 +1,13 @@
 //! Target-specific code, and the target facts the portable code branches on.
 //!
 //! Every `target_arch` decision of the crate is here or in `build.rs`, which names the targets
-//! as `cfg`s (`armv6m`, `armv7m`, `armv7em`, `armv8m`, `sse2_rows`). The portable code asks the
-//! constants below; the instruction-level code (SSE2 intrinsics, Thumb assembly) lives in one
-//! file per target, each computing exactly what a portable function computes (tested on the
-//! host, and by the firmware checksums in CI). RISC-V has no file yet: its `riscv32` targets
-//! take the portable code, as a microcontroller ([`MCU`]).
+//! as `cfg`s (`armv6m`, `armv7m`, `armv7em`, `armv8m`, `rv32`, `sse2_rows`). The portable code asks the
+//! constants below; the instruction-level code (SSE2 intrinsics, Thumb and RISC-V assembly)
+//! lives in one file per target, each computing exactly what a portable function computes
+//! (tested on the host, and by the firmware checksums in CI).
 
+#[cfg(rv32)]
+pub(crate) mod riscv32;
 #[cfg(armv6m)]
 pub(crate) mod thumbv6m;
 #[cfg(armv7m)]
@@ -16,6 +17,10 @@ pub(crate) mod x86_64;
 
 use core::num::NonZeroU32;
 
+#[cfg(rv32)]
+pub(crate) use riscv32::blend_solid_565;
+#[cfg(rv32)]
+pub(crate) use riscv32::level_rows;
 #[cfg(armv6m)]
 pub(crate) use thumbv6m::blend_solid_565;
 #[cfg(armv6m)]
@@ -52,16 +57,14 @@ pub(crate) const NO_CLZ: bool = cfg!(armv6m);
 /// no `clz` instruction — ARMv6-M, and RV32 without the Zbb extension, whose leading-zero count
 /// LLVM expands inline (about 20 instructions). Elsewhere on RV32 the inline count stays: it
 /// beats [`NO_CLZ`]'s halving steps (a tiny triangle's set-up 453 instructions against 544).
-pub(crate) const CHUNKS_BY_THRESHOLDS: bool = cfg!(any(
-    armv6m,
-    all(target_arch = "riscv32", not(target_feature = "zbb"))
-));
+pub(crate) const CHUNKS_BY_THRESHOLDS: bool =
+    cfg!(any(armv6m, all(rv32, not(target_feature = "zbb"))));
 
 /// A microcontroller core — Cortex-M, or RV32 (RISC-V's `riscv32` targets): branches are cheap
 /// and predictable, loops are not vectorised, a 32-bit division (where there is a divider) costs
 /// a few multiplies rather than a host's tens of cycles, and code size matters more than a
 /// host's branch predictor.
-pub(crate) const MCU: bool = cfg!(any(armv6m, armv7m, target_arch = "riscv32"));
+pub(crate) const MCU: bool = cfg!(any(armv6m, armv7m, rv32));
 
 /// ARMv6-M: the parts with the least flash (16–32 KB on a micro:bit's nRF51), where a loop's
 /// second copy for speed costs more than it saves: code size first where the two conflict.
@@ -74,9 +77,10 @@ pub(crate) const HAS_DIVIDER: bool = !cfg!(armv6m);
 /// A 64-bit host: a 64-bit division is one instruction (on Cortex-M it is a long library call).
 pub(crate) const FAST_WIDE_DIVISION: bool = cfg!(target_pointer_width = "64");
 
-/// ARMv7-M: the rows of a small depth-tested triangle with light levels (the 3D pipeline's
-/// Gouraud fill) are drawn by one assembly loop ([`level_rows`]); elsewhere span by span.
-pub(crate) const LEVEL_ROWS: bool = cfg!(armv7m);
+/// ARMv7-M and RV32: the rows of a small depth-tested triangle with light levels (the 3D
+/// pipeline's Gouraud fill) are drawn by one assembly loop ([`level_rows`]); elsewhere span by
+/// span.
+pub(crate) const LEVEL_ROWS: bool = cfg!(any(armv7m, rv32));
 
 /// ARMv6-M: an affine span of nearest texels from a power-of-two repeating texture of raw
 /// Rgb565 words into Rgb565 pixels is one assembly loop ([`masked_nearest_565`]); elsewhere the
@@ -108,9 +112,9 @@ pub struct MaskedSpan565<'a> {
 }
 
 /// [`blend_solid_565`] where there is none (hosts: the portable loop, which LLVM vectorises):
-/// blends nothing and says so. On Cortex-M a constant colour at a constant opacity over 5-6-5
-/// pixels is one assembly loop, two pixels a word, the constants in registers.
-#[cfg(not(any(armv6m, armv7m)))]
+/// blends nothing and says so. On Cortex-M and RV32 a constant colour at a constant opacity over
+/// 5-6-5 pixels is one assembly loop, two pixels a word, the constants in registers.
+#[cfg(not(any(armv6m, armv7m, rv32)))]
 #[inline(always)]
 pub(crate) fn blend_solid_565<C>(_pixels: &mut [C], _weights: &[u32; 4]) -> bool {
     false
@@ -148,7 +152,7 @@ pub(crate) fn depth_masked_nearest_565(
 /// of `width` pixels a row.
 #[derive(Clone, Copy, Debug)]
 // Read only where the assembly is (elsewhere the row loop declines them).
-#[cfg_attr(not(armv7m), allow(dead_code))]
+#[cfg_attr(not(any(armv7m, rv32)), allow(dead_code))]
 pub(crate) struct LevelRows {
     /// Index in the buffers of the region's top-left pixel.
     pub(crate) first: usize,
@@ -170,8 +174,95 @@ pub(crate) struct LevelRows {
     pub(crate) level: [u32; 3],
 }
 
+/// What the row loops of [`level_rows`] read: [`LevelRows`] as pointers, the per-row state
+/// first (offsets in the comments are the assembly's), built only for a region inside both
+/// buffers.
+#[cfg(any(armv7m, rv32))]
+#[repr(C)]
+pub(crate) struct LevelBlock {
+    /// 0, 4, 8: depth and level at the row's first column, the depth pointer there.
+    depth: u32,
+    level: u32,
+    depths: *mut u16,
+    /// 12, 16, 20: their steps a row (the pointer's in bytes).
+    depth_row: u32,
+    level_row: u32,
+    stride: u32,
+    /// 24, 28, 32: the numerators' steps a row.
+    steps: [i32; 3],
+    /// 36, 40, 44: the divisors.
+    divisors: [u32; 3],
+    /// 48: the region's columns.
+    columns: u32,
+    /// 52, 56: depth and level steps a column.
+    depth_column: u32,
+    level_column: u32,
+    /// 60: the colour table (256 entries).
+    table: *const u16,
+    /// 64: the colour pointer at the region's first pixel (the Thumb-2 loop replaces it with
+    /// its offset from the depth pointer, less 2).
+    colors: *mut u16,
+    /// 68, 72, 76: the numerators at the first row; 80: the rows.
+    numerators: [i32; 3],
+    rows: u32,
+}
+
+#[cfg(any(armv7m, rv32))]
+const _: () = assert!(core::mem::size_of::<LevelBlock>() == 84);
+
+#[cfg(any(armv7m, rv32))]
+impl LevelBlock {
+    /// The block of `rows` over `colors` and `depths`, or `None` if the region is not inside
+    /// both buffers or `C` is not a 16-bit colour (so no input makes a loop write outside them).
+    #[inline(always)]
+    pub(crate) fn new<C: Copy>(
+        colors: &mut [C],
+        depths: &mut [u16],
+        rows: &LevelRows,
+        table: &[C; 256],
+    ) -> Option<Self> {
+        if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+            return None;
+        }
+        // The region's last pixel, in both buffers; its columns within a buffer row. In 64
+        // bits: indices are 32-bit here, so the sum cannot wrap.
+        let (columns, count) = (rows.columns as usize, rows.rows as usize);
+        let wide = |n: usize| n as u64;
+        let last = wide(rows.first)
+            + wide(count.wrapping_sub(1)) * wide(rows.width)
+            + wide(columns.wrapping_sub(1));
+        let inside = columns >= 1
+            && count >= 1
+            && columns <= rows.width
+            && last < wide(colors.len().min(depths.len()));
+        // Strides and offsets in bytes fit 32 bits where the buffers do (a 32-bit address
+        // space).
+        if !inside || u32::try_from(rows.width * 2).is_err() {
+            return None;
+        }
+        let [s, m, e] = rows.bounds;
+        Some(Self {
+            depth: rows.depth[0],
+            level: rows.level[0],
+            depths: depths.as_mut_ptr().wrapping_add(rows.first),
+            depth_row: rows.depth[2],
+            level_row: rows.level[2],
+            stride: (rows.width * 2) as u32,
+            steps: [s.2, m.2, e.2],
+            divisors: [s.1.get(), m.1.get(), e.1.get()],
+            columns: rows.columns,
+            depth_column: rows.depth[1],
+            level_column: rows.level[1],
+            table: table.as_ptr().cast(),
+            colors: colors.as_mut_ptr().wrapping_add(rows.first).cast(),
+            numerators: [s.0, m.0, e.0],
+            rows: rows.rows,
+        })
+    }
+}
+
 /// [`level_rows`] where there is none: draws nothing and says so.
-#[cfg(not(armv7m))]
+#[cfg(not(any(armv7m, rv32)))]
 #[inline(always)]
 pub(crate) fn level_rows<C: Copy>(
     _colors: &mut [C],
@@ -305,13 +396,18 @@ pub(crate) fn perspective_span<C: Copy>(
 /// Sets every entry of `entries` to `value`, the 4-byte-aligned middle a word (two entries) at
 /// a time. A 16-bit buffer is only known to be 2-byte aligned where it is cleared, and LLVM
 /// turns a fill at that alignment into the byte-granular `memset` call, on Cortex-M four times
-/// the instructions of the word-aligned one it picks here.
+/// the instructions of the word-aligned one it picks here (on RV32, whose library `memset` stores
+/// a word a pass of three instructions, an unrolled loop of eight).
 #[allow(unsafe_code)]
 pub(crate) fn fill_u16(entries: &mut [u16], value: u16) {
     // SAFETY: any two `u16`s are a valid `u32` and any `u32` is two valid `u16`s; `align_to_mut`
     // gives the middle only what is aligned and in bounds.
     let (head, middle, tail) = unsafe { entries.align_to_mut::<u32>() };
     head.fill(value);
-    middle.fill(u32::from(value) * 0x0001_0001);
+    let word = u32::from(value) * 0x0001_0001;
+    #[cfg(rv32)]
+    riscv32::fill_words(middle, word);
+    #[cfg(not(rv32))]
+    middle.fill(word);
     tail.fill(value);
 }

@@ -36,40 +36,7 @@
 
 use embedded_graphics::pixelcolor::raw::RawU16;
 
-use super::{LevelRows, PerspectiveSpan565, TexturedRows};
-
-/// What the assembly reads: `LevelRows` as pointers and the per-row state first (offsets in
-/// the comments are the assembly's).
-#[repr(C)]
-struct Block {
-    /// 0, 4, 8: depth and level at the row's first column, the depth pointer there.
-    depth: u32,
-    level: u32,
-    depths: *mut u16,
-    /// 12, 16, 20: their steps a row (the pointer's in bytes).
-    depth_row: u32,
-    level_row: u32,
-    stride: u32,
-    /// 24, 28, 32: the numerators' steps a row.
-    steps: [i32; 3],
-    /// 36, 40, 44: the divisors.
-    divisors: [u32; 3],
-    /// 48: the region's columns.
-    columns: u32,
-    /// 52, 56: depth and level steps a column.
-    depth_column: u32,
-    level_column: u32,
-    /// 60: the colour table (256 entries).
-    table: *const u16,
-    /// 64: the colour pointer at the region's first pixel (the assembly replaces it with its
-    /// offset from the depth pointer, less 2).
-    colors: *mut u16,
-    /// 68, 72, 76: the numerators at the first row; 80: the rows.
-    numerators: [i32; 3],
-    rows: u32,
-}
-
-const _: () = assert!(core::mem::size_of::<Block>() == 84);
+use super::{LevelBlock, LevelRows, PerspectiveSpan565, TexturedRows};
 
 /// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
 /// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
@@ -168,7 +135,7 @@ core::arch::global_asm!(
 
 extern "C" {
     /// The assembly function above.
-    fn embedded_raster_level_rows_v7m(block: *mut Block, middle_starts: u32);
+    fn embedded_raster_level_rows_v7m(block: *mut LevelBlock, middle_starts: u32);
 }
 
 /// Draws the rows `rows` into `colors` and `depths` (row-major, `rows.width` pixels a row):
@@ -182,41 +149,8 @@ pub(crate) fn level_rows<C: Copy>(
     rows: &LevelRows,
     table: &[C; 256],
 ) -> bool {
-    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+    let Some(mut block) = LevelBlock::new(colors, depths, rows, table) else {
         return false;
-    }
-    // The region's last pixel, in both buffers; its columns within a buffer row. In 64 bits:
-    // indices are 32-bit here, so the sum cannot wrap.
-    let (columns, count) = (rows.columns as usize, rows.rows as usize);
-    let wide = |n: usize| n as u64;
-    let last = wide(rows.first)
-        + wide(count.wrapping_sub(1)) * wide(rows.width)
-        + wide(columns.wrapping_sub(1));
-    let inside = columns >= 1
-        && count >= 1
-        && columns <= rows.width
-        && last < wide(colors.len().min(depths.len()));
-    // Strides and offsets in bytes fit 32 bits where the buffers do (a 32-bit address space).
-    if !inside || u32::try_from(rows.width * 2).is_err() {
-        return false;
-    }
-    let [s, m, e] = rows.bounds;
-    let mut block = Block {
-        depth: rows.depth[0],
-        level: rows.level[0],
-        depths: depths.as_mut_ptr().wrapping_add(rows.first),
-        depth_row: rows.depth[2],
-        level_row: rows.level[2],
-        stride: (rows.width * 2) as u32,
-        steps: [s.2, m.2, e.2],
-        divisors: [s.1.get(), m.1.get(), e.1.get()],
-        columns: rows.columns,
-        depth_column: rows.depth[1],
-        level_column: rows.level[1],
-        table: table.as_ptr().cast(),
-        colors: colors.as_mut_ptr().wrapping_add(rows.first).cast(),
-        numerators: [s.0, m.0, e.0],
-        rows: rows.rows,
     };
     // SAFETY: the function writes only pixels of the region — rows `0..rows` from the first
     // pixel, `width` pixels apart, each in columns `start..end` with `0 ≤ start` and

@@ -476,6 +476,14 @@ impl GouraudColor for BinaryColor {
 #[cfg_attr(armv6m, inline(never))]
 #[cfg_attr(not(armv6m), inline)]
 pub fn fill_row<C: Copy>(row: &mut [C], color: C) {
+    let mut row = row;
+    if cfg!(rv32) {
+        let mut sixteens = row.chunks_exact_mut(16);
+        for sixteen in &mut sixteens {
+            sixteen.fill(color);
+        }
+        row = sixteens.into_remainder();
+    }
     let mut quads = row.chunks_exact_mut(4);
     for quad in &mut quads {
         quad.fill(color);
