@@ -36,12 +36,13 @@ QEMU_FLAGS=(-nographic -semihosting-config enable=on,target=native -icount shift
 # target, QEMU machine, QEMU cpu (the same as the runners in .cargo/config.toml)
 # and what runs there: `full`, every check and bench below; `checks`, the checksums, the
 # panic-free link and fw_bench's table (the Cortex-M3 runs the ARMv7-M code the Cortex-M33 runs
-# in full, without the DSP lanes; RV32IMAC the instructions RV32IMC runs, measured the same).
-# The limits' key is the core; RISC-V runs on QEMU's `virt` machine, whose cpu is rv32. The
-# Cortex-M7 board runs the Cortex-M4F build (its build a no-op).
+# in full, without the DSP lanes; RV32IMAC the instructions RV32IMC runs, measured the same;
+# the Cortex-M7 the Cortex-M4F build itself, its build a no-op: QEMU counts instructions, so
+# its texture and 3D figures are the M4's by construction, as they measured when it ran in
+# full). The limits' key is the core; RISC-V runs on QEMU's `virt` machine, whose cpu is rv32.
 BOARDS=(
     "thumbv7em-none-eabihf mps2-an386 cortex-m4 full"
-    "thumbv7em-none-eabihf mps2-an500 cortex-m7 full"
+    "thumbv7em-none-eabihf mps2-an500 cortex-m7 checks"
     "thumbv8m.main-none-eabihf mps2-an505 cortex-m33 full"
     "thumbv7m-none-eabi mps2-an385 cortex-m3 checks"
     "thumbv6m-none-eabi microbit cortex-m0 full"
@@ -69,6 +70,10 @@ FULL_FLASH_GOAL=16384
 SPOT_FRAME_LIMIT=3300000
 SPOT_TURNTABLE_LIMIT=3650000
 MESH_FRAME_LIMIT=4100000
+# The knot's hidden-line wireframe (its faces filled unlit into the z-buffer, then their edges as
+# depth-tested thin lines: `Pipeline::draw_wireframe`, issue #30): measured 33.9 M, most of it the
+# thin line's exact end-pixel tests on edges a few pixels long; a margin of about 10 %.
+WIREFRAME_FRAME_LIMIT=37500000
 # The same frames in Cortex-M0 code (thumbv6m, run on mps2-an385): spot 7.39 M and the knot
 # 8.88 M (under the issue's goals, 7.5 M and 9 M), margins of about 10 %.
 M0_SPOT_FRAME_LIMIT=8100000
@@ -478,7 +483,6 @@ printf '%s\n' "$FRAMES"
 [ "$(printf '%s\n' "$FRAMES" | grep -c '^frame ')" -ge 4 ] || fail "no host frame lines"
 MESH_BOARDS=(
     "thumbv7em-none-eabihf mps2-an386 cortex-m4 target"
-    "thumbv7em-none-eabihf mps2-an500 cortex-m7 target"
     "thumbv8m.main-none-eabihf mps2-an505 cortex-m33 target"
     "thumbv7m-none-eabi mps2-an385 cortex-m3 target"
     "riscv32imc-unknown-none-elf virt rv32imc target"
@@ -513,7 +517,8 @@ for board in "${MESH_BOARDS[@]}"; do
         fail "fw_mesh_bench ($target) on $machine: frames differ from the host's:\n$got"
     echo "  ok: fw_mesh_bench ($target) on $machine matches the host"
     if [ "$machine" = mps2-an386 ]; then
-        check_mesh_frames "$output" "on the Cortex-M4" "spot $SPOT_FRAME_LIMIT" "knot $MESH_FRAME_LIMIT"
+        check_mesh_frames "$output" "on the Cortex-M4" "spot $SPOT_FRAME_LIMIT" "knot $MESH_FRAME_LIMIT" \
+            "knot-wireframe $WIREFRAME_FRAME_LIMIT"
         for limit in "nearest $TEXTURED_FRAME_LIMIT" "specular $SPECULAR_TEXTURED_FRAME_LIMIT" \
             "quadratic-specular $QUADRATIC_TEXTURED_FRAME_LIMIT"; do
             read -r kind max <<<"$limit"

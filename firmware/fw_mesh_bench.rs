@@ -123,6 +123,18 @@ mod firmware {
                 Model::Knot
             };
             let mesh = model.mesh(&torus);
+            if profile.ends_with("wireframe") {
+                for _ in 0..4 {
+                    let scratch = Some(&mut scratch[..]);
+                    black_box(scene3d::render_wireframe(
+                        model,
+                        black_box(mesh),
+                        &mut target,
+                        scratch,
+                    ));
+                }
+                board::exit(true)
+            }
             for _ in 0..4 {
                 let scratch = (!profile.ends_with("faces")).then_some(&mut scratch[..]);
                 black_box(scene3d::render(
@@ -164,11 +176,38 @@ mod firmware {
             );
             lines[k] = Some(FrameLine {
                 model,
+                wireframe: false,
                 stats,
                 covered,
                 checksum,
             });
         }
+        // The knot's hidden-line wireframe: its faces into the z-buffer, then their edges.
+        let knot = Model::Knot.mesh(&torus);
+        let wire_stats =
+            scene3d::render_wireframe(Model::Knot, knot, &mut target, Some(&mut scratch[..]));
+        let wire_line = FrameLine {
+            model: Model::Knot,
+            wireframe: true,
+            stats: wire_stats,
+            covered: scene3d::covered(target.depth()),
+            checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
+        };
+        scene3d::render_wireframe(Model::Knot, knot, &mut target, None);
+        same &=
+            wire_line.checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
+        let wire = clock::instructions(
+            clock::measure(1, || {
+                let scratch = Some(&mut scratch[..]);
+                black_box(scene3d::render_wireframe(
+                    Model::Knot,
+                    black_box(knot),
+                    &mut target,
+                    scratch,
+                ));
+            }),
+            calibration,
+        );
         let mut poses = [0u64; TURNTABLE_POSES as usize];
         let mut pose = 0;
         let spot = Model::Spot.mesh(&torus);
@@ -240,6 +279,7 @@ mod firmware {
         for line in lines.iter().flatten() {
             hprintln!("{}", line);
         }
+        hprintln!("{}", wire_line);
         hprintln!("{}", TurntableLine(turntable));
         for (line, _) in textured.iter().flatten() {
             hprintln!("{}", line);
@@ -263,6 +303,17 @@ mod firmware {
                 without
             );
         }
+        let faces = knot.indices.len() as u64;
+        hprintln!(
+            "| knot-wireframe | {} | {} | {} | {} | {} | {} | {} | – |",
+            faces,
+            wire_line.stats.drawn,
+            wire_line.covered,
+            wire,
+            Ratio(wire, faces),
+            Ratio(wire, u64::from(wire_line.stats.drawn)),
+            Ratio(wire, u64::from(wire_line.covered)),
+        );
         hprintln!(
             "\n| spot textured (256×256 texture, Gouraud or per pixel (quadratic), perspective-correct) | drawn | covered px | instructions a frame |"
         );
@@ -334,6 +385,7 @@ fn main() {
         let stats = scene3d::render(model, mesh, &mut target, Some(&mut scratch));
         let line = FrameLine {
             model,
+            wireframe: false,
             stats,
             covered: scene3d::covered(target.depth()),
             checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
@@ -352,6 +404,22 @@ fn main() {
             std::fs::write(&path, ppm).expect("write the picture");
         }
     }
+    let knot = Model::Knot.mesh(&torus);
+    scene3d::render_wireframe(Model::Knot, knot, &mut target, None);
+    let without = scene3d::checksum(target.framebuffer().pixels(), target.depth());
+    let stats = scene3d::render_wireframe(Model::Knot, knot, &mut target, Some(&mut scratch));
+    let line = FrameLine {
+        model: Model::Knot,
+        wireframe: true,
+        stats,
+        covered: scene3d::covered(target.depth()),
+        checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
+    };
+    assert_eq!(
+        line.checksum, without,
+        "the wireframes with and without scratch differ"
+    );
+    println!("{line}");
     let turntable = scene3d::turntable_checksum(&scene3d::SPOT, &mut target, &mut scratch, |f| f());
     println!("{}", TurntableLine(turntable));
     let mut texels = vec![0u16; textured3d::TEXELS];

@@ -13,7 +13,8 @@
 //! under arbitrary clip rectangles, the framebuffer's `DrawTarget` fills on arbitrary
 //! rectangles, and a flash mesh through the 3D pipeline (`draw_mesh` and `draw_mesh_with`, every
 //! shading and culling, with and without a specular highlight, opaque matrices, viewport and
-//! lights, with the first light alone and with point and directional lights). Textured drawing
+//! lights, with the first light alone and with point and directional lights; its wireframe, but
+//! on ARMv6-M, whose micro:bit flash has no room for it). Textured drawing
 //! has a firmware of its own, `fw_nopanic_textures`.
 //!
 //! ```text
@@ -248,6 +249,15 @@ mod firmware {
                 let lit = pipeline.with_lights(lights);
                 black_box(lit.draw_mesh(mesh, &material, &mut target));
                 let _ = black_box(lit.draw_mesh_with(mesh, &shiny, &mut target, scratch));
+                // Its wireframe, over the faces (not on ARMv6-M: the micro:bit's flash has no
+                // room for its two face loops and the thin line's exact rule, about 43 KB there).
+                #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                {
+                    let edges = black_box(Rgb565::GREEN);
+                    black_box(pipeline.draw_wireframe(mesh, edges, &mut target));
+                    let _ =
+                        black_box(pipeline.draw_wireframe_with(mesh, edges, &mut target, scratch));
+                }
             }
             black_box(target.depth());
         }

@@ -221,6 +221,36 @@ pub fn render_with(
     }
 }
 
+/// The edges of the wireframe frames ([`render_wireframe`]).
+pub const EDGES: Rgb565 = Rgb565::new(8, 52, 20);
+
+/// The hidden-line frame of `mesh` posed as `model`: clears colour and depth, fills its faces in
+/// the background colour (the z-buffer), then draws their edges depth-tested — each vertex
+/// transformed once into `scratch` for each pass if given, or once per face without. The
+/// wireframe's counts.
+pub fn render_wireframe(
+    model: Model,
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: Option<&mut [ProjectedVertex]>,
+) -> DrawStats {
+    let pipeline = pipeline(model);
+    let faces = Material::new(BACKGROUND, Shading::Unlit);
+    target.clear(BACKGROUND);
+    match scratch {
+        Some(scratch) => {
+            let _ = pipeline.draw_mesh_with(mesh, &faces, target, scratch);
+            pipeline
+                .draw_wireframe_with(mesh, EDGES, target, scratch)
+                .unwrap_or_default()
+        }
+        None => {
+            pipeline.draw_mesh(mesh, &faces, target);
+            pipeline.draw_wireframe(mesh, EDGES, target)
+        }
+    }
+}
+
 /// Pixels the frame covers: those whose depth was written.
 pub fn covered(depth: &[u16]) -> u32 {
     depth.iter().filter(|&&d| d != DEPTH_CLEAR).count() as u32
@@ -272,6 +302,8 @@ pub fn turntable_checksum(
 pub struct FrameLine {
     /// The mesh.
     pub model: Model,
+    /// Whether the frame is its hidden-line wireframe ([`render_wireframe`]).
+    pub wireframe: bool,
     /// The pipeline's counts.
     pub stats: DrawStats,
     /// [`covered`] pixels.
@@ -285,8 +317,9 @@ impl core::fmt::Display for FrameLine {
         let s = &self.stats;
         write!(
             f,
-            "frame {} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
+            "frame {}{} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
             self.model.name(),
+            if self.wireframe { "-wireframe" } else { "" },
             SIZE.0,
             SIZE.1,
             s.drawn,

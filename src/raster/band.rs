@@ -16,10 +16,12 @@
 //!
 //! [`shade`]: super::shade
 
+use embedded_graphics::prelude::{Point, Size};
 use embedded_graphics::primitives::Rectangle;
 
 use super::compact::{CompactTriangle, TooLarge};
 use super::edge::{first_centre_from, last_centre_to};
+use super::line::draw_line;
 use super::plane::{Attributes, Planes};
 use super::runs::SmallScan;
 use super::scan::{Kept, KeptWords};
@@ -28,6 +30,7 @@ use super::sink::SpanShader;
 use super::walk::{Band, Span};
 use crate::arch::LANES;
 use crate::fixed_point::{Coord, SUBPIXEL_BITS};
+use crate::rect::intersection;
 
 /// Which rows of a frame a draw hands out, and where they go: all of them in place
 /// ([`AllRows`]) or a band's, into the band's buffer ([`Band`]). The full-frame draws are
@@ -51,6 +54,21 @@ pub(crate) trait RowWindow: Copy {
 
     /// The band, if the window is one.
     fn band(&self) -> Option<Band>;
+
+    /// The window with a row more on each side (a band's; every row is every row): where a
+    /// face's edges may draw, as thin lines, when the face covers no pixel centre of the window
+    /// (a line draws a row its segment reaches within half a pixel of the centre of).
+    fn widened(&self) -> Self;
+
+    /// Draws the window's rows of the thin line from `p0` to `p1` (raw sub-pixels) over `clip`
+    /// through `shader`: the pixels `raster::line` gives those rows.
+    fn line<S: SpanShader<0>>(
+        &self,
+        p0: (i32, i32),
+        p1: (i32, i32),
+        clip: &Rectangle,
+        shader: S,
+    ) -> S;
 }
 
 /// Every row, in place: [`shade`] itself.
@@ -78,6 +96,23 @@ impl RowWindow for AllRows {
     #[inline(always)]
     fn band(&self) -> Option<Band> {
         None
+    }
+
+    #[inline(always)]
+    fn widened(&self) -> Self {
+        AllRows
+    }
+
+    #[inline(always)]
+    fn line<S: SpanShader<0>>(
+        &self,
+        p0: (i32, i32),
+        p1: (i32, i32),
+        clip: &Rectangle,
+        mut shader: S,
+    ) -> S {
+        draw_line(p0, p1, clip, &mut shader);
+        shader
     }
 }
 
@@ -108,6 +143,37 @@ impl RowWindow for Band {
     #[inline(always)]
     fn band(&self) -> Option<Band> {
         Some(*self)
+    }
+
+    fn widened(&self) -> Self {
+        Band {
+            first: self.first.saturating_sub(1),
+            last: self.last.saturating_add(1),
+        }
+    }
+
+    fn line<S: SpanShader<0>>(
+        &self,
+        p0: (i32, i32),
+        p1: (i32, i32),
+        clip: &Rectangle,
+        shader: S,
+    ) -> S {
+        let mut local = Local {
+            shader,
+            band: *self,
+        };
+        // The band's rows of the clip: the line's pixels there are the whole line's (its rule
+        // decides each pixel on its own).
+        let rows = Rectangle::new(
+            Point::new(clip.top_left.x, self.first),
+            Size::new(
+                clip.size.width,
+                self.last.abs_diff(self.first).saturating_add(1),
+            ),
+        );
+        draw_line(p0, p1, &intersection(clip, &rows), &mut local);
+        local.shader
     }
 }
 

@@ -114,6 +114,7 @@ mod pipeline;
 mod shading;
 mod texturing;
 mod vertex;
+mod wireframe;
 
 pub use depth::{DepthImage, DepthTarget, ScreenVertex, DEPTH_CLEAR, DEPTH_FAR};
 pub use light::{Light, LightSource, Lights, Specular};

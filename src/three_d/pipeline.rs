@@ -663,6 +663,13 @@ pub(crate) struct ClippedFace {
 }
 
 impl ClippedFace {
+    /// The polygon's vertices in order, each with its barycentric coordinates in the face (a
+    /// vertex on the face's edge `j`, from vertex `j` to `j + 1`, has coordinate `(j + 2) % 3`
+    /// zero).
+    pub(crate) fn outline(&self) -> impl Iterator<Item = (&ScreenVertex, &Bary)> + '_ {
+        self.screen.iter().map(|(s, bary, _)| (s, bary))
+    }
+
     /// The sub-pixel heights of the fan's highest and lowest vertices.
     pub(crate) fn heights(&self) -> (i32, i32) {
         let y = self.screen.iter().map(|s| s.0.y.to_bits());
@@ -1155,6 +1162,11 @@ impl<C: GouraudColor> Frame<'_, C, Band> {
 }
 
 impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
+    /// The rectangle the draw may write, in frame pixels: the viewport inside the frame.
+    pub(crate) fn clip_rect(&self) -> Rectangle {
+        self.clip.rect()
+    }
+
     /// The light level of the face `model` (8.8 of the 0–255 scale), from its geometric normal.
     fn face_level(&self, model: &[Vec3; 3]) -> u16 {
         match &self.rig {

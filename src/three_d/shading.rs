@@ -622,6 +622,14 @@ impl<R: RowWindow> TargetClip<R> {
         &self.rows
     }
 
+    /// The clip with a row more on each side of its window ([`RowWindow::widened`]).
+    pub(crate) fn widened(&self) -> Self {
+        TargetClip {
+            rect: self.rect,
+            rows: self.rows.widened(),
+        }
+    }
+
     /// The rectangle drawn in.
     pub(crate) fn rect(&self) -> Rectangle {
         self.rect

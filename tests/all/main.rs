@@ -82,3 +82,5 @@ mod textured;
 mod textured_mesh;
 #[cfg(feature = "reference")]
 mod watertight;
+#[cfg(feature = "std")] // `raycast`
+mod wireframe;
