@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzz step of CI (called from .ci/run; also runs on its own): installs cargo-fuzz if it is
 # missing, builds the fuzz crate (fuzz/, its own workspace) with debug assertions and overflow
-# checks, and runs every target for FUZZ_SECONDS seconds (default 20) from its corpus in
+# checks, and runs every target for FUZZ_SECONDS seconds (default 10) from its corpus in
 # fuzz/corpus/ (empty on a fresh checkout) and its committed seeds in fuzz/seeds/<target>/ (past
 # findings, run first: read, never written). Any panic, failed check or input slower than 5 s
 # fails the step; the crashing input is left in fuzz/artifacts/<target>/.
@@ -15,7 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
 export CARGO_TERM_COLOR=never RUSTC_BOOTSTRAP=1
 
-SECONDS_PER_TARGET="${FUZZ_SECONDS:-15}"
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-10}"
 CARGO_FUZZ_VERSION=0.13.2
 
 if ! cargo fuzz --version 2>/dev/null | grep -qF "$CARGO_FUZZ_VERSION"; then
