@@ -51,7 +51,9 @@ BOARDS=(
 )
 # The targets whose build also links fw_mesh_bench (the 3D frames below) and fw_band (bands), in
 # the same cargo build as the rest: two release links (LTO, one codegen unit) at a time.
-MESH_TARGETS=(thumbv7em-none-eabihf thumbv8m.main-none-eabihf thumbv7m-none-eabi riscv32imc-unknown-none-elf)
+# (The Cortex-M3's ARMv7-M 3D code is the M33's, which runs the frames and their limits: its own
+# fw_mesh_bench run, checksums only, measured 2.97 M and 3.68 M at stop 44, is left out for CI time.)
+MESH_TARGETS=(thumbv7em-none-eabihf thumbv8m.main-none-eabihf riscv32imc-unknown-none-elf)
 BAND_TARGETS=(thumbv7em-none-eabihf riscv32imc-unknown-none-elf)
 # The targets whose footprint firmware (fw_size_*) is built and reported.
 FOOTPRINT_TARGETS=(thumbv6m-none-eabi thumbv7em-none-eabihf riscv32imc-unknown-none-elf)
@@ -484,7 +486,6 @@ printf '%s\n' "$FRAMES"
 MESH_BOARDS=(
     "thumbv7em-none-eabihf mps2-an386 cortex-m4 target"
     "thumbv8m.main-none-eabihf mps2-an505 cortex-m33 target"
-    "thumbv7m-none-eabi mps2-an385 cortex-m3 target"
     "riscv32imc-unknown-none-elf virt rv32imc target"
     "thumbv6m-none-eabi mps2-an385 cortex-m3 target/armv6m-on-mps2"
 )
