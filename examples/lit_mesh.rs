@@ -149,23 +149,21 @@ fn wireframes() {
         vec![Rgb565::BLACK; scene3d::PIXELS],
         vec![0u16; scene3d::PIXELS],
     );
-    let panels = [
-        (scene3d::Model::Knot, None, Rgb565::new(8, 52, 20)),
-        (
-            scene3d::Model::Spot,
-            Some(scene3d::MATERIAL),
-            Rgb565::new(4, 10, 6),
-        ),
-    ];
-    for (k, (model, material, edges)) in panels.into_iter().enumerate() {
+    for (k, model) in [scene3d::Model::Knot, scene3d::Model::Spot]
+        .into_iter()
+        .enumerate()
+    {
         let mut target = DepthTarget::new(&mut colors, &mut depth, w, h).expect("buffers fit");
-        target.clear(scene3d::BACKGROUND);
-        let pipeline = scene3d::pipeline(model);
         let mesh = model.mesh(&scene3d::KNOT);
-        // Hidden lines: the faces in the background colour fill the z-buffer.
-        let faces = material.unwrap_or(Material::new(scene3d::BACKGROUND, Shading::Unlit));
-        pipeline.draw_mesh(mesh, &faces, &mut target);
-        pipeline.draw_wireframe(mesh, edges, &mut target);
+        if model == scene3d::Model::Knot {
+            // Hidden lines: the faces in the background colour fill the z-buffer.
+            scene3d::render_wireframe(model, mesh, &mut target, None);
+        } else {
+            // The lit frame with its edges over it.
+            scene3d::render(model, mesh, &mut target, None);
+            let edges = Rgb565::new(4, 10, 6);
+            scene3d::pipeline(model).draw_wireframe(mesh, edges, &mut target);
+        }
         let at = Rectangle::new(Point::new(k as i32 * (w as i32 + 8), 0), Size::new(w, h));
         display
             .fill_contiguous(&at, colors.iter().copied())

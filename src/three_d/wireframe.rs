@@ -34,7 +34,9 @@ use super::depth::{DepthTarget, ScreenVertex};
 use super::math::{Bary, Vec3};
 use super::mesh::Mesh;
 use super::mesh_target::MeshTarget;
-use super::pipeline::{fit_scratch, DrawStats, FaceSink, Frame, Pipeline, ScratchTooSmall};
+use super::pipeline::{
+    fit_scratch, signed_area2, DrawStats, FaceSink, Frame, Pipeline, ScratchTooSmall,
+};
 use super::shading::{Material, Shading, TargetClip};
 use super::texturing::FaceTexture;
 use super::vertex::ProjectedVertex;
@@ -215,7 +217,7 @@ impl<C: GouraudColor, W: RowWindow> FaceSink<C> for Edges<'_, '_, C, W> {
             let (a, b, c) = (outline.first()?, outline.get(k)?, outline.get(k + 1)?);
             Some([a.0, b.0, c.0])
         });
-        let largest = fan.max_by_key(|s| area2(s).unsigned_abs());
+        let largest = fan.max_by_key(|s| signed_area2(s.map(|v| (v.x, v.y))).unsigned_abs());
         let Some(slack) = largest.map(slack) else {
             return;
         };
@@ -235,18 +237,10 @@ impl<C: GouraudColor, W: RowWindow> FaceSink<C> for Edges<'_, '_, C, W> {
     }
 }
 
-/// Twice the signed area of the screen triangle `s`, in squared sub-pixels (the guard band
-/// keeps the coordinates within 2²⁰ sub-pixels of each other: the products fit `i64`).
-fn area2(s: &[&ScreenVertex; 3]) -> i64 {
-    let p = s.map(|v| (i64::from(v.x.to_bits()), i64::from(v.y.to_bits())));
-    (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1)
-}
-
 /// The depth slack of the face in the plane of the screen triangle `s`: `⌈|∂z/∂x| + |∂z/∂y|⌉ +
 /// 2` depth units, its depth change across a pixel (at most `u16::MAX`; that for a triangle of
 /// zero area).
 fn slack(s: [&ScreenVertex; 3]) -> u32 {
-    let area = area2(&s).unsigned_abs();
     let p = s.map(|v| {
         (
             i64::from(v.x.to_bits()),
@@ -254,18 +248,19 @@ fn slack(s: [&ScreenVertex; 3]) -> u32 {
             i64::from(v.depth),
         )
     });
+    // The guard band keeps the coordinates within 2²⁰ sub-pixels of each other: every product
+    // fits `i64`.
     let d = |k: usize| (p[k].0 - p[0].0, p[k].1 - p[0].1, p[k].2 - p[0].2);
     let (d1, d2) = (d(1), d(2));
+    let area = (d1.0 * d2.1 - d2.0 * d1.1).unsigned_abs();
+    if area == 0 {
+        return u32::from(u16::MAX);
+    }
     // Depth over sub-pixels times the doubled area: below 2¹⁶·2²¹ each.
     let gx = d1.2 * d2.1 - d2.2 * d1.1;
     let gy = d1.0 * d2.2 - d2.0 * d1.2;
     let per_pixel = (gx.unsigned_abs() + gy.unsigned_abs()) << 8;
-    let Some(slope) = per_pixel.div_ceil(area.max(1)).checked_add(2) else {
-        return u32::from(u16::MAX);
-    };
-    if area == 0 {
-        return u32::from(u16::MAX);
-    }
+    let slope = per_pixel.div_ceil(area).saturating_add(2);
     slope.min(u64::from(u16::MAX)) as u32
 }
 
@@ -344,12 +339,12 @@ impl<C: GouraudColor> SpanShader<0> for DepthLine<'_, '_, C> {
     fn prepare(&mut self, _: [u32; 0]) {}
 
     fn span(&mut self, _: &(), span: Span, _: [u32; 0]) {
-        let (along, slack, color, first_row) = (self.along, self.slack, self.color, self.first_row);
+        let (along, slack, color) = (self.along, self.slack, self.color);
+        let y = span.y.wrapping_add(self.first_row);
         let Some((colors, stored)) = self.target.clipped_spans_mut(span) else {
             return;
         };
         for ((c, d), x) in colors.iter_mut().zip(stored.iter()).zip(span.x_start..) {
-            let y = span.y.wrapping_add(first_row);
             if along.depth_at(x, y) <= u32::from(*d) + slack {
                 *c = color;
             }

@@ -11,7 +11,8 @@
 //! * A floor through the near plane: the clipped faces' edges lie on the f64 projection of the
 //!   grid's lines clipped to the view volume (within a pixel), never on the clip planes.
 
-use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
+use embedded_graphics::pixelcolor::{BinaryColor, Rgb888};
+use embedded_graphics::{prelude::*, primitives::Rectangle};
 use embedded_raster::three_d::{
     signed_area2, Angle, Cull, DepthTarget, Material, Mesh, Pipeline, ProjectedVertex,
     ScreenVertex, Shading, DEPTH_CLEAR,
@@ -60,7 +61,35 @@ fn line_pixels(a: &ScreenVertex, b: &ScreenVertex, w: u32, h: u32) -> Vec<(i32, 
     out
 }
 
-use embedded_graphics::pixelcolor::BinaryColor;
+/// A kept face's projected vertices and its edges as pairs of its vertices.
+type KeptFace = ([ScreenVertex; 3], [(usize, usize); 3]);
+
+/// The faces `pipeline` keeps of `mesh` (front-facing: anticlockwise on screen, non-degenerate;
+/// the frames here need no clipping), found from the public projection: their projected vertices
+/// and their edges as vertex pairs `(a, b)` of the face, `a` the vertex of the lower index.
+fn kept_edges(pipeline: &Pipeline, mesh: &Mesh<'_>) -> Vec<KeptFace> {
+    let mut kept = Vec::new();
+    for face in mesh.indices {
+        let s = face.map(|i| {
+            let p = mesh.vertices[usize::from(i)];
+            let screen = pipeline.project(pipeline.clip_position(p));
+            screen.expect("the frame needs no clipping")
+        });
+        if signed_area2(s.map(|v| (v.x, v.y))) >= 0 {
+            continue; // culled (back-facing: clockwise on screen) or degenerate
+        }
+        let edges = [0, 1, 2].map(|a| {
+            let b = (a + 1) % 3;
+            if face[a] <= face[b] {
+                (a, b)
+            } else {
+                (b, a)
+            }
+        });
+        kept.push((s, edges));
+    }
+    kept
+}
 
 /// The face's depth change across a pixel, `|∂z/∂x| + |∂z/∂y|`, in f64.
 fn slope(s: &[ScreenVertex; 3]) -> f64 {
@@ -107,22 +136,9 @@ fn hidden_lines_match_f64_reference() {
         let (mut visible, mut reached, mut passes_somewhere) =
             (vec![false; n], vec![false; n], vec![false; n]);
         let mut ambiguous = 0;
-        let screen: Vec<Option<ScreenVertex>> = mesh
-            .vertices
-            .iter()
-            .map(|&p| pipeline.project(pipeline.clip_position(p)))
-            .collect();
-        for face in mesh.indices {
-            let idx = face.map(usize::from);
-            let s = idx.map(|i| screen[i].expect("the frame needs no clipping"));
-            let area = signed_area2(s.map(|v| (v.x, v.y)));
-            if area >= 0 {
-                continue; // culled (back-facing: clockwise on screen) or degenerate
-            }
+        for (s, edges) in kept_edges(&pipeline, mesh) {
             let slack = slope(&s) + 2.0;
-            for j in 0..3 {
-                let (a, b) = (j, (j + 1) % 3);
-                let (a, b) = if idx[a] <= idx[b] { (a, b) } else { (b, a) };
+            for (a, b) in edges {
                 for p in line_pixels(&s[a], &s[b], w, h) {
                     let i = (p.1 as u32 * w + p.0 as u32) as usize;
                     let margin = f64::from(z[i]) + slack - depth_along(&s[a], &s[b], p);
@@ -217,17 +233,8 @@ fn on_an_empty_z_buffer_every_edge_is_drawn_whole() {
     pipeline.draw_wireframe(mesh, EDGE, &mut target);
     assert!(z.iter().all(|&d| d == DEPTH_CLEAR), "depth is not written");
     let mut want = vec![false; (w * h) as usize];
-    for face in mesh.indices {
-        let s = face.map(|i| {
-            let p = mesh.vertices[usize::from(i)];
-            pipeline.project(pipeline.clip_position(p)).unwrap()
-        });
-        if signed_area2(s.map(|v| (v.x, v.y))) >= 0 {
-            continue;
-        }
-        for j in 0..3 {
-            let (a, b) = (j, (j + 1) % 3);
-            let (a, b) = if face[a] <= face[b] { (a, b) } else { (b, a) };
+    for (s, edges) in kept_edges(&pipeline, mesh) {
+        for (a, b) in edges {
             for (x, y) in line_pixels(&s[a], &s[b], w, h) {
                 want[(y as u32 * w + x as u32) as usize] = true;
             }
