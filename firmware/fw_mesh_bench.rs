@@ -51,6 +51,7 @@ mod firmware {
 
     use crate::clock::Ratio;
     use crate::scene3d::{self, FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
+    use crate::scene3d::{SCATTER_FACES, SCATTER_VERTICES};
     use crate::scene3d::{TORUS_FACES, TORUS_VERTICES, TURNTABLE_POSES};
     use crate::textured3d::{self, Textured, TexturedLine, TEXELS};
     use crate::{board, clock};
@@ -77,6 +78,9 @@ mod firmware {
     static mut TORUS_I: [[u16; 3]; TORUS_FACES] = [[0; 3]; TORUS_FACES];
     static mut SCRATCH: [ProjectedVertex; MAX_VERTICES] = [ProjectedVertex::EMPTY; MAX_VERTICES];
     static mut TEXTURE: [u16; TEXELS] = [0; TEXELS];
+    static mut SCATTER_V: [Vec3; SCATTER_VERTICES] = [Vec3::ZERO; SCATTER_VERTICES];
+    static mut SCATTER_N: [Vec3; SCATTER_VERTICES] = [Vec3::ZERO; SCATTER_VERTICES];
+    static mut SCATTER_I: [[u16; 3]; SCATTER_FACES] = [[0; 3]; SCATTER_FACES];
 
     #[entry]
     fn main() -> ! {
@@ -281,6 +285,19 @@ mod firmware {
         }
         hprintln!("{}", wire_line);
         hprintln!("{}", TurntableLine(turntable));
+        // SAFETY: as for the statics above: these are their only references.
+        let (scatter_v, scatter_n, scatter_i) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(SCATTER_V),
+                &mut *core::ptr::addr_of_mut!(SCATTER_N),
+                &mut *core::ptr::addr_of_mut!(SCATTER_I),
+            )
+        };
+        let scatter = scene3d::scatter(scatter_v, scatter_n, scatter_i);
+        hprintln!(
+            "{}",
+            scene3d::render_scatter(&scatter, &mut target, scratch)
+        );
         for (line, _) in textured.iter().flatten() {
             hprintln!("{}", line);
         }
@@ -422,6 +439,14 @@ fn main() {
     println!("{line}");
     let turntable = scene3d::turntable_checksum(&scene3d::SPOT, &mut target, &mut scratch, |f| f());
     println!("{}", TurntableLine(turntable));
+    let mut sv = Box::new([Vec3::ZERO; scene3d::SCATTER_VERTICES]);
+    let mut sn = Box::new([Vec3::ZERO; scene3d::SCATTER_VERTICES]);
+    let mut si = Box::new([[0u16; 3]; scene3d::SCATTER_FACES]);
+    let scatter = scene3d::scatter(&mut sv, &mut sn, &mut si);
+    println!(
+        "{}",
+        scene3d::render_scatter(&scatter, &mut target, &mut scratch)
+    );
     let mut texels = vec![0u16; textured3d::TEXELS];
     textured3d::expand(&mut texels);
     for frame in textured3d::Textured::ALL {

@@ -193,6 +193,115 @@ pub fn torus<'a>(
     Mesh::new(&vertices[..], &normals[..], &indices[..])
 }
 
+/// Faces of the [`scatter`] mesh.
+pub const SCATTER_FACES: usize = 1600;
+
+/// Vertices of the [`scatter`] mesh: three a face.
+pub const SCATTER_VERTICES: usize = 3 * SCATTER_FACES;
+
+/// Small faces scattered over the screen and past its edges, into the caller's arrays: each face
+/// its own three vertices, from 16 px across down to 2, a sliver in eight,
+/// at random depths and orientations (about half face away), with random normals. Through
+/// [`scatter_pipeline`]'s orthographic camera the positions land on quarter pixels, so pixel
+/// centres lie exactly on many edges (the fill rule's cases). The frame that tests the set-up
+/// of small faces where a core has its own (`arch::level_face`) against the host's.
+pub fn scatter<'a>(
+    vertices: &'a mut [Vec3; SCATTER_VERTICES],
+    normals: &'a mut [Vec3; SCATTER_VERTICES],
+    indices: &'a mut [[u16; 3]; SCATTER_FACES],
+) -> Mesh<'a> {
+    // A 64-bit LCG (Knuth's MMIX constants), its top bits.
+    let mut state = 0x5ca7_7e2e_d000_0001u64;
+    let mut next = move |bits: u32| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> (64 - bits)) as i32
+    };
+    // A quarter pixel of the camera's 256-px viewport: 1/512 of the unit.
+    const QUARTER: i32 = 1 << 7;
+    for (k, face) in indices.iter_mut().enumerate() {
+        // The centre in ±1.25 (the viewport's ±1 and past it), ±1 in depth; the face within
+        // 64·2⁻ʲ quarter pixels of it (16 px) for j in 0..4.
+        let centre = [
+            (next(11) - (1 << 10)) * 5 / 4 * QUARTER,
+            (next(11) - (1 << 10)) * 5 / 4 * QUARTER,
+            (next(16) - (1 << 15)) * 2,
+        ];
+        let size = 64 >> next(2);
+        let mut corner = |_| {
+            let d = [(); 3].map(|_| (next(8) * size) >> 7);
+            [
+                centre[0] + (d[0] - size) * QUARTER,
+                centre[1] + (d[1] - size) * QUARTER,
+                centre[2] + (d[2] - size) * 64,
+            ]
+        };
+        let (a, b) = (corner(0), corner(1));
+        let c = if k % 8 == 0 {
+            // On the line through the first two, or a quarter pixel off it.
+            core::array::from_fn(|i| 2 * b[i] - a[i] + (next(2) - 2) * QUARTER)
+        } else {
+            corner(2)
+        };
+        for (j, p) in [a, b, c].into_iter().enumerate() {
+            let v = 3 * k + j;
+            vertices[v] = Vec3::from_bits(p[0], p[1], p[2]);
+            let n = [(); 3].map(|_| next(16) - (1 << 15));
+            normals[v] = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
+        }
+        *face = [0, 1, 2].map(|j| (3 * k + j) as u16);
+    }
+    Mesh::new(&vertices[..], &normals[..], &indices[..])
+}
+
+/// The pipeline of the [`scatter`] frame: an orthographic camera (the identity) onto a 256 × 256
+/// viewport centred on the screen, the bench frame's light.
+pub fn scatter_pipeline() -> Pipeline {
+    let light = Light::new(
+        Vec3::from_bits(-26214, 39322, 45875),
+        Scalar::from_bits(9830),
+    );
+    let viewport = Rectangle::new(Point::new(32, -8), Size::new(256, 256));
+    Pipeline::new(Mat4::IDENTITY, Mat4::IDENTITY, viewport, light)
+}
+
+/// The line of the [`scatter`] frame (rendered with the scratch): its counts, covered pixels
+/// and checksum, compared like the frame lines.
+pub struct ScatterLine {
+    /// The pipeline's counts.
+    pub stats: DrawStats,
+    /// [`covered`] pixels.
+    pub covered: u32,
+    /// [`checksum`] of colours and depths.
+    pub checksum: u32,
+}
+
+impl core::fmt::Display for ScatterLine {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let s = &self.stats;
+        write!(
+            f,
+            "frame scatter {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
+            SIZE.0, SIZE.1, s.drawn, s.culled, s.clipped, s.rejected, s.degenerate, self.covered, self.checksum
+        )
+    }
+}
+
+/// The [`scatter`] frame of `mesh` (with `scratch`): its line.
+pub fn render_scatter(
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: &mut [ProjectedVertex],
+) -> ScatterLine {
+    let stats = render_with(&scatter_pipeline(), mesh, target, Some(scratch));
+    ScatterLine {
+        stats,
+        covered: covered(target.depth()),
+        checksum: checksum(target.framebuffer().pixels(), target.depth()),
+    }
+}
+
 /// One frame of `mesh` posed as `model`: clears colour and depth, draws — each vertex
 /// transformed once into `scratch` if given (it must hold a vertex per mesh vertex), or once per
 /// face without.

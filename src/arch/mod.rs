@@ -32,6 +32,8 @@ pub(crate) use thumbv6m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::blend_solid_565;
 #[cfg(armv7m)]
+pub(crate) use thumbv7m::level_face;
+#[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::perspective_span;
@@ -81,6 +83,34 @@ pub(crate) const FAST_WIDE_DIVISION: bool = cfg!(target_pointer_width = "64");
 /// pipeline's Gouraud fill) are drawn by one assembly loop ([`level_rows`]); elsewhere span by
 /// span.
 pub(crate) const LEVEL_ROWS: bool = cfg!(any(armv7m, rv32));
+
+/// ARMv7-M: a small face of the 3D pipeline's Gouraud fill is set up (box, region, edges, runs
+/// and its depth and level planes) by one assembly function ([`level_face`]) that hands it to
+/// the row loop of [`level_rows`]; elsewhere by `raster::scan`.
+pub(crate) const LEVEL_FACE: bool = cfg!(armv7m);
+
+/// A face for [`level_face`]: its vertices' positions (sub-pixels), depths and light levels
+/// (8.8), and the rounding terms of the depth and level planes.
+// Read only where the assembly is.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) struct FaceLevels {
+    pub(crate) positions: [(i32, i32); 3],
+    pub(crate) depth: [u16; 3],
+    pub(crate) level: [u16; 3],
+    pub(crate) half: [u32; 2],
+}
+
+/// [`level_face`] where there is none: draws nothing and says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn level_face<C: Copy>(
+    _buffers: (&mut [C], &mut [u16], usize),
+    _clip: [i32; 4],
+    _face: &FaceLevels,
+    _table: &[C; 256],
+) -> bool {
+    false
+}
 
 /// ARMv6-M: an affine span of nearest texels from a power-of-two repeating texture of raw
 /// Rgb565 words into Rgb565 pixels is one assembly loop ([`masked_nearest_565`]); elsewhere the

@@ -1276,3 +1276,484 @@ pub(crate) fn blend_solid_565<C: From<RawU16>>(pixels: &mut [C], weights: &[u32;
     unsafe { embedded_raster_blend_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), weights) }
     true
 }
+
+/// One edge's bound of a row's run (`raster::runs::RowRuns`'s), written into the block's next
+/// start slot (r10, moving up from slot 0) or next end slot (r1, moving down from slot 2): `$a`,
+/// `$b` are the edge's coefficients, `$v` its value at the first pixel centre (sub-pixels),
+/// `$u` a scratch register. The fill rule's bias (1 unless `a > 0`, or `a = 0` and `b > 0`)
+/// comes off `$v` before the value is reduced to whole pixels (`asr #8`).
+#[rustfmt::skip]
+macro_rules! edge_bound {
+    ($a:literal, $b:literal, $v:literal, $u:literal) => {
+        concat!(
+            "cmp ", $a, ", #0\n",
+            "ble 11f\n",
+            // a > 0: a start bound, ⌊(a − 1 − k)/a⌋, the numerator less b a row.
+            "str ", $a, ", [r10, #36]\n",
+            "rsb ", $u, ", ", $b, ", #0\n",
+            "str ", $u, ", [r10, #24]\n",
+            "sub ", $u, ", ", $a, ", #1\n",
+            "sub ", $u, ", ", $u, ", ", $v, ", asr #8\n",
+            "str ", $u, ", [r10, #68]\n",
+            "add r10, r10, #4\n",
+            "b 13f\n",
+            "11:\n",
+            "beq 12f\n",
+            // a < 0: an end bound, ⌊(k + |a|)/|a|⌋, the numerator plus b a row.
+            "rsb ", $u, ", ", $a, ", #0\n",
+            "str ", $u, ", [r1, #36]\n",
+            "str ", $b, ", [r1, #24]\n",
+            "sub ", $u, ", ", $v, ", #1\n",
+            "asr ", $u, ", ", $u, ", #8\n",
+            "sub ", $u, ", ", $u, ", ", $a, "\n",
+            "str ", $u, ", [r1, #68]\n",
+            "sub r1, r1, #4\n",
+            "b 13f\n",
+            "12:\n",
+            // a = 0: a start bound −16·k over 1, the numerator less 16·b a row.
+            "mov ", $u, ", #1\n",
+            "str ", $u, ", [r10, #36]\n",
+            "rsb ", $u, ", ", $b, ", #0\n",
+            "lsl ", $u, ", ", $u, ", #4\n",
+            "str ", $u, ", [r10, #24]\n",
+            "mov ", $u, ", ", $v, "\n",
+            "cmp ", $b, ", #0\n",
+            "it le\n",
+            "suble ", $u, ", ", $u, ", #1\n",
+            "asr ", $u, ", ", $u, ", #8\n",
+            "rsb ", $u, ", ", $u, ", #0\n",
+            "lsl ", $u, ", ", $u, ", #4\n",
+            "str ", $u, ", [r10, #68]\n",
+            "add r10, r10, #4\n",
+            "13:\n",
+        )
+    };
+}
+
+/// One attribute's vertex values from the attribute words (`$ext`: `uxth` for the depth in the
+/// low halves, `lsr` … `#16` for the level in the high ones), its differences from vertex 0
+/// stored at `$d` (d1, d2), its value term (`base·2¹⁶ + half`, the half at `$half` of the face)
+/// at `$base`, and its numerators `nx = d1·a1 + d2·a2`, `ny = d1·b1 + d2·b2` (the edges opposite
+/// oriented vertices 1 and 2: r6-r9 = o1x, o1y, o2x, o2y) at `$n`; a numerator past the
+/// limit (r5) declines the face.
+#[rustfmt::skip]
+macro_rules! attribute_numerators {
+    ($ext:literal, $shift:literal, $d:literal, $half:literal, $base:literal, $n:literal) => {
+        concat!(
+            "ldrd r1, r2, [r0, #24]\n",
+            "ldr r3, [r0, #32]\n",
+            $ext, " r1, r1", $shift, "\n",
+            $ext, " r2, r2", $shift, "\n",
+            $ext, " r3, r3", $shift, "\n",
+            "sub r2, r2, r1\n",
+            "sub r3, r3, r1\n",
+            "strd r2, r3, [sp, #", $d, "]\n",
+            "ldr r10, [r0, #", $half, "]\n",
+            "add r1, r10, r1, lsl #16\n",
+            "str r1, [sp, #", $base, "]\n",
+            "mul r10, r2, r9\n",
+            "mls r10, r3, r7, r10\n",
+            "mul r11, r3, r6\n",
+            "mls r11, r2, r8, r11\n",
+            "strd r10, r11, [sp, #", $n, "]\n",
+            "cmp r10, #0\n",
+            "it mi\n",
+            "rsbmi r10, r10, #0\n",
+            "cmp r10, r5\n",
+            "bhs 90f\n",
+            "cmp r11, #0\n",
+            "it mi\n",
+            "rsbmi r11, r11, #0\n",
+            "cmp r11, r5\n",
+            "bhs 90f\n",
+        )
+    };
+}
+
+/// `$out = (n·r + 2^(s−1)) >> s` (low word) for `n` in `$n`: r9 = r, r10 = 2^(s−1), r11 = s,
+/// r8 = 32 − s; r5, r6 scratch.
+#[rustfmt::skip]
+macro_rules! scaled_by_r {
+    ($n:literal, $out:literal) => {
+        concat!(
+            "smull r5, r6, ", $n, ", r9\n",
+            "adds r5, r5, r10\n",
+            "adc r6, r6, #0\n",
+            "lsr r5, r5, r11\n",
+            "lsl r6, r6, r8\n",
+            "orr ", $out, ", r5, r6\n",
+        )
+    };
+}
+
+/// One attribute's plane into the block: its value at the first pixel (`(d1·b1 + d2·b2 + 2⁷)
+/// >> 8` plus the value term at `$base`; r3, r2 = b1, b2) at `$value`, its steps a column and a
+/// row (the numerators at `$n` scaled by r) at `$column` and `$row`.
+#[rustfmt::skip]
+macro_rules! attribute_plane {
+    ($d:literal, $base:literal, $n:literal, $value:literal, $column:literal, $row:literal) => {
+        concat!(
+            "ldrd r1, r4, [sp, #", $d, "]\n",
+            "smull r5, r6, r1, r3\n",
+            "smlal r5, r6, r4, r2\n",
+            "adds r5, r5, #128\n",
+            "adc r6, r6, #0\n",
+            "lsr r5, r5, #8\n",
+            "orr r5, r5, r6, lsl #24\n",
+            "ldr r1, [sp, #", $base, "]\n",
+            "add r5, r5, r1\n",
+            "str r5, [sp, #", $value, "]\n",
+            "ldrd r1, r4, [sp, #", $n, "]\n",
+            scaled_by_r!("r1", "r1"),
+            "str r1, [sp, #", $column, "]\n",
+            scaled_by_r!("r4", "r4"),
+            "str r4, [sp, #", $row, "]\n",
+        )
+    };
+}
+
+/// One digit `⌊rem·2¹⁶/d⌋` of the reciprocal's schoolbook division (`raster::arith`'s
+/// `reciprocal_63_by_digits`): r1 = rem (below d), r3 = d's top half, r12 = d; the digit in
+/// `$q`, the next remainder (low word) in r1. The estimate `rem/high` is at most two above the
+/// digit: it comes down by one for each of `q·d > rem·2¹⁶` and `q·d > rem·2¹⁶ + d` (64-bit
+/// compares; r5, r6 = q·d, r7, r8 = rem·2¹⁶ plus what has been taken off, r10 scratch).
+#[rustfmt::skip]
+macro_rules! reciprocal_digit {
+    ($q:literal) => {
+        concat!(
+            "udiv ", $q, ", r1, r3\n",
+            "umull r5, r6, ", $q, ", r12\n",
+            "lsl r7, r1, #16\n",
+            "lsr r8, r1, #16\n",
+            "subs r10, r7, r5\n",
+            "sbcs r10, r8, r6\n",
+            "bhs 14f\n",
+            "sub ", $q, ", ", $q, ", #1\n",
+            "adds r7, r7, r12\n",
+            "adc r8, r8, #0\n",
+            "subs r10, r7, r5\n",
+            "sbcs r10, r8, r6\n",
+            "bhs 14f\n",
+            "sub ", $q, ", ", $q, ", #1\n",
+            "add r7, r7, r12\n",
+            "14:\n",
+            "sub r1, r7, r5\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_level_face_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_level_face_v7m",
+    ".hidden embedded_raster_level_face_v7m",
+    ".type embedded_raster_level_face_v7m,%function",
+    ".thumb_func",
+    // r0 = the face (`LevelFace`). Returns 0 if done (drawn, or nothing to draw), 1 if declined
+    // (not small, or a sliver): nothing drawn. The frame: the row loop's block at sp (84
+    // bytes), then scratch: 84, 88 = l1, l2 (the edge values of oriented vertices 1 and 2 at
+    // the first pixel); 92 = whether the middle bound starts; 96-108 = the depth's and the
+    // level's d1, d2; 112-124 = their nx, ny; 128, 132 = their value terms.
+    "embedded_raster_level_face_v7m:",
+    "push {{r4-r11, lr}}",
+    "sub sp, #148",
+    "ldm r0, {{r4-r9}}",
+    // The box: r10, r11 = least and greatest x, r1, r2 = y; each extent below 16 pixels.
+    "mov r10, r4",
+    "mov r11, r4",
+    "cmp r6, r10",
+    "it lt",
+    "movlt r10, r6",
+    "cmp r6, r11",
+    "it gt",
+    "movgt r11, r6",
+    "cmp r8, r10",
+    "it lt",
+    "movlt r10, r8",
+    "cmp r8, r11",
+    "it gt",
+    "movgt r11, r8",
+    "mov r1, r5",
+    "mov r2, r5",
+    "cmp r7, r1",
+    "it lt",
+    "movlt r1, r7",
+    "cmp r7, r2",
+    "it gt",
+    "movgt r2, r7",
+    "cmp r9, r1",
+    "it lt",
+    "movlt r1, r9",
+    "cmp r9, r2",
+    "it gt",
+    "movgt r2, r9",
+    "sub r3, r11, r10",
+    "cmp r3, #4096",
+    "bhs 90f",
+    "sub r3, r2, r1",
+    "cmp r3, #4096",
+    "bhs 90f",
+    // The region: pixels whose centres are in the box, inside the clip (r10-r11 columns, r1-r2
+    // rows); none: done.
+    "uxtb r3, r10",
+    "asr r10, r10, #8",
+    "cmp r3, #0x80",
+    "it hi",
+    "addhi r10, r10, #1",
+    "ldr r3, [r0, #36]",
+    "cmp r10, r3",
+    "it lt",
+    "movlt r10, r3",
+    "uxtb r3, r11",
+    "asr r11, r11, #8",
+    "cmp r3, #0x80",
+    "it lo",
+    "sublo r11, r11, #1",
+    "ldr r3, [r0, #44]",
+    "cmp r11, r3",
+    "it gt",
+    "movgt r11, r3",
+    "cmp r10, r11",
+    "bgt 80f",
+    "uxtb r3, r1",
+    "asr r1, r1, #8",
+    "cmp r3, #0x80",
+    "it hi",
+    "addhi r1, r1, #1",
+    "ldr r3, [r0, #40]",
+    "cmp r1, r3",
+    "it lt",
+    "movlt r1, r3",
+    "uxtb r3, r2",
+    "asr r2, r2, #8",
+    "cmp r3, #0x80",
+    "it lo",
+    "sublo r2, r2, #1",
+    "ldr r3, [r0, #48]",
+    "cmp r2, r3",
+    "it gt",
+    "movgt r2, r3",
+    "cmp r1, r2",
+    "bgt 80f",
+    // The block's region: columns, rows, stride, the buffers at the first pixel, the table.
+    "sub r3, r11, r10",
+    "add r3, r3, #1",
+    "str r3, [sp, #48]",
+    "sub r3, r2, r1",
+    "add r3, r3, #1",
+    "str r3, [sp, #80]",
+    "ldr r3, [r0, #60]",
+    "str r3, [sp, #20]",
+    "mul r3, r3, r1",
+    "add r3, r3, r10, lsl #1",
+    "ldrd r11, r12, [r0, #52]",
+    "add r11, r11, r3",
+    "add r12, r12, r3",
+    "str r11, [sp, #64]",
+    "str r12, [sp, #8]",
+    "ldr r3, [r0, #64]",
+    "str r3, [sp, #60]",
+    // The first pixel centre relative to vertex 0 (r10, r1), the other vertices too (r6-r9),
+    // and the doubled area (r4): none, done; negative, vertices 1 and 2 swapped (and their
+    // attribute words in the face).
+    "lsl r10, r10, #8",
+    "add r10, r10, #128",
+    "sub r10, r10, r4",
+    "lsl r1, r1, #8",
+    "add r1, r1, #128",
+    "sub r1, r1, r5",
+    "sub r6, r6, r4",
+    "sub r7, r7, r5",
+    "sub r8, r8, r4",
+    "sub r9, r9, r5",
+    "mul r4, r6, r9",
+    "mls r4, r7, r8, r4",
+    "cmp r4, #0",
+    "beq 80f",
+    "bgt 1f",
+    "rsb r4, r4, #0",
+    "mov r3, r6",
+    "mov r6, r8",
+    "mov r8, r3",
+    "mov r3, r7",
+    "mov r7, r9",
+    "mov r9, r3",
+    "ldrd r2, r3, [r0, #28]",
+    "strd r3, r2, [r0, #28]",
+    "1:",
+    // The edges' values at the first pixel: r2 = l1 (the edge from o2 to vertex 0), r3 = l2
+    // (from vertex 0 to o1), r5 = the edge from o1 to o2's.
+    "sub r2, r10, r8",
+    "mul r2, r9, r2",
+    "sub r3, r1, r9",
+    "mls r2, r8, r3, r2",
+    "mul r3, r6, r1",
+    "mls r3, r7, r10, r3",
+    "sub r11, r7, r9",
+    "sub r12, r8, r6",
+    "sub r5, r10, r6",
+    "mul r5, r11, r5",
+    "sub lr, r1, r7",
+    "mla r5, r12, lr, r5",
+    // The runs' bounds, starts from slot 0 up (r10), ends from slot 2 down (r1).
+    "mov r10, sp",
+    "add r1, sp, #8",
+    edge_bound!("r11", "r12", "r5", "lr"),
+    "rsb r11, r8, #0",
+    edge_bound!("r9", "r11", "r2", "r12"),
+    "rsb r11, r7, #0",
+    edge_bound!("r11", "r6", "r3", "r12"),
+    "mov r12, sp",
+    "sub r10, r10, r12",
+    "lsr r10, r10, #3",
+    "str r10, [sp, #92]",
+    "strd r2, r3, [sp, #84]",
+    // Steps of at most 2¹⁴ a pixel: the numerators' limit (r5), area·2¹⁴ (2³⁰ from 2¹⁶ up).
+    "cmp r4, #0x10000",
+    "ite lo",
+    "lsllo r5, r4, #14",
+    "movhs r5, #0x40000000",
+    attribute_numerators!("uxth", "", "96", "68", "128", "112"),
+    attribute_numerators!("lsr", ", #16", "104", "72", "132", "120"),
+    // r = ⌊2⁶³/d⌋ / 2 for the area normalised, d = area·2ᵗ ≥ 2³¹ (2³¹ − 1 for d = 2³¹), in r9;
+    // s = 38 − t in r11.
+    "clz r11, r4",
+    "lsl r12, r4, r11",
+    "rsb r11, r11, #38",
+    "cmp r12, #0x80000000",
+    "bne 2f",
+    "mvn r9, #0x80000000",
+    "b 3f",
+    "2:",
+    "lsr r3, r12, #16",
+    "mov r1, #0x80000000",
+    reciprocal_digit!("r4"),
+    reciprocal_digit!("r9"),
+    "orr r9, r9, r4, lsl #16",
+    "lsr r9, r9, #1",
+    "3:",
+    // r10 = 2^(s−1), r8 = 32 − s. The barycentrics of oriented vertices 1 and 2 at the first
+    // pixel, b1 = r3 and b2 = r2 (a sliver, whose (l·r) >> (s + 29) is not −1 or 0, declines).
+    "sub r10, r11, #1",
+    "mov r5, #1",
+    "lsl r10, r5, r10",
+    "rsb r8, r11, #32",
+    "ldrd r1, r2, [sp, #84]",
+    "sub r7, r11, #3",
+    "smull r3, r4, r1, r9",
+    "asr r5, r4, r7",
+    "adds r5, r5, #1",
+    "cmp r5, #1",
+    "bhi 90f",
+    "smull r1, r12, r2, r9",
+    "asr r5, r12, r7",
+    "adds r5, r5, #1",
+    "cmp r5, #1",
+    "bhi 90f",
+    "adds r3, r3, r10",
+    "adc r4, r4, #0",
+    "lsr r3, r3, r11",
+    "lsl r4, r4, r8",
+    "orr r3, r3, r4",
+    "adds r1, r1, r10",
+    "adc r12, r12, #0",
+    "lsr r1, r1, r11",
+    "lsl r12, r12, r8",
+    "orr r2, r1, r12",
+    // The depth and level planes, then the rows.
+    attribute_plane!("96", "128", "112", "0", "52", "12"),
+    attribute_plane!("104", "132", "120", "4", "56", "16"),
+    "mov r0, sp",
+    "ldr r1, [sp, #92]",
+    "bl embedded_raster_level_rows_v7m",
+    "80:",
+    "movs r0, #0",
+    "add sp, #148",
+    "pop {{r4-r11, pc}}",
+    "90:",
+    "movs r0, #1",
+    "add sp, #148",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_level_face_v7m, . - embedded_raster_level_face_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_level_face_v7m(face: *mut LevelFace) -> u32;
+}
+
+/// What the face set-up reads (offsets are the assembly's).
+#[repr(C)]
+struct LevelFace {
+    /// 0-20: the vertices' positions (sub-pixels), x and y of each.
+    positions: [i32; 6],
+    /// 24-32: each vertex's depth (low half) and light level (high half).
+    attributes: [u32; 3],
+    /// 36-48: the clip's first column and row, its last column and row.
+    clip: [i32; 4],
+    /// 52, 56: the colour and depth buffers; 60: a buffer row in bytes; 64: the colour table.
+    colors: *mut u16,
+    depths: *mut u16,
+    stride: u32,
+    table: *const u16,
+    /// 68, 72: the depth's and the level's rounding terms.
+    half: [u32; 2],
+}
+
+const _: () = assert!(core::mem::size_of::<LevelFace>() == 76);
+
+/// Sets up and draws a small face with depth and light-level planes into `colors` and
+/// `depths` (`width` pixels a row), inside `clip` (its first column and row, its last column
+/// and row): what `raster::scan` sets up for it and [`level_rows`] draws, from the same
+/// integers. `true` if done (drawn, or nothing of it to draw); `false`, with nothing drawn, if
+/// the face is not small or a sliver (the portable set-up's `NotSmall::Other`), or if the clip
+/// is not inside the buffers or `C` is not a 16-bit colour.
+#[inline(always)]
+pub(crate) fn level_face<C: Copy>(
+    (colors, depths, width): (&mut [C], &mut [u16], usize),
+    clip: [i32; 4],
+    face: &super::FaceLevels,
+    table: &[C; 256],
+) -> bool {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return false;
+    }
+    // The clip's last pixel in both buffers (an empty clip is inside them). In 64 bits: no
+    // wrapping.
+    let [x0, y0, x1, y1] = clip;
+    let len = colors.len().min(depths.len()) as u64;
+    let inside = x0 > x1
+        || y0 > y1
+        || (x0 >= 0
+            && y0 >= 0
+            && (x1 as u64) < width as u64
+            && (y1 as u64) * (width as u64) + (x1 as u64) < len);
+    let Ok(stride) = u32::try_from(width * 2) else {
+        return false;
+    };
+    if !inside {
+        return false;
+    }
+    let [p0, p1, p2] = face.positions;
+    let attribute = |i: usize| u32::from(face.depth[i]) | u32::from(face.level[i]) << 16;
+    let mut setup = LevelFace {
+        positions: [p0.0, p0.1, p1.0, p1.1, p2.0, p2.1],
+        attributes: [attribute(0), attribute(1), attribute(2)],
+        clip,
+        colors: colors.as_mut_ptr().cast(),
+        depths: depths.as_mut_ptr(),
+        stride,
+        table: table.as_ptr().cast(),
+        half: face.half,
+    };
+    // SAFETY: the function reads the face and writes its attribute words; it writes only pixels
+    // of its region — rows and columns of the clip (inside both buffers, checked above), at
+    // `row·stride + 2·column` bytes from the buffers' starts, as 2-byte aligned `u16`s (`C` is
+    // a 2-byte colour: a copy of the table's bytes is a copy of its colours) — through
+    // `level_rows`'s loop (see its safety note), reads the table at `level >> 24 < 256`, divides
+    // by non-zero divisors only (the area's top half is at least 2¹⁵), keeps its stack frame
+    // 8-byte aligned for the call, and saves and restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_level_face_v7m(&mut setup) == 0 }
+}

@@ -81,7 +81,7 @@ use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
 use crate::raster::runs::SmallScan;
 use crate::raster::scan::KeptWords;
-use crate::raster::walk::Band;
+use crate::raster::walk::{last_of, Band};
 use crate::raster::{Span, SpanShader};
 
 /// How a mesh is lit.
@@ -949,7 +949,23 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
 ) {
     let vertices = v.map(|v| v.screen());
     let levels = v.map(|v| [v.level()]);
-    let attributes = with_depth(vertices, levels, [1 << (STEP_BITS_PLANES - 1)]);
+    let half = 1 << (STEP_BITS_PLANES - 1);
+    // A small face of an opaque draw over every row: set up and drawn by the assembly.
+    if arch::LEVEL_FACE && clip.rows.band().is_none() && target.blend().is_none() {
+        let face = arch::FaceLevels {
+            positions: v.map(|v| v.position_bits()),
+            depth: vertices.map(|v| v.depth),
+            level: levels.map(|[l]| l),
+            half: [DEPTH_HALF, half],
+        };
+        let r = &clip.rect;
+        let (x, y) = (r.top_left.x, r.top_left.y);
+        let bounds = [x, y, last_of(x, r.size.width), last_of(y, r.size.height)];
+        if arch::level_face(target.buffers_mut(), bounds, &face, &table.colors) {
+            return;
+        }
+    }
+    let attributes = with_depth(vertices, levels, [half]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
 }
 
