@@ -32,8 +32,6 @@ pub(crate) use thumbv6m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::blend_solid_565;
 #[cfg(armv7m)]
-pub(crate) use thumbv7m::level_face;
-#[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::perspective_span;
@@ -41,6 +39,8 @@ pub(crate) use thumbv7m::perspective_span;
 pub(crate) use thumbv7m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
+#[cfg(armv7m)]
+pub(crate) use thumbv7m::{level_face, level_face_keeping};
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one
 /// SSE2 register.
@@ -89,15 +89,125 @@ pub(crate) const LEVEL_ROWS: bool = cfg!(any(armv7m, rv32));
 /// the row loop of [`level_rows`]; elsewhere by `raster::scan`.
 pub(crate) const LEVEL_FACE: bool = cfg!(armv7m);
 
-/// A face for [`level_face`]: its vertices' positions (sub-pixels), depths and light levels
-/// (8.8), and the rounding terms of the depth and level planes.
+/// A vertex that [`level_face`] reads where it is.
+///
+/// # Safety
+///
+/// An implementor is at least 16 bytes and 4-byte aligned, with its position's x and y
+/// (sub-pixels, `i32`) at bytes 0 and 4, its depth (`u16`) at byte 8 and its light level (8.8,
+/// `u16`) at byte 12.
+#[allow(unsafe_code)]
+pub(crate) unsafe trait LevelVertex {}
+
+/// A face for [`level_face`] (offsets are the assembly's): its vertices, read in place, the clip,
+/// the buffers, and the rounding terms of the depth and level planes.
+#[repr(C)]
 // Read only where the assembly is.
 #[cfg_attr(not(armv7m), allow(dead_code))]
-pub(crate) struct FaceLevels {
-    pub(crate) positions: [(i32, i32); 3],
-    pub(crate) depth: [u16; 3],
-    pub(crate) level: [u16; 3],
-    pub(crate) half: [u32; 2],
+pub(crate) struct LevelFace<'v> {
+    /// 0, 4, 8: the vertices (`LevelVertex`s).
+    vertices: [*const u8; 3],
+    /// 12-24: the clip's first column and row, its last column and row.
+    clip: [i32; 4],
+    /// 28, 32: the colour and depth buffers ([`level_face`] sets them); 36: a buffer row in
+    /// bytes; 40: the colour table.
+    colors: *mut u16,
+    depths: *mut u16,
+    stride: u32,
+    table: *const u16,
+    /// 44, 48: the depth's and the level's rounding terms.
+    half: [u32; 2],
+    /// 52: where to write the set-up too ([`level_face_keeping`]), or null.
+    setup: *mut SmallSetup,
+    /// 56, 60: the rows drawn, first and last (a band's); the buffers' first row is the first.
+    rows: [i32; 2],
+    borrowed: core::marker::PhantomData<&'v ()>,
+}
+
+/// A small face's set-up as [`level_face_keeping`] writes it: the row loop's block (its buffer
+/// addresses unset), the region's first pixel, and whether the middle bound starts.
+#[repr(C)]
+pub(crate) struct SmallSetup {
+    block: LevelBlock,
+    x0: i32,
+    y0: i32,
+    middle_starts: u32,
+}
+
+impl SmallSetup {
+    /// The region's first pixel and its rows as [`LevelRows`] has them (with no buffer: `first`
+    /// and `width` 0).
+    #[cfg_attr(not(armv7m), allow(dead_code))]
+    pub(crate) fn rows(&self) -> ((i32, i32), LevelRows) {
+        let b = &self.block;
+        let bound = |k: usize| {
+            (
+                b.numerators[k],
+                NonZeroU32::new(b.divisors[k]).unwrap_or(NonZeroU32::MIN),
+                b.steps[k],
+            )
+        };
+        let rows = LevelRows {
+            first: 0,
+            width: 0,
+            columns: b.columns,
+            rows: b.rows,
+            bounds: [bound(0), bound(1), bound(2)],
+            middle_starts: self.middle_starts != 0,
+            depth: [b.depth, b.depth_column, b.depth_row],
+            level: [b.level, b.level_column, b.level_row],
+        };
+        ((self.x0, self.y0), rows)
+    }
+}
+
+/// What [`level_face_keeping`] did.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) enum FaceSetup<'s> {
+    /// Nothing of the face is inside its clip.
+    Done,
+    /// Not small, or a sliver: the portable set-up's to draw (nothing drawn).
+    Declined,
+    /// Drawn; its set-up.
+    Ready(&'s SmallSetup),
+}
+
+/// [`level_face_keeping`] where there is none: declines.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn level_face_keeping<'s, C: Copy>(
+    _buffers: (&mut [C], &mut [u16], usize),
+    _face: LevelFace<'_>,
+    _table: &[C; 256],
+    _setup: &'s mut core::mem::MaybeUninit<SmallSetup>,
+) -> FaceSetup<'s> {
+    FaceSetup::Declined
+}
+
+impl<'v> LevelFace<'v> {
+    /// The face of `vertices` inside `clip` (its first column and row, its last column and
+    /// row), the planes rounded by `half`, drawn in rows `rows` (first and last: a band's, whose
+    /// first is the buffers' first; every row is `[0, i32::MAX]`).
+    #[inline(always)]
+    pub(crate) fn new<V: LevelVertex>(
+        vertices: [&'v V; 3],
+        clip: [i32; 4],
+        half: [u32; 2],
+        rows: [i32; 2],
+    ) -> Self {
+        LevelFace {
+            vertices: vertices.map(|v| (v as *const V).cast()),
+            clip,
+            colors: core::ptr::null_mut(),
+            depths: core::ptr::null_mut(),
+            stride: 0,
+            table: core::ptr::null(),
+            half,
+            setup: core::ptr::null_mut(),
+            rows,
+            borrowed: core::marker::PhantomData,
+        }
+    }
 }
 
 /// [`level_face`] where there is none: draws nothing and says so.
@@ -105,8 +215,7 @@ pub(crate) struct FaceLevels {
 #[inline(always)]
 pub(crate) fn level_face<C: Copy>(
     _buffers: (&mut [C], &mut [u16], usize),
-    _clip: [i32; 4],
-    _face: &FaceLevels,
+    _face: LevelFace<'_>,
     _table: &[C; 256],
 ) -> bool {
     false
@@ -207,8 +316,8 @@ pub(crate) struct LevelRows {
 /// What the row loops of [`level_rows`] read: [`LevelRows`] as pointers, the per-row state
 /// first (offsets in the comments are the assembly's), built only for a region inside both
 /// buffers.
-#[cfg(any(armv7m, rv32))]
 #[repr(C)]
+#[cfg_attr(not(any(armv7m, rv32)), allow(dead_code))]
 pub(crate) struct LevelBlock {
     /// 0, 4, 8: depth and level at the row's first column, the depth pointer there.
     depth: u32,
@@ -239,6 +348,25 @@ pub(crate) struct LevelBlock {
 
 #[cfg(any(armv7m, rv32))]
 const _: () = assert!(core::mem::size_of::<LevelBlock>() == 84);
+
+// The offsets the Thumb-2 face set-up and row loop read and write (a field moved fails the
+// build).
+#[cfg(armv7m)]
+const _: () = {
+    use core::mem::{offset_of, size_of};
+    type Face = LevelFace<'static>;
+    assert!(offset_of!(Face, clip) == 12 && offset_of!(Face, colors) == 28);
+    assert!(offset_of!(Face, depths) == 32 && offset_of!(Face, stride) == 36);
+    assert!(offset_of!(Face, table) == 40 && offset_of!(Face, half) == 44);
+    assert!(offset_of!(Face, setup) == 52 && offset_of!(Face, rows) == 56);
+    assert!(offset_of!(LevelBlock, depths) == 8 && offset_of!(LevelBlock, depth_row) == 12);
+    assert!(offset_of!(LevelBlock, stride) == 20 && offset_of!(LevelBlock, steps) == 24);
+    assert!(offset_of!(LevelBlock, divisors) == 36 && offset_of!(LevelBlock, columns) == 48);
+    assert!(offset_of!(LevelBlock, depth_column) == 52 && offset_of!(LevelBlock, table) == 60);
+    assert!(offset_of!(LevelBlock, colors) == 64 && offset_of!(LevelBlock, numerators) == 68);
+    assert!(offset_of!(LevelBlock, rows) == 80 && offset_of!(SmallSetup, x0) == 84);
+    assert!(offset_of!(SmallSetup, middle_starts) == 92 && size_of::<SmallSetup>() == 96);
+};
 
 #[cfg(any(armv7m, rv32))]
 impl LevelBlock {

@@ -34,9 +34,12 @@
 //! (which blends such a triangle) has the host's checksum.
 #![allow(unsafe_code)]
 
+use core::mem::MaybeUninit;
+
 use embedded_graphics::pixelcolor::raw::RawU16;
 
-use super::{LevelBlock, LevelRows, PerspectiveSpan565, TexturedRows};
+use super::TexturedRows;
+use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
 
 /// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
 /// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
@@ -1330,21 +1333,21 @@ macro_rules! edge_bound {
     };
 }
 
-/// One attribute's vertex values from the attribute words (`$ext`: `uxth` for the depth in the
-/// low halves, `lsr` … `#16` for the level in the high ones), its differences from vertex 0
-/// stored at `$d` (d1, d2), its value term (`base·2¹⁶ + half`, the half at `$half` of the face)
-/// at `$base`, and its numerators `nx = d1·a1 + d2·a2`, `ny = d1·b1 + d2·b2` (the edges opposite
-/// oriented vertices 1 and 2: r6-r9 = o1x, o1y, o2x, o2y) at `$n`; a numerator past the
-/// limit (r5) declines the face.
+/// One attribute's vertex values (the `u16` at `$at` of each vertex, the oriented vertices'
+/// addresses at sp + 136, 140, 144), its differences from vertex 0 stored at `$d` (d1, d2), its
+/// value term (`base·2¹⁶ + half`, the half at `$half` of the face) at `$base`, and its
+/// numerators `nx = d1·a1 + d2·a2`, `ny = d1·b1 + d2·b2` (the edges opposite oriented vertices 1
+/// and 2: r6-r9 = o1x, o1y, o2x, o2y) at `$n`; a numerator past the limit (r5) declines the
+/// face.
 #[rustfmt::skip]
 macro_rules! attribute_numerators {
-    ($ext:literal, $shift:literal, $d:literal, $half:literal, $base:literal, $n:literal) => {
+    ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal) => {
         concat!(
-            "ldrd r1, r2, [r0, #24]\n",
-            "ldr r3, [r0, #32]\n",
-            $ext, " r1, r1", $shift, "\n",
-            $ext, " r2, r2", $shift, "\n",
-            $ext, " r3, r3", $shift, "\n",
+            "ldr r1, [sp, #136]\n",
+            "ldrd r2, r3, [sp, #140]\n",
+            "ldrh r1, [r1, #", $at, "]\n",
+            "ldrh r2, [r2, #", $at, "]\n",
+            "ldrh r3, [r3, #", $at, "]\n",
             "sub r2, r2, r1\n",
             "sub r3, r3, r1\n",
             "strd r2, r3, [sp, #", $d, "]\n",
@@ -1455,11 +1458,18 @@ core::arch::global_asm!(
     // (not small, or a sliver): nothing drawn. The frame: the row loop's block at sp (84
     // bytes), then scratch: 84, 88 = l1, l2 (the edge values of oriented vertices 1 and 2 at
     // the first pixel); 92 = whether the middle bound starts; 96-108 = the depth's and the
-    // level's d1, d2; 112-124 = their nx, ny; 128, 132 = their value terms.
+    // level's d1, d2; 112-124 = their nx, ny; 128, 132 = their value terms; 136-144 = the
+    // oriented vertices' addresses; 148, 152, 156 = the region's first column, first and last
+    // rows; 160 = the result once drawn.
     "embedded_raster_level_face_v7m:",
     "push {{r4-r11, lr}}",
-    "sub sp, #148",
-    "ldm r0, {{r4-r9}}",
+    "sub sp, #164",
+    "ldm r0, {{r1, r2, r3}}",
+    "add r4, sp, #136",
+    "stm r4, {{r1, r2, r3}}",
+    "ldrd r4, r5, [r1]",
+    "ldrd r6, r7, [r2]",
+    "ldrd r8, r9, [r3]",
     // The box: r10, r11 = least and greatest x, r1, r2 = y; each extent below 16 pixels.
     "mov r10, r4",
     "mov r11, r4",
@@ -1502,7 +1512,7 @@ core::arch::global_asm!(
     "cmp r3, #0x80",
     "it hi",
     "addhi r10, r10, #1",
-    "ldr r3, [r0, #36]",
+    "ldr r3, [r0, #12]",
     "cmp r10, r3",
     "it lt",
     "movlt r10, r3",
@@ -1511,7 +1521,7 @@ core::arch::global_asm!(
     "cmp r3, #0x80",
     "it lo",
     "sublo r11, r11, #1",
-    "ldr r3, [r0, #44]",
+    "ldr r3, [r0, #20]",
     "cmp r11, r3",
     "it gt",
     "movgt r11, r3",
@@ -1522,7 +1532,7 @@ core::arch::global_asm!(
     "cmp r3, #0x80",
     "it hi",
     "addhi r1, r1, #1",
-    "ldr r3, [r0, #40]",
+    "ldr r3, [r0, #16]",
     "cmp r1, r3",
     "it lt",
     "movlt r1, r3",
@@ -1531,33 +1541,25 @@ core::arch::global_asm!(
     "cmp r3, #0x80",
     "it lo",
     "sublo r2, r2, #1",
-    "ldr r3, [r0, #48]",
+    "ldr r3, [r0, #24]",
     "cmp r2, r3",
     "it gt",
     "movgt r2, r3",
     "cmp r1, r2",
     "bgt 80f",
-    // The block's region: columns, rows, stride, the buffers at the first pixel, the table.
+    // The region: its first column and row, last row (the band's rows are taken at the end),
+    // columns and rows.
+    "str r10, [sp, #148]",
+    "strd r1, r2, [sp, #152]",
     "sub r3, r11, r10",
     "add r3, r3, #1",
     "str r3, [sp, #48]",
     "sub r3, r2, r1",
     "add r3, r3, #1",
     "str r3, [sp, #80]",
-    "ldr r3, [r0, #60]",
-    "str r3, [sp, #20]",
-    "mul r3, r3, r1",
-    "add r3, r3, r10, lsl #1",
-    "ldrd r11, r12, [r0, #52]",
-    "add r11, r11, r3",
-    "add r12, r12, r3",
-    "str r11, [sp, #64]",
-    "str r12, [sp, #8]",
-    "ldr r3, [r0, #64]",
-    "str r3, [sp, #60]",
     // The first pixel centre relative to vertex 0 (r10, r1), the other vertices too (r6-r9),
     // and the doubled area (r4): none, done; negative, vertices 1 and 2 swapped (and their
-    // attribute words in the face).
+    // addresses).
     "lsl r10, r10, #8",
     "add r10, r10, #128",
     "sub r10, r10, r4",
@@ -1580,8 +1582,8 @@ core::arch::global_asm!(
     "mov r3, r7",
     "mov r7, r9",
     "mov r9, r3",
-    "ldrd r2, r3, [r0, #28]",
-    "strd r3, r2, [r0, #28]",
+    "ldrd r2, r3, [sp, #140]",
+    "strd r3, r2, [sp, #140]",
     "1:",
     // The edges' values at the first pixel: r2 = l1 (the edge from o2 to vertex 0), r3 = l2
     // (from vertex 0 to o1), r5 = the edge from o1 to o2's.
@@ -1615,8 +1617,8 @@ core::arch::global_asm!(
     "ite lo",
     "lsllo r5, r4, #14",
     "movhs r5, #0x40000000",
-    attribute_numerators!("uxth", "", "96", "68", "128", "112"),
-    attribute_numerators!("lsr", ", #16", "104", "72", "132", "120"),
+    attribute_numerators!("8", "96", "44", "128", "112"),
+    attribute_numerators!("12", "104", "48", "132", "120"),
     // r = ⌊2⁶³/d⌋ / 2 for the area normalised, d = area·2ᵗ ≥ 2³¹ (2³¹ − 1 for d = 2³¹), in r9;
     // s = 38 − t in r11.
     "clz r11, r4",
@@ -1662,98 +1664,177 @@ core::arch::global_asm!(
     "lsr r1, r1, r11",
     "lsl r12, r12, r8",
     "orr r2, r1, r12",
-    // The depth and level planes, then the rows.
+    // The depth and level planes, then the rows; or, given a set-up to fill (a band's draw),
+    // the block, the region's first pixel and whether the middle bound starts there.
     attribute_plane!("96", "128", "112", "0", "52", "12"),
     attribute_plane!("104", "132", "120", "4", "56", "16"),
+    // Given a set-up to fill (a band's draw keeping it for the bands below), the block over the
+    // clip, the region's first pixel and whether the middle bound starts; the result (at sp +
+    // 160) then 2, else 0.
+    "ldr r2, [r0, #52]",
+    "movs r3, #0",
+    "str r3, [sp, #160]",
+    "cbz r2, 4f",
+    "mov r3, sp",
+    "ldm r3!, {{r4-r11}}",
+    "stm r2!, {{r4-r11}}",
+    "ldm r3!, {{r4-r11}}",
+    "stm r2!, {{r4-r11}}",
+    "ldm r3!, {{r4-r8}}",
+    "stm r2!, {{r4-r8}}",
+    "ldr r4, [sp, #148]",
+    "ldr r5, [sp, #152]",
+    "ldr r6, [sp, #92]",
+    "stm r2!, {{r4-r6}}",
+    "movs r3, #2",
+    "str r3, [sp, #160]",
+    "4:",
+    // The band's rows (r4 = its first, r5 = its last) of the region's (r1 = first, r3 =
+    // last): rows above it skipped (the numerators and planes stepped by r6 rows), none in it,
+    // done. Rows counted from the band's first in the buffers.
+    "ldrd r1, r3, [sp, #152]",
+    "ldrd r4, r5, [r0, #56]",
+    "cmp r1, r4",
+    "bge 6f",
+    "cmp r3, r4",
+    "blt 81f",
+    "sub r6, r4, r1",
+    "mov r1, r4",
+    "ldrd r7, r8, [sp, #24]",
+    "ldrd r9, r10, [sp, #68]",
+    "mla r9, r7, r6, r9",
+    "mla r10, r8, r6, r10",
+    "strd r9, r10, [sp, #68]",
+    "ldr r7, [sp, #32]",
+    "ldr r9, [sp, #76]",
+    "mla r9, r7, r6, r9",
+    "str r9, [sp, #76]",
+    "ldrd r7, r8, [sp, #12]",
+    "ldrd r9, r10, [sp, #0]",
+    "mla r9, r7, r6, r9",
+    "mla r10, r8, r6, r10",
+    "strd r9, r10, [sp, #0]",
+    "6:",
+    "cmp r3, r5",
+    "it gt",
+    "movgt r3, r5",
+    "cmp r1, r3",
+    "bgt 81f",
+    "sub r3, r3, r1",
+    "add r3, r3, #1",
+    "str r3, [sp, #80]",
+    "sub r1, r1, r4",
+    // The stride, the buffers at the first pixel, the table; then the rows.
+    "ldr r3, [r0, #36]",
+    "str r3, [sp, #20]",
+    "mul r3, r3, r1",
+    "ldr r6, [sp, #148]",
+    "add r3, r3, r6, lsl #1",
+    "ldrd r11, r12, [r0, #28]",
+    "add r11, r11, r3",
+    "add r12, r12, r3",
+    "str r11, [sp, #64]",
+    "str r12, [sp, #8]",
+    "ldr r3, [r0, #40]",
+    "str r3, [sp, #60]",
     "mov r0, sp",
     "ldr r1, [sp, #92]",
     "bl embedded_raster_level_rows_v7m",
+    "81:",
+    "ldr r0, [sp, #160]",
+    "add sp, #164",
+    "pop {{r4-r11, pc}}",
     "80:",
     "movs r0, #0",
-    "add sp, #148",
+    "add sp, #164",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #1",
-    "add sp, #148",
+    "add sp, #164",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_level_face_v7m, . - embedded_raster_level_face_v7m",
 );
 
 extern "C" {
     /// The assembly function above.
-    fn embedded_raster_level_face_v7m(face: *mut LevelFace) -> u32;
+    fn embedded_raster_level_face_v7m(face: *mut LevelFace<'_>) -> u32;
 }
 
-/// What the face set-up reads (offsets are the assembly's).
-#[repr(C)]
-struct LevelFace {
-    /// 0-20: the vertices' positions (sub-pixels), x and y of each.
-    positions: [i32; 6],
-    /// 24-32: each vertex's depth (low half) and light level (high half).
-    attributes: [u32; 3],
-    /// 36-48: the clip's first column and row, its last column and row.
-    clip: [i32; 4],
-    /// 52, 56: the colour and depth buffers; 60: a buffer row in bytes; 64: the colour table.
-    colors: *mut u16,
-    depths: *mut u16,
-    stride: u32,
-    table: *const u16,
-    /// 68, 72: the depth's and the level's rounding terms.
-    half: [u32; 2],
-}
-
-const _: () = assert!(core::mem::size_of::<LevelFace>() == 76);
-
-/// Sets up and draws a small face with depth and light-level planes into `colors` and
-/// `depths` (`width` pixels a row), inside `clip` (its first column and row, its last column
-/// and row): what `raster::scan` sets up for it and [`level_rows`] draws, from the same
+/// Sets up and draws the small face `face` with depth and light-level planes into `colors` and
+/// `depths` (`width` pixels a row, the face's first row of rows the buffers' first), inside its
+/// clip and rows: what `raster::scan` sets up for it and [`level_rows`] draws, from the same
 /// integers. `true` if done (drawn, or nothing of it to draw); `false`, with nothing drawn, if
-/// the face is not small or a sliver (the portable set-up's `NotSmall::Other`), or if the clip
-/// is not inside the buffers or `C` is not a 16-bit colour.
+/// the face is not small or a sliver (the portable set-up's `NotSmall::Other`), or if the clip's
+/// pixels in those rows are not inside the buffers or `C` is not a 16-bit colour.
 #[inline(always)]
 pub(crate) fn level_face<C: Copy>(
-    (colors, depths, width): (&mut [C], &mut [u16], usize),
-    clip: [i32; 4],
-    face: &super::FaceLevels,
+    buffers: (&mut [C], &mut [u16], usize),
+    face: LevelFace<'_>,
     table: &[C; 256],
 ) -> bool {
+    level_face_result(buffers, face, table) != 1
+}
+
+/// [`level_face`]'s call: 0 if done, 1 if declined, 2 if drawn with the set-up written out.
+#[inline(always)]
+fn level_face_result<C: Copy>(
+    (colors, depths, width): (&mut [C], &mut [u16], usize),
+    mut face: LevelFace<'_>,
+    table: &[C; 256],
+) -> u32 {
     if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
-        return false;
+        return 1;
     }
-    // The clip's last pixel in both buffers (an empty clip is inside them). In 64 bits: no
-    // wrapping.
-    let [x0, y0, x1, y1] = clip;
+    // The last pixel the face can write, in both buffers: rows counted from the first of
+    // `rows` (at or above the top one, so the wrapping difference is the true one).
+    let ([x0, y0, x1, y1], [first, last]) = (face.clip, face.rows);
+    let (top, bottom) = (y0.max(first), y1.min(last));
+    if x0 > x1 || top > bottom {
+        // Nothing of the clip in the rows: the set-up is wanted for the rows below.
+        if face.setup.is_null() {
+            return 0;
+        }
+    }
     let len = colors.len().min(depths.len()) as u64;
+    let row = u64::from(bottom.wrapping_sub(first) as u32);
     let inside = x0 > x1
-        || y0 > y1
-        || (x0 >= 0
-            && y0 >= 0
-            && (x1 as u64) < width as u64
-            && (y1 as u64) * (width as u64) + (x1 as u64) < len);
-    let Ok(stride) = u32::try_from(width * 2) else {
-        return false;
-    };
-    if !inside {
-        return false;
+        || top > bottom
+        || (x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len);
+    if !inside || width > (u32::MAX / 2) as usize {
+        return 1;
     }
-    let [p0, p1, p2] = face.positions;
-    let attribute = |i: usize| u32::from(face.depth[i]) | u32::from(face.level[i]) << 16;
-    let mut setup = LevelFace {
-        positions: [p0.0, p0.1, p1.0, p1.1, p2.0, p2.1],
-        attributes: [attribute(0), attribute(1), attribute(2)],
-        clip,
-        colors: colors.as_mut_ptr().cast(),
-        depths: depths.as_mut_ptr(),
-        stride,
-        table: table.as_ptr().cast(),
-        half: face.half,
-    };
-    // SAFETY: the function reads the face and writes its attribute words; it writes only pixels
-    // of its region — rows and columns of the clip (inside both buffers, checked above), at
-    // `row·stride + 2·column` bytes from the buffers' starts, as 2-byte aligned `u16`s (`C` is
-    // a 2-byte colour: a copy of the table's bytes is a copy of its colours) — through
-    // `level_rows`'s loop (see its safety note), reads the table at `level >> 24 < 256`, divides
-    // by non-zero divisors only (the area's top half is at least 2¹⁵), keeps its stack frame
-    // 8-byte aligned for the call, and saves and restores every register the AAPCS asks it to.
-    unsafe { embedded_raster_level_face_v7m(&mut setup) == 0 }
+    face.colors = colors.as_mut_ptr().cast();
+    face.depths = depths.as_mut_ptr();
+    face.stride = (width * 2) as u32;
+    face.table = table.as_ptr().cast();
+    // SAFETY: the function reads the face and, through its addresses, 16 bytes of each vertex
+    // (`LevelVertex`'s layout); it writes only pixels of its region — rows and columns of the
+    // clip (inside both buffers, checked above), at `row·stride + 2·column` bytes from the
+    // buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour: a copy of the table's
+    // bytes is a copy of its colours) — through `level_rows`'s loop (see its safety note),
+    // reads the table at `level >> 24 < 256`, divides by non-zero divisors only (the area's top
+    // half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and saves and
+    // restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_level_face_v7m(&mut face) }
+}
+
+/// [`level_face`], its set-up (over the clip, before the rows outside `rows` are taken off)
+/// written to `setup` for the bands below: done with nothing in the clip, declined (nothing
+/// drawn), or drawn, with `setup` written.
+#[inline(always)]
+pub(crate) fn level_face_keeping<'s, C: Copy>(
+    buffers: (&mut [C], &mut [u16], usize),
+    mut face: LevelFace<'_>,
+    table: &[C; 256],
+    setup: &'s mut MaybeUninit<SmallSetup>,
+) -> FaceSetup<'s> {
+    face.setup = setup.as_mut_ptr();
+    match level_face_result(buffers, face, table) {
+        0 => FaceSetup::Done,
+        // SAFETY: the function returns 2 once it has written all of the set-up (96 bytes: the
+        // block's 21 words and three more), every bit pattern of which is a value of its fields
+        // (integers and raw pointers).
+        2 => FaceSetup::Ready(unsafe { setup.assume_init_ref() }),
+        _ => FaceSetup::Declined,
+    }
 }

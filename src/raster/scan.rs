@@ -26,8 +26,14 @@ use super::runs::SMALL;
 use super::runs::{run_by_scan, Edge, ReciprocalRuns, RowBound, RowRuns, SmallScan};
 use super::sink::SpanShader;
 use super::walk::{bounds, Band, Region, Span};
-use crate::arch::{HAS_DIVIDER, MCU};
+use crate::arch::{SmallSetup, HAS_DIVIDER, MCU};
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
+
+// The Thumb-2 set-up of a small lit face (`arch::thumbv7m`'s `level_face`) has these in its
+// instructions: the box's limit (4096 sub-pixels), the half pixel (0x80) and the sub-pixel bits
+// (8), the planes' shift (`s = 38 − t` for 24 fractional bits) and the steps' limit (2¹⁴ LSB).
+const _: () = assert!(SMALL << SUBPIXEL_BITS == 4096 && HALF_PIXEL == 0x80 && SUBPIXEL_BITS == 8);
+const _: () = assert!(super::plane::STEP_BITS == 24);
 
 /// A small triangle set up over a clip rectangle: its pixel region, edges and planes.
 struct SmallTriangle<const N: usize> {
@@ -222,6 +228,38 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
         Err(NotSmall::Empty) => Some(false),
         Err(NotSmall::Other) => None,
     }
+}
+
+/// Keeps the set-up [`level_face_keeping`] wrote for a small triangle in `keep`, as
+/// [`shade_rows`] keeps its own (the integers of [`SmallTriangle::new`] and [`RowRuns::new`], up
+/// to the order of two bounds of one kind, whose greater or lesser the runs take either way):
+/// whether it did.
+///
+/// [`level_face_keeping`]: crate::arch::level_face_keeping
+#[inline(always)]
+pub(crate) fn keep_setup(setup: &SmallSetup, keep: &mut impl KeptWords) -> bool {
+    let ((x0, y0), rows) = setup.rows();
+    let bound = |(numerator, divisor, step)| RowBound {
+        numerator,
+        divisor,
+        step,
+    };
+    let runs = RowRuns {
+        bounds: rows.bounds.map(bound),
+        middle_starts: rows.middle_starts,
+        columns: rows.columns,
+    };
+    let (d, l) = (rows.depth, rows.level);
+    let unused = Edge { a: 0, b: 0, k: 0 };
+    let triangle = SmallTriangle {
+        x0,
+        y0,
+        last: rows.columns.wrapping_sub(1),
+        rows: rows.rows.wrapping_sub(1),
+        edges: [unused; 3],
+        planes: Planes::from_parts([d[0], l[0]], [d[1], l[1]], [d[2], l[2]]),
+    };
+    triangle.keep(&runs, keep)
 }
 
 /// Draws the rows of `band` of the small triangle whose set-up [`shade_rows`] kept in `kept`:

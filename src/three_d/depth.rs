@@ -340,6 +340,7 @@ impl ImageDrawable for DepthImage<'_> {
 
 /// A projected vertex: sub-pixel screen position and depth (0 near … [`DEPTH_FAR`] far).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[repr(C)]
 pub struct ScreenVertex {
     /// Horizontal position.
     pub x: Coord,

@@ -512,8 +512,8 @@ fn bounds(positions: &[Vec3]) -> [u32; 3] {
     })
 }
 
-/// How a draw colours its faces.
-#[derive(Clone)]
+/// How a draw colours its faces. Copied as a whole (a band's draw copies it, its 256 colours
+/// included: a word copy, where a field-by-field clone copies the colours as halves).
 enum Fill<C> {
     /// The material colour.
     Unlit(C),
@@ -537,7 +537,6 @@ enum Fill<C> {
 }
 
 /// How a draw fills a material with a highlight.
-#[derive(Clone)]
 struct Shiny<C> {
     color: C,
     shading: Shading,
@@ -549,6 +548,22 @@ struct Shiny<C> {
     /// does not reach (a specular term of 0 at every vertex) are filled as without it.
     table: Option<ShadeTable<C>>,
 }
+
+impl<C: Copy> Clone for Fill<C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C: Copy> Copy for Fill<C> {}
+
+impl<C: Copy> Clone for Shiny<C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C: Copy> Copy for Shiny<C> {}
 
 /// How a textured draw lights its texels.
 #[derive(Debug, Clone, Copy)]
@@ -833,7 +848,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             vertex_rig: self.vertex_rig,
             band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
             clip,
-            fill: self.fill.clone(),
+            fill: self.fill,
             texture: self.texture,
             blend: self.blend,
         }

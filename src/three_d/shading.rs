@@ -72,7 +72,7 @@ use super::math::{
     inv_sqrt, normalize_wide, sat32, zip3_with, zip_with, Bary, Scalar, Vec3, BARY_ONE,
 };
 use super::vertex::ProjectedVertex;
-use crate::arch;
+use crate::arch::{self, FaceSetup};
 use crate::color::{GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
 use crate::raster::arith::mul_i32_wide;
@@ -80,7 +80,7 @@ use crate::raster::band::{AllRows, RowWindow};
 use crate::raster::edge::TriangleSetup;
 use crate::raster::plane::{Attributes, InverseArea, STEP_BITS as STEP_BITS_PLANES};
 use crate::raster::runs::SmallScan;
-use crate::raster::scan::KeptWords;
+use crate::raster::scan::{self, KeptWords};
 use crate::raster::walk::{last_of, Band};
 use crate::raster::{Span, SpanShader};
 
@@ -596,6 +596,8 @@ fn blended_span<C: Copy, P: DepthPixel<C, N>, const N: usize>(
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TargetClip<R = AllRows> {
     rect: Rectangle,
+    /// The rectangle's first column and row and its last column and row (clamped to `i32`).
+    bounds: [i32; 4],
     rows: R,
 }
 
@@ -610,8 +612,16 @@ impl TargetClip {
 impl<R: RowWindow> TargetClip<R> {
     /// The part of `clip` inside `frame`, drawn through `rows`.
     pub(crate) fn of_frame(clip: &Rectangle, frame: &Rectangle, rows: R) -> Self {
+        let rect = crate::rect::intersection(clip, frame);
+        let (x, y) = (rect.top_left.x, rect.top_left.y);
         TargetClip {
-            rect: crate::rect::intersection(clip, frame),
+            rect,
+            bounds: [
+                x,
+                y,
+                last_of(x, rect.size.width),
+                last_of(y, rect.size.height),
+            ],
             rows,
         }
     }
@@ -625,8 +635,8 @@ impl<R: RowWindow> TargetClip<R> {
     /// The clip with a row more on each side of its window ([`RowWindow::widened`]).
     pub(crate) fn widened(&self) -> Self {
         TargetClip {
-            rect: self.rect,
             rows: self.rows.widened(),
+            ..*self
         }
     }
 
@@ -870,10 +880,21 @@ fn wrapping_add_each(a: &mut [i64; 3], b: &[i64; 3]) {
 
 /// A material colour at the 256 light levels of a Gouraud-lit mesh: `table[i]` is
 /// `shade(color, i/255)`. Built once per draw.
-#[derive(Clone)]
+// Word-aligned, and copied as a whole (not an array clone of 2-byte elements): a band's draw
+// copies it (`Frame::with_clip`), and the library copy of words is several times as fast as its
+// copy of halves on the Cortex-M.
+#[repr(align(4))]
 pub(crate) struct ShadeTable<C> {
     colors: [C; 256],
 }
+
+impl<C: Copy> Clone for ShadeTable<C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C: Copy> Copy for ShadeTable<C> {}
 
 impl<C: GouraudColor> ShadeTable<C> {
     /// The levels of `color`.
@@ -950,18 +971,14 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     let vertices = v.map(|v| v.screen());
     let levels = v.map(|v| [v.level()]);
     let half = 1 << (STEP_BITS_PLANES - 1);
-    // A small face of an opaque draw over every row: set up and drawn by the assembly.
-    if arch::LEVEL_FACE && clip.rows.band().is_none() && target.blend().is_none() {
-        let face = arch::FaceLevels {
-            positions: v.map(|v| v.position_bits()),
-            depth: vertices.map(|v| v.depth),
-            level: levels.map(|[l]| l),
-            half: [DEPTH_HALF, half],
-        };
-        let r = &clip.rect;
-        let (x, y) = (r.top_left.x, r.top_left.y);
-        let bounds = [x, y, last_of(x, r.size.width), last_of(y, r.size.height)];
-        if arch::level_face(target.buffers_mut(), bounds, &face, &table.colors) {
+    // A small face of an opaque draw: set up and drawn by the assembly.
+    if arch::LEVEL_FACE && target.blend().is_none() {
+        let rows = clip
+            .rows
+            .band()
+            .map_or([0, i32::MAX], |b| [b.first, b.last]);
+        let face = arch::LevelFace::new(v, clip.bounds, [DEPTH_HALF, half], rows);
+        if arch::level_face(target.buffers_mut(), face, &table.colors) {
             return;
         }
     }
@@ -1016,9 +1033,22 @@ pub(crate) fn draw_levels_keeping<C: PixelColor>(
     table: &ShadeTable<C>,
     keep: &mut impl KeptWords,
 ) -> bool {
+    let half = 1 << (STEP_BITS_PLANES - 1);
+    // A small face of an opaque draw: set up and drawn by the assembly, which writes its set-up
+    // out to keep.
+    if arch::LEVEL_FACE && target.blend().is_none() {
+        let rows = [clip.rows.first, clip.rows.last];
+        let face = arch::LevelFace::new(v, clip.bounds, [DEPTH_HALF, half], rows);
+        let mut setup = core::mem::MaybeUninit::uninit();
+        match arch::level_face_keeping(target.buffers_mut(), face, &table.colors, &mut setup) {
+            FaceSetup::Done => return false,
+            FaceSetup::Ready(setup) => return scan::keep_setup(setup, keep),
+            FaceSetup::Declined => {}
+        }
+    }
     let vertices = v.map(|v| v.screen());
     let levels = v.map(|v| [v.level()]);
-    let attributes = with_depth(vertices, levels, [1 << (STEP_BITS_PLANES - 1)]);
+    let attributes = with_depth(vertices, levels, [half]);
     let fill = DepthFill {
         target,
         step: [0; 2],

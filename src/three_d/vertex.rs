@@ -38,6 +38,7 @@ pub(crate) const NO_NORMAL: u8 = 1 << 7;
 /// of [`Pipeline::draw_mesh_with`](super::Pipeline::draw_mesh_with) (16 bytes). Its contents are
 /// private to the pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[repr(C)]
 pub struct ProjectedVertex {
     /// Sub-pixel screen position and depth (valid when the vertex is inside the view volume),
     /// in the form the fills take by reference: a face's vertices are drawn from the scratch
@@ -51,6 +52,20 @@ pub struct ProjectedVertex {
     /// In a textured draw, `q`'s shift (in the byte the others leave free).
     q_shift: u8,
 }
+
+// SAFETY: `ProjectedVertex` and its `ScreenVertex` are `repr(C)`: 16 bytes, 4-byte aligned, x and
+// y at bytes 0 and 4, the depth at 8 and the level at 12, as asserted below (a layout change
+// fails the build).
+#[allow(unsafe_code)]
+unsafe impl crate::arch::LevelVertex for ProjectedVertex {}
+
+const _: () = {
+    use core::mem::{align_of, offset_of, size_of};
+    assert!(size_of::<ProjectedVertex>() == 16 && align_of::<ProjectedVertex>() == 4);
+    assert!(offset_of!(ProjectedVertex, screen) == 0 && offset_of!(ProjectedVertex, level) == 12);
+    assert!(offset_of!(ScreenVertex, x) == 0 && offset_of!(ScreenVertex, y) == 4);
+    assert!(offset_of!(ScreenVertex, depth) == 8 && size_of::<Coord>() == 4);
+};
 
 impl ProjectedVertex {
     /// An entry for a scratch array: `[ProjectedVertex::EMPTY; N]`.
