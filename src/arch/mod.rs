@@ -89,6 +89,37 @@ pub(crate) const LEVEL_ROWS: bool = cfg!(any(armv7m, rv32));
 /// the row loop of [`level_rows`]; elsewhere by `raster::scan`.
 pub(crate) const LEVEL_FACE: bool = cfg!(armv7m);
 
+/// A clip's first column and row and its last column and row as [`level_face`] reads them,
+/// kept once a draw where there is a face set-up (ARMv7-M); elsewhere nothing: the clip is in
+/// the stack frame of every fill, and the micro:bit's stack has little to spare.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ClipBounds {
+    #[cfg(armv7m)]
+    bounds: [i32; 4],
+}
+
+impl ClipBounds {
+    /// The bounds of a clip whose first column and row and last column and row are `bounds`.
+    #[inline(always)]
+    pub(crate) fn new(bounds: [i32; 4]) -> Self {
+        #[cfg(not(armv7m))]
+        let _ = bounds;
+        ClipBounds {
+            #[cfg(armv7m)]
+            bounds,
+        }
+    }
+
+    /// The four bounds (zeros where none are kept).
+    #[inline(always)]
+    fn words(self) -> [i32; 4] {
+        #[cfg(armv7m)]
+        return self.bounds;
+        #[cfg(not(armv7m))]
+        [0; 4]
+    }
+}
+
 /// A vertex that [`level_face`] reads where it is.
 ///
 /// # Safety
@@ -186,18 +217,18 @@ pub(crate) fn level_face_keeping<'s, C: Copy>(
 
 impl<'v> LevelFace<'v> {
     /// The face of `vertices` inside `clip` (its first column and row, its last column and
-    /// row), the planes rounded by `half`, drawn in rows `rows` (first and last: a band's, whose
+    /// row: [`ClipBounds`]), the planes rounded by `half`, drawn in rows `rows` (first and last: a band's, whose
     /// first is the buffers' first; every row is `[0, i32::MAX]`).
     #[inline(always)]
     pub(crate) fn new<V: LevelVertex>(
         vertices: [&'v V; 3],
-        clip: [i32; 4],
+        clip: ClipBounds,
         half: [u32; 2],
         rows: [i32; 2],
     ) -> Self {
         LevelFace {
             vertices: vertices.map(|v| (v as *const V).cast()),
-            clip,
+            clip: clip.words(),
             colors: core::ptr::null_mut(),
             depths: core::ptr::null_mut(),
             stride: 0,

@@ -596,8 +596,9 @@ fn blended_span<C: Copy, P: DepthPixel<C, N>, const N: usize>(
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TargetClip<R = AllRows> {
     rect: Rectangle,
-    /// The rectangle's first column and row and its last column and row (clamped to `i32`).
-    bounds: [i32; 4],
+    /// The rectangle's first column and row and its last column and row, for the face set-up
+    /// where there is one (nothing elsewhere).
+    bounds: arch::ClipBounds,
     rows: R,
 }
 
@@ -613,15 +614,11 @@ impl<R: RowWindow> TargetClip<R> {
     /// The part of `clip` inside `frame`, drawn through `rows`.
     pub(crate) fn of_frame(clip: &Rectangle, frame: &Rectangle, rows: R) -> Self {
         let rect = crate::rect::intersection(clip, frame);
-        let (x, y) = (rect.top_left.x, rect.top_left.y);
+        let (x, y, size) = (rect.top_left.x, rect.top_left.y, rect.size);
+        let last = [last_of(x, size.width), last_of(y, size.height)];
         TargetClip {
             rect,
-            bounds: [
-                x,
-                y,
-                last_of(x, rect.size.width),
-                last_of(y, rect.size.height),
-            ],
+            bounds: arch::ClipBounds::new([x, y, last[0], last[1]]),
             rows,
         }
     }
