@@ -13,7 +13,11 @@
 //!   face are assembly. (Without M, as `riscv32i`, the portable code.)
 //! * `sse2_rows`: x86-64, whose baseline SSE2 draws tiny triangles a row of lanes at a time.
 //!
-//! ARMv6-M is recognised as ARM without 32-bit atomics (there is no `target_feature` for it).
+//! ARMv6-M is recognised as ARM without 32-bit atomics (there is no `target_feature` for it), and
+//! ARMv8-M Baseline (Cortex-M23, `thumbv8m.base`) takes its code: a superset of its instructions
+//! without Thumb-2's (no IT blocks, long multiplies or `clz`). `armv7m` is the M-profile Thumb-2
+//! targets by name (`thumbv7m`, `thumbv7em`, `thumbv8m.main`); other ARM targets (A- and
+//! R-profile) take the portable code.
 //!
 //! And links the measuring firmware (this package's examples in `firmware/`, for bare-metal
 //! targets) for the QEMU board each target runs on (`.cargo/config.toml` has the runners): the
@@ -34,8 +38,13 @@ fn main() {
     let atomics = env::var("CARGO_CFG_TARGET_HAS_ATOMIC").unwrap_or_default();
     let features = env::var("CARGO_CFG_TARGET_FEATURE").unwrap_or_default();
     let has_atomic_32 = atomics.split(',').any(|w| w == "32");
+    // The M-profile Thumb-2 targets; other ARM targets with 32-bit atomics (A- and R-profile,
+    // whose divider is optional) take the portable code.
+    let thumb2 = ["thumbv7m", "thumbv7em", "thumbv8m.main"]
+        .iter()
+        .any(|t| target.starts_with(t));
     match arch.as_str() {
-        "arm" if has_atomic_32 => {
+        "arm" if thumb2 => {
             println!("cargo::rustc-cfg=armv7m");
             if target.starts_with("thumbv7em") {
                 println!("cargo::rustc-cfg=armv7em");
@@ -44,7 +53,9 @@ fn main() {
                 println!("cargo::rustc-cfg=armv8m");
             }
         }
-        "arm" => println!("cargo::rustc-cfg=armv6m"),
+        "arm" if !has_atomic_32 || target.starts_with("thumbv8m.base") => {
+            println!("cargo::rustc-cfg=armv6m")
+        }
         "riscv32" if features.split(',').any(|f| f == "m") => println!("cargo::rustc-cfg=rv32"),
         "x86_64" => println!("cargo::rustc-cfg=sse2_rows"),
         _ => {}
