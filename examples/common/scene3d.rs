@@ -279,12 +279,7 @@ pub struct ScatterLine {
 
 impl core::fmt::Display for ScatterLine {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        let s = &self.stats;
-        write!(
-            f,
-            "frame scatter {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
-            SIZE.0, SIZE.1, s.drawn, s.culled, s.clipped, s.rejected, s.degenerate, self.covered, self.checksum
-        )
+        write_frame_line(f, "scatter", &self.stats, self.covered, self.checksum)
     }
 }
 
@@ -423,23 +418,25 @@ pub struct FrameLine {
 
 impl core::fmt::Display for FrameLine {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        let s = &self.stats;
-        write!(
-            f,
-            "frame {}{} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
-            self.model.name(),
-            if self.wireframe { "-wireframe" } else { "" },
-            SIZE.0,
-            SIZE.1,
-            s.drawn,
-            s.culled,
-            s.clipped,
-            s.rejected,
-            s.degenerate,
-            self.covered,
-            self.checksum
-        )
+        let wireframe = if self.wireframe { "-wireframe" } else { "" };
+        let name = format_args!("{}{wireframe}", self.model.name());
+        write_frame_line(f, name, &self.stats, self.covered, self.checksum)
     }
+}
+
+/// A frame line: `frame <name> WxH`, the pipeline's counts, the covered pixels and the checksum.
+fn write_frame_line(
+    f: &mut core::fmt::Formatter<'_>,
+    name: impl core::fmt::Display,
+    s: &DrawStats,
+    covered: u32,
+    checksum: u32,
+) -> core::fmt::Result {
+    write!(
+        f,
+        "frame {name} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
+        SIZE.0, SIZE.1, s.drawn, s.culled, s.clipped, s.rejected, s.degenerate, covered, checksum
+    )
 }
 
 /// The line of the [`turntable`]'s frames ([`turntable_checksum`]), compared like the frame
