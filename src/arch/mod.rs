@@ -199,7 +199,7 @@ pub(crate) enum FaceSetup<'s> {
     Done,
     /// Not small, or a sliver: the portable set-up's to draw (nothing drawn).
     Declined,
-    /// Drawn; its set-up.
+    /// Its set-up (over the clip), and its rows in the face's rows drawn (there may be none).
     Ready(&'s SmallSetup),
 }
 

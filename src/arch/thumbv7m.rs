@@ -1455,7 +1455,8 @@ core::arch::global_asm!(
     ".type embedded_raster_level_face_v7m,%function",
     ".thumb_func",
     // r0 = the face (`LevelFace`). Returns 0 if done (drawn, or nothing to draw), 1 if declined
-    // (not small, or a sliver): nothing drawn. The frame: the row loop's block at sp (84
+    // (not small, or a sliver): nothing drawn; 2 if, given a set-up to fill, it wrote it (the
+    // rows in the face's rows drawn, if any). The frame: the row loop's block at sp (84
     // bytes), then scratch: 84, 88 = l1, l2 (the edge values of oriented vertices 1 and 2 at
     // the first pixel); 92 = whether the middle bound starts; 96-108 = the depth's and the
     // level's d1, d2; 112-124 = their nx, ny; 128, 132 = their value terms; 136-144 = the
@@ -1664,8 +1665,8 @@ core::arch::global_asm!(
     "lsr r1, r1, r11",
     "lsl r12, r12, r8",
     "orr r2, r1, r12",
-    // The depth and level planes, then the rows; or, given a set-up to fill (a band's draw),
-    // the block, the region's first pixel and whether the middle bound starts there.
+    // The depth and level planes, then the rows; and, given a set-up to fill (a band's draw),
+    // first the block, the region's first pixel and whether the middle bound starts there.
     attribute_plane!("96", "128", "112", "0", "52", "12"),
     attribute_plane!("104", "132", "120", "4", "56", "16"),
     // Given a set-up to fill (a band's draw keeping it for the bands below), the block over the
@@ -1675,6 +1676,10 @@ core::arch::global_asm!(
     "movs r3, #0",
     "str r3, [sp, #160]",
     "cbz r2, 4f",
+    // (The buffer words are found after: zeros in the set-up, not the stack's leftovers.)
+    "str r3, [sp, #8]",
+    "str r3, [sp, #20]",
+    "strd r3, r3, [sp, #60]",
     "mov r3, sp",
     "ldm r3!, {{r4-r11}}",
     "stm r2!, {{r4-r11}}",
@@ -1808,7 +1813,9 @@ fn level_face_result<C: Copy>(
     face.stride = (width * 2) as u32;
     face.table = table.as_ptr().cast();
     // SAFETY: the function reads the face and, through its addresses, 16 bytes of each vertex
-    // (`LevelVertex`'s layout); it writes only pixels of its region — rows and columns of the
+    // (`LevelVertex`'s layout); with a set-up to fill (`face.setup`: null, or a
+    // `MaybeUninit<SmallSetup>` of `level_face_keeping`, the only ways a `LevelFace` is made
+    // in this module and `LevelFace::new`), it writes its 96 bytes; it writes only pixels of its region — rows and columns of the
     // clip (inside both buffers, checked above), at `row·stride + 2·column` bytes from the
     // buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour: a copy of the table's
     // bytes is a copy of its colours) — through `level_rows`'s loop (see its safety note),

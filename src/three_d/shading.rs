@@ -970,6 +970,8 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     let half = 1 << (STEP_BITS_PLANES - 1);
     // A small face of an opaque draw: set up and drawn by the assembly.
     if arch::LEVEL_FACE && target.blend().is_none() {
+        // Every row: the clip of a frame from (0, 0) (rows above 0 would be skipped).
+        debug_assert!(clip.rows.band().is_some() || clip.rect.top_left.y >= 0);
         let rows = clip
             .rows
             .band()
