@@ -98,8 +98,8 @@ QUADRATIC_TEXTURED_FRAME_LIMIT=24600000
 # the faces crossing a band boundary resume from set-ups kept in the bin's spare storage, which
 # fw_band has; the limit leaves 1.7 points for compilers, and the same source has measured a
 # point apart in two builds; +17.0 % at stop 41, the frame drawn whole 0.14 M faster and the
-# bin's frame 0.12 M; +17.6 % at stop 45, the frame drawn whole 0.41 M faster with the Thumb-2
-# face set-up and the bin's 0.43 M, a band's copy of the draw's state made a word copy: 0.4
+# bin's frame 0.12 M; +17.7 % at stop 45, the frame drawn whole 0.41 M faster with the Thumb-2
+# face set-up and the bin's 0.43 M, a band's copy of the draw's state made a word copy: 0.3
 # points left), and the micro:bit's frame in 8-row bands without a bin at most this many
 # instructions (88.9 M measured at stop 41, 130.9 M before the M0's products from limbs).
 BAND_BIN_OVERHEAD_LIMIT=18
