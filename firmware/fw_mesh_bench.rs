@@ -157,10 +157,10 @@ mod firmware {
             let mesh = model.mesh(&torus);
             // Untimed frames for the counts and the checksums, then the timed ones.
             let stats = scene3d::render(model, mesh, &mut target, Some(&mut scratch[..]));
-            let covered = scene3d::covered(target.depth());
-            let checksum = scene3d::checksum(target.framebuffer().pixels(), target.depth());
+            let line = FrameLine::of(model, false, stats, &target);
             scene3d::render(model, mesh, &mut target, None);
-            same &= checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
+            same &=
+                line.checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
             let with = clock::measure(1, || {
                 let scratch = Some(&mut scratch[..]);
                 black_box(scene3d::render(
@@ -178,25 +178,13 @@ mod firmware {
                 clock::instructions(without, calibration),
                 mesh.indices.len() as u32,
             );
-            lines[k] = Some(FrameLine {
-                model,
-                wireframe: false,
-                stats,
-                covered,
-                checksum,
-            });
+            lines[k] = Some(line);
         }
         // The knot's hidden-line wireframe: its faces into the z-buffer, then their edges.
         let knot = Model::Knot.mesh(&torus);
         let wire_stats =
             scene3d::render_wireframe(Model::Knot, knot, &mut target, Some(&mut scratch[..]));
-        let wire_line = FrameLine {
-            model: Model::Knot,
-            wireframe: true,
-            stats: wire_stats,
-            covered: scene3d::covered(target.depth()),
-            checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
-        };
+        let wire_line = FrameLine::of(Model::Knot, true, wire_stats, &target);
         scene3d::render_wireframe(Model::Knot, knot, &mut target, None);
         same &=
             wire_line.checksum == scene3d::checksum(target.framebuffer().pixels(), target.depth());
@@ -400,13 +388,7 @@ fn main() {
         scene3d::render(model, mesh, &mut target, None);
         let without = scene3d::checksum(target.framebuffer().pixels(), target.depth());
         let stats = scene3d::render(model, mesh, &mut target, Some(&mut scratch));
-        let line = FrameLine {
-            model,
-            wireframe: false,
-            stats,
-            covered: scene3d::covered(target.depth()),
-            checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
-        };
+        let line = FrameLine::of(model, false, stats, &target);
         assert_eq!(
             line.checksum, without,
             "the frames with and without scratch differ"
@@ -425,13 +407,7 @@ fn main() {
     scene3d::render_wireframe(Model::Knot, knot, &mut target, None);
     let without = scene3d::checksum(target.framebuffer().pixels(), target.depth());
     let stats = scene3d::render_wireframe(Model::Knot, knot, &mut target, Some(&mut scratch));
-    let line = FrameLine {
-        model: Model::Knot,
-        wireframe: true,
-        stats,
-        covered: scene3d::covered(target.depth()),
-        checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
-    };
+    let line = FrameLine::of(Model::Knot, true, stats, &target);
     assert_eq!(
         line.checksum, without,
         "the wireframes with and without scratch differ"

@@ -154,12 +154,16 @@ fn posed(pose: Mat4) -> Pipeline {
     // firmware (a zero matrix would draw nothing, which the frame checksums would catch).
     .unwrap_or(Mat4::from_bits([[0; 4]; 4]));
     let view = Mat4::translation(Vec3::from_bits(0, 0, -(5 << 16) / 2));
-    let light = Light::new(
+    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
+    Pipeline::new(pose, projection * view, viewport, light())
+}
+
+/// The light of every frame here (the bench scene's).
+fn light() -> Light {
+    Light::new(
         Vec3::from_bits(-26214, 39322, 45875),
         Scalar::from_bits(9830),
-    );
-    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
-    Pipeline::new(pose, projection * view, viewport, light)
+    )
 }
 
 /// The torus into the caller's arrays: major radius 1, tube radius 0.35, [`TORUS_RINGS`] ×
@@ -258,12 +262,8 @@ pub fn scatter<'a>(
 /// The pipeline of the [`scatter`] frame: an orthographic camera (the identity) onto a 256 × 256
 /// viewport centred on the screen, the bench frame's light.
 pub fn scatter_pipeline() -> Pipeline {
-    let light = Light::new(
-        Vec3::from_bits(-26214, 39322, 45875),
-        Scalar::from_bits(9830),
-    );
     let viewport = Rectangle::new(Point::new(32, -8), Size::new(256, 256));
-    Pipeline::new(Mat4::IDENTITY, Mat4::IDENTITY, viewport, light)
+    Pipeline::new(Mat4::IDENTITY, Mat4::IDENTITY, viewport, light())
 }
 
 /// The line of the [`scatter`] frame (rendered with the scratch): its counts, covered pixels
@@ -414,6 +414,25 @@ pub struct FrameLine {
     pub covered: u32,
     /// [`checksum`] of colours and depths.
     pub checksum: u32,
+}
+
+impl FrameLine {
+    /// The line of the frame `target` holds: `model`'s (its hidden-line `wireframe`), drawn
+    /// with the counts `stats`.
+    pub fn of(
+        model: Model,
+        wireframe: bool,
+        stats: DrawStats,
+        target: &DepthTarget<'_, Rgb565>,
+    ) -> Self {
+        FrameLine {
+            model,
+            wireframe,
+            stats,
+            covered: covered(target.depth()),
+            checksum: checksum(target.framebuffer().pixels(), target.depth()),
+        }
+    }
 }
 
 impl core::fmt::Display for FrameLine {

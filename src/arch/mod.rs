@@ -156,7 +156,7 @@ pub(crate) struct LevelFace<'v> {
 }
 
 /// A small face's set-up as [`level_face_keeping`] writes it: the row loop's block (its buffer
-/// addresses unset), the region's first pixel, and whether the middle bound starts.
+/// words zero), the region's first pixel, and whether the middle bound starts.
 #[repr(C)]
 pub(crate) struct SmallSetup {
     block: LevelBlock,
@@ -217,8 +217,8 @@ pub(crate) fn level_face_keeping<'s, C: Copy>(
 
 impl<'v> LevelFace<'v> {
     /// The face of `vertices` inside `clip` (its first column and row, its last column and
-    /// row: [`ClipBounds`]), the planes rounded by `half`, drawn in rows `rows` (first and last: a band's, whose
-    /// first is the buffers' first; every row is `[0, i32::MAX]`).
+    /// row: [`ClipBounds`]), the planes rounded by `half`, drawn in rows `rows` (first and
+    /// last: a band's, whose first is the buffers' first; every row is `[0, i32::MAX]`).
     #[inline(always)]
     pub(crate) fn new<V: LevelVertex>(
         vertices: [&'v V; 3],

@@ -1794,16 +1794,14 @@ fn level_face_result<C: Copy>(
     // `rows` (at or above the top one, so the wrapping difference is the true one).
     let ([x0, y0, x1, y1], [first, last]) = (face.clip, face.rows);
     let (top, bottom) = (y0.max(first), y1.min(last));
-    if x0 > x1 || top > bottom {
-        // Nothing of the clip in the rows: the set-up is wanted for the rows below.
-        if face.setup.is_null() {
-            return 0;
-        }
+    // Nothing of the clip in the rows: done, unless the set-up is wanted for the rows below.
+    let empty = x0 > x1 || top > bottom;
+    if empty && face.setup.is_null() {
+        return 0;
     }
     let len = colors.len().min(depths.len()) as u64;
     let row = u64::from(bottom.wrapping_sub(first) as u32);
-    let inside = x0 > x1
-        || top > bottom
+    let inside = empty
         || (x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len);
     if !inside || width > (u32::MAX / 2) as usize {
         return 1;
@@ -1813,10 +1811,10 @@ fn level_face_result<C: Copy>(
     face.stride = (width * 2) as u32;
     face.table = table.as_ptr().cast();
     // SAFETY: the function reads the face and, through its addresses, 16 bytes of each vertex
-    // (`LevelVertex`'s layout); with a set-up to fill (`face.setup`: null, or a
-    // `MaybeUninit<SmallSetup>` of `level_face_keeping`, the only ways a `LevelFace` is made
-    // in this module and `LevelFace::new`), it writes its 96 bytes; it writes only pixels of its region — rows and columns of the
-    // clip (inside both buffers, checked above), at `row·stride + 2·column` bytes from the
+    // (`LevelVertex`'s layout); given a set-up to fill (`face.setup` is null, as
+    // `LevelFace::new` makes it, or a `MaybeUninit<SmallSetup>` of `level_face_keeping`), it
+    // writes its 96 bytes; it writes only pixels of its region — rows and columns of the clip
+    // (inside both buffers, checked above), at `row·stride + 2·column` bytes from the
     // buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour: a copy of the table's
     // bytes is a copy of its colours) — through `level_rows`'s loop (see its safety note),
     // reads the table at `level >> 24 < 256`, divides by non-zero divisors only (the area's top

@@ -250,16 +250,14 @@ pub(crate) fn keep_setup(setup: &SmallSetup, keep: &mut impl KeptWords) -> bool 
         columns: rows.columns,
     };
     let (d, l) = (rows.depth, rows.level);
-    let unused = Edge { a: 0, b: 0, k: 0 };
-    let triangle = SmallTriangle {
+    let planes = Planes::from_parts([d[0], l[0]], [d[1], l[1]], [d[2], l[2]]);
+    let region = (
         x0,
         y0,
-        last: rows.columns.wrapping_sub(1),
-        rows: rows.rows.wrapping_sub(1),
-        edges: [unused; 3],
-        planes: Planes::from_parts([d[0], l[0]], [d[1], l[1]], [d[2], l[2]]),
-    };
-    triangle.keep(&runs, keep)
+        rows.columns.wrapping_sub(1),
+        rows.rows.wrapping_sub(1),
+    );
+    SmallTriangle::from_runs(region, planes).keep(&runs, keep)
 }
 
 /// Draws the rows of `band` of the small triangle whose set-up [`shade_rows`] kept in `kept`:
@@ -324,6 +322,22 @@ fn unpack_bound(numerator: u32, w: u32) -> RowBound {
 }
 
 impl<const N: usize> SmallTriangle<N> {
+    /// A set-up whose rows come from its runs, not its edges (kept, or set up elsewhere): the
+    /// region `(x0, y0, last, rows)` (its first pixel, last column and row offsets) and
+    /// `planes`.
+    #[inline(always)]
+    fn from_runs((x0, y0, last, rows): (i32, i32, u32, u32), planes: Planes<N>) -> Self {
+        let unused = Edge { a: 0, b: 0, k: 0 };
+        SmallTriangle {
+            x0,
+            y0,
+            last,
+            rows,
+            edges: [unused; 3],
+            planes,
+        }
+    }
+
     /// Writes the set-up into `kept`, with `runs` (its first row's) in place of its edges, so
     /// that the bands below draw from them with no edge classified again. `false` (nothing
     /// written) for more than two planes, a region past 2¹⁶ pixels from the clip's origin (the
@@ -384,15 +398,9 @@ impl<const N: usize> SmallTriangle<N> {
             columns: last + 1,
         };
         let plane = |from: usize| core::array::from_fn(|k| w(from + k));
-        let unused = Edge { a: 0, b: 0, k: 0 };
-        let triangle = SmallTriangle {
-            x0: (origin & 0xFFFF) as i32,
-            y0: (origin >> 16) as i32,
-            last,
-            rows: size >> 4 & 15,
-            edges: [unused; 3],
-            planes: Planes::from_parts(plane(8), plane(8 + N), plane(8 + 2 * N)),
-        };
+        let planes = Planes::from_parts(plane(8), plane(8 + N), plane(8 + 2 * N));
+        let (x0, y0) = ((origin & 0xFFFF) as i32, (origin >> 16) as i32);
+        let triangle = SmallTriangle::from_runs((x0, y0, last, size >> 4 & 15), planes);
         triangle.draw_rows(runs, band, shader);
     }
 

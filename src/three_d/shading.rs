@@ -463,6 +463,10 @@ pub(super) const DEPTH_SHIFT: u32 = STEP_BITS_PLANES - 8;
 /// Half a depth unit, the depth plane's rounding offset.
 pub(super) const DEPTH_HALF: u32 = 1 << (DEPTH_SHIFT - 1);
 
+/// The rounding term of the Gouraud fill's light-level plane: ½ of its 8.8 level's unit (the
+/// pixel takes the nearest of the 256 levels).
+const LEVEL_HALF: u32 = 1 << (STEP_BITS_PLANES - 1);
+
 /// The planes' attributes: the depths first, then `M` more per vertex with their rounding
 /// offsets.
 #[inline(always)]
@@ -627,6 +631,20 @@ impl<R: RowWindow> TargetClip<R> {
     #[inline(always)]
     pub(crate) fn rows(&self) -> &R {
         &self.rows
+    }
+
+    /// The face of `v` for the assembly's set-up of the Gouraud fill ([`arch::level_face`]):
+    /// this clip's bounds and rows (a band's, or every row of a frame from row 0), the depth
+    /// and level planes' rounding.
+    #[inline(always)]
+    fn level_face<'v>(&self, v: [&'v ProjectedVertex; 3]) -> arch::LevelFace<'v> {
+        // Every row: the clip of a frame from (0, 0) (rows above 0 would be skipped).
+        debug_assert!(self.rows.band().is_some() || self.rect.top_left.y >= 0);
+        let rows = self
+            .rows
+            .band()
+            .map_or([0, i32::MAX], |b| [b.first, b.last]);
+        arch::LevelFace::new(v, self.bounds, [DEPTH_HALF, LEVEL_HALF], rows)
     }
 
     /// The clip with a row more on each side of its window ([`RowWindow::widened`]).
@@ -967,21 +985,14 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
 ) {
     let vertices = v.map(|v| v.screen());
     let levels = v.map(|v| [v.level()]);
-    let half = 1 << (STEP_BITS_PLANES - 1);
     // A small face of an opaque draw: set up and drawn by the assembly.
     if arch::LEVEL_FACE && target.blend().is_none() {
-        // Every row: the clip of a frame from (0, 0) (rows above 0 would be skipped).
-        debug_assert!(clip.rows.band().is_some() || clip.rect.top_left.y >= 0);
-        let rows = clip
-            .rows
-            .band()
-            .map_or([0, i32::MAX], |b| [b.first, b.last]);
-        let face = arch::LevelFace::new(v, clip.bounds, [DEPTH_HALF, half], rows);
+        let face = clip.level_face(v);
         if arch::level_face(target.buffers_mut(), face, &table.colors) {
             return;
         }
     }
-    let attributes = with_depth(vertices, levels, [half]);
+    let attributes = with_depth(vertices, levels, [LEVEL_HALF]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
 }
 
@@ -1032,12 +1043,10 @@ pub(crate) fn draw_levels_keeping<C: PixelColor>(
     table: &ShadeTable<C>,
     keep: &mut impl KeptWords,
 ) -> bool {
-    let half = 1 << (STEP_BITS_PLANES - 1);
     // A small face of an opaque draw: set up and drawn by the assembly, which writes its set-up
     // out to keep.
     if arch::LEVEL_FACE && target.blend().is_none() {
-        let rows = [clip.rows.first, clip.rows.last];
-        let face = arch::LevelFace::new(v, clip.bounds, [DEPTH_HALF, half], rows);
+        let face = clip.level_face(v);
         let mut setup = core::mem::MaybeUninit::uninit();
         match arch::level_face_keeping(target.buffers_mut(), face, &table.colors, &mut setup) {
             FaceSetup::Done => return false,
@@ -1047,7 +1056,7 @@ pub(crate) fn draw_levels_keeping<C: PixelColor>(
     }
     let vertices = v.map(|v| v.screen());
     let levels = v.map(|v| [v.level()]);
-    let attributes = with_depth(vertices, levels, [half]);
+    let attributes = with_depth(vertices, levels, [LEVEL_HALF]);
     let fill = DepthFill {
         target,
         step: [0; 2],
