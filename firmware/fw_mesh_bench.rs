@@ -53,7 +53,7 @@ mod firmware {
     use crate::scene3d::{self, FrameLine, Model, TurntableLine, MAX_VERTICES, PIXELS, SIZE};
     use crate::scene3d::{SCATTER_FACES, SCATTER_VERTICES};
     use crate::scene3d::{TORUS_FACES, TORUS_VERTICES, TURNTABLE_POSES};
-    use crate::textured3d::{self, Textured, TexturedLine, TEXELS};
+    use crate::textured3d::{self, Textured, TexturedLine, BAND_PIXELS, TEXELS};
     use crate::{board, clock};
 
     /// The instruction set this build runs (the Cortex-M0 code runs on the Cortex-M3 board).
@@ -81,6 +81,8 @@ mod firmware {
     static mut SCATTER_V: [Vec3; SCATTER_VERTICES] = [Vec3::ZERO; SCATTER_VERTICES];
     static mut SCATTER_N: [Vec3; SCATTER_VERTICES] = [Vec3::ZERO; SCATTER_VERTICES];
     static mut SCATTER_I: [[u16; 3]; SCATTER_FACES] = [[0; 3]; SCATTER_FACES];
+    static mut BAND_COLORS: [Rgb565; BAND_PIXELS] = [Rgb565::new(0, 0, 0); BAND_PIXELS];
+    static mut BAND_DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
 
     #[entry]
     fn main() -> ! {
@@ -244,7 +246,7 @@ mod firmware {
         }
         // The textured frames: counts and checksums untimed, then timed with the scratch.
         textured3d::expand(texture);
-        let mut textured = [None, None, None, None, None, None];
+        let mut textured = [None, None, None, None, None, None, None];
         for (k, frame) in Textured::ALL.into_iter().enumerate() {
             let stats = textured3d::render(frame, texture, &mut target, Some(&mut scratch[..]));
             let covered = scene3d::covered(target.depth());
@@ -268,6 +270,25 @@ mod firmware {
             };
             textured[k] = Some((line, clock::instructions(ticks, calibration)));
         }
+        // The nearest frame in bands of 16 and 7 rows: the hashes of the frame drawn whole.
+        // SAFETY: as for the statics above: these are their only references.
+        let (band_colors, band_depth) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(BAND_COLORS),
+                &mut *core::ptr::addr_of_mut!(BAND_DEPTH),
+            )
+        };
+        textured3d::render(
+            Textured::Nearest,
+            texture,
+            &mut target,
+            Some(&mut scratch[..]),
+        );
+        let whole = textured3d::hashes(target.framebuffer().pixels(), target.depth());
+        let bands = [16, 7].into_iter().all(|rows| {
+            let hashes = textured3d::render_bands(texture, rows, band_colors, band_depth, scratch);
+            hashes == whole
+        });
         for line in lines.iter().flatten() {
             hprintln!("{}", line);
         }
@@ -365,7 +386,10 @@ mod firmware {
         if !same {
             hprintln!("error: the frames with and without the vertex scratch differ");
         }
-        board::exit(same)
+        if !bands {
+            hprintln!("error: the textured frame in bands differs from the frame drawn whole");
+        }
+        board::exit(same && bands)
     }
 }
 
@@ -440,5 +464,23 @@ fn main() {
             "the textured frames with and without scratch differ"
         );
         println!("{line}");
+    }
+    use textured3d::{Textured, BAND_PIXELS};
+    textured3d::render(Textured::Nearest, &texels, &mut target, Some(&mut scratch));
+    let whole = textured3d::hashes(target.framebuffer().pixels(), target.depth());
+    let (mut band_colors, mut band_depth) =
+        (vec![Rgb565::BLACK; BAND_PIXELS], vec![0; BAND_PIXELS]);
+    for rows in [16, 7] {
+        let hashes = textured3d::render_bands(
+            &texels,
+            rows,
+            &mut band_colors,
+            &mut band_depth,
+            &mut scratch,
+        );
+        assert_eq!(
+            hashes, whole,
+            "the textured frame in bands of {rows} rows differs"
+        );
     }
 }

@@ -12,7 +12,11 @@
 //!   by `texture::convert` and checked by `tests/all/texture_convert.rs`), drawn as it is or expanded
 //!   once into 256 × 256 Rgb565 texels in RAM ([`expand`], 128 KB) as TGX's frame draws it.
 
+use core::convert::Infallible;
+
 use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
 use embedded_raster::three_d::{
     DepthTarget, DrawStats, ProjectedVertex, Scalar, Shading, Specular,
@@ -34,6 +38,9 @@ mod spot_texture;
 pub use spot_texture::{SPOT_TEXTURE, SPOT_TEXTURE_HEIGHT, SPOT_TEXTURE_WIDTH};
 pub use spot_textured::SPOT_TEXTURED;
 
+/// Pixels of the band buffers of [`render_bands`] (bands of up to 16 rows).
+pub const BAND_PIXELS: usize = SIZE.0 as usize * 16;
+
 /// Texels of the texture.
 pub const TEXELS: usize = (SPOT_TEXTURE_WIDTH * SPOT_TEXTURE_HEIGHT) as usize;
 
@@ -52,17 +59,20 @@ pub enum Textured {
     Quadratic,
     /// The same with the Blinn-Phong highlight per pixel.
     QuadraticSpecular,
+    /// Rgb565 texels in RAM, nearest, unlit (`Shading::Unlit`).
+    Unlit,
 }
 
 impl Textured {
     /// All, in report order.
-    pub const ALL: [Textured; 6] = [
+    pub const ALL: [Textured; 7] = [
         Textured::Nearest,
         Textured::Bilinear,
         Textured::Palette,
         Textured::Specular,
         Textured::Quadratic,
         Textured::QuadraticSpecular,
+        Textured::Unlit,
     ];
 
     /// The name in reports.
@@ -74,6 +84,7 @@ impl Textured {
             Textured::Specular => "spot-textured-specular",
             Textured::Quadratic => "spot-textured-quadratic",
             Textured::QuadraticSpecular => "spot-textured-quadratic-specular",
+            Textured::Unlit => "spot-textured-unlit",
         }
     }
 
@@ -81,6 +92,7 @@ impl Textured {
     fn shading(self) -> Shading {
         match self {
             Textured::Quadratic | Textured::QuadraticSpecular => Shading::Quadratic,
+            Textured::Unlit => Shading::Unlit,
             _ => Shading::Gouraud,
         }
     }
@@ -125,6 +137,71 @@ pub fn render(
                 Err(_) => DrawStats::default(),
             }
         }
+    }
+}
+
+/// FNV-1a over little-endian 16-bit words, from the hash `h` on (`0x811c9dc5` to start).
+pub fn fnv(mut h: u32, words: impl IntoIterator<Item = u16>) -> u32 {
+    for w in words {
+        for b in w.to_le_bytes() {
+            h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
+}
+
+/// The [`fnv`] hashes of a frame's colours (raw) and of its depths.
+pub fn hashes(colors: &[Rgb565], depth: &[u16]) -> (u32, u32) {
+    let start = 0x811c_9dc5;
+    let colors = fnv(start, colors.iter().map(|c| c.into_storage()));
+    (colors, fnv(start, depth.iter().copied()))
+}
+
+/// The nearest frame ([`Textured::Nearest`], `texels` [`expand`]ed) drawn with `scratch` in
+/// bands of `rows` rows into the band buffers `colors` and `depth` (their first `320 · rows`
+/// entries), each band's colours and depths hashed as a display would receive them: the
+/// frame's [`hashes`] if the bands draw the frame drawn whole; zeros if the buffers are too
+/// short.
+pub fn render_bands(
+    texels: &[u16],
+    rows: u32,
+    colors: &mut [Rgb565],
+    depth: &mut [u16],
+    scratch: &mut [ProjectedVertex],
+) -> (u32, u32) {
+    let (w, h) = (SPOT_TEXTURE_WIDTH, SPOT_TEXTURE_HEIGHT);
+    let Ok(texture) = Texture::new(Rgb565Texels(texels), w, h) else {
+        return (0, 0);
+    };
+    let material = TexturedMaterial::new(&texture, Textured::Nearest.shading());
+    let pipeline = pipeline(Model::Spot);
+    let Ok(layout) = BandLayout::new(Size::new(SIZE.0, SIZE.1), rows) else {
+        return (0, 0);
+    };
+    let n = layout.buffer_len();
+    let (Some(colors), Some(depth)) = (colors.get_mut(..n), depth.get_mut(..n)) else {
+        return (0, 0);
+    };
+    let Ok(colors) = ColorBands::new(layout, colors) else {
+        return (0, 0);
+    };
+    let Ok(mut bands) = DepthBands::new(colors, depth) else {
+        return (0, 0);
+    };
+    let (mut color_hash, mut depth_hash) = (0x811c_9dc5, 0x811c_9dc5);
+    let mut output = Callback(|_: &_, pixels: &[Rgb565]| {
+        color_hash = fnv(color_hash, pixels.iter().map(|c| c.into_storage()));
+        Ok::<(), Infallible>(())
+    });
+    let drawn = bands.render(&mut output, |band| {
+        band.clear(BACKGROUND);
+        let mesh: &Mesh<'_> = &SPOT_TEXTURED;
+        let _ = pipeline.draw_textured_mesh_with(mesh, &material, band, scratch);
+        depth_hash = fnv(depth_hash, band.depth().iter().copied());
+    });
+    match drawn {
+        Ok(()) => (color_hash, depth_hash),
+        Err(_) => (0, 0),
     }
 }
 

@@ -38,6 +38,8 @@ pub(crate) use thumbv7m::perspective_span;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::premultiplied_565;
 #[cfg(armv7m)]
+pub(crate) use thumbv7m::textured_face;
+#[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::{level_face, level_face_keeping};
@@ -397,6 +399,14 @@ const _: () = {
     assert!(offset_of!(LevelBlock, colors) == 64 && offset_of!(LevelBlock, numerators) == 68);
     assert!(offset_of!(LevelBlock, rows) == 80 && offset_of!(SmallSetup, x0) == 84);
     assert!(offset_of!(SmallSetup, middle_starts) == 92 && size_of::<SmallSetup>() == 96);
+    type Textured = TexturedFace<'static>;
+    assert!(offset_of!(Textured, clip) == 12 && offset_of!(Textured, depths) == 28);
+    assert!(offset_of!(Textured, color_offset) == 32 && offset_of!(Textured, stride) == 36);
+    assert!(offset_of!(Textured, half) == 40 && offset_of!(Textured, rows) == 56);
+    assert!(offset_of!(Textured, maps) == 64 && offset_of!(Textured, y_shift) == 80);
+    assert!(offset_of!(Textured, texels) == 84 && offset_of!(Textured, x_mask) == 88);
+    assert!(offset_of!(Textured, rows_mask) == 92 && offset_of!(Textured, lit) == 96);
+    assert!(offset_of!(TexturedVertex, values) == 8 && size_of::<TexturedVertex>() == 16);
 };
 
 #[cfg(any(armv7m, rv32))]
@@ -518,6 +528,104 @@ pub(crate) fn textured_rows<C: Copy>(
     _colors: &mut [C],
     _depths: &mut [u16],
     _rows: &TexturedRows<'_>,
+) -> bool {
+    false
+}
+
+/// ARMv7-M: a small face of the 3D pipeline's textured screen-space fill (nearest texels of a
+/// power-of-two repeating texture of raw Rgb565 words, unlit or lit by a level plane) is set up
+/// by one assembly function ([`textured_face`]: the set-up of [`level_face`] with the depth, the
+/// two texel coordinates and the level as its four planes) that hands it to the row loop of
+/// [`textured_rows`]; elsewhere by `raster::scan`.
+pub(crate) const TEXTURED_FACE: bool = cfg!(armv7m);
+
+/// A vertex of a [`TexturedFace`]: its position (sub-pixels), and its depth, texel coordinates
+/// (the plane values of `texture::PlaneMap`) and light level as the planes take them.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub(crate) struct TexturedVertex {
+    /// 0, 4: the position.
+    pub(crate) x: i32,
+    pub(crate) y: i32,
+    /// 8, 10, 12, 14: the depth, `u`, `v` and the level.
+    pub(crate) values: [u16; 4],
+}
+
+/// A face for [`textured_face`] (offsets are the assembly's): its vertices, the clip, the
+/// buffers, the planes' rounding terms, the rows drawn, the coordinates' maps and the texture.
+#[repr(C)]
+// Read only where the assembly is.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub struct TexturedFace<'v> {
+    /// 0, 4, 8: the vertices.
+    vertices: [*const TexturedVertex; 3],
+    /// 12-24: the clip's first column and row, its last column and row.
+    clip: [i32; 4],
+    /// 28: the depth buffer; 32: the colour buffer's offset from it in bytes (wrapping); 36: a
+    /// buffer row in bytes ([`textured_face`] sets them).
+    depths: *mut u16,
+    color_offset: u32,
+    stride: u32,
+    /// 40-52: the four planes' rounding terms.
+    half: [u32; 4],
+    /// 56, 60: the rows drawn, first and last (a band's); the buffers' first row is the first.
+    rows: [i32; 2],
+    /// 64-76: the coordinates' maps, `u`'s base and `down` then `v`'s (as
+    /// [`TexturedRows::maps`]); 80: `y`'s shift.
+    maps: [u32; 4],
+    y_shift: u32,
+    /// 84: the texels; 88: the column mask; 92: the row mask (as [`TexturedRows`]).
+    texels: *const u16,
+    x_mask: u32,
+    rows_mask: u32,
+    /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane.
+    lit: u32,
+    /// The texels' length (not the assembly's).
+    texels_len: usize,
+    borrowed: core::marker::PhantomData<&'v [u16]>,
+}
+
+impl<'v> TexturedFace<'v> {
+    /// The face of `vertices` inside `clip` (see [`ClipBounds`]), its planes rounded by `half`,
+    /// drawn in rows `rows` (as [`LevelFace::new`]'s), its coordinates' planes mapped by `maps`
+    /// and sampled from `(texels, x_mask, rows_mask, y_shift)` (as [`TexturedRows`] has them),
+    /// lit by the level plane if `lit`.
+    #[inline(always)]
+    pub(crate) fn new(
+        vertices: [&'v TexturedVertex; 3],
+        clip: ClipBounds,
+        half: [u32; 4],
+        rows: [i32; 2],
+        maps: [(i32, u32); 2],
+        (texels, x_mask, rows_mask, y_shift): (&'v [u16], u32, u32, u32),
+        lit: bool,
+    ) -> Self {
+        TexturedFace {
+            vertices: vertices.map(|v| v as *const TexturedVertex),
+            clip: clip.words(),
+            depths: core::ptr::null_mut(),
+            color_offset: 0,
+            stride: 0,
+            half,
+            rows,
+            maps: [maps[0].0 as u32, maps[0].1, maps[1].0 as u32, maps[1].1],
+            y_shift,
+            texels: texels.as_ptr(),
+            x_mask,
+            rows_mask,
+            lit: if lit { 2 } else { 0 },
+            texels_len: texels.len(),
+            borrowed: core::marker::PhantomData,
+        }
+    }
+}
+
+/// [`textured_face`] where there is none: draws nothing and says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn textured_face<C: Copy>(
+    _buffers: (&mut [C], &mut [u16], usize),
+    _face: TexturedFace<'_>,
 ) -> bool {
     false
 }

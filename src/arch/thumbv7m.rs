@@ -38,8 +38,8 @@ use core::mem::MaybeUninit;
 
 use embedded_graphics::pixelcolor::raw::RawU16;
 
-use super::TexturedRows;
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
+use super::{TexturedFace, TexturedRows};
 
 /// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
 /// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
@@ -1287,38 +1287,38 @@ pub(crate) fn blend_solid_565<C: From<RawU16>>(pixels: &mut [C], weights: &[u32;
 /// comes off `$v` before the value is reduced to whole pixels (`asr #8`).
 #[rustfmt::skip]
 macro_rules! edge_bound {
-    ($a:literal, $b:literal, $v:literal, $u:literal) => {
+    ($a:literal, $b:literal, $v:literal, $u:literal, $div:literal, $step:literal, $num:literal) => {
         concat!(
             "cmp ", $a, ", #0\n",
             "ble 11f\n",
             // a > 0: a start bound, ⌊(a − 1 − k)/a⌋, the numerator less b a row.
-            "str ", $a, ", [r10, #36]\n",
+            "str ", $a, ", [r10, #", $div, "]\n",
             "rsb ", $u, ", ", $b, ", #0\n",
-            "str ", $u, ", [r10, #24]\n",
+            "str ", $u, ", [r10, #", $step, "]\n",
             "sub ", $u, ", ", $a, ", #1\n",
             "sub ", $u, ", ", $u, ", ", $v, ", asr #8\n",
-            "str ", $u, ", [r10, #68]\n",
+            "str ", $u, ", [r10, #", $num, "]\n",
             "add r10, r10, #4\n",
             "b 13f\n",
             "11:\n",
             "beq 12f\n",
             // a < 0: an end bound, ⌊(k + |a|)/|a|⌋, the numerator plus b a row.
             "rsb ", $u, ", ", $a, ", #0\n",
-            "str ", $u, ", [r1, #36]\n",
-            "str ", $b, ", [r1, #24]\n",
+            "str ", $u, ", [r1, #", $div, "]\n",
+            "str ", $b, ", [r1, #", $step, "]\n",
             "sub ", $u, ", ", $v, ", #1\n",
             "asr ", $u, ", ", $u, ", #8\n",
             "sub ", $u, ", ", $u, ", ", $a, "\n",
-            "str ", $u, ", [r1, #68]\n",
+            "str ", $u, ", [r1, #", $num, "]\n",
             "sub r1, r1, #4\n",
             "b 13f\n",
             "12:\n",
             // a = 0: a start bound −16·k over 1, the numerator less 16·b a row.
             "mov ", $u, ", #1\n",
-            "str ", $u, ", [r10, #36]\n",
+            "str ", $u, ", [r10, #", $div, "]\n",
             "rsb ", $u, ", ", $b, ", #0\n",
             "lsl ", $u, ", ", $u, ", #4\n",
-            "str ", $u, ", [r10, #24]\n",
+            "str ", $u, ", [r10, #", $step, "]\n",
             "mov ", $u, ", ", $v, "\n",
             "cmp ", $b, ", #0\n",
             "it le\n",
@@ -1326,7 +1326,7 @@ macro_rules! edge_bound {
             "asr ", $u, ", ", $u, ", #8\n",
             "rsb ", $u, ", ", $u, ", #0\n",
             "lsl ", $u, ", ", $u, ", #4\n",
-            "str ", $u, ", [r10, #68]\n",
+            "str ", $u, ", [r10, #", $num, "]\n",
             "add r10, r10, #4\n",
             "13:\n",
         )
@@ -1341,10 +1341,10 @@ macro_rules! edge_bound {
 /// face.
 #[rustfmt::skip]
 macro_rules! attribute_numerators {
-    ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal) => {
+    ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal, $p0:literal, $p1:literal) => {
         concat!(
-            "ldr r1, [sp, #136]\n",
-            "ldrd r2, r3, [sp, #140]\n",
+            "ldr r1, [sp, #", $p0, "]\n",
+            "ldrd r2, r3, [sp, #", $p1, "]\n",
             "ldrh r1, [r1, #", $at, "]\n",
             "ldrh r2, [r2, #", $at, "]\n",
             "ldrh r3, [r3, #", $at, "]\n",
@@ -1445,6 +1445,233 @@ macro_rules! reciprocal_digit {
     };
 }
 
+/// The face set-up's first part, as `raster::scan` computes it: the oriented vertices' addresses
+/// (from r0's first three words) at `$ptrs` (and `$ptrs1`, 4 more), the box and the 16-px test,
+/// the region inside the clip (r0's words at 12-24; its first column at `$x0`, first and last
+/// rows at `$y0`, columns at `$columns`, rows at `$rows`), the doubled area (r4, made positive,
+/// the vertices' addresses swapped for a negative one), the edges' bounds into the block (their
+/// divisors at `$divisors`, steps a row at `$steps` and numerators at `$numerators`, starts
+/// from slot 0, ends from slot 2), whether the middle bound starts at `$ms`, the edge values
+/// l1, l2 at `$l12`, and the numerators' limit in r5; done (80) or declined (90) on the way;
+/// r6-r9 = o1x, o1y, o2x, o2y after it.
+#[rustfmt::skip]
+macro_rules! face_scan {
+    ($ptrs:literal, $ptrs1:literal, $x0:literal, $y0:literal, $columns:literal, $rows:literal,
+     $divisors:literal, $steps:literal, $numerators:literal, $ms:literal, $l12:literal) => {
+        concat!(
+            "ldm r0, {{r1, r2, r3}}\n",
+            "add r4, sp, #", $ptrs, "\n",
+            "stm r4, {{r1, r2, r3}}\n",
+            "ldrd r4, r5, [r1]\n",
+            "ldrd r6, r7, [r2]\n",
+            "ldrd r8, r9, [r3]\n",
+            // The box: r10, r11 = least and greatest x, r1, r2 = y; each extent below 16 pixels.
+            "mov r10, r4\n",
+            "mov r11, r4\n",
+            "cmp r6, r10\n",
+            "it lt\n",
+            "movlt r10, r6\n",
+            "cmp r6, r11\n",
+            "it gt\n",
+            "movgt r11, r6\n",
+            "cmp r8, r10\n",
+            "it lt\n",
+            "movlt r10, r8\n",
+            "cmp r8, r11\n",
+            "it gt\n",
+            "movgt r11, r8\n",
+            "mov r1, r5\n",
+            "mov r2, r5\n",
+            "cmp r7, r1\n",
+            "it lt\n",
+            "movlt r1, r7\n",
+            "cmp r7, r2\n",
+            "it gt\n",
+            "movgt r2, r7\n",
+            "cmp r9, r1\n",
+            "it lt\n",
+            "movlt r1, r9\n",
+            "cmp r9, r2\n",
+            "it gt\n",
+            "movgt r2, r9\n",
+            "sub r3, r11, r10\n",
+            "cmp r3, #4096\n",
+            "bhs 90f\n",
+            "sub r3, r2, r1\n",
+            "cmp r3, #4096\n",
+            "bhs 90f\n",
+            // The region: pixels whose centres are in the box, inside the clip (r10-r11 columns, r1-r2
+            // rows); none: done.
+            "uxtb r3, r10\n",
+            "asr r10, r10, #8\n",
+            "cmp r3, #0x80\n",
+            "it hi\n",
+            "addhi r10, r10, #1\n",
+            "ldr r3, [r0, #12]\n",
+            "cmp r10, r3\n",
+            "it lt\n",
+            "movlt r10, r3\n",
+            "uxtb r3, r11\n",
+            "asr r11, r11, #8\n",
+            "cmp r3, #0x80\n",
+            "it lo\n",
+            "sublo r11, r11, #1\n",
+            "ldr r3, [r0, #20]\n",
+            "cmp r11, r3\n",
+            "it gt\n",
+            "movgt r11, r3\n",
+            "cmp r10, r11\n",
+            "bgt 80f\n",
+            "uxtb r3, r1\n",
+            "asr r1, r1, #8\n",
+            "cmp r3, #0x80\n",
+            "it hi\n",
+            "addhi r1, r1, #1\n",
+            "ldr r3, [r0, #16]\n",
+            "cmp r1, r3\n",
+            "it lt\n",
+            "movlt r1, r3\n",
+            "uxtb r3, r2\n",
+            "asr r2, r2, #8\n",
+            "cmp r3, #0x80\n",
+            "it lo\n",
+            "sublo r2, r2, #1\n",
+            "ldr r3, [r0, #24]\n",
+            "cmp r2, r3\n",
+            "it gt\n",
+            "movgt r2, r3\n",
+            "cmp r1, r2\n",
+            "bgt 80f\n",
+            // The region: its first column and row, last row (the band's rows are taken at the end),
+            // columns and rows.
+            "str r10, [sp, #", $x0, "]\n",
+            "strd r1, r2, [sp, #", $y0, "]\n",
+            "sub r3, r11, r10\n",
+            "add r3, r3, #1\n",
+            "str r3, [sp, #", $columns, "]\n",
+            "sub r3, r2, r1\n",
+            "add r3, r3, #1\n",
+            "str r3, [sp, #", $rows, "]\n",
+            // The first pixel centre relative to vertex 0 (r10, r1), the other vertices too (r6-r9),
+            // and the doubled area (r4): none, done; negative, vertices 1 and 2 swapped (and their
+            // addresses).
+            "lsl r10, r10, #8\n",
+            "add r10, r10, #128\n",
+            "sub r10, r10, r4\n",
+            "lsl r1, r1, #8\n",
+            "add r1, r1, #128\n",
+            "sub r1, r1, r5\n",
+            "sub r6, r6, r4\n",
+            "sub r7, r7, r5\n",
+            "sub r8, r8, r4\n",
+            "sub r9, r9, r5\n",
+            "mul r4, r6, r9\n",
+            "mls r4, r7, r8, r4\n",
+            "cmp r4, #0\n",
+            "beq 80f\n",
+            "bgt 1f\n",
+            "rsb r4, r4, #0\n",
+            "mov r3, r6\n",
+            "mov r6, r8\n",
+            "mov r8, r3\n",
+            "mov r3, r7\n",
+            "mov r7, r9\n",
+            "mov r9, r3\n",
+            "ldrd r2, r3, [sp, #", $ptrs1, "]\n",
+            "strd r3, r2, [sp, #", $ptrs1, "]\n",
+            "1:\n",
+            // The edges' values at the first pixel: r2 = l1 (the edge from o2 to vertex 0), r3 = l2
+            // (from vertex 0 to o1), r5 = the edge from o1 to o2's.
+            "sub r2, r10, r8\n",
+            "mul r2, r9, r2\n",
+            "sub r3, r1, r9\n",
+            "mls r2, r8, r3, r2\n",
+            "mul r3, r6, r1\n",
+            "mls r3, r7, r10, r3\n",
+            "sub r11, r7, r9\n",
+            "sub r12, r8, r6\n",
+            "sub r5, r10, r6\n",
+            "mul r5, r11, r5\n",
+            "sub lr, r1, r7\n",
+            "mla r5, r12, lr, r5\n",
+            // The runs' bounds, starts from slot 0 up (r10), ends from slot 2 down (r1).
+            "mov r10, sp\n",
+            "add r1, sp, #8\n",
+            edge_bound!("r11", "r12", "r5", "lr", $divisors, $steps, $numerators),
+            "rsb r11, r8, #0\n",
+            edge_bound!("r9", "r11", "r2", "r12", $divisors, $steps, $numerators),
+            "rsb r11, r7, #0\n",
+            edge_bound!("r11", "r6", "r3", "r12", $divisors, $steps, $numerators),
+            "mov r12, sp\n",
+            "sub r10, r10, r12\n",
+            "lsr r10, r10, #3\n",
+            "str r10, [sp, #", $ms, "]\n",
+            "strd r2, r3, [sp, #", $l12, "]\n",
+            // Steps of at most 2¹⁴ a pixel: the numerators' limit (r5), area·2¹⁴ (2³⁰ from 2¹⁶ up).
+            "cmp r4, #0x10000\n",
+            "ite lo\n",
+            "lsllo r5, r4, #14\n",
+            "movhs r5, #0x40000000\n",
+        )
+    };
+}
+
+/// The area's reciprocal and the barycentrics at the first pixel, as `raster::scan`'s
+/// `small_planes`: r = ⌊2⁶³/d⌋ / 2 in r9, s in r11, 2^(s−1) in r10, 32 − s in r8, b1 in r3 and
+/// b2 in r2 (l1, l2 read at `$l12`); a sliver declines (90).
+#[rustfmt::skip]
+macro_rules! face_reciprocal {
+    ($l12:literal) => {
+        concat!(
+            // r = ⌊2⁶³/d⌋ / 2 for the area normalised, d = area·2ᵗ ≥ 2³¹ (2³¹ − 1 for d = 2³¹), in r9;
+            // s = 38 − t in r11.
+            "clz r11, r4\n",
+            "lsl r12, r4, r11\n",
+            "rsb r11, r11, #38\n",
+            "cmp r12, #0x80000000\n",
+            "bne 2f\n",
+            "mvn r9, #0x80000000\n",
+            "b 3f\n",
+            "2:\n",
+            "lsr r3, r12, #16\n",
+            "mov r1, #0x80000000\n",
+            reciprocal_digit!("r4"),
+            reciprocal_digit!("r9"),
+            "orr r9, r9, r4, lsl #16\n",
+            "lsr r9, r9, #1\n",
+            "3:\n",
+            // r10 = 2^(s−1), r8 = 32 − s. The barycentrics of oriented vertices 1 and 2 at the first
+            // pixel, b1 = r3 and b2 = r2 (a sliver, whose (l·r) >> (s + 29) is not −1 or 0, declines).
+            "sub r10, r11, #1\n",
+            "mov r5, #1\n",
+            "lsl r10, r5, r10\n",
+            "rsb r8, r11, #32\n",
+            "ldrd r1, r2, [sp, #", $l12, "]\n",
+            "sub r7, r11, #3\n",
+            "smull r3, r4, r1, r9\n",
+            "asr r5, r4, r7\n",
+            "adds r5, r5, #1\n",
+            "cmp r5, #1\n",
+            "bhi 90f\n",
+            "smull r1, r12, r2, r9\n",
+            "asr r5, r12, r7\n",
+            "adds r5, r5, #1\n",
+            "cmp r5, #1\n",
+            "bhi 90f\n",
+            "adds r3, r3, r10\n",
+            "adc r4, r4, #0\n",
+            "lsr r3, r3, r11\n",
+            "lsl r4, r4, r8\n",
+            "orr r3, r3, r4\n",
+            "adds r1, r1, r10\n",
+            "adc r12, r12, #0\n",
+            "lsr r1, r1, r11\n",
+            "lsl r12, r12, r8\n",
+            "orr r2, r1, r12\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_level_face_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -1465,206 +1692,10 @@ core::arch::global_asm!(
     "embedded_raster_level_face_v7m:",
     "push {{r4-r11, lr}}",
     "sub sp, #164",
-    "ldm r0, {{r1, r2, r3}}",
-    "add r4, sp, #136",
-    "stm r4, {{r1, r2, r3}}",
-    "ldrd r4, r5, [r1]",
-    "ldrd r6, r7, [r2]",
-    "ldrd r8, r9, [r3]",
-    // The box: r10, r11 = least and greatest x, r1, r2 = y; each extent below 16 pixels.
-    "mov r10, r4",
-    "mov r11, r4",
-    "cmp r6, r10",
-    "it lt",
-    "movlt r10, r6",
-    "cmp r6, r11",
-    "it gt",
-    "movgt r11, r6",
-    "cmp r8, r10",
-    "it lt",
-    "movlt r10, r8",
-    "cmp r8, r11",
-    "it gt",
-    "movgt r11, r8",
-    "mov r1, r5",
-    "mov r2, r5",
-    "cmp r7, r1",
-    "it lt",
-    "movlt r1, r7",
-    "cmp r7, r2",
-    "it gt",
-    "movgt r2, r7",
-    "cmp r9, r1",
-    "it lt",
-    "movlt r1, r9",
-    "cmp r9, r2",
-    "it gt",
-    "movgt r2, r9",
-    "sub r3, r11, r10",
-    "cmp r3, #4096",
-    "bhs 90f",
-    "sub r3, r2, r1",
-    "cmp r3, #4096",
-    "bhs 90f",
-    // The region: pixels whose centres are in the box, inside the clip (r10-r11 columns, r1-r2
-    // rows); none: done.
-    "uxtb r3, r10",
-    "asr r10, r10, #8",
-    "cmp r3, #0x80",
-    "it hi",
-    "addhi r10, r10, #1",
-    "ldr r3, [r0, #12]",
-    "cmp r10, r3",
-    "it lt",
-    "movlt r10, r3",
-    "uxtb r3, r11",
-    "asr r11, r11, #8",
-    "cmp r3, #0x80",
-    "it lo",
-    "sublo r11, r11, #1",
-    "ldr r3, [r0, #20]",
-    "cmp r11, r3",
-    "it gt",
-    "movgt r11, r3",
-    "cmp r10, r11",
-    "bgt 80f",
-    "uxtb r3, r1",
-    "asr r1, r1, #8",
-    "cmp r3, #0x80",
-    "it hi",
-    "addhi r1, r1, #1",
-    "ldr r3, [r0, #16]",
-    "cmp r1, r3",
-    "it lt",
-    "movlt r1, r3",
-    "uxtb r3, r2",
-    "asr r2, r2, #8",
-    "cmp r3, #0x80",
-    "it lo",
-    "sublo r2, r2, #1",
-    "ldr r3, [r0, #24]",
-    "cmp r2, r3",
-    "it gt",
-    "movgt r2, r3",
-    "cmp r1, r2",
-    "bgt 80f",
-    // The region: its first column and row, last row (the band's rows are taken at the end),
-    // columns and rows.
-    "str r10, [sp, #148]",
-    "strd r1, r2, [sp, #152]",
-    "sub r3, r11, r10",
-    "add r3, r3, #1",
-    "str r3, [sp, #48]",
-    "sub r3, r2, r1",
-    "add r3, r3, #1",
-    "str r3, [sp, #80]",
-    // The first pixel centre relative to vertex 0 (r10, r1), the other vertices too (r6-r9),
-    // and the doubled area (r4): none, done; negative, vertices 1 and 2 swapped (and their
-    // addresses).
-    "lsl r10, r10, #8",
-    "add r10, r10, #128",
-    "sub r10, r10, r4",
-    "lsl r1, r1, #8",
-    "add r1, r1, #128",
-    "sub r1, r1, r5",
-    "sub r6, r6, r4",
-    "sub r7, r7, r5",
-    "sub r8, r8, r4",
-    "sub r9, r9, r5",
-    "mul r4, r6, r9",
-    "mls r4, r7, r8, r4",
-    "cmp r4, #0",
-    "beq 80f",
-    "bgt 1f",
-    "rsb r4, r4, #0",
-    "mov r3, r6",
-    "mov r6, r8",
-    "mov r8, r3",
-    "mov r3, r7",
-    "mov r7, r9",
-    "mov r9, r3",
-    "ldrd r2, r3, [sp, #140]",
-    "strd r3, r2, [sp, #140]",
-    "1:",
-    // The edges' values at the first pixel: r2 = l1 (the edge from o2 to vertex 0), r3 = l2
-    // (from vertex 0 to o1), r5 = the edge from o1 to o2's.
-    "sub r2, r10, r8",
-    "mul r2, r9, r2",
-    "sub r3, r1, r9",
-    "mls r2, r8, r3, r2",
-    "mul r3, r6, r1",
-    "mls r3, r7, r10, r3",
-    "sub r11, r7, r9",
-    "sub r12, r8, r6",
-    "sub r5, r10, r6",
-    "mul r5, r11, r5",
-    "sub lr, r1, r7",
-    "mla r5, r12, lr, r5",
-    // The runs' bounds, starts from slot 0 up (r10), ends from slot 2 down (r1).
-    "mov r10, sp",
-    "add r1, sp, #8",
-    edge_bound!("r11", "r12", "r5", "lr"),
-    "rsb r11, r8, #0",
-    edge_bound!("r9", "r11", "r2", "r12"),
-    "rsb r11, r7, #0",
-    edge_bound!("r11", "r6", "r3", "r12"),
-    "mov r12, sp",
-    "sub r10, r10, r12",
-    "lsr r10, r10, #3",
-    "str r10, [sp, #92]",
-    "strd r2, r3, [sp, #84]",
-    // Steps of at most 2¹⁴ a pixel: the numerators' limit (r5), area·2¹⁴ (2³⁰ from 2¹⁶ up).
-    "cmp r4, #0x10000",
-    "ite lo",
-    "lsllo r5, r4, #14",
-    "movhs r5, #0x40000000",
-    attribute_numerators!("8", "96", "44", "128", "112"),
-    attribute_numerators!("12", "104", "48", "132", "120"),
-    // r = ⌊2⁶³/d⌋ / 2 for the area normalised, d = area·2ᵗ ≥ 2³¹ (2³¹ − 1 for d = 2³¹), in r9;
-    // s = 38 − t in r11.
-    "clz r11, r4",
-    "lsl r12, r4, r11",
-    "rsb r11, r11, #38",
-    "cmp r12, #0x80000000",
-    "bne 2f",
-    "mvn r9, #0x80000000",
-    "b 3f",
-    "2:",
-    "lsr r3, r12, #16",
-    "mov r1, #0x80000000",
-    reciprocal_digit!("r4"),
-    reciprocal_digit!("r9"),
-    "orr r9, r9, r4, lsl #16",
-    "lsr r9, r9, #1",
-    "3:",
-    // r10 = 2^(s−1), r8 = 32 − s. The barycentrics of oriented vertices 1 and 2 at the first
-    // pixel, b1 = r3 and b2 = r2 (a sliver, whose (l·r) >> (s + 29) is not −1 or 0, declines).
-    "sub r10, r11, #1",
-    "mov r5, #1",
-    "lsl r10, r5, r10",
-    "rsb r8, r11, #32",
-    "ldrd r1, r2, [sp, #84]",
-    "sub r7, r11, #3",
-    "smull r3, r4, r1, r9",
-    "asr r5, r4, r7",
-    "adds r5, r5, #1",
-    "cmp r5, #1",
-    "bhi 90f",
-    "smull r1, r12, r2, r9",
-    "asr r5, r12, r7",
-    "adds r5, r5, #1",
-    "cmp r5, #1",
-    "bhi 90f",
-    "adds r3, r3, r10",
-    "adc r4, r4, #0",
-    "lsr r3, r3, r11",
-    "lsl r4, r4, r8",
-    "orr r3, r3, r4",
-    "adds r1, r1, r10",
-    "adc r12, r12, #0",
-    "lsr r1, r1, r11",
-    "lsl r12, r12, r8",
-    "orr r2, r1, r12",
+    face_scan!("136", "140", "148", "152", "48", "80", "36", "24", "68", "92", "84"),
+    attribute_numerators!("8", "96", "44", "128", "112", "136", "140"),
+    attribute_numerators!("12", "104", "48", "132", "120", "136", "140"),
+    face_reciprocal!("84"),
     // The depth and level planes, then the rows; and, given a set-up to fill (a band's draw),
     // first the block, the region's first pixel and whether the middle bound starts there.
     attribute_plane!("96", "128", "112", "0", "52", "12"),
@@ -1842,4 +1873,179 @@ pub(crate) fn level_face_keeping<'s, C: Copy>(
         2 => FaceSetup::Ready(unsafe { setup.assume_init_ref() }),
         _ => FaceSetup::Declined,
     }
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_textured_face_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_textured_face_v7m",
+    ".hidden embedded_raster_textured_face_v7m",
+    ".type embedded_raster_textured_face_v7m,%function",
+    ".thumb_func",
+    // r0 = the face (`TexturedFace`). Returns 0 if done (drawn, or nothing to draw), 1 if
+    // declined (not small, or a sliver): nothing drawn. The frame: the textured row loop's
+    // block at sp (144 bytes), then scratch: 144, 148 = l1, l2; 152 = whether the middle bound
+    // starts; 156-180 = the depth's, `u`'s, `v`'s and the level's d1, d2; 188-212 = their nx,
+    // ny; 220-232 = their value terms; 236-244 = the oriented vertices' addresses; 248, 252,
+    // 256 = the region's first column, first and last rows.
+    "embedded_raster_textured_face_v7m:",
+    "push {{r4-r11, lr}}",
+    "sub sp, #268",
+    face_scan!("236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144"),
+    attribute_numerators!("8", "156", "40", "220", "188", "236", "240"),
+    attribute_numerators!("10", "164", "44", "224", "196", "236", "240"),
+    attribute_numerators!("12", "172", "48", "228", "204", "236", "240"),
+    attribute_numerators!("14", "180", "52", "232", "212", "236", "240"),
+    face_reciprocal!("144"),
+    attribute_plane!("156", "220", "188", "0", "80", "32"),
+    attribute_plane!("164", "224", "196", "4", "84", "36"),
+    attribute_plane!("172", "228", "204", "8", "88", "40"),
+    attribute_plane!("180", "232", "212", "12", "92", "44"),
+    // The maps and `y`'s shift (the face's 64-80 to the block's 96-112), the texels and masks
+    // (84-92 to 132-140).
+    "add r1, r0, #64",
+    "ldm r1, {{r2-r9}}",
+    "add r1, sp, #96",
+    "stm r1, {{r2-r6}}",
+    "add r1, sp, #132",
+    "stm r1, {{r7-r9}}",
+    // The texel steps a pixel from the coordinates' steps a column (r1, r2), as
+    // `PlaneMap::step`: `(s >> down) + ((s >> (down − 1)) & 1)`, or `s` for `down` = 0 (r3,
+    // r5); `y`'s shifted by r6.
+    "ldrd r1, r2, [sp, #84]",
+    "cbz r3, 21f",
+    "sub r4, r3, #1",
+    "asr r7, r1, r4",
+    "asr r1, r1, r3",
+    "and r7, r7, #1",
+    "add r1, r1, r7",
+    "21:",
+    "cbz r5, 22f",
+    "sub r4, r5, #1",
+    "asr r7, r2, r4",
+    "asr r2, r2, r5",
+    "and r7, r7, #1",
+    "add r2, r2, r7",
+    "22:",
+    "lsl r2, r2, r6",
+    "strd r1, r2, [sp, #116]",
+    // The band's rows (r4 = its first, r5 = its last) of the region's (r1 = first, r3 =
+    // last): rows above it skipped (the numerators and planes stepped by r6 rows), none in it,
+    // done. Rows counted from the band's first in the buffers.
+    "ldrd r1, r3, [sp, #252]",
+    "ldrd r4, r5, [r0, #56]",
+    "cmp r1, r4",
+    "bge 26f",
+    "cmp r3, r4",
+    "blt 80f",
+    "sub r6, r4, r1",
+    "mov r1, r4",
+    "ldrd r7, r8, [sp, #52]",
+    "ldrd r9, r10, [sp, #20]",
+    "mla r9, r7, r6, r9",
+    "mla r10, r8, r6, r10",
+    "strd r9, r10, [sp, #20]",
+    "ldr r7, [sp, #60]",
+    "ldr r9, [sp, #28]",
+    "mla r9, r7, r6, r9",
+    "str r9, [sp, #28]",
+    "ldrd r7, r8, [sp, #32]",
+    "ldrd r9, r10, [sp, #0]",
+    "mla r9, r7, r6, r9",
+    "mla r10, r8, r6, r10",
+    "strd r9, r10, [sp, #0]",
+    "ldrd r7, r8, [sp, #40]",
+    "ldrd r9, r10, [sp, #8]",
+    "mla r9, r7, r6, r9",
+    "mla r10, r8, r6, r10",
+    "strd r9, r10, [sp, #8]",
+    "26:",
+    "cmp r3, r5",
+    "it gt",
+    "movgt r3, r5",
+    "cmp r1, r3",
+    "bgt 80f",
+    "sub r3, r3, r1",
+    "add r3, r3, #1",
+    "str r3, [sp, #128]",
+    "sub r1, r1, r4",
+    // The stride, the depth pointer at the first pixel, the colour buffer's offset; then the
+    // rows (r1 = the variant: the middle bound's bit and the light's).
+    "ldr r3, [r0, #36]",
+    "str r3, [sp, #48]",
+    "mul r3, r3, r1",
+    "ldr r6, [sp, #248]",
+    "add r3, r3, r6, lsl #1",
+    "ldrd r7, r8, [r0, #28]",
+    "add r7, r7, r3",
+    "str r7, [sp, #16]",
+    "str r8, [sp, #124]",
+    "ldr r1, [sp, #152]",
+    "ldr r2, [r0, #96]",
+    "orr r1, r1, r2",
+    "mov r0, sp",
+    "bl embedded_raster_textured_rows_v7m",
+    "80:",
+    "movs r0, #0",
+    "add sp, #268",
+    "pop {{r4-r11, pc}}",
+    "90:",
+    "movs r0, #1",
+    "add sp, #268",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_textured_face_v7m, . - embedded_raster_textured_face_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_textured_face_v7m(face: *mut TexturedFace<'_>) -> u32;
+}
+
+/// Sets up and draws the small face `face` with depth, texel coordinate and light-level planes
+/// into `colors` and `depths` (`width` pixels a row, the face's first row of rows the buffers'
+/// first), inside its clip and rows: what `raster::scan` sets up for it (as four planes) and
+/// [`textured_rows`] draws, from the same integers. `true` if done (drawn, or nothing of it to
+/// draw); `false`, with nothing drawn, if the face is not small or a sliver (the portable
+/// set-up's `NotSmall::Other`), or if the clip's pixels in those rows are not inside the
+/// buffers, a texel index the masks allow is not inside the texels, a shift is not below 32 or
+/// `C` is not a 16-bit colour. `C` must be the 5-6-5 format whose raw value is the texels' (the
+/// caller's promise, as [`textured_rows`]').
+#[inline(always)]
+pub(crate) fn textured_face<C: Copy>(
+    (colors, depths, width): (&mut [C], &mut [u16], usize),
+    mut face: TexturedFace<'_>,
+) -> bool {
+    let shifts = [face.maps[1], face.maps[3], face.y_shift];
+    let last_texel = (face.rows_mask | face.x_mask) as usize;
+    let colour = core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2;
+    if !colour || last_texel >= face.texels_len || shifts.iter().any(|&s| s > 31) {
+        return false;
+    }
+    // The last pixel the face can write, in both buffers, as in `level_face_result`.
+    let ([x0, y0, x1, y1], [first, last]) = (face.clip, face.rows);
+    let (top, bottom) = (y0.max(first), y1.min(last));
+    if x0 > x1 || top > bottom {
+        return true;
+    }
+    let len = colors.len().min(depths.len()) as u64;
+    let row = u64::from(bottom.wrapping_sub(first) as u32);
+    let inside = x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len;
+    if !inside || width > (u32::MAX / 2) as usize {
+        return false;
+    }
+    face.depths = depths.as_mut_ptr();
+    face.color_offset = (colors.as_mut_ptr() as usize).wrapping_sub(face.depths as usize) as u32;
+    face.stride = (width * 2) as u32;
+    // SAFETY: the function reads the face and, through its addresses, the three
+    // `TexturedVertex`s (16 bytes each); it writes only pixels of its region — rows and columns
+    // of the clip (inside both buffers, checked above), at `row·stride + 2·column` bytes from
+    // the buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour whose raw value the
+    // texels are, the caller's promise) — through `textured_rows`'s loop (see its safety
+    // note), which reads the texels at indices of at most `rows_mask | x_mask` (inside them,
+    // checked above) with shifts below 32; it divides by non-zero divisors only (the area's top
+    // half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and saves and
+    // restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_textured_face_v7m(&mut face) != 1 }
 }

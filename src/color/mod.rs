@@ -124,6 +124,21 @@ pub trait GouraudColor: PixelColor {
         false
     }
 
+    /// Sets up and draws a small textured face into the buffers `(colors, depths, width)` by
+    /// the target's own code, if this format has it there (Rgb565 on ARMv7-M, whose raw values
+    /// the texels are): `true` if done; `false` without writing anything where it has none
+    /// (the default) or it declines the face. Hidden: its argument's type cannot be named
+    /// outside the crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn textured_face_565(
+        buffers: (&mut [Self], &mut [u16], usize),
+        face: crate::arch::TexturedFace<'_>,
+    ) -> bool {
+        let _ = (buffers, face);
+        false
+    }
+
     /// Draws a span of the perspective-correct textured fill into `colors` and `depths` by a
     /// loop of the target's own, if this format has one there (Rgb565 on ARMv7-M, whose raw
     /// values the texels are); `false` without writing anything where it has none (the
@@ -352,6 +367,13 @@ macro_rules! rgb_color {
                     rows: &crate::arch::TexturedRows<'_>,
                 ) -> bool {
                     $order == [0, 1, 2] && crate::arch::textured_rows(colors, depths, rows)
+                }
+                #[inline(always)]
+                fn textured_face_565(
+                    buffers: (&mut [Self], &mut [u16], usize),
+                    face: crate::arch::TexturedFace<'_>,
+                ) -> bool {
+                    $order == [0, 1, 2] && crate::arch::textured_face(buffers, face)
                 }
                 #[inline(always)]
                 fn perspective_span_565(

@@ -638,13 +638,34 @@ impl<R: RowWindow> TargetClip<R> {
     /// and level planes' rounding.
     #[inline(always)]
     fn level_face<'v>(&self, v: [&'v ProjectedVertex; 3]) -> arch::LevelFace<'v> {
+        arch::LevelFace::new(v, self.bounds, [DEPTH_HALF, LEVEL_HALF], self.face_rows())
+    }
+
+    /// The face of `v` for the assembly's set-up of the textured fill
+    /// ([`arch::textured_face`]): this clip's bounds and rows, the depth plane's rounding (the
+    /// other planes' is 0), the coordinates' `maps` and the `texture` (as `TexturedFace::new`
+    /// takes them), lit by the level plane if `lit`.
+    #[inline(always)]
+    pub(super) fn textured_face<'v>(
+        &self,
+        v: [&'v arch::TexturedVertex; 3],
+        maps: [(i32, u32); 2],
+        texture: (&'v [u16], u32, u32, u32),
+        lit: bool,
+    ) -> arch::TexturedFace<'v> {
+        let (bounds, rows, half) = (self.bounds, self.face_rows(), [DEPTH_HALF, 0, 0, 0]);
+        arch::TexturedFace::new(v, bounds, half, rows, maps, texture, lit)
+    }
+
+    /// The rows the assembly's set-ups draw, first and last: a band's, or every row of a frame
+    /// from row 0.
+    #[inline(always)]
+    fn face_rows(&self) -> [i32; 2] {
         // Every row: the clip of a frame from (0, 0) (rows above 0 would be skipped).
         debug_assert!(self.rows.band().is_some() || self.rect.top_left.y >= 0);
-        let rows = self
-            .rows
+        self.rows
             .band()
-            .map_or([0, i32::MAX], |b| [b.first, b.last]);
-        arch::LevelFace::new(v, self.bounds, [DEPTH_HALF, LEVEL_HALF], rows)
+            .map_or([0, i32::MAX], |b| [b.first, b.last])
     }
 
     /// The clip with a row more on each side of its window ([`RowWindow::widened`]).

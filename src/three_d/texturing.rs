@@ -605,6 +605,17 @@ fn fill_screen_space<S, C, R: RowWindow, W: Opacity>(
     let (mv, v) = PlaneMap::new(texels.map(|t| t[1]));
     let maps = [mu, mv];
     let rows = clip.rows();
+    // A small face of an opaque draw: set up and drawn by the target's own code if it has it.
+    let levels = match light {
+        TexelLight::Full if !SIZE_OVER_SPEED => Some(None),
+        TexelLight::Levels(l) => Some(Some(l)),
+        _ => None,
+    };
+    if let Some(levels) = levels.filter(|_| arch::TEXTURED_FACE && !W::BLENDS) {
+        if textured_face(target, clip, screen, (maps, u, v), levels, &sampler) {
+            return;
+        }
+    }
     match light {
         TexelLight::Full if !SIZE_OVER_SPEED => {
             let more = zip3_with(u, v, [(); 3], |u, v, ()| [u, v]);
@@ -656,6 +667,41 @@ fn fill_screen_space<S, C, R: RowWindow, W: Opacity>(
         // Per-pixel light is always perspective-correct (`fill_textured` never brings it here).
         TexelLight::Quadratic(_) => {}
     }
+}
+
+/// Sets up and draws the face `screen` (its coordinates' plane values `u` and `v` as `maps`
+/// maps them; lit by the level plane of `levels` if any) by the target's own code
+/// ([`arch::textured_face`]), if the target and `C` have it and it takes the face: whether it
+/// did (else nothing is drawn). The same pixels as the portable set-up and row loop.
+#[inline(always)]
+fn textured_face<S, C, R: RowWindow>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    screen: [&ScreenVertex; 3],
+    (maps, u, v): ([PlaneMap; 2], [u16; 3], [u16; 3]),
+    levels: Option<[u16; 3]>,
+    sampler: &Sampler<'_, S>,
+) -> bool
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    let Some(texture) = masked_565(sampler) else {
+        return false;
+    };
+    let (Some(map_u), Some(map_v)) = (shift_map(&maps[0]), shift_map(&maps[1])) else {
+        return false;
+    };
+    let l = levels.unwrap_or([0; 3]);
+    let vertex = |k: usize| arch::TexturedVertex {
+        x: screen[k].x.to_bits(),
+        y: screen[k].y.to_bits(),
+        values: [screen[k].depth, u[k], v[k], l[k]],
+    };
+    let vertices = [vertex(0), vertex(1), vertex(2)];
+    let [a, b, c] = &vertices;
+    let face = clip.textured_face([a, b, c], [map_u, map_v], texture, levels.is_some());
+    C::textured_face_565(target.buffers_mut(), face)
 }
 
 /// [`fill_textured`] of a face interpolated perspective-correct.
