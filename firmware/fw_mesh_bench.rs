@@ -46,7 +46,7 @@ mod firmware {
     use crate::board::entry;
     use crate::board::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
-    use embedded_raster::three_d::{DepthTarget, ProjectedVertex, Vec3};
+    use embedded_raster::three_d::{DepthTarget, ProjectedVertex, TexCoord, Vec3};
     use embedded_raster::three_d::{LightSource, Lights, Material, Scalar, Shading, Specular};
 
     use crate::clock::Ratio;
@@ -54,6 +54,7 @@ mod firmware {
     use crate::scene3d::{SCATTER_FACES, SCATTER_VERTICES};
     use crate::scene3d::{TORUS_FACES, TORUS_VERTICES, TURNTABLE_POSES};
     use crate::textured3d::{self, Textured, TexturedLine, BAND_PIXELS, TEXELS};
+    use crate::textured3d::{FLOOR_FACES, FLOOR_VERTICES};
     use crate::{board, clock};
 
     /// The instruction set this build runs (the Cortex-M0 code runs on the Cortex-M3 board).
@@ -81,6 +82,10 @@ mod firmware {
     static mut SCATTER_V: [Vec3; SCATTER_VERTICES] = [Vec3::ZERO; SCATTER_VERTICES];
     static mut SCATTER_N: [Vec3; SCATTER_VERTICES] = [Vec3::ZERO; SCATTER_VERTICES];
     static mut SCATTER_I: [[u16; 3]; SCATTER_FACES] = [[0; 3]; SCATTER_FACES];
+    static mut FLOOR_V: [Vec3; FLOOR_VERTICES] = [Vec3::ZERO; FLOOR_VERTICES];
+    static mut FLOOR_N: [Vec3; FLOOR_VERTICES] = [Vec3::ZERO; FLOOR_VERTICES];
+    static mut FLOOR_T: [TexCoord; FLOOR_VERTICES] = [TexCoord::from_bits(0, 0); FLOOR_VERTICES];
+    static mut FLOOR_I: [[u16; 3]; FLOOR_FACES] = [[0; 3]; FLOOR_FACES];
     static mut BAND_COLORS: [Rgb565; BAND_PIXELS] = [Rgb565::new(0, 0, 0); BAND_PIXELS];
     static mut BAND_DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
 
@@ -246,7 +251,7 @@ mod firmware {
         }
         // The textured frames: counts and checksums untimed, then timed with the scratch.
         textured3d::expand(texture);
-        let mut textured = [None, None, None, None, None, None, None];
+        let mut textured: [Option<(TexturedLine, u64)>; Textured::ALL.len()] = Default::default();
         for (k, frame) in Textured::ALL.into_iter().enumerate() {
             let stats = textured3d::render(frame, texture, &mut target, Some(&mut scratch[..]));
             let covered = scene3d::covered(target.depth());
@@ -310,6 +315,17 @@ mod firmware {
         for (line, _) in textured.iter().flatten() {
             hprintln!("{}", line);
         }
+        // SAFETY: as for the statics above: these are their only references.
+        let floor = unsafe {
+            textured3d::floor(
+                &mut *core::ptr::addr_of_mut!(FLOOR_V),
+                &mut *core::ptr::addr_of_mut!(FLOOR_N),
+                &mut *core::ptr::addr_of_mut!(FLOOR_T),
+                &mut *core::ptr::addr_of_mut!(FLOOR_I),
+            )
+        };
+        let stats = textured3d::render_floor(&floor, &mut target, scratch);
+        hprintln!("{}", TexturedLine::of(Textured::Floor, stats, &target));
         hprintln!("\n### 3D frame, {}\n", code());
         hprintln!(
             "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px | without scratch |"
@@ -466,6 +482,17 @@ fn main() {
         println!("{line}");
     }
     use textured3d::{Textured, BAND_PIXELS};
+    let mut fv = Box::new([Vec3::ZERO; textured3d::FLOOR_VERTICES]);
+    let mut fnorm = Box::new([Vec3::ZERO; textured3d::FLOOR_VERTICES]);
+    let mut ft =
+        Box::new([embedded_raster::three_d::TexCoord::from_bits(0, 0); textured3d::FLOOR_VERTICES]);
+    let mut fi = Box::new([[0u16; 3]; textured3d::FLOOR_FACES]);
+    let floor = textured3d::floor(&mut fv, &mut fnorm, &mut ft, &mut fi);
+    let stats = textured3d::render_floor(&floor, &mut target, &mut scratch);
+    println!(
+        "{}",
+        textured3d::TexturedLine::of(Textured::Floor, stats, &target)
+    );
     textured3d::render(Textured::Nearest, &texels, &mut target, Some(&mut scratch));
     let whole = textured3d::hashes(target.framebuffer().pixels(), target.depth());
     let (mut band_colors, mut band_depth) =

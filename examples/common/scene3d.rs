@@ -142,7 +142,7 @@ pub fn pipeline(model: Model) -> Pipeline {
 }
 
 /// The frame's camera, light and viewport with the model posed by `pose`.
-fn posed(pose: Mat4) -> Pipeline {
+pub fn posed(pose: Mat4) -> Pipeline {
     let (w, h) = SIZE;
     let projection = Mat4::perspective(
         Angle::from_degrees(60),

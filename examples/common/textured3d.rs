@@ -18,12 +18,12 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
+use embedded_raster::three_d::{Angle, Mat4, Mesh, TexCoord, TexturedMaterial, Vec3};
 use embedded_raster::three_d::{
     DepthTarget, DrawStats, ProjectedVertex, Scalar, Shading, Specular,
 };
-use embedded_raster::three_d::{Mesh, TexturedMaterial};
 
-use crate::scene3d::{pipeline, Model, BACKGROUND, SIZE};
+use crate::scene3d::{self, pipeline, Model, BACKGROUND, SIZE};
 
 #[allow(clippy::all)]
 #[rustfmt::skip]
@@ -61,6 +61,9 @@ pub enum Textured {
     QuadraticSpecular,
     /// Rgb565 texels in RAM, nearest, unlit (`Shading::Unlit`).
     Unlit,
+    /// The [`floor`] mesh, not spot: an 8 × 8 texture, nearest, Gouraud-lit, seen at a grazing
+    /// angle ([`render_floor`]; not in [`ALL`](Self::ALL)).
+    Floor,
 }
 
 impl Textured {
@@ -85,6 +88,7 @@ impl Textured {
             Textured::Quadratic => "spot-textured-quadratic",
             Textured::QuadraticSpecular => "spot-textured-quadratic-specular",
             Textured::Unlit => "spot-textured-unlit",
+            Textured::Floor => "floor-textured",
         }
     }
 
@@ -138,6 +142,76 @@ pub fn render(
             }
         }
     }
+}
+
+/// Quads a side of the [`floor`] grid.
+pub const FLOOR_SIDE: usize = 24;
+
+/// Vertices of the [`floor`] mesh.
+pub const FLOOR_VERTICES: usize = (FLOOR_SIDE + 1) * (FLOOR_SIDE + 1);
+
+/// Faces of the [`floor`] mesh.
+pub const FLOOR_FACES: usize = 2 * FLOOR_SIDE * FLOOR_SIDE;
+
+/// A floor into the caller's arrays: a grid of [`FLOOR_SIDE`]² quads 0.6 below the camera's
+/// eye, 4 units wide, reaching from just past the near plane to near the far one (seen in the
+/// bench frame's camera, without the pose: faces in depth ratios from about 1.4 near to 1.04
+/// far), with a bumpy normal field (the light varies across each face) and texture coordinates
+/// repeating every four quads. The frame that decides, face by face, between screen-space and
+/// perspective-correct textured fills, on both sides of the bound.
+pub fn floor<'a>(
+    vertices: &'a mut [Vec3; FLOOR_VERTICES],
+    normals: &'a mut [Vec3; FLOOR_VERTICES],
+    uvs: &'a mut [TexCoord; FLOOR_VERTICES],
+    indices: &'a mut [[u16; 3]; FLOOR_FACES],
+) -> Mesh<'a> {
+    let n = FLOOR_SIDE as i32;
+    for j in 0..=FLOOR_SIDE {
+        for i in 0..=FLOOR_SIDE {
+            let k = j * (FLOOR_SIDE + 1) + i;
+            let (i, j) = (i as i32, j as i32);
+            // x from −2 to 2, z from 1.8 to −5 (the view's −0.7 to −7.5).
+            let x = -(2 << 16) + (4 << 16) / n * i;
+            let z = (118_000) - (445_645 / n) * j;
+            vertices[k] = Vec3::from_bits(x, -39_322, z);
+            let (bx, bz) = (Angle::from_turns(3 * i, n), Angle::from_turns(2 * j, n));
+            let half = Scalar::from_bits(1 << 15);
+            normals[k] = Vec3::new(bx.sin() * half, Scalar::ONE, bz.cos() * half).normalize();
+            uvs[k] = TexCoord::from_bits(i << 14, j << 14);
+        }
+    }
+    let at = |i: usize, j: usize| (j * (FLOOR_SIDE + 1) + i) as u16;
+    for j in 0..FLOOR_SIDE {
+        for i in 0..FLOOR_SIDE {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            let k = 2 * (j * FLOOR_SIDE + i);
+            indices[k] = [a, b, c];
+            indices[k + 1] = [a, c, d];
+        }
+    }
+    Mesh::new(&vertices[..], &normals[..], &indices[..]).with_uvs(&uvs[..])
+}
+
+/// The [`floor`] frame of `mesh` with `scratch`: clears colour and depth and draws it with an
+/// 8 × 8 texture of distinct colours, nearest, Gouraud-lit, in the bench frame's camera.
+pub fn render_floor(
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: &mut [ProjectedVertex],
+) -> DrawStats {
+    let texels: [u16; 64] = core::array::from_fn(|k| {
+        let c = Rgb565::new((k * 5 % 32) as u8, (k * 11 % 64) as u8, (k * 7 % 32) as u8);
+        c.into_storage()
+    });
+    target.clear(BACKGROUND);
+    let Ok(texture) = Texture::new(Rgb565Texels(&texels[..]), 8, 8) else {
+        return DrawStats::default();
+    };
+    let material = TexturedMaterial::new(&texture, Shading::Gouraud);
+    let pipeline = scene3d::posed(Mat4::IDENTITY);
+    pipeline
+        .draw_textured_mesh_with(mesh, &material, target, scratch)
+        .unwrap_or_default()
 }
 
 /// FNV-1a over little-endian 16-bit words, from the hash `h` on (`0x811c9dc5` to start).
@@ -243,6 +317,18 @@ pub struct TexturedLine {
     pub covered: u32,
     /// FNV-1a of colours and depths.
     pub checksum: u32,
+}
+
+impl TexturedLine {
+    /// The line of `frame` drawn into `target` with the counts `stats`.
+    pub fn of(frame: Textured, stats: DrawStats, target: &DepthTarget<'_, Rgb565>) -> Self {
+        TexturedLine {
+            frame,
+            stats,
+            covered: scene3d::covered(target.depth()),
+            checksum: scene3d::checksum(target.framebuffer().pixels(), target.depth()),
+        }
+    }
 }
 
 impl core::fmt::Display for TexturedLine {

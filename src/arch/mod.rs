@@ -386,7 +386,7 @@ const _: () = assert!(core::mem::size_of::<LevelBlock>() == 84);
 // build).
 #[cfg(armv7m)]
 const _: () = {
-    use core::mem::{offset_of, size_of};
+    use core::mem::{align_of, offset_of, size_of};
     type Face = LevelFace<'static>;
     assert!(offset_of!(Face, clip) == 12 && offset_of!(Face, colors) == 28);
     assert!(offset_of!(Face, depths) == 32 && offset_of!(Face, stride) == 36);
@@ -406,7 +406,10 @@ const _: () = {
     assert!(offset_of!(Textured, maps) == 64 && offset_of!(Textured, y_shift) == 80);
     assert!(offset_of!(Textured, texels) == 84 && offset_of!(Textured, x_mask) == 88);
     assert!(offset_of!(Textured, rows_mask) == 92 && offset_of!(Textured, lit) == 96);
-    assert!(offset_of!(TexturedVertex, values) == 8 && size_of::<TexturedVertex>() == 16);
+    assert!(offset_of!(Textured, affine_level) == 100);
+    assert!(offset_of!(TexturedVertex, values) == 8 && offset_of!(TexturedVertex, texel) == 16);
+    assert!(offset_of!(TexturedVertex, q) == 24 && offset_of!(TexturedVertex, q_shift) == 26);
+    assert!(size_of::<TexturedVertex>() == 28 && align_of::<TexturedVertex>() == 4);
 };
 
 #[cfg(any(armv7m, rv32))]
@@ -539,16 +542,57 @@ pub(crate) fn textured_rows<C: Copy>(
 /// [`textured_rows`]; elsewhere by `raster::scan`.
 pub(crate) const TEXTURED_FACE: bool = cfg!(armv7m);
 
-/// A vertex of a [`TexturedFace`]: its position (sub-pixels), and its depth, texel coordinates
-/// (the plane values of `texture::PlaneMap`) and light level as the planes take them.
+/// A vertex of a [`TexturedFace`]: its position (sub-pixels), depth and light level as the
+/// planes take them, its texel coordinates (16.16) and its `q ∝ 1/w` as `mantissa ·
+/// 2^shift`; [`textured_face`] writes the coordinates' plane values (`texture::PlaneMap`'s).
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(crate) struct TexturedVertex {
     /// 0, 4: the position.
-    pub(crate) x: i32,
-    pub(crate) y: i32,
-    /// 8, 10, 12, 14: the depth, `u`, `v` and the level.
-    pub(crate) values: [u16; 4],
+    x: i32,
+    y: i32,
+    /// 8, 10, 12, 14: the depth, `u`'s and `v`'s plane values (written by the set-up) and the
+    /// level.
+    values: [u16; 4],
+    /// 16, 20: the texel coordinates.
+    texel: [i32; 2],
+    /// 24, 26: `q`'s mantissa and shift.
+    q: u16,
+    q_shift: u8,
+}
+
+impl TexturedVertex {
+    /// The vertex at `(x, y)` with `depth`, light `level`, texel coordinates `texel` and `q`
+    /// `(mantissa, shift)`.
+    #[inline(always)]
+    pub(crate) fn new(
+        (x, y): (i32, i32),
+        depth: u16,
+        level: u16,
+        texel: [i32; 2],
+        (q, q_shift): (u16, u8),
+    ) -> Self {
+        TexturedVertex {
+            x,
+            y,
+            values: [depth, 0, 0, level],
+            texel,
+            q,
+            q_shift,
+        }
+    }
+}
+
+/// What [`textured_face`] did with a face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub enum TexturedDraw {
+    /// Drawn, or nothing of it to draw.
+    Done,
+    /// Nothing drawn: the portable code's to draw.
+    Declined,
+    /// Nothing drawn: not within the screen-space bound, to draw perspective-correct.
+    Perspective,
 }
 
 /// A face for [`textured_face`] (offsets are the assembly's): its vertices, the clip, the
@@ -558,7 +602,7 @@ pub(crate) struct TexturedVertex {
 #[cfg_attr(not(armv7m), allow(dead_code))]
 pub struct TexturedFace<'v> {
     /// 0, 4, 8: the vertices.
-    vertices: [*const TexturedVertex; 3],
+    vertices: [*mut TexturedVertex; 3],
     /// 12-24: the clip's first column and row, its last column and row.
     clip: [i32; 4],
     /// 28: the depth buffer; 32: the colour buffer's offset from it in bytes (wrapping); 36: a
@@ -571,49 +615,53 @@ pub struct TexturedFace<'v> {
     /// 56, 60: the rows drawn, first and last (a band's); the buffers' first row is the first.
     rows: [i32; 2],
     /// 64-76: the coordinates' maps, `u`'s base and `down` then `v`'s (as
-    /// [`TexturedRows::maps`]); 80: `y`'s shift.
+    /// [`TexturedRows::maps`], found by the set-up); 80: `y`'s shift.
     maps: [u32; 4],
     y_shift: u32,
     /// 84: the texels; 88: the column mask; 92: the row mask (as [`TexturedRows`]).
     texels: *const u16,
     x_mask: u32,
     rows_mask: u32,
-    /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane.
+    /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane;
+    /// 100: the screen-space bound of the levels (`texturing::affine_level`).
     lit: u32,
+    affine_level: u32,
     /// The texels' length (not the assembly's).
     texels_len: usize,
-    borrowed: core::marker::PhantomData<&'v [u16]>,
+    borrowed: core::marker::PhantomData<&'v mut [u16]>,
 }
 
 impl<'v> TexturedFace<'v> {
     /// The face of `vertices` inside `clip` (see [`ClipBounds`]), its planes rounded by `half`,
-    /// drawn in rows `rows` (as [`LevelFace::new`]'s), its coordinates' planes mapped by `maps`
-    /// and sampled from `(texels, x_mask, rows_mask, y_shift)` (as [`TexturedRows`] has them),
-    /// lit by the level plane if `lit`.
+    /// drawn in rows `rows` (as [`LevelFace::new`]'s), sampled from `(texels, x_mask,
+    /// rows_mask, y_shift)` (as [`TexturedRows`] has them), lit by the level plane if `lit`
+    /// (its levels then within `affine_level` of the perspective-correct ones in screen space,
+    /// as the texel coordinates within 1/16 texel).
     #[inline(always)]
     pub(crate) fn new(
-        vertices: [&'v TexturedVertex; 3],
+        vertices: &'v mut [TexturedVertex; 3],
         clip: ClipBounds,
         half: [u32; 4],
         rows: [i32; 2],
-        maps: [(i32, u32); 2],
         (texels, x_mask, rows_mask, y_shift): (&'v [u16], u32, u32, u32),
-        lit: bool,
+        (lit, affine_level): (bool, u32),
     ) -> Self {
+        let [a, b, c] = vertices;
         TexturedFace {
-            vertices: vertices.map(|v| v as *const TexturedVertex),
+            vertices: [a, b, c].map(|v| v as *mut TexturedVertex),
             clip: clip.words(),
             depths: core::ptr::null_mut(),
             color_offset: 0,
             stride: 0,
             half,
             rows,
-            maps: [maps[0].0 as u32, maps[0].1, maps[1].0 as u32, maps[1].1],
+            maps: [0; 4],
             y_shift,
             texels: texels.as_ptr(),
             x_mask,
             rows_mask,
             lit: if lit { 2 } else { 0 },
+            affine_level,
             texels_len: texels.len(),
             borrowed: core::marker::PhantomData,
         }
@@ -626,8 +674,8 @@ impl<'v> TexturedFace<'v> {
 pub(crate) fn textured_face<C: Copy>(
     _buffers: (&mut [C], &mut [u16], usize),
     _face: TexturedFace<'_>,
-) -> bool {
-    false
+) -> TexturedDraw {
+    TexturedDraw::Declined
 }
 
 /// ARMv7-M: a depth-tested span of the perspective-correct textured fill with nearest texels of

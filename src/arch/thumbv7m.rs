@@ -39,7 +39,7 @@ use core::mem::MaybeUninit;
 use embedded_graphics::pixelcolor::raw::RawU16;
 
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
-use super::{TexturedFace, TexturedRows};
+use super::{TexturedDraw, TexturedFace, TexturedRows};
 
 /// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
 /// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
@@ -1875,6 +1875,101 @@ pub(crate) fn level_face_keeping<'s, C: Copy>(
     }
 }
 
+/// `$out` = the least (`$c` = "lt" signed, "lo" unsigned) or the greatest ("gt", "hi") of
+/// `$a`, `$b`, `$d` (`$out` another register).
+#[rustfmt::skip]
+macro_rules! min3 {
+    ($out:literal, $a:literal, $b:literal, $d:literal, $c:literal) => {
+        concat!(
+            "mov ", $out, ", ", $a, "\n",
+            "cmp ", $b, ", ", $out, "\n",
+            "it ", $c, "\n",
+            "mov", $c, " ", $out, ", ", $b, "\n",
+            "cmp ", $d, ", ", $out, "\n",
+            "it ", $c, "\n",
+            "mov", $c, " ", $out, ", ", $d, "\n",
+        )
+    };
+}
+
+/// A texel coordinate (the `i32` at `$at` of the vertices r1-r3): its least value (signed) and
+/// its spread (the greatest less it, wrapping) at `$out` and 4 more; the spread also in r7.
+/// Clobbers r6, r8-r10.
+#[rustfmt::skip]
+macro_rules! coordinate_spread {
+    ($at:literal, $out:literal) => {
+        concat!(
+            "ldr r6, [r1, #", $at, "]\n",
+            "ldr r7, [r2, #", $at, "]\n",
+            "ldr r8, [r3, #", $at, "]\n",
+            min3!("r9", "r6", "r7", "r8", "lt"),
+            min3!("r10", "r6", "r7", "r8", "gt"),
+            "sub r7, r10, r9\n",
+            "strd r9, r7, [sp, #", $out, "]\n",
+        )
+    };
+}
+
+/// `$v = ⌊$v / 2^$s + ½⌋` for `$s` from 0 (`texture::span::round_shift`), as `((v >> (s − 1)) +
+/// 1) >> 1` (no carry out: `v >> (s − 1)` is below 2¹⁸ wherever it is taken); `$t` scratch.
+#[rustfmt::skip]
+macro_rules! round_shift {
+    ($v:literal, $s:literal, $t:literal) => {
+        concat!(
+            "subs ", $t, ", ", $s, ", #1\n",
+            "ittt pl\n",
+            "lsrpl ", $v, ", ", $v, ", ", $t, "\n",
+            "addpl ", $v, ", ", $v, ", #1\n",
+            "lsrpl ", $v, ", ", $v, ", #1\n",
+        )
+    };
+}
+
+/// A texel coordinate's plane values and map, as `texture::PlaneMap::new`: the coordinate (the
+/// `i32` at `$at` of the vertices r1-r3), its least value and spread at `$spread` (sp-relative),
+/// the scale's shift (the least whose rounded spread is within 2¹⁶ − 256 steps), each vertex's
+/// value `128 + round(c − least)` at `$value`, the map `(least − 128·2^shift, 16 − shift)` at
+/// the face's `$map`; a shift of 17 declines (90). Clobbers r4-r11.
+#[rustfmt::skip]
+macro_rules! plane_map {
+    ($at:literal, $spread:literal, $value:literal, $map:literal) => {
+        concat!(
+            "ldrd r9, r10, [sp, #", $spread, "]\n",
+            "clz r11, r10\n",
+            "rsbs r11, r11, #16\n",
+            "it mi\n",
+            "movmi r11, #0\n",
+            "mov r4, r10\n",
+            round_shift!("r4", "r11", "r5"),
+            "cmp r4, #0xff00\n",
+            "it hi\n",
+            "addhi r11, r11, #1\n",
+            "cmp r11, #16\n",
+            "bhi 90f\n",
+            "ldr r6, [r1, #", $at, "]\n",
+            "ldr r7, [r2, #", $at, "]\n",
+            "ldr r8, [r3, #", $at, "]\n",
+            "sub r6, r6, r9\n",
+            round_shift!("r6", "r11", "r5"),
+            "add r6, r6, #128\n",
+            "strh r6, [r1, #", $value, "]\n",
+            "sub r7, r7, r9\n",
+            round_shift!("r7", "r11", "r5"),
+            "add r7, r7, #128\n",
+            "strh r7, [r2, #", $value, "]\n",
+            "sub r8, r8, r9\n",
+            round_shift!("r8", "r11", "r5"),
+            "add r8, r8, #128\n",
+            "strh r8, [r3, #", $value, "]\n",
+            "movs r5, #128\n",
+            "lsl r5, r5, r11\n",
+            "sub r9, r9, r5\n",
+            "rsb r11, r11, #16\n",
+            "strd r9, r11, [r0, #", $map, "]\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_textured_face_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -1885,14 +1980,79 @@ core::arch::global_asm!(
     ".type embedded_raster_textured_face_v7m,%function",
     ".thumb_func",
     // r0 = the face (`TexturedFace`). Returns 0 if done (drawn, or nothing to draw), 1 if
-    // declined (not small, or a sliver): nothing drawn. The frame: the textured row loop's
-    // block at sp (144 bytes), then scratch: 144, 148 = l1, l2; 152 = whether the middle bound
-    // starts; 156-180 = the depth's, `u`'s, `v`'s and the level's d1, d2; 188-212 = their nx,
-    // ny; 220-232 = their value terms; 236-244 = the oriented vertices' addresses; 248, 252,
-    // 256 = the region's first column, first and last rows.
+    // declined (not small, a sliver, or a coordinate's scale past 2¹⁶), 3 if not within the
+    // screen-space bound: nothing drawn. The frame: the textured row loop's block at sp (144
+    // bytes), then scratch: 144, 148 = l1, l2; 152 = whether the middle bound starts; 156-180 =
+    // the depth's, `u`'s, `v`'s and the level's d1, d2; 188-212 = their nx, ny; 220-232 =
+    // their value terms; 236-244 = the oriented vertices' addresses; 248, 252, 256 = the
+    // region's first column, first and last rows; 260-272 = the coordinates' least values and
+    // spreads.
     "embedded_raster_textured_face_v7m:",
     "push {{r4-r11, lr}}",
-    "sub sp, #268",
+    "sub sp, #284",
+    // The screen-space bound (`texturing::nearly_affine`): r1-r3 = the vertices; their `q` in
+    // a common scale (shifts apart by at most 8, else perspective), r5 = the ratio term
+    // `q_max − q_min + 2^(most + 1)`, r4 = `4·q_min`.
+    "ldm r0, {{r1, r2, r3}}",
+    "ldrb r4, [r1, #26]",
+    "ldrb r5, [r2, #26]",
+    "ldrb r6, [r3, #26]",
+    min3!("r7", "r4", "r5", "r6", "lt"),
+    min3!("r8", "r4", "r5", "r6", "gt"),
+    "sub r8, r8, r7",
+    "cmp r8, #8",
+    "bhi 93f",
+    "sub r4, r4, r7",
+    "sub r5, r5, r7",
+    "sub r6, r6, r7",
+    "ldrh r9, [r1, #24]",
+    "lsl r9, r9, r4",
+    "ldrh r10, [r2, #24]",
+    "lsl r10, r10, r5",
+    "ldrh r11, [r3, #24]",
+    "lsl r11, r11, r6",
+    min3!("r4", "r9", "r10", "r11", "lo"),
+    min3!("r5", "r9", "r10", "r11", "hi"),
+    "sub r5, r5, r4",
+    "movs r6, #2",
+    "lsl r6, r6, r8",
+    "add r5, r5, r6",
+    "lsl r4, r4, #2",
+    // The texel coordinates' least values and spreads (sp + 260-272), the larger spread
+    // times the ratio against 2¹² times 4·q_min (1/16 texel).
+    coordinate_spread!("16", "260"),
+    coordinate_spread!("20", "268"),
+    "ldr r6, [sp, #264]",
+    "cmp r7, r6",
+    "it lo",
+    "movlo r7, r6",
+    "umull r6, r7, r7, r5",
+    "lsl r8, r4, #12",
+    "lsr r9, r4, #20",
+    "subs r8, r8, r6",
+    "sbcs r9, r9, r7",
+    "blo 93f",
+    // Lit: the levels' spread times the ratio against the bound (the face's word 100) times
+    // 4·q_min.
+    "ldr r6, [r0, #96]",
+    "cbz r6, 23f",
+    "ldrh r6, [r1, #14]",
+    "ldrh r7, [r2, #14]",
+    "ldrh r8, [r3, #14]",
+    min3!("r9", "r6", "r7", "r8", "lo"),
+    min3!("r10", "r6", "r7", "r8", "hi"),
+    "sub r9, r10, r9",
+    "umull r6, r7, r9, r5",
+    "ldr r8, [r0, #100]",
+    "umull r8, r9, r8, r4",
+    "subs r8, r8, r6",
+    "sbcs r9, r9, r7",
+    "blo 93f",
+    "23:",
+    // The coordinates' planes (`texture::PlaneMap::new`): their values into the vertices, the
+    // maps into the face; a scale past 2¹⁶ declines (its map shifts left).
+    plane_map!("16", "260", "10", "64"),
+    plane_map!("20", "268", "12", "72"),
     face_scan!("236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144"),
     attribute_numerators!("8", "156", "40", "220", "188", "236", "240"),
     attribute_numerators!("10", "164", "44", "224", "196", "236", "240"),
@@ -1989,11 +2149,15 @@ core::arch::global_asm!(
     "bl embedded_raster_textured_rows_v7m",
     "80:",
     "movs r0, #0",
-    "add sp, #268",
+    "add sp, #284",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #1",
-    "add sp, #268",
+    "add sp, #284",
+    "pop {{r4-r11, pc}}",
+    "93:",
+    "movs r0, #3",
+    "add sp, #284",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_textured_face_v7m, . - embedded_raster_textured_face_v7m",
 );
@@ -2005,47 +2169,54 @@ extern "C" {
 
 /// Sets up and draws the small face `face` with depth, texel coordinate and light-level planes
 /// into `colors` and `depths` (`width` pixels a row, the face's first row of rows the buffers'
-/// first), inside its clip and rows: what `raster::scan` sets up for it (as four planes) and
-/// [`textured_rows`] draws, from the same integers. `true` if done (drawn, or nothing of it to
-/// draw); `false`, with nothing drawn, if the face is not small or a sliver (the portable
-/// set-up's `NotSmall::Other`), or if the clip's pixels in those rows are not inside the
-/// buffers, a texel index the masks allow is not inside the texels, a shift is not below 32 or
-/// `C` is not a 16-bit colour. `C` must be the 5-6-5 format whose raw value is the texels' (the
-/// caller's promise, as [`textured_rows`]').
+/// first), inside its clip and rows: what `texturing`'s screen-space fill sets up for it (the
+/// bound `nearly_affine`, the coordinates' `PlaneMap`s, `raster::scan`'s set-up with four
+/// planes) and [`textured_rows`] draws, from the same integers. Done if drawn (or nothing of it
+/// to draw); perspective, with nothing drawn, if the bound does not hold; declined, with
+/// nothing drawn, if the face is not small or a sliver (the portable set-up's
+/// `NotSmall::Other`), a coordinate's scale is past 2¹⁶, the clip's pixels in those rows are
+/// not inside the buffers, a texel index the masks allow is not inside the texels, `y`'s shift
+/// is not below 32 or `C` is not a 16-bit colour. `C` must be the 5-6-5 format whose raw value
+/// is the texels' (the caller's promise, as [`textured_rows`]').
 #[inline(always)]
 pub(crate) fn textured_face<C: Copy>(
     (colors, depths, width): (&mut [C], &mut [u16], usize),
     mut face: TexturedFace<'_>,
-) -> bool {
-    let shifts = [face.maps[1], face.maps[3], face.y_shift];
+) -> TexturedDraw {
     let last_texel = (face.rows_mask | face.x_mask) as usize;
     let colour = core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2;
-    if !colour || last_texel >= face.texels_len || shifts.iter().any(|&s| s > 31) {
-        return false;
+    if !colour || last_texel >= face.texels_len || face.y_shift > 31 {
+        return TexturedDraw::Declined;
     }
     // The last pixel the face can write, in both buffers, as in `level_face_result`.
     let ([x0, y0, x1, y1], [first, last]) = (face.clip, face.rows);
     let (top, bottom) = (y0.max(first), y1.min(last));
     if x0 > x1 || top > bottom {
-        return true;
+        return TexturedDraw::Done;
     }
     let len = colors.len().min(depths.len()) as u64;
     let row = u64::from(bottom.wrapping_sub(first) as u32);
     let inside = x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len;
     if !inside || width > (u32::MAX / 2) as usize {
-        return false;
+        return TexturedDraw::Declined;
     }
     face.depths = depths.as_mut_ptr();
     face.color_offset = (colors.as_mut_ptr() as usize).wrapping_sub(face.depths as usize) as u32;
     face.stride = (width * 2) as u32;
-    // SAFETY: the function reads the face and, through its addresses, the three
-    // `TexturedVertex`s (16 bytes each); it writes only pixels of its region — rows and columns
-    // of the clip (inside both buffers, checked above), at `row·stride + 2·column` bytes from
-    // the buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour whose raw value the
-    // texels are, the caller's promise) — through `textured_rows`'s loop (see its safety
-    // note), which reads the texels at indices of at most `rows_mask | x_mask` (inside them,
-    // checked above) with shifts below 32; it divides by non-zero divisors only (the area's top
+    // SAFETY: the function reads the face and writes its maps (words 64-76), and through its
+    // addresses reads the three `TexturedVertex`s (28 bytes each, borrowed mutably by the face)
+    // and writes their coordinates' plane values (bytes 10-13); it writes only pixels of its
+    // region — rows and columns of the clip (inside both buffers, checked above), at
+    // `row·stride + 2·column` bytes from the buffers' starts, as 2-byte aligned `u16`s (`C` is
+    // a 2-byte colour whose raw value the texels are, the caller's promise) — through
+    // `textured_rows`'s loop (see its safety note), which reads the texels at indices of at
+    // most `rows_mask | x_mask` (inside them, checked above) with shifts below 32 (the maps'
+    // at most 16, `y`'s checked above); it divides by non-zero divisors only (the area's top
     // half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and saves and
     // restores every register the AAPCS asks it to.
-    unsafe { embedded_raster_textured_face_v7m(&mut face) != 1 }
+    match unsafe { embedded_raster_textured_face_v7m(&mut face) } {
+        0 => TexturedDraw::Done,
+        3 => TexturedDraw::Perspective,
+        _ => TexturedDraw::Declined,
+    }
 }

@@ -126,17 +126,16 @@ pub trait GouraudColor: PixelColor {
 
     /// Sets up and draws a small textured face into the buffers `(colors, depths, width)` by
     /// the target's own code, if this format has it there (Rgb565 on ARMv7-M, whose raw values
-    /// the texels are): `true` if done; `false` without writing anything where it has none
-    /// (the default) or it declines the face. Hidden: its argument's type cannot be named
-    /// outside the crate.
+    /// the texels are): what it did; declined, without writing anything, where it has none
+    /// (the default). Hidden: its argument's type cannot be named outside the crate.
     #[doc(hidden)]
     #[inline(always)]
     fn textured_face_565(
         buffers: (&mut [Self], &mut [u16], usize),
         face: crate::arch::TexturedFace<'_>,
-    ) -> bool {
+    ) -> crate::arch::TexturedDraw {
         let _ = (buffers, face);
-        false
+        crate::arch::TexturedDraw::Declined
     }
 
     /// Draws a span of the perspective-correct textured fill into `colors` and `depths` by a
@@ -372,8 +371,11 @@ macro_rules! rgb_color {
                 fn textured_face_565(
                     buffers: (&mut [Self], &mut [u16], usize),
                     face: crate::arch::TexturedFace<'_>,
-                ) -> bool {
-                    $order == [0, 1, 2] && crate::arch::textured_face(buffers, face)
+                ) -> crate::arch::TexturedDraw {
+                    if $order != [0, 1, 2] {
+                        return crate::arch::TexturedDraw::Declined;
+                    }
+                    crate::arch::textured_face(buffers, face)
                 }
                 #[inline(always)]
                 fn perspective_span_565(

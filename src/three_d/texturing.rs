@@ -98,7 +98,7 @@ use super::shading::{
     DEPTH_SHIFT,
 };
 use super::vertex::Inverse;
-use crate::arch::{self, SIZE_OVER_SPEED};
+use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
 use crate::color::GouraudColor;
 use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::RowWindow;
@@ -569,6 +569,23 @@ pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
+    // A small face of an opaque draw: set up and drawn by the target's own code if it has it
+    // (which tests the screen-space bound first, as below).
+    let levels = match light {
+        TexelLight::Full if !SIZE_OVER_SPEED => Some(None),
+        TexelLight::Levels(l) => Some(Some(l)),
+        _ => None,
+    };
+    if let Some(levels) = levels.filter(|_| arch::TEXTURED_FACE && !W::BLENDS) {
+        match textured_face(target, clip, screen, q, texels, levels, &sampler) {
+            TexturedDraw::Done => return,
+            TexturedDraw::Perspective => {
+                fill_perspective(target, clip, screen, q, texels, sampler, write, light);
+                return;
+            }
+            TexturedDraw::Declined => {}
+        }
+    }
     let quadratic = matches!(light, TexelLight::Quadratic(_));
     if !quadratic && nearly_affine(q, texels, &light, affine_level::<C>()) {
         fill_screen_space(target, clip, screen, texels, sampler, write, light);
@@ -605,17 +622,6 @@ fn fill_screen_space<S, C, R: RowWindow, W: Opacity>(
     let (mv, v) = PlaneMap::new(texels.map(|t| t[1]));
     let maps = [mu, mv];
     let rows = clip.rows();
-    // A small face of an opaque draw: set up and drawn by the target's own code if it has it.
-    let levels = match light {
-        TexelLight::Full if !SIZE_OVER_SPEED => Some(None),
-        TexelLight::Levels(l) => Some(Some(l)),
-        _ => None,
-    };
-    if let Some(levels) = levels.filter(|_| arch::TEXTURED_FACE && !W::BLENDS) {
-        if textured_face(target, clip, screen, (maps, u, v), levels, &sampler) {
-            return;
-        }
-    }
     match light {
         TexelLight::Full if !SIZE_OVER_SPEED => {
             let more = zip3_with(u, v, [(); 3], |u, v, ()| [u, v]);
@@ -669,38 +675,36 @@ fn fill_screen_space<S, C, R: RowWindow, W: Opacity>(
     }
 }
 
-/// Sets up and draws the face `screen` (its coordinates' plane values `u` and `v` as `maps`
-/// maps them; lit by the level plane of `levels` if any) by the target's own code
-/// ([`arch::textured_face`]), if the target and `C` have it and it takes the face: whether it
-/// did (else nothing is drawn). The same pixels as the portable set-up and row loop.
+/// Sets up and draws the face `screen` (with `q ∝ 1/w`, 16.16 texel coordinates `texels`, lit
+/// by the levels `levels` if any) by the target's own code ([`arch::textured_face`]) if the
+/// target and `C` have it: drawn (done), not within the screen-space bound of
+/// [`nearly_affine`] (perspective), or declined (and then as elsewhere), nothing drawn in
+/// either. The same pixels as the portable screen-space fill.
 #[inline(always)]
 fn textured_face<S, C, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
     screen: [&ScreenVertex; 3],
-    (maps, u, v): ([PlaneMap; 2], [u16; 3], [u16; 3]),
+    q: [Inverse; 3],
+    texels: [[i32; 2]; 3],
     levels: Option<[u16; 3]>,
     sampler: &Sampler<'_, S>,
-) -> bool
+) -> TexturedDraw
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
     let Some(texture) = masked_565(sampler) else {
-        return false;
-    };
-    let (Some(map_u), Some(map_v)) = (shift_map(&maps[0]), shift_map(&maps[1])) else {
-        return false;
+        return TexturedDraw::Declined;
     };
     let l = levels.unwrap_or([0; 3]);
-    let vertex = |k: usize| arch::TexturedVertex {
-        x: screen[k].x.to_bits(),
-        y: screen[k].y.to_bits(),
-        values: [screen[k].depth, u[k], v[k], l[k]],
+    let vertex = |k: usize| {
+        let position = (screen[k].x.to_bits(), screen[k].y.to_bits());
+        arch::TexturedVertex::new(position, screen[k].depth, l[k], texels[k], q[k].parts())
     };
-    let vertices = [vertex(0), vertex(1), vertex(2)];
-    let [a, b, c] = &vertices;
-    let face = clip.textured_face([a, b, c], [map_u, map_v], texture, levels.is_some());
+    let mut vertices = [vertex(0), vertex(1), vertex(2)];
+    let light = (levels.is_some(), affine_level::<C>() as u32);
+    let face = clip.textured_face(&mut vertices, texture, light);
     C::textured_face_565(target.buffers_mut(), face)
 }
 

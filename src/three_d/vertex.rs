@@ -171,6 +171,12 @@ impl Inverse {
         }
     }
 
+    /// The mantissa and the shift.
+    #[inline(always)]
+    pub(crate) fn parts(self) -> (u16, u8) {
+        (self.mantissa, self.shift)
+    }
+
     /// `mantissa · 2^(16 + shift)`: about 2⁶³ / w.
     #[inline(always)]
     pub(crate) fn value(self) -> u64 {
