@@ -556,6 +556,7 @@ impl<'t, S, W: Opacity> TexturedMaterial<'t, S, W> {
 /// [`draw_textured`] inside a clip already within the target, with the vertices' `q ∝ 1/w`
 /// and 16.16 texel coordinates, lit by `light`.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
@@ -570,24 +571,55 @@ pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     C: GouraudColor + From<S::Color>,
 {
     // A small face of an opaque draw: set up and drawn by the target's own code if it has it
-    // (which tests the screen-space bound first, as below).
+    // (which tests the screen-space bound first, as `fill_portable`).
     let levels = match light {
         TexelLight::Full if !SIZE_OVER_SPEED => Some(None),
         TexelLight::Levels(l) => Some(Some(l)),
         _ => None,
     };
+    let mut perspective = false;
     if let Some(levels) = levels.filter(|_| arch::TEXTURED_FACE && !W::BLENDS) {
-        match textured_face(target, clip, screen, q, texels, levels, &sampler) {
+        match textured_face(target, clip, screen, &q, &texels, levels, &sampler) {
             TexturedDraw::Done => return,
-            TexturedDraw::Perspective => {
-                fill_perspective(target, clip, screen, q, texels, sampler, write, light);
-                return;
-            }
+            TexturedDraw::Perspective => perspective = true,
             TexturedDraw::Declined => {}
         }
     }
+    fill_portable(
+        target,
+        clip,
+        screen,
+        q,
+        texels,
+        sampler,
+        write,
+        light,
+        perspective,
+    );
+}
+
+/// [`fill_textured`]'s portable fills (out of line where there is the target's own set-up, so
+/// that the frame of these is not set up for the faces that one draws): perspective-correct if
+/// `perspective` (the bound is known not to hold), else as the bound says.
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(armv7m, inline(never))]
+#[cfg_attr(not(armv7m), inline(always))]
+fn fill_portable<S, C, R: RowWindow, W: Opacity>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    screen: [&ScreenVertex; 3],
+    q: [Inverse; 3],
+    texels: [[i32; 2]; 3],
+    sampler: Sampler<'_, S>,
+    write: W,
+    light: TexelLight<'_>,
+    perspective: bool,
+) where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
     let quadratic = matches!(light, TexelLight::Quadratic(_));
-    if !quadratic && nearly_affine(q, texels, &light, affine_level::<C>()) {
+    if !perspective && !quadratic && nearly_affine(q, texels, &light, affine_level::<C>()) {
         fill_screen_space(target, clip, screen, texels, sampler, write, light);
     } else {
         fill_perspective(target, clip, screen, q, texels, sampler, write, light);
@@ -685,8 +717,8 @@ fn textured_face<S, C, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
     screen: [&ScreenVertex; 3],
-    q: [Inverse; 3],
-    texels: [[i32; 2]; 3],
+    q: &[Inverse; 3],
+    texels: &[[i32; 2]; 3],
     levels: Option<[u16; 3]>,
     sampler: &Sampler<'_, S>,
 ) -> TexturedDraw
