@@ -556,7 +556,7 @@ impl<'t, S, W: Opacity> TexturedMaterial<'t, S, W> {
 /// [`draw_textured`] inside a clip already within the target, with the vertices' `q ∝ 1/w`
 /// and 16.16 texel coordinates, lit by `light`.
 #[allow(clippy::too_many_arguments)]
-#[inline(always)]
+#[cfg_attr(not(armv6m), inline(always))]
 pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     target: &mut DepthTarget<'_, C>,
     clip: &TargetClip<R>,
