@@ -1911,7 +1911,7 @@ macro_rules! coordinate_spread {
 }
 
 /// `$v = ⌊$v / 2^$s + ½⌋` for `$s` from 0 (`texture::span::round_shift`), as `((v >> (s − 1)) +
-/// 1) >> 1` (no carry out: `v >> (s − 1)` is below 2¹⁸ wherever it is taken); `$t` scratch.
+/// 1) >> 1` (no carry out: `v >> (s − 1)` is below 2¹⁷ wherever it is taken); `$t` scratch.
 #[rustfmt::skip]
 macro_rules! round_shift {
     ($v:literal, $s:literal, $t:literal) => {
@@ -1929,7 +1929,9 @@ macro_rules! round_shift {
 /// `i32` at `$at` of the vertices r1-r3), its least value and spread at `$spread` (sp-relative),
 /// the scale's shift (the least whose rounded spread is within 2¹⁶ − 256 steps), each vertex's
 /// value `128 + round(c − least)` at `$value`, the map `(least − 128·2^shift, 16 − shift)` at
-/// the face's `$map`; a shift of 17 declines (90). Clobbers r4-r11.
+/// the face's `$map`; a shift of 17 declines (90). Clobbers r4-r11. (After the screen-space
+/// bound has held, a spread is below 2²⁹, so the shift is at most 14 and `down` at least 2: the
+/// decline here and `down` = 0 in the texel steps below are defence, never taken.)
 #[rustfmt::skip]
 macro_rules! plane_map {
     ($at:literal, $spread:literal, $value:literal, $map:literal) => {
@@ -1981,12 +1983,13 @@ core::arch::global_asm!(
     ".thumb_func",
     // r0 = the face (`TexturedFace`). Returns 0 if done (drawn, or nothing to draw), 1 if
     // declined (not small, a sliver, or a coordinate's scale past 2¹⁶), 3 if not within the
-    // screen-space bound: nothing drawn. The frame: the textured row loop's block at sp (144
-    // bytes), then scratch: 144, 148 = l1, l2; 152 = whether the middle bound starts; 156-180 =
-    // the depth's, `u`'s, `v`'s and the level's d1, d2; 188-212 = their nx, ny; 220-232 =
-    // their value terms; 236-244 = the oriented vertices' addresses; 248, 252, 256 = the
-    // region's first column, first and last rows; 260-272 = the coordinates' least values and
-    // spreads.
+    // screen-space bound: nothing drawn. The frame (byte ranges end-exclusive): the textured
+    // row loop's block at sp (0..144), then scratch: 144, 148 = l1, l2; 152 = whether the
+    // middle bound starts; 156..188 = the depth's, `u`'s, `v`'s and the level's d1, d2;
+    // 188..220 = their nx, ny; 220..236 = their value terms; 236..248 = the oriented vertices'
+    // addresses; 248, 252, 256 = the region's first column, first and last rows; 260..276 =
+    // the coordinates' least values and spreads; 276..284 unused (the frame's 8-byte
+    // alignment).
     "embedded_raster_textured_face_v7m:",
     "push {{r4-r11, lr}}",
     "sub sp, #284",
