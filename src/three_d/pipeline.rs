@@ -1508,7 +1508,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             (Shading::Unlit, None, _) => TexelLight::Full,
             (Shading::Flat, None, None) => TexelLight::Level(self.face_level(&model())),
             (Shading::Gouraud | Shading::Quadratic, None, None) => {
-                let levels = self.texel_levels(mesh, idx, &model());
+                let levels = self.texel_levels(mesh, idx, &model);
                 let levels = at_bary(bary, levels.map(|l| [i64::from(l)]));
                 TexelLight::Levels(levels.map(|[l]| l.clamp(0, u16::MAX.into()) as u16))
             }
@@ -1516,7 +1516,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 let levels = match shading {
                     Shading::Unlit => [u16::MAX; 3],
                     Shading::Flat => [self.face_level(&model()); 3],
-                    Shading::Gouraud | Shading::Quadratic => self.texel_levels(mesh, idx, &model()),
+                    Shading::Gouraud | Shading::Quadratic => self.texel_levels(mesh, idx, &model),
                 };
                 let white = [&Rgb888::WHITE; 3];
                 let colors = colors.unwrap_or(white);
@@ -1633,17 +1633,27 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
     /// The light levels of the face's vertices `idx` (at `model`) in a textured draw, from the
     /// mesh's normals (the face's normal for a mesh without them).
     #[inline(always)]
-    fn texel_levels(&self, mesh: &Mesh<'_>, idx: &[usize; 3], model: &[Vec3; 3]) -> [u16; 3] {
+    fn texel_levels(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: &impl Fn() -> [Vec3; 3],
+    ) -> [u16; 3] {
+        // The positions only where the levels need them (the pipeline's lights, or the face's
+        // normal): a directional light's levels are the normals' alone.
         match at_face(mesh.normals, idx) {
             Some([a, b, c]) => match &self.rig {
                 None => [a, b, c].map(|n| self.light.level(*n)),
-                Some(rig) => [
-                    rig.level(model[0], *a),
-                    rig.level(model[1], *b),
-                    rig.level(model[2], *c),
-                ],
+                Some(rig) => {
+                    let model = model();
+                    [
+                        rig.level(model[0], *a),
+                        rig.level(model[1], *b),
+                        rig.level(model[2], *c),
+                    ]
+                }
             },
-            None => [self.face_level(model); 3],
+            None => [self.face_level(&model()); 3],
         }
     }
 
