@@ -360,19 +360,26 @@ pub fn covered(depth: &[u16]) -> u32 {
     depth.iter().filter(|&&d| d != DEPTH_CLEAR).count() as u32
 }
 
-/// FNV-1a over the colours and the depths.
-pub fn checksum(colors: &[Rgb565], depth: &[u16]) -> u32 {
-    let mut h = 0x811c_9dc5u32;
-    let words = colors
-        .iter()
-        .map(|c| c.into_storage())
-        .chain(depth.iter().copied());
+/// The FNV-1a hash of nothing, where [`fnv`] starts.
+pub const FNV_START: u32 = 0x811c_9dc5;
+
+/// FNV-1a over little-endian 16-bit words, from the hash `h` on ([`FNV_START`] to start).
+pub fn fnv(mut h: u32, words: impl IntoIterator<Item = u16>) -> u32 {
     for w in words {
         for b in w.to_le_bytes() {
             h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
         }
     }
     h
+}
+
+/// FNV-1a over the colours and the depths.
+pub fn checksum(colors: &[Rgb565], depth: &[u16]) -> u32 {
+    let words = colors
+        .iter()
+        .map(|c| c.into_storage())
+        .chain(depth.iter().copied());
+    fnv(FNV_START, words)
 }
 
 /// [`checksum`] of every [`turntable`] frame (rendered with `scratch`), folded into one FNV-1a
@@ -383,7 +390,7 @@ pub fn turntable_checksum(
     scratch: &mut [ProjectedVertex],
     mut measure: impl FnMut(&mut dyn FnMut()),
 ) -> u32 {
-    let mut h = 0x811c_9dc5u32;
+    let mut h = FNV_START;
     for step in 0..TURNTABLE_POSES {
         let pipeline = turntable(step);
         measure(&mut || {
@@ -395,9 +402,8 @@ pub fn turntable_checksum(
             ));
         });
         let frame = checksum(target.framebuffer().pixels(), target.depth());
-        for b in frame.to_le_bytes() {
-            h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
-        }
+        // Its four bytes, low first.
+        h = fnv(h, [frame as u16, (frame >> 16) as u16]);
     }
     h
 }

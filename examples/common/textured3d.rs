@@ -23,7 +23,7 @@ use embedded_raster::three_d::{
     DepthTarget, DrawStats, ProjectedVertex, Scalar, Shading, Specular,
 };
 
-use crate::scene3d::{self, pipeline, Model, BACKGROUND, SIZE};
+use crate::scene3d::{self, fnv, pipeline, Model, BACKGROUND, FNV_START, SIZE};
 
 #[allow(clippy::all)]
 #[rustfmt::skip]
@@ -214,21 +214,10 @@ pub fn render_floor(
         .unwrap_or_default()
 }
 
-/// FNV-1a over little-endian 16-bit words, from the hash `h` on (`0x811c9dc5` to start).
-pub fn fnv(mut h: u32, words: impl IntoIterator<Item = u16>) -> u32 {
-    for w in words {
-        for b in w.to_le_bytes() {
-            h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
-        }
-    }
-    h
-}
-
 /// The [`fnv`] hashes of a frame's colours (raw) and of its depths.
 pub fn hashes(colors: &[Rgb565], depth: &[u16]) -> (u32, u32) {
-    let start = 0x811c_9dc5;
-    let colors = fnv(start, colors.iter().map(|c| c.into_storage()));
-    (colors, fnv(start, depth.iter().copied()))
+    let colors = fnv(FNV_START, colors.iter().map(|c| c.into_storage()));
+    (colors, fnv(FNV_START, depth.iter().copied()))
 }
 
 /// The nearest frame ([`Textured::Nearest`], `texels` [`expand`]ed) drawn with `scratch` in
@@ -262,7 +251,7 @@ pub fn render_bands(
     let Ok(mut bands) = DepthBands::new(colors, depth) else {
         return (0, 0);
     };
-    let (mut color_hash, mut depth_hash) = (0x811c_9dc5, 0x811c_9dc5);
+    let (mut color_hash, mut depth_hash) = (FNV_START, FNV_START);
     let mut output = Callback(|_: &_, pixels: &[Rgb565]| {
         color_hash = fnv(color_hash, pixels.iter().map(|c| c.into_storage()));
         Ok::<(), Infallible>(())

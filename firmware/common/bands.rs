@@ -50,16 +50,12 @@ pub struct Fnv(pub u32);
 impl Fnv {
     /// The empty hash.
     pub const fn new() -> Self {
-        Fnv(0x811c_9dc5)
+        Fnv(scene3d::FNV_START)
     }
 
     /// Hashes `words` on.
     pub fn words(&mut self, words: impl IntoIterator<Item = u16>) {
-        for w in words {
-            for b in w.to_le_bytes() {
-                self.0 = (self.0 ^ u32::from(b)).wrapping_mul(0x0100_0193);
-            }
-        }
+        self.0 = scene3d::fnv(self.0, words);
     }
 }
 

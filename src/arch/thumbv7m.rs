@@ -1445,6 +1445,23 @@ macro_rules! reciprocal_digit {
     };
 }
 
+/// `$out` = the least (`$c` = "lt" signed, "lo" unsigned) or the greatest ("gt", "hi") of
+/// `$a`, `$b`, `$d` (`$out` another register).
+#[rustfmt::skip]
+macro_rules! min3 {
+    ($out:literal, $a:literal, $b:literal, $d:literal, $c:literal) => {
+        concat!(
+            "mov ", $out, ", ", $a, "\n",
+            "cmp ", $b, ", ", $out, "\n",
+            "it ", $c, "\n",
+            "mov", $c, " ", $out, ", ", $b, "\n",
+            "cmp ", $d, ", ", $out, "\n",
+            "it ", $c, "\n",
+            "mov", $c, " ", $out, ", ", $d, "\n",
+        )
+    };
+}
+
 /// The face set-up's first part, as `raster::scan` computes it: the oriented vertices' addresses
 /// (from r0's first three words) at `$ptrs` (and `$ptrs1`, 4 more), the box and the 16-px test,
 /// the region inside the clip (r0's words at 12-24; its first column at `$x0`, first and last
@@ -1466,34 +1483,10 @@ macro_rules! face_scan {
             "ldrd r6, r7, [r2]\n",
             "ldrd r8, r9, [r3]\n",
             // The box: r10, r11 = least and greatest x, r1, r2 = y; each extent below 16 pixels.
-            "mov r10, r4\n",
-            "mov r11, r4\n",
-            "cmp r6, r10\n",
-            "it lt\n",
-            "movlt r10, r6\n",
-            "cmp r6, r11\n",
-            "it gt\n",
-            "movgt r11, r6\n",
-            "cmp r8, r10\n",
-            "it lt\n",
-            "movlt r10, r8\n",
-            "cmp r8, r11\n",
-            "it gt\n",
-            "movgt r11, r8\n",
-            "mov r1, r5\n",
-            "mov r2, r5\n",
-            "cmp r7, r1\n",
-            "it lt\n",
-            "movlt r1, r7\n",
-            "cmp r7, r2\n",
-            "it gt\n",
-            "movgt r2, r7\n",
-            "cmp r9, r1\n",
-            "it lt\n",
-            "movlt r1, r9\n",
-            "cmp r9, r2\n",
-            "it gt\n",
-            "movgt r2, r9\n",
+            min3!("r10", "r4", "r6", "r8", "lt"),
+            min3!("r11", "r4", "r6", "r8", "gt"),
+            min3!("r1", "r5", "r7", "r9", "lt"),
+            min3!("r2", "r5", "r7", "r9", "gt"),
             "sub r3, r11, r10\n",
             "cmp r3, #4096\n",
             "bhs 90f\n",
@@ -1873,23 +1866,6 @@ pub(crate) fn level_face_keeping<'s, C: Copy>(
         2 => FaceSetup::Ready(unsafe { setup.assume_init_ref() }),
         _ => FaceSetup::Declined,
     }
-}
-
-/// `$out` = the least (`$c` = "lt" signed, "lo" unsigned) or the greatest ("gt", "hi") of
-/// `$a`, `$b`, `$d` (`$out` another register).
-#[rustfmt::skip]
-macro_rules! min3 {
-    ($out:literal, $a:literal, $b:literal, $d:literal, $c:literal) => {
-        concat!(
-            "mov ", $out, ", ", $a, "\n",
-            "cmp ", $b, ", ", $out, "\n",
-            "it ", $c, "\n",
-            "mov", $c, " ", $out, ", ", $b, "\n",
-            "cmp ", $d, ", ", $out, "\n",
-            "it ", $c, "\n",
-            "mov", $c, " ", $out, ", ", $d, "\n",
-        )
-    };
 }
 
 /// A texel coordinate (the `i32` at `$at` of the vertices r1-r3): its least value (signed) and
