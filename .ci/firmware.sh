@@ -14,8 +14,9 @@
 #   * fw_bench counts instructions with SysTick (RISC-V: minstret) under -icount; its tables go
 #     to target/firmware-bench.md, followed by the flash/RAM footprint of the M0, M4 and RV32IMC
 #     builds;
-#   * fw_texture_bench likewise, and its framebuffers' checksum lines (each case's, and random
-#     textured triangles') must be the host's (the Cortex-M0 has a texel loop of its own).
+#   * fw_texture_bench likewise, and its framebuffers' checksum lines (each case's, random
+#     textured triangles', and 50,000 random small 3D faces', which ARMv7-M sets up in
+#     assembly) must be the host's (the Cortex-M0 has a texel loop of its own).
 # Then the 3D frame (fw_mesh_bench) and band rendering (fw_band on the M4 and RV32IMC, the
 # micro:bit showcase fw_band_microbit), each checked against the host's frame.
 #

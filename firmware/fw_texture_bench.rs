@@ -13,10 +13,11 @@
 //! depth-tested fill (`draw_textured`) with the far vertices three times as deep as the near
 //! one, every pixel passing the depth test (each pass nearer than the last).
 //!
-//! After each case, and after an untimed drawing of random textured triangles ([`check`]), the
-//! firmware prints a checksum line of the framebuffer (`texture <w>x<h> <what> fnv1a=…`); the
-//! host build prints the same lines for both sizes, and `.ci/firmware.sh` compares them (the
-//! Cortex-M0 has a span loop of its own).
+//! After each case, and after untimed drawings of random textured triangles ([`check`],
+//! [`check_3d`]), the firmware prints a checksum line of the framebuffer (`texture <w>x<h>
+//! <what> fnv1a=…`), and one of random small 3D faces ([`check_faces`]: the ARMv7-M set-up of
+//! a small textured face against the portable one); the host build prints the same lines for
+//! both sizes, and `.ci/firmware.sh` compares them (the Cortex-M0 has a span loop of its own).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 use embedded_graphics::pixelcolor::Rgb565;
@@ -270,6 +271,168 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
     }
 }
 
+/// Faces [`check_faces`] draws (each into a cell of its own, a batch of cells a frame): enough
+/// that a texel step one unit of 2⁻¹⁶ texel off shows (fewer faces missed it).
+const CHECK_FACES: u32 = 50_000;
+
+/// A cell's side in pixels: more than a small face's box (16 px) and a pixel.
+const CELL: i32 = 20;
+
+/// 64 × 64 texels of hashed colours for [`check_faces`]: neighbours differ (a coordinate a unit
+/// off at a texel's edge shows).
+static NOISE: [u16; SIDE * SIDE] = {
+    let mut texels = [0; SIDE * SIDE];
+    let mut i = 0;
+    while i < texels.len() {
+        let mut x = (i as u32).wrapping_mul(0x9e37_79b1);
+        x ^= x >> 15;
+        x = x.wrapping_mul(0x85eb_ca6b);
+        x ^= x >> 13;
+        texels[i] = x as u16;
+        i += 1;
+    }
+    texels
+};
+
+/// A random spread of texel coordinates (16.16) for [`check_faces`]: anywhere in the range, at
+/// the texel maps' limits (`0xff00 · 2ᵏ` and `2¹⁶ · 2ᵏ`, give or take a few units), or below
+/// a texel.
+fn spread(next: &mut impl FnMut() -> u32) -> i32 {
+    match next() % 5 {
+        0 | 1 => (next() >> (next() % 32)) as i32,
+        2 => (0xff00_i32 << (next() % 15)).wrapping_add((next() % 7) as i32 - 3),
+        3 => (1_i32 << (16 + next() % 15)).wrapping_add((next() % 7) as i32 - 3),
+        _ => (next() % 0x1_0000) as i32,
+    }
+}
+
+/// Untimed: [`CHECK_FACES`] random small depth-tested textured faces, nearest, unlit and lit,
+/// from hashed texels ([`NOISE`]) as textures of several shapes (power-of-two ones and one that is not), each
+/// into a cell of its own, clipped by the cell or less of it and by the screen's edges (the
+/// cells overhang them). Their boxes reach and pass the small set-up's 4096 sub-pixels, some
+/// are slivers; their `w` are equal, nearly equal or up to 2¹⁰ apart, and their texel
+/// coordinates spread from below a texel to the whole range, many at the texel maps' limits:
+/// faces on both sides of the screen-space bound and of each limit of the target's own
+/// small-face set-up (`arch::textured_face` on ARMv7-M), whose pixels and depths must be the
+/// portable code's. Returns the FNV-1a of each batch's colour and depth checksums.
+#[inline(never)]
+fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
+    let size = fb.framebuffer().size();
+    let (w, h) = (size.width as i32, size.height as i32);
+    // Cells from half a cell before the screen to past its end.
+    let (columns, rows) = ((w + CELL) / CELL + 1, (h + CELL) / CELL + 1);
+    let mut next = xorshift(0x3c6e_f372_u32);
+    let shapes = [(64, 64), (256, 16), (1, 4096), (8, 2), (16, 256), (48, 64)];
+    let mut sum = 0x811c_9dc5_u32;
+    let fold = |sum: &mut u32, word: u32| {
+        for byte in word.to_le_bytes() {
+            *sum = (*sum ^ u32::from(byte)).wrapping_mul(0x0100_0193);
+        }
+    };
+    let mut drawn = 0;
+    while drawn < CHECK_FACES {
+        fb.clear(Rgb565::new(0, 0, 0));
+        for cell in 0..(columns * rows) as u32 {
+            if drawn == CHECK_FACES {
+                break;
+            }
+            drawn += 1;
+            let (tw, th) = shapes[(next() % shapes.len() as u32) as usize];
+            let Ok(texture) = Texture::new(Rgb565Texels(&NOISE), tw, th) else {
+                return 0;
+            };
+            let (cx, cy) = (
+                (cell as i32 % columns) * CELL - CELL / 2,
+                (cell as i32 / columns) * CELL - CELL / 2,
+            );
+            // The box: up to 4200 sub-pixels a side, many at the small set-up's limit (4096).
+            let mut side = || match next() % 8 {
+                0 | 1 => 4094 + (next() % 4) as i32,
+                2 => (next() % 256) as i32,
+                _ => 1024 + (next() % 3176) as i32,
+            };
+            let (sx, sy) = (side(), side());
+            let mut room = |s: i32| (next() % ((CELL << 8) - s) as u32) as i32;
+            let (ox, oy) = ((cx << 8) + room(sx), (cy << 8) + room(sy));
+            // Which vertex is at each end of the box, on each axis.
+            let (ax, ay) = ((next() % 3) as usize, (next() % 3) as usize);
+            let mut xs = [ox, ox + sx, ox + (next() % (sx as u32 + 1)) as i32];
+            let mut ys = [oy, oy + sy, oy + (next() % (sy as u32 + 1)) as i32];
+            xs.rotate_left(ax);
+            ys.rotate_left(ay);
+            if next() % 8 == 0 {
+                // A sliver: the third vertex on the line through the others, give or take.
+                xs[2] = (xs[0] + xs[1]) / 2 + (next() % 3) as i32 - 1;
+                ys[2] = (ys[0] + ys[1]) / 2 + (next() % 3) as i32 - 1;
+            }
+            let base_w = (1 << 15) + (next() % (19 << 15)) as i32;
+            let w_mode = next() % 4;
+            let (base_u, base_v) = (next() as i32, next() as i32);
+            let (spread_u, spread_v) = (spread(&mut next), spread(&mut next));
+            let base_z = 1000 + next() % 59_000;
+            let z_spread = 1 + next() % 4000;
+            let vertex = |i: usize, next: &mut dyn FnMut() -> u32| {
+                let w = match w_mode {
+                    0 | 1 => base_w,
+                    2 => base_w + (next() % (base_w as u32 >> 8).max(1)) as i32,
+                    // Up to 2¹⁰ apart: past the common scale's 2⁸.
+                    _ => ((1 << 14) + (next() % (1 << 16)) as i32) << (next() % 11),
+                };
+                // u and v: the base, one spread from it, or between.
+                let part = |spread: i32, next: &mut dyn FnMut() -> u32| match i {
+                    0 => 0,
+                    1 => spread,
+                    _ => ((i64::from(spread) * i64::from(next() % 257)) >> 8) as i32,
+                };
+                let z = base_z + next() % z_spread;
+                TexturedScreenVertex {
+                    screen: ScreenVertex::new(
+                        Coord::from_bits(xs[i]),
+                        Coord::from_bits(ys[i]),
+                        z.min(65_000) as u16,
+                    ),
+                    w: Scalar::from_bits(w),
+                    u: TexelCoord::from_bits(base_u.wrapping_add(part(spread_u, next))),
+                    v: TexelCoord::from_bits(base_v.wrapping_add(part(spread_v, next))),
+                }
+            };
+            let v = [
+                vertex(0, &mut next),
+                vertex(1, &mut next),
+                vertex(2, &mut next),
+            ];
+            // The cell, or less of it.
+            let (mut x0, mut y0, mut x1, mut y1) = (cx, cy, cx + CELL, cy + CELL);
+            if next() % 3 == 0 {
+                x0 += (next() % 9) as i32;
+                y0 += (next() % 9) as i32;
+                x1 -= (next() % 9) as i32;
+                y1 -= (next() % 9) as i32;
+            }
+            let clip = Rectangle::with_corners(Point::new(x0, y0), Point::new(x1 - 1, y1 - 1));
+            if next() % 2 == 0 {
+                draw_3d(fb, &clip, &v, &texture, None);
+            } else {
+                let mut level = || match next() % 3 {
+                    0 => 0,
+                    1 => 255,
+                    _ => (next() >> 24) as u8,
+                };
+                let levels = [level(), level(), level()];
+                draw_3d(fb, &clip, &v, &texture, Some(levels));
+            }
+        }
+        fold(&mut sum, scene::checksum(fb.framebuffer().pixels()));
+        let depths = fb.depth().iter().fold(0x811c_9dc5_u32, |h, &d| {
+            d.to_le_bytes()
+                .iter()
+                .fold(h, |h, &b| (h ^ u32::from(b)).wrapping_mul(0x0100_0193))
+        });
+        fold(&mut sum, depths);
+    }
+    sum
+}
+
 /// The checksum line of `what` drawn into `pixels` (`w × h`).
 struct CheckLine<'a> {
     size: (u32, u32),
@@ -488,6 +651,8 @@ mod firmware {
             pixels: fb.framebuffer().pixels(),
         };
         hprintln!("{}", line);
+        let faces = check_faces(&mut fb);
+        hprintln!("texture {}x{} faces fnv1a={:#010x}", width, height, faces);
         crate::stack::report();
         board::exit(true)
     }
@@ -543,5 +708,7 @@ fn main() {
                 pixels
             }
         );
+        let faces = check_faces(&mut fb);
+        println!("texture {width}x{height} faces fnv1a={faces:#010x}");
     }
 }
