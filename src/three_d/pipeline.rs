@@ -707,6 +707,9 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     /// Whether the vertices take their levels from `rig` (Gouraud shading with it): the frame
     /// lights them after the stage, which then has no light.
     vertex_rig: bool,
+    /// Whether a textured draw lights its vertices where it projects them (shading through the
+    /// vertices' levels): each one's `texel_level`, found once, not once a face using it.
+    lit_texels: bool,
     /// The pipeline's lights ([`Lights`]) when they light anything: then every level and
     /// specular term comes from them instead of `light`.
     rig: Option<LightRig>,
@@ -750,6 +753,10 @@ where
             Shading::Quadratic if !tinted => Fill::TexturedPixel(texturing),
             _ => Fill::Textured(texturing),
         };
+        let lit_texels = matches!(
+            (&fill, material.shading),
+            (Fill::Textured(_), Shading::Gouraud | Shading::Quadratic)
+        );
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
@@ -757,6 +764,7 @@ where
             light,
             rig,
             vertex_rig: false,
+            lit_texels,
             clip,
             fill,
             texture: FrameTexture::new(material.texture, material.opacity),
@@ -818,6 +826,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             light,
             rig,
             vertex_rig,
+            lit_texels: false,
             clip,
             fill,
             texture: NoTexture,
@@ -846,6 +855,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             light: self.light,
             rig: self.rig,
             vertex_rig: self.vertex_rig,
+            lit_texels: self.lit_texels,
             band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
             clip,
             fill: self.fill,
@@ -864,13 +874,31 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
     #[inline(always)]
     fn vertex(&self, mesh: &Mesh<'_>, k: usize, p: Vec3) -> ProjectedVertex {
         if T::TEXTURED {
-            return self.stage.textured_vertex(p);
+            return self.textured_vertex(mesh, k, p);
         }
         let n = mesh.normals.get(k);
         let vertex = self.stage.vertex(p, n);
         match (self.vertex_rig, n) {
             (true, Some(n)) => self.rig_vertex(vertex, p, n),
             _ => vertex,
+        }
+    }
+
+    /// Vertex `k` of `mesh` at `p` in a textured draw: projected, and lit if the frame's
+    /// levels are the vertices' ([`lit_texels`](Self::lit_texels); those inside the view volume,
+    /// whose faces take them from there).
+    #[inline(always)]
+    fn textured_vertex(&self, mesh: &Mesh<'_>, k: usize, p: Vec3) -> ProjectedVertex {
+        let vertex = self.stage.textured_vertex(p);
+        if !self.lit_texels || vertex.outside() != 0 {
+            return vertex;
+        }
+        match mesh.normals.get(k) {
+            Some(n) => vertex.with_texel_level(match &self.rig {
+                None => self.light.level(*n),
+                Some(rig) => rig.level(p, *n),
+            }),
+            None => vertex.without_normal(),
         }
     }
 
@@ -936,8 +964,25 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
     #[inline(never)]
     pub(crate) fn project(&self, mesh: &Mesh<'_>, scratch: &mut [ProjectedVertex]) {
         if T::TEXTURED {
-            for (out, p) in scratch.iter_mut().zip(mesh.vertices) {
-                *out = self.stage.textured_vertex(*p);
+            let (vertices, normals) = (mesh.vertices, mesh.normals);
+            if !self.lit_texels {
+                for (out, p) in scratch.iter_mut().zip(vertices) {
+                    *out = self.stage.textured_vertex(*p);
+                }
+            } else if self.rig.is_none() && normals.len() >= vertices.len() {
+                // The common case with its tests hoisted: every vertex has a normal, and the
+                // light is the pipeline's own (the same levels as `textured_vertex`'s).
+                for ((out, p), n) in scratch.iter_mut().zip(vertices).zip(normals) {
+                    let vertex = self.stage.textured_vertex(*p);
+                    *out = match vertex.outside() {
+                        0 => vertex.with_texel_level(self.light.level(*n)),
+                        _ => vertex,
+                    };
+                }
+            } else {
+                for (k, (out, p)) in scratch.iter_mut().zip(vertices).enumerate() {
+                    *out = self.textured_vertex(mesh, k, *p);
+                }
             }
             return;
         }
@@ -1508,7 +1553,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             (Shading::Unlit, None, _) => TexelLight::Full,
             (Shading::Flat, None, None) => TexelLight::Level(self.face_level(&model())),
             (Shading::Gouraud | Shading::Quadratic, None, None) => {
-                let levels = self.texel_levels(mesh, idx, &model);
+                let levels = self.face_texel_levels(mesh, idx, &model, v, bary);
                 let levels = at_bary(bary, levels.map(|l| [i64::from(l)]));
                 TexelLight::Levels(levels.map(|[l]| l.clamp(0, u16::MAX.into()) as u16))
             }
@@ -1516,7 +1561,9 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 let levels = match shading {
                     Shading::Unlit => [u16::MAX; 3],
                     Shading::Flat => [self.face_level(&model()); 3],
-                    Shading::Gouraud | Shading::Quadratic => self.texel_levels(mesh, idx, &model),
+                    Shading::Gouraud | Shading::Quadratic => {
+                        self.face_texel_levels(mesh, idx, &model, v, bary)
+                    }
                 };
                 let white = [&Rgb888::WHITE; 3];
                 let colors = colors.unwrap_or(white);
@@ -1630,9 +1677,32 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         }
     }
 
-    /// The light levels of the face's vertices `idx` (at `model`) in a textured draw, from the
-    /// mesh's normals (the face's normal for a mesh without them).
+    /// The light levels of the face's vertices `idx` (at `model`, projected `v`; a fan's
+    /// triangle if `bary`) in a textured draw: the vertices' own where the frame lit them, else
+    /// [`texel_levels`](Self::texel_levels) (a fan's vertices are new, and a vertex without a
+    /// normal takes the face's level) — the same levels.
     #[inline(always)]
+    fn face_texel_levels(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        model: &impl Fn() -> [Vec3; 3],
+        v: [&ProjectedVertex; 3],
+        bary: Option<[Bary; 3]>,
+    ) -> [u16; 3] {
+        let [a, b, c] = v;
+        let own = a.has_normal() && b.has_normal() && c.has_normal();
+        if self.lit_texels && bary.is_none() && own {
+            [a.texel_level(), b.texel_level(), c.texel_level()]
+        } else {
+            self.texel_levels(mesh, idx, model)
+        }
+    }
+
+    /// The light levels of the face's vertices `idx` (at `model`) in a textured draw, from the
+    /// mesh's normals (the face's normal for a mesh without them). Out of line: most faces take
+    /// their vertices' levels, and the textured fill keeps its registers.
+    #[inline(never)]
     fn texel_levels(
         &self,
         mesh: &Mesh<'_>,

@@ -40,10 +40,16 @@ pub(crate) const NO_NORMAL: u8 = 1 << 7;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[repr(C)]
 pub struct ProjectedVertex {
-    /// Sub-pixel screen position and depth (valid when the vertex is inside the view volume),
-    /// in the form the fills take by reference: a face's vertices are drawn from the scratch
-    /// where they are, not copied.
-    screen: ScreenVertex,
+    /// Sub-pixel screen position and depth (valid when the vertex is inside the view volume):
+    /// a [`ScreenVertex`]'s fields at its offsets, which the fills take by reference
+    /// ([`screen`](Self::screen)): a face's vertices are drawn from the scratch where they are,
+    /// not copied.
+    x: Coord,
+    y: Coord,
+    depth: u16,
+    /// In a textured draw lit per vertex, the light level (as `level` elsewhere), in the bytes
+    /// a `ScreenVertex` leaves as padding.
+    texel_level: u16,
     /// Light level, 8.8 fixed point of the 0–255 scale (Gouraud only); in a textured draw the
     /// high 16 bits of `q`, the reciprocal of `w` ([`q`](Self::q)).
     level: u16,
@@ -53,40 +59,50 @@ pub struct ProjectedVertex {
     q_shift: u8,
 }
 
-// SAFETY: `ProjectedVertex` and its `ScreenVertex` are `repr(C)`: 16 bytes, 4-byte aligned, x and
-// y at bytes 0 and 4, the depth at 8 and the level at 12, as asserted below (a layout change
-// fails the build).
+// SAFETY: `ProjectedVertex` is `repr(C)`: 16 bytes, 4-byte aligned, x and y at bytes 0 and 4,
+// the depth at 8 and the level at 12, as asserted below (a layout change fails the build).
 #[allow(unsafe_code)]
 unsafe impl crate::arch::LevelVertex for ProjectedVertex {}
 
 const _: () = {
     use core::mem::{align_of, offset_of, size_of};
     assert!(size_of::<ProjectedVertex>() == 16 && align_of::<ProjectedVertex>() == 4);
-    assert!(offset_of!(ProjectedVertex, screen) == 0 && offset_of!(ProjectedVertex, level) == 12);
+    assert!(offset_of!(ProjectedVertex, x) == 0 && offset_of!(ProjectedVertex, y) == 4);
+    assert!(offset_of!(ProjectedVertex, depth) == 8 && offset_of!(ProjectedVertex, level) == 12);
     assert!(offset_of!(ScreenVertex, x) == 0 && offset_of!(ScreenVertex, y) == 4);
     assert!(offset_of!(ScreenVertex, depth) == 8 && size_of::<Coord>() == 4);
+    assert!(size_of::<ScreenVertex>() == 12 && align_of::<ScreenVertex>() == 4);
 };
 
 impl ProjectedVertex {
     /// An entry for a scratch array: `[ProjectedVertex::EMPTY; N]`.
     pub const EMPTY: ProjectedVertex = ProjectedVertex {
-        screen: ScreenVertex {
-            x: Coord::ZERO,
-            y: Coord::ZERO,
-            depth: 0,
-        },
+        x: Coord::ZERO,
+        y: Coord::ZERO,
+        depth: 0,
+        texel_level: 0,
         level: 0,
         code: 0,
         q_shift: 0,
     };
 
+    /// The vertex at `screen` (its level and `q` 0, inside the view volume).
+    #[inline(always)]
+    fn at(screen: ScreenVertex) -> Self {
+        let ScreenVertex { x, y, depth } = screen;
+        ProjectedVertex {
+            x,
+            y,
+            depth,
+            ..ProjectedVertex::EMPTY
+        }
+    }
+
     /// A vertex inside the view volume at `screen`, lit at `level` (a clipped face's fan).
     pub(crate) fn lit(screen: ScreenVertex, level: u16) -> Self {
         ProjectedVertex {
-            screen,
             level,
-            code: 0,
-            q_shift: 0,
+            ..Self::at(screen)
         }
     }
 
@@ -99,11 +115,35 @@ impl ProjectedVertex {
     /// A vertex inside the view volume at `screen` with `q` (a textured face's fan).
     pub(crate) fn with_q(screen: ScreenVertex, q: Inverse) -> Self {
         ProjectedVertex {
-            screen,
             level: q.mantissa,
-            code: 0,
             q_shift: q.shift,
+            ..Self::at(screen)
         }
+    }
+
+    /// The vertex of a textured draw lit at `level` (its [`texel_level`](Self::texel_level)).
+    #[inline(always)]
+    pub(crate) fn with_texel_level(self, level: u16) -> Self {
+        ProjectedVertex {
+            texel_level: level,
+            ..self
+        }
+    }
+
+    /// The vertex of a textured draw marked as without a normal (its level is the face's).
+    #[inline(always)]
+    pub(crate) fn without_normal(self) -> Self {
+        ProjectedVertex {
+            code: self.code | NO_NORMAL,
+            ..self
+        }
+    }
+
+    /// In a textured draw lit per vertex, the vertex's light level (8.8 of the 0–255 scale;
+    /// meaningful where it has a normal).
+    #[inline(always)]
+    pub(crate) fn texel_level(&self) -> u16 {
+        self.texel_level
     }
 
     /// In a textured draw, `q = 2⁶³ / w` within 2⁻¹⁵ of itself (`w` the raw clip-space `w`):
@@ -130,14 +170,19 @@ impl ProjectedVertex {
 
     /// Position and depth (meaningful when [`outside`](Self::outside) is 0).
     #[inline(always)]
+    #[allow(unsafe_code)]
     pub(crate) fn screen(&self) -> &ScreenVertex {
-        &self.screen
+        // SAFETY: both types are `repr(C)` and 4-byte aligned; a `ScreenVertex` is 12 bytes, its
+        // `x`, `y` and `depth` at 0, 4 and 8 — where this vertex has fields of the same types
+        // (asserted above) — and bytes 10 and 11 padding, which may hold anything (here
+        // `texel_level`). The reference borrows `self`, which outlives it.
+        unsafe { &*(self as *const ProjectedVertex).cast::<ScreenVertex>() }
     }
 
     /// Raw sub-pixel position.
     #[inline(always)]
     pub(crate) fn position_bits(&self) -> (i32, i32) {
-        (self.screen.x.to_bits(), self.screen.y.to_bits())
+        (self.x.to_bits(), self.y.to_bits())
     }
 
     /// The Gouraud light level (8.8 of the 0–255 scale).
@@ -665,10 +710,8 @@ impl VertexStage {
             ScreenVertex::new(Coord::ZERO, Coord::ZERO, 0)
         };
         ProjectedVertex {
-            screen,
-            level: 0,
             code,
-            q_shift: 0,
+            ..ProjectedVertex::at(screen)
         }
     }
 
