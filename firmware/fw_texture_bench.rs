@@ -218,6 +218,16 @@ fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     }
 }
 
+/// Three random light levels for the checks, a third of them 0 and a third 255.
+fn random_levels(next: &mut impl FnMut() -> u32) -> [u8; 3] {
+    let mut level = || match next() % 3 {
+        0 => 0,
+        1 => 255,
+        _ => (next() >> 24) as u8,
+    };
+    [level(), level(), level()]
+}
+
 /// Untimed: [`CHECK_TRIANGLES`] random perspective-correct textured triangles over and around
 /// the screen — `w` ratios up to 1:20 within a triangle, random depths, texel coordinates and
 /// light levels (often 0 or 255), unlit and lit, nearest, from the texels as textures of several power-of-two
@@ -260,13 +270,7 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
         } else {
             // Levels at the ends of the range too: a level stepped down to 0 or up to 255
             // passes them between two chunk ends (the loops' clamp).
-            let mut level = || match next() % 3 {
-                0 => 0,
-                1 => 255,
-                _ => (next() >> 24) as u8,
-            };
-            let levels = [level(), level(), level()];
-            draw_3d(fb, &clip, &v, &texture, Some(levels));
+            draw_3d(fb, &clip, &v, &texture, Some(random_levels(&mut next)));
         }
     }
 }
@@ -413,13 +417,7 @@ fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
             if next() % 2 == 0 {
                 draw_3d(fb, &clip, &v, &texture, None);
             } else {
-                let mut level = || match next() % 3 {
-                    0 => 0,
-                    1 => 255,
-                    _ => (next() >> 24) as u8,
-                };
-                let levels = [level(), level(), level()];
-                draw_3d(fb, &clip, &v, &texture, Some(levels));
+                draw_3d(fb, &clip, &v, &texture, Some(random_levels(&mut next)));
             }
         }
         fold(&mut sum, scene::checksum(fb.framebuffer().pixels()));
