@@ -327,12 +327,7 @@ fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
     let (columns, rows) = ((w + CELL) / CELL + 1, (h + CELL) / CELL + 1);
     let mut next = xorshift(0x3c6e_f372_u32);
     let shapes = [(64, 64), (256, 16), (1, 4096), (8, 2), (16, 256), (48, 64)];
-    let mut sum = 0x811c_9dc5_u32;
-    let fold = |sum: &mut u32, word: u32| {
-        for byte in word.to_le_bytes() {
-            *sum = (*sum ^ u32::from(byte)).wrapping_mul(0x0100_0193);
-        }
-    };
+    let mut sum = scene::FNV_START;
     let mut drawn = 0;
     while drawn < CHECK_FACES {
         fb.clear(Rgb565::new(0, 0, 0));
@@ -420,13 +415,11 @@ fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
                 draw_3d(fb, &clip, &v, &texture, Some(random_levels(&mut next)));
             }
         }
-        fold(&mut sum, scene::checksum(fb.framebuffer().pixels()));
-        let depths = fb.depth().iter().fold(0x811c_9dc5_u32, |h, &d| {
-            d.to_le_bytes()
-                .iter()
-                .fold(h, |h, &b| (h ^ u32::from(b)).wrapping_mul(0x0100_0193))
-        });
-        fold(&mut sum, depths);
+        // The batch's colour and depth hashes, their bytes low first.
+        let colors = scene::checksum(fb.framebuffer().pixels());
+        let depths = scene::fnv(scene::FNV_START, fb.depth().iter().copied());
+        let words = [colors, depths].map(|h| [h as u16, (h >> 16) as u16]);
+        sum = scene::fnv(sum, words.into_iter().flatten());
     }
     sum
 }

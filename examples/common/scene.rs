@@ -12,6 +12,10 @@
 //! Everything here is panic-free for any size: `fw_nopanic` links it with a panic handler that
 //! does not exist.
 
+#[path = "fnv.rs"]
+mod fnv;
+pub use fnv::{fnv, FNV_START};
+
 use embedded_graphics::pixelcolor::{raw::RawU16, Rgb565};
 use embedded_graphics::prelude::*;
 use embedded_raster::{
@@ -460,14 +464,10 @@ pub fn translucent(width: u32, height: u32) -> Translucent<GouraudTriangle<Rgb56
 
 /// 32-bit FNV-1a over the raw pixels, each as two little-endian bytes.
 pub fn checksum(pixels: &[Rgb565]) -> u32 {
-    let mut h = 0x811C_9DC5_u32;
-    for &p in pixels {
-        let raw = RawU16::from(p).into_inner();
-        for byte in raw.to_le_bytes() {
-            h = (h ^ u32::from(byte)).wrapping_mul(0x0100_0193);
-        }
-    }
-    h
+    fnv(
+        FNV_START,
+        pixels.iter().map(|&p| RawU16::from(p).into_inner()),
+    )
 }
 
 /// The line the firmware prints and the host build of `fw_scene` reproduces.

@@ -27,6 +27,10 @@ use embedded_raster::three_d::{
 
 #[allow(clippy::all)]
 #[rustfmt::skip]
+#[path = "fnv.rs"]
+mod fnv;
+pub use fnv::{fnv, FNV_START};
+
 #[path = "meshes/knot.rs"]
 mod knot;
 
@@ -358,19 +362,6 @@ pub fn render_wireframe(
 /// Pixels the frame covers: those whose depth was written.
 pub fn covered(depth: &[u16]) -> u32 {
     depth.iter().filter(|&&d| d != DEPTH_CLEAR).count() as u32
-}
-
-/// The FNV-1a hash of nothing, where [`fnv`] starts.
-pub const FNV_START: u32 = 0x811c_9dc5;
-
-/// FNV-1a over little-endian 16-bit words, from the hash `h` on ([`FNV_START`] to start).
-pub fn fnv(mut h: u32, words: impl IntoIterator<Item = u16>) -> u32 {
-    for w in words {
-        for b in w.to_le_bytes() {
-            h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
-        }
-    }
-    h
 }
 
 /// FNV-1a over the colours and the depths.
