@@ -112,9 +112,10 @@ mod firmware {
 
         if let Some(kind) = option_env!("MESH_PROFILE").and_then(|p| p.strip_prefix("textured")) {
             // Profiling build: a textured frame alone (`textured`: nearest; `textured-quadratic`:
-            // per pixel with the highlight; `textured-unlit`), a few times.
+            // per pixel with the highlight; `textured-unlit`; `textured-bilinear`), a few times.
             let frame = match kind {
                 "-quadratic" => Textured::QuadraticSpecular,
+                "-bilinear" => Textured::Bilinear,
                 "-unlit" => Textured::Unlit,
                 _ => Textured::Nearest,
             };

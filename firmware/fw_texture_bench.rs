@@ -310,7 +310,8 @@ fn spread(next: &mut impl FnMut() -> u32) -> i32 {
     }
 }
 
-/// Untimed: [`CHECK_FACES`] random small depth-tested textured faces, nearest, unlit and lit,
+/// Untimed: [`CHECK_FACES`] random small depth-tested textured faces, nearest and bilinear,
+/// unlit and lit,
 /// from hashed texels ([`NOISE`]) as textures of several shapes (power-of-two ones and one that is not), each
 /// into a cell of its own, clipped by the cell or less of it and by the screen's edges (the
 /// cells overhang them). Their boxes reach and pass the small set-up's 4096 sub-pixels, some
@@ -339,6 +340,12 @@ fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
             let (tw, th) = shapes[(next() % shapes.len() as u32) as usize];
             let Ok(texture) = Texture::new(Rgb565Texels(&NOISE), tw, th) else {
                 return 0;
+            };
+            // A third bilinear (ARMv7E-M's row loop blends them).
+            let texture = if next() % 3 == 0 {
+                texture.with_filter(Filter::Bilinear)
+            } else {
+                texture
             };
             let (cx, cy) = (
                 (cell as i32 % columns) * CELL - CELL / 2,

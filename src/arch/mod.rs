@@ -481,6 +481,10 @@ pub(crate) fn level_rows<C: Copy>(
 /// ([`textured_rows`]); elsewhere by the portable row loop.
 pub(crate) const TEXTURED_ROWS: bool = cfg!(armv7m);
 
+/// ARMv7E-M: [`textured_rows`] and [`textured_face`] draw bilinear texels too (with the DSP
+/// extension's dual 16-bit products).
+pub(crate) const BILINEAR_ROWS: bool = cfg!(armv7em);
+
 /// The rows of a small textured face for [`textured_rows`]: the region and its runs as
 /// [`LevelRows`] has them, the planes of the depth, the texel coordinates and the light level,
 /// how the coordinates' planes map to 16.16 texels, and the texture.
@@ -522,6 +526,9 @@ pub struct TexturedRows<'a> {
     pub(crate) x_mask: u32,
     /// The row mask in storage units: the height less one, times the width.
     pub(crate) rows_mask: u32,
+    /// Bilinear rather than nearest (where [`BILINEAR_ROWS`]): the blend of
+    /// `texture::map::bilinear_by` at `(x, y)` of the four texels around it, masked as above.
+    pub(crate) bilinear: bool,
 }
 
 /// [`textured_rows`] where there is none: draws nothing and says so.
@@ -622,8 +629,8 @@ pub struct TexturedFace<'v> {
     texels: *const u16,
     x_mask: u32,
     rows_mask: u32,
-    /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane;
-    /// 100: the screen-space bound of the levels (`texturing::affine_level`).
+    /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane,
+    /// 4 if bilinear; 100: the screen-space bound of the levels (`texturing::affine_level`).
     lit: u32,
     affine_level: u32,
     /// The texels' length (not the assembly's).
@@ -634,9 +641,10 @@ pub struct TexturedFace<'v> {
 impl<'v> TexturedFace<'v> {
     /// The face of `vertices` inside `clip` (see [`ClipBounds`]), its planes rounded by `half`,
     /// drawn in rows `rows` (as [`LevelFace::new`]'s), sampled from `(texels, x_mask,
-    /// rows_mask, y_shift)` (as [`TexturedRows`] has them), lit by the level plane if `lit`
-    /// (its levels then within `affine_level` of the perspective-correct ones in screen space,
-    /// as the texel coordinates within 1/16 texel).
+    /// rows_mask, y_shift)` (as [`TexturedRows`] has them), bilinear if `bilinear` (where
+    /// [`BILINEAR_ROWS`]), lit by the level plane if `lit` (its levels then within
+    /// `affine_level` of the perspective-correct ones in screen space, as the texel coordinates
+    /// within 1/16 texel).
     #[inline(always)]
     pub(crate) fn new(
         vertices: &'v mut [TexturedVertex; 3],
@@ -645,6 +653,7 @@ impl<'v> TexturedFace<'v> {
         rows: [i32; 2],
         (texels, x_mask, rows_mask, y_shift): (&'v [u16], u32, u32, u32),
         (lit, affine_level): (bool, u32),
+        bilinear: bool,
     ) -> Self {
         let [a, b, c] = vertices;
         TexturedFace {
@@ -660,7 +669,7 @@ impl<'v> TexturedFace<'v> {
             texels: texels.as_ptr(),
             x_mask,
             rows_mask,
-            lit: if lit { 2 } else { 0 },
+            lit: if lit { 2 } else { 0 } | if bilinear { 4 } else { 0 },
             affine_level,
             texels_len: texels.len(),
             borrowed: core::marker::PhantomData,
@@ -725,6 +734,9 @@ pub struct PerspectiveSpan565<'a> {
     pub(crate) y_shift: u32,
     /// The span's `raster::perspective::chunk_room`: each chunk's length from it.
     pub(crate) chunk_room: i32,
+    /// Bilinear rather than nearest (where [`BILINEAR_ROWS`]): `texture::map::bilinear_by`'s
+    /// blend of the four texels around the point, masked as the nearest one's.
+    pub(crate) bilinear: bool,
 }
 
 /// [`perspective_span`] where there is none: draws nothing and says so.

@@ -25,6 +25,12 @@
 //! by `mla`, the wrapping `value + step·start`). The host tests the portable path; CI checks that
 //! the Cortex-M3 and M4 firmware frames have the host's checksums.
 //!
+//! Bilinear texels (ARMv7E-M, [`bilinear_texel`]): the row loop and the perspective span loop
+//! have variants that blend the four texels around the point with the DSP extension's dual
+//! 16-bit products — a row's two texels are the halves of one word, their 7-bit-fraction
+//! weights the halves of another — 57 instructions a drawn pixel; the integers of the portable
+//! `texture::map::bilinear_by`, checked by `fw_texture_bench`'s random faces on the M4.
+//!
 //! The blend of an alpha per vertex over 5-6-5 pixels ([`premultiplied_pairs_565`]): LLVM
 //! unrolls the portable pair loop and spills its planes (fw_bench: 43.18 instructions a pixel,
 //! 33.42 pixel by pixel through the channels); here a pair of pixels is one word loaded and
@@ -39,7 +45,7 @@ use core::mem::MaybeUninit;
 use embedded_graphics::pixelcolor::raw::RawU16;
 
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
-use super::{TexturedDraw, TexturedFace, TexturedRows};
+use super::{TexturedDraw, TexturedFace, TexturedRows, BILINEAR_ROWS};
 
 /// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
 /// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
@@ -201,10 +207,15 @@ const _: () = assert!(core::mem::size_of::<TexturedBlock>() == 144);
 
 /// The rows of the textured loop. `$middle` folds the middle bound (r2) into the start (r1) or
 /// the end (r3); `$pixel` draws the pixel at r8 (the negative byte offset from the run's end)
-/// and steps the planes. The block's pointer is at [sp, #16]; the per-pixel steps at [sp] (depth,
+/// and steps the planes; `$offset` moves a run's first coordinates (r5, r6: `y` before its
+/// shift) where the pixel wants them moved; `$frame` is the bytes of the stack frame below the
+/// saved registers. The block's pointer is at [sp, #16]; the per-pixel steps at [sp] (depth,
 /// `x`, `y`, level); r11 = the texels, r12 = the column mask, lr = the row mask throughout.
 macro_rules! textured_rows {
     ($middle:literal, $pixel:expr) => {
+        textured_rows!($middle, $pixel, "", "20")
+    };
+    ($middle:literal, $pixel:expr, $offset:expr, $frame:literal) => {
         concat!(
             "1:\n",
             "ldr r0, [sp, #16]\n",
@@ -251,6 +262,7 @@ macro_rules! textured_rows {
             "ldrd r1, r2, [r0, #104]\n",
             "lsr r6, r6, r2\n",
             "add r6, r6, r1\n",
+            $offset,
             "ldr r1, [r0, #112]\n",
             "lsl r6, r6, r1\n",
             "lsl r8, r8, #1\n",
@@ -282,7 +294,9 @@ macro_rules! textured_rows {
             "subs r1, #1\n",
             "str r1, [r0, #128]\n",
             "bne 1b\n",
-            "add sp, #20\n",
+            "add sp, #",
+            $frame,
+            "\n",
             "pop {{r4-r11, pc}}\n",
             // A run of two: the steps to the second pixel's coordinates.
             "5:\n",
@@ -392,6 +406,220 @@ macro_rules! lit_pixel {
     };
 }
 
+/// The bilinear texel of the pixel at r8 into r0 (ARMv7E-M), after the depth test and write
+/// (as [`textured_texel`]'s): r5 = `x − ½ + 2⁻⁸` (16.16), r6 = `y − ½ + 2⁻⁸` shifted by `y`'s
+/// shift, r12/lr the masks, r11 the texels; `[sp, #$ys]` (counted after the 12 bytes it pushes)
+/// holds `y`'s shift plus 9. The texels
+/// `(i, j)`, `(i + 1, j)`, `(i, j + 1)`, `(i + 1, j + 1)` around the point (each index masked),
+/// weighted by the 7-bit fractions `fx`, `fy` of the point's coordinates: each channel
+/// `(Σ t·w + 2¹³) >> 14` with `w` = `(128 − fx)·(128 − fy)`, `fx·(128 − fy)`, `(128 − fx)·fy`,
+/// `fx·fy` — the two texels of a row as the halves of one word, their weights as the halves of
+/// another, a row's products summed by one `smuad`/`smlad`. The portable blend
+/// (`texture::map::bilinear_by`) rounds the fractions of `x − ½` to 7 bits, `fx ≤ 128`; here
+/// `x − ½ + 2⁻⁸`'s fraction is cut to 7 bits, and where the portable `fx` is 128 the index here
+/// is one more with `fx` 0: the same texel weighted by the same 128, the same sum. Clobbers
+/// r1-r3 (r7, r9, r10 saved and restored).
+#[cfg(armv7em)]
+macro_rules! bilinear_texel {
+    ($skip:literal, $ys:literal) => {
+        concat!(
+            "ldrh r0, [r9, r8]\n",
+            "cmp r0, r4, lsr #16\n",
+            "bls ",
+            $skip,
+            "\n",
+            "lsr r0, r4, #16\n",
+            "strh r0, [r9, r8]\n",
+            "push {{r7, r9, r10}}\n",
+            // The rows j (r1) and j + 1 (r2) in storage units, the columns i (r0), i + 1 (r3).
+            "and r1, lr, r6, lsr #16\n",
+            "add r2, r1, r12\n",
+            "add r2, r2, #1\n",
+            "and r2, r2, lr\n",
+            "and r0, r12, r5, lsr #16\n",
+            "add r3, r5, #0x10000\n",
+            "and r3, r12, r3, lsr #16\n",
+            // The top row's texels (r7: i in the low half), the bottom row's (r9).
+            "orr r7, r0, r1\n",
+            "orr r9, r3, r1\n",
+            "ldrh r7, [r11, r7, lsl #1]\n",
+            "ldrh r9, [r11, r9, lsl #1]\n",
+            "pkhbt r7, r7, r9, lsl #16\n",
+            "orr r0, r0, r2\n",
+            "orr r3, r3, r2\n",
+            "ldrh r0, [r11, r0, lsl #1]\n",
+            "ldrh r3, [r11, r3, lsl #1]\n",
+            "pkhbt r9, r0, r3, lsl #16\n",
+            // The weights: `(128 − fx) | fx << 16` (r0) times `128 − fy` (r1, the top row's)
+            // and `fy` (r2, the bottom row's); each half at most 2¹⁴.
+            "ubfx r0, r5, #9, #7\n",
+            "ldr r1, [sp, #",
+            $ys,
+            "]\n",
+            "lsr r1, r6, r1\n",
+            "and r1, r1, #127\n",
+            "rsb r0, r0, r0, lsl #16\n",
+            "add r0, r0, #128\n",
+            "mul r2, r0, r1\n",
+            "rsb r1, r1, #128\n",
+            "mul r1, r0, r1\n",
+            // Blue, green, red: each field of both rows' texel pairs, weighted and summed.
+            "and r3, r7, #0x001F001F\n",
+            "and r10, r9, #0x001F001F\n",
+            "smuad r0, r3, r1\n",
+            "smlad r0, r10, r2, r0\n",
+            "add r0, r0, #8192\n",
+            "lsr r0, r0, #14\n",
+            "lsr r3, r7, #5\n",
+            "and r3, r3, #0x003F003F\n",
+            "lsr r10, r9, #5\n",
+            "and r10, r10, #0x003F003F\n",
+            "smuad r3, r3, r1\n",
+            "smlad r3, r10, r2, r3\n",
+            "add r3, r3, #8192\n",
+            "lsr r3, r3, #14\n",
+            "orr r0, r0, r3, lsl #5\n",
+            "lsr r3, r7, #11\n",
+            "and r3, r3, #0x001F001F\n",
+            "lsr r10, r9, #11\n",
+            "and r10, r10, #0x001F001F\n",
+            "smuad r3, r3, r1\n",
+            "smlad r3, r10, r2, r3\n",
+            "add r3, r3, #8192\n",
+            "lsr r3, r3, #14\n",
+            "orr r0, r0, r3, lsl #11\n",
+            "pop {{r7, r9, r10}}\n",
+        )
+    };
+}
+
+/// An unlit bilinear pixel of the row loop.
+#[cfg(armv7em)]
+macro_rules! bilinear_pixel {
+    () => {
+        concat!(
+            bilinear_texel!("4f", "32"),
+            "strh r0, [r10, r8]\n",
+            "4:\n",
+            "ldm sp, {{r0-r2}}\n",
+            "add r4, r0\n",
+            "add r5, r1\n",
+            "add r6, r2\n",
+        )
+    };
+}
+
+/// A bilinear pixel of the row loop lit by the level plane (r7), as [`lit_pixel`].
+#[cfg(armv7em)]
+macro_rules! lit_bilinear_pixel {
+    () => {
+        concat!(
+            bilinear_texel!("4f", "32"),
+            "lsr r1, r7, #12\n",
+            "add r1, r1, r1, lsl #8\n",
+            "lsr r1, r1, #12\n",
+            scaled_texel!("r1"),
+            "4:\n",
+            "ldm sp, {{r0-r3}}\n",
+            "add r4, r0\n",
+            "add r5, r1\n",
+            "add r6, r2\n",
+            "add r7, r3\n",
+        )
+    };
+}
+
+/// Where the bilinear loops take a pixel's coordinates: `x` and `y` less ½ texel plus 2⁻⁸
+/// (32,512 units of 2⁻¹⁶), as [`bilinear_texel`] reads them.
+const BILINEAR_OFFSET: i32 = (1 << 15) - (1 << 8);
+
+/// A run's first coordinates moved for the bilinear pixel (by [`BILINEAR_OFFSET`]).
+#[cfg(armv7em)]
+macro_rules! bilinear_offset {
+    () => {
+        "sub r5, r5, #32512\nsub r6, r6, #32512\n"
+    };
+}
+
+// The bilinear variants of the textured row loop (ARMv7E-M: `smuad`, `smlad` and `pkhbt` are
+// the DSP extension's): entered from `embedded_raster_textured_rows_v7m` with its arguments,
+// the variant's bit 4 set.
+#[cfg(armv7em)]
+core::arch::global_asm!(
+    ".section .text.embedded_raster_bilinear_rows_v7em,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_bilinear_rows_v7em",
+    ".hidden embedded_raster_bilinear_rows_v7em",
+    ".type embedded_raster_bilinear_rows_v7em,%function",
+    ".thumb_func",
+    "embedded_raster_bilinear_rows_v7em:",
+    "push {{r4-r11, lr}}",
+    // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: `y`'s shift plus 9.
+    "sub sp, #28",
+    "str r0, [sp, #16]",
+    "ldr r2, [r0, #80]",
+    "ldr r3, [r0, #92]",
+    "str r2, [sp]",
+    "str r3, [sp, #12]",
+    "ldr r2, [r0, #112]",
+    "add r2, r2, #9",
+    "str r2, [sp, #20]",
+    "add r2, r0, #132",
+    "ldm r2, {{r11, r12, lr}}",
+    "cmp r1, #6",
+    "bhs 20f",
+    "cmp r1, #4",
+    "beq 11f",
+    textured_rows!(
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
+        bilinear_pixel!(),
+        bilinear_offset!(),
+        "28"
+    ),
+    "11:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        bilinear_pixel!(),
+        bilinear_offset!(),
+        "28"
+    ),
+    "20:",
+    "cmp r1, #6",
+    "beq 21f",
+    textured_rows!(
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
+        lit_bilinear_pixel!(),
+        bilinear_offset!(),
+        "28"
+    ),
+    "21:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        lit_bilinear_pixel!(),
+        bilinear_offset!(),
+        "28"
+    ),
+    ".size embedded_raster_bilinear_rows_v7em, . - embedded_raster_bilinear_rows_v7em",
+);
+
+/// The textured row loop's entry: the bilinear variants (bit 4) are another function's.
+#[cfg(armv7em)]
+macro_rules! bilinear_rows_entry {
+    () => {
+        "cmp r1, #4\nbhs.w embedded_raster_bilinear_rows_v7em\n"
+    };
+}
+
+/// Without the DSP extension there are no bilinear variants.
+#[cfg(not(armv7em))]
+macro_rules! bilinear_rows_entry {
+    () => {
+        ""
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_textured_rows_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -401,8 +629,10 @@ core::arch::global_asm!(
     ".hidden embedded_raster_textured_rows_v7m",
     ".type embedded_raster_textured_rows_v7m,%function",
     ".thumb_func",
-    // r0 = the block, r1 = the variant: 1 if the middle bound is a start bound, plus 2 if lit.
+    // r0 = the block, r1 = the variant: 1 if the middle bound is a start bound, plus 2 if lit,
+    // plus 4 if bilinear (ARMv7E-M).
     "embedded_raster_textured_rows_v7m:",
+    bilinear_rows_entry!(),
     "push {{r4-r11, lr}}",
     // [sp]: the per-pixel steps (the depth's and the level's; the coordinates' a run); [sp, #16]:
     // the block.
@@ -462,6 +692,11 @@ pub(crate) fn textured_rows<C: Copy>(
         Some(level) => (level, 2),
         None => ([0; 3], 0),
     };
+    // Bilinear rows where the DSP extension is.
+    if rows.bilinear && !BILINEAR_ROWS {
+        return false;
+    }
+    let variant = variant | if rows.bilinear { 4 } else { 0 };
     let (u, v, z) = (rows.u, rows.v, region.depth);
     let mut block = TexturedBlock {
         row: [z[0], u[0], v[0], level[0], depths as usize as u32],
@@ -634,6 +869,97 @@ macro_rules! lit_step {
     };
 }
 
+/// The perspective span's bilinear loops (ARMv7E-M), entered at 50 from its dispatch with the
+/// registers as the lit loop's set-up finds them (the block's `u` and `v` bases moved by
+/// `−½ + 2⁻⁸` texel): unlit, lit with no clamp, lit with the level clamped — the lit loop's
+/// with [`bilinear_texel`]'s texel (`y`'s shift plus 9 at [sp, #44]).
+#[cfg(armv7em)]
+macro_rules! perspective_bilinear {
+    () => {
+        concat!(
+            "50:\n",
+            "add r11, sp, #4\n",
+            "stm r11, {{r4-r6}}\n",
+            "ldr r11, [r0, #84]\n",
+            "add r11, r11, #9\n",
+            "str r11, [sp, #44]\n",
+            "ldr r11, [sp, #20]\n",
+            "cmp r11, #2\n",
+            "beq 55f\n",
+            "sub r11, r10, #1\n",
+            "mla r11, r6, r11, r9\n",
+            "add r6, r6, #65536\n",
+            "cmp r6, #131072\n",
+            "it ls\n",
+            "cmpls r9, #65536\n",
+            "it ls\n",
+            "cmpls r11, #65536\n",
+            // Unlit: `eq` from the compare, so `ls` too.
+            "55:\n",
+            "mov r5, r7\n",
+            "mov r6, r8\n",
+            "mov r7, r9\n",
+            "mov r8, r1\n",
+            "mov r9, r2\n",
+            "mov r10, r3\n",
+            "ldr r4, [r0, #88]\n",
+            "add r1, r0, #72\n",
+            "ldm r1, {{r11, r12, lr}}\n",
+            "ldr r3, [sp, #20]\n",
+            "bhi 57f\n",
+            "cmp r3, #2\n",
+            "beq 56f\n",
+            "52:\n",
+            bilinear_texel!("34f", "56"),
+            scaled_texel!("r7"),
+            lit_step!(),
+            "bne 52b\n",
+            "b 9f\n",
+            "56:\n",
+            bilinear_texel!("34f", "56"),
+            "strh r0, [r10, r8]\n",
+            lit_step!(),
+            "bne 56b\n",
+            "b 9f\n",
+            "57:\n",
+            bilinear_texel!("34f", "56"),
+            "bic r1, r7, r7, asr #31\n",
+            "cmp r1, #65536\n",
+            "it hi\n",
+            "movhi r1, #65536\n",
+            scaled_texel!("r1"),
+            lit_step!(),
+            "bne 57b\n",
+            "b 9f\n",
+        )
+    };
+}
+
+/// Without the DSP extension there are no bilinear loops (the span is declined before).
+#[cfg(not(armv7em))]
+macro_rules! perspective_bilinear {
+    () => {
+        ""
+    };
+}
+
+/// The perspective span's dispatch on its flags (r11): lit (1), bilinear (2, ARMv7E-M) or
+/// neither (falls through).
+#[cfg(armv7em)]
+macro_rules! perspective_dispatch {
+    () => {
+        "cmp r11, #1\nbeq 30f\nbhi 50f\n"
+    };
+}
+
+/// Without the DSP extension: lit or not.
+#[cfg(not(armv7em))]
+macro_rules! perspective_dispatch {
+    () => {
+        "cmp r11, #0\nbne 30f\n"
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_perspective_span_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -643,13 +969,15 @@ core::arch::global_asm!(
     ".hidden embedded_raster_perspective_span_v7m",
     ".type embedded_raster_perspective_span_v7m,%function",
     ".thumb_func",
-    // r0 = the block (at least one pixel left), r1 = 1 if lit.
+    // r0 = the block (at least one pixel left), r1 = its flags: 1 if lit, plus 2 if bilinear
+    // (ARMv7E-M; the levels at the chunks' ends are then found unlit too, unused).
     "embedded_raster_perspective_span_v7m:",
     "push {{r4-r11, lr}}",
     // [sp]: the steps a pixel of the depth, x, y (shifted) and level; [sp, #16]: the block;
-    // [sp, #20]: lit; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]: the
-    // chunk's length's bits; [sp, #40]: the span's pixels.
-    "sub sp, #44",
+    // [sp, #20]: the flags; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]:
+    // the chunk's length's bits; [sp, #40]: the span's pixels; [sp, #44]: the bilinear loops'
+    // `y` shift plus 9.
+    "sub sp, #48",
     "str r0, [sp, #16]",
     "str r1, [sp, #20]",
     "ldr r1, [r0, #8]",
@@ -808,8 +1136,7 @@ core::arch::global_asm!(
     "rsb r1, r10, #0",
     "lsl r1, r1, #1",
     "ldr r11, [sp, #20]",
-    "cmp r11, #0",
-    "bne 30f",
+    perspective_dispatch!(),
     // Unlit: r1 = the offset, r2/r3 = the pointers, r4/r5 = the depth and its step, r6/r7 = x,
     // r8/r9 = y, r10 = the texels, r11 = the column mask, r12 = the row mask.
     "mov r6, r7",
@@ -881,6 +1208,8 @@ core::arch::global_asm!(
     scaled_texel!("r1"),
     lit_step!(),
     "bne 37b",
+    "b 9f",
+    perspective_bilinear!(),
     // The depth plane kept for the next chunk; the next chunk, if any.
     "9:",
     "ldr r0, [sp, #16]",
@@ -888,7 +1217,7 @@ core::arch::global_asm!(
     "ldr r3, [r0, #8]",
     "cmp r3, #0",
     "bne 1b",
-    "add sp, #44",
+    "add sp, #48",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_perspective_span_v7m, . - embedded_raster_perspective_span_v7m",
 );
@@ -901,7 +1230,7 @@ extern "C" {
     /// `block` is valid for reads and writes; its `left` is at least one and its pointers
     /// address `left` pixels of 2-byte aligned `u16` depths and colours; every index of at most
     /// `rows_mask | x_mask` is inside its texels; `y_shift` is below 32.
-    fn embedded_raster_perspective_span_v7m(block: *mut PerspectiveBlock, lit: u32);
+    fn embedded_raster_perspective_span_v7m(block: *mut PerspectiveBlock, flags: u32);
 }
 
 /// Draws the span `span` into the first pixels of `colors` and `depths` (as many as both
@@ -928,14 +1257,22 @@ pub(crate) fn perspective_span<C: Copy>(
         Some(level) => (level, 1),
         None => ([0; 3], 0),
     };
+    // Bilinear where the DSP extension is: the coordinates moved by `−½ + 2⁻⁸` texel (the
+    // bilinear loops' point, `bilinear_texel`).
+    if span.bilinear && !BILINEAR_ROWS {
+        return false;
+    }
+    let flags = lit | u32::from(span.bilinear) << 1;
+    let offset = i32::from(span.bilinear) * BILINEAR_OFFSET;
+    let moved = |[base, d1, d2]: [i32; 3]| [base.wrapping_sub(offset), d1, d2];
     let mut block = PerspectiveBlock {
         depths: depth_pointer,
         color_offset: (colors as usize).wrapping_sub(depth_pointer as usize) as u32,
         left,
         planes: span.planes,
         steps: span.steps,
-        u: span.u,
-        v: span.v,
+        u: moved(span.u),
+        v: moved(span.v),
         level,
         texels: span.texels.as_ptr(),
         x_mask: span.x_mask,
@@ -951,7 +1288,7 @@ pub(crate) fn perspective_span<C: Copy>(
     // `rows_mask | x_mask`, inside them, with `y_shift` below 32 (both checked above), reads and
     // writes the block (its own), divides by non-zero values only (`q ≥ 1`, `over ≥ 1`), and
     // saves and restores every register the AAPCS asks it to, its stack frame its own.
-    unsafe { embedded_raster_perspective_span_v7m(&mut block, lit) };
+    unsafe { embedded_raster_perspective_span_v7m(&mut block, flags) };
     true
 }
 
@@ -2014,7 +2351,8 @@ core::arch::global_asm!(
     // Lit: the levels' spread times the ratio against the bound (the face's word 100) times
     // 4·q_min.
     "ldr r6, [r0, #96]",
-    "cbz r6, 23f",
+    "lsls r6, r6, #30",
+    "bpl 23f",
     "ldrh r6, [r1, #14]",
     "ldrh r7, [r2, #14]",
     "ldrh r8, [r3, #14]",

@@ -16,8 +16,8 @@ pub enum Filter {
     #[default]
     Nearest,
     /// The four texels around the sample point, weighted by its distance to their centres
-    /// (12-bit weights, channel by channel in the target's depth: within 1 LSB of the exact
-    /// blend).
+    /// (weights of one bit more than the target's widest channel, channel by channel in its
+    /// depth: within 1 LSB of the exact blend).
     Bilinear,
 }
 
@@ -185,7 +185,8 @@ impl<S: TexelSource> Texture<S> {
 
     /// The bilinear blend at the 16.16 texel coordinate `(x, y)`, channel by channel in `C`'s
     /// depth: the four texels around `(x − ½, y − ½)` (each index wrapped on its own), weighted
-    /// by 12-bit fractions, rounded to nearest.
+    /// by their fractions rounded to one bit more than `C`'s widest channel, the blend rounded
+    /// to nearest.
     #[inline(always)]
     pub fn bilinear<C>(&self, x: i32, y: i32) -> C
     where
@@ -215,26 +216,47 @@ pub(crate) fn bilinear_by<C: GouraudColor>(x: i32, y: i32, fetch: impl Fn(i32, i
     // overflow at the ends of i32, where x − ½ would wrap).
     let below = |x: i32| (x >> 16) - i32::from((x as u32 & 0xffff) < 1 << 15);
     let (i, j) = (below(x), below(y));
-    // 12-bit weights of (x − ½, y − ½)'s fractions, rounded (4096 is a whole texel).
-    let fraction = |x: i32| (((x as u32).wrapping_sub(1 << 15) & 0xffff) + 8) >> 4;
+    // Weights of (x − ½, y − ½)'s fractions, rounded to `k` bits (`1 << k` is a whole texel).
+    let k = weight_bits::<C>();
+    let fraction =
+        |x: i32| (((x as u32).wrapping_sub(1 << 15) & 0xffff) + (1 << (15 - k))) >> (16 - k);
     let (fx, fy) = (fraction(x), fraction(y));
     let (i1, j1) = (i.wrapping_add(1), j.wrapping_add(1));
     let c = |i, j| fetch(i, j).channels().map(u32::from);
     let (t00, t10, t01, t11) = (c(i, j), c(i1, j), c(i, j1), c(i1, j1));
-    let blend = |k: usize| {
-        // Each row's blend below 2²⁰, the sum below 2³²: channels are at most 8 bits. One
-        // product a blend, `a·(4096 − f) + b·f = a·4096 + (b − a)·f`, modulo 2³² (the same
-        // integer: the true value is below 2³²).
+    let blend = |n: usize| {
+        // Each row's blend below 2¹⁷, the sum below 2²⁶ (channels of at most 8 bits, `k` at
+        // most 9). One product a blend, `a·(2ᵏ − f) + b·f = a·2ᵏ + (b − a)·f`, modulo 2³² (the
+        // same integer: the true value is below 2³²).
         let lerp =
-            |a: u32, b: u32, f: u32| (a << 12).wrapping_add(b.wrapping_sub(a).wrapping_mul(f));
-        let top = lerp(t00[k], t10[k], fx);
-        let bottom = lerp(t01[k], t11[k], fx);
-        (lerp(top, bottom, fy).wrapping_add(1 << 23) >> 24) as u8
+            |a: u32, b: u32, f: u32| (a << k).wrapping_add(b.wrapping_sub(a).wrapping_mul(f));
+        let top = lerp(t00[n], t10[n], fx);
+        let bottom = lerp(t01[n], t11[n], fx);
+        (lerp(top, bottom, fy).wrapping_add(1 << (2 * k - 1)) >> (2 * k)) as u8
     };
     if C::CHANNELS == 1 {
         return C::from_channels([blend(0), 0, 0]);
     }
     C::from_channels([blend(0), blend(1), blend(2)])
+}
+
+/// The bits of the bilinear weights for `C`: one more than its widest channel's. A weight then
+/// moves the sample point by at most 2⁻⁽ᵏ⁺¹⁾ texel an axis, which moves the blend by at most
+/// `D·2⁻⁽ᵏ⁺¹⁾` for neighbours `D` apart: below half an LSB for both axes together, so the
+/// rounded blend is within 1 LSB of the exact one. (7 bits for 5-6-5 colours: the four weights
+/// `(2⁷ − fx)·(2⁷ − fy)` … fit signed 16-bit lanes, which the targets' dual products take.)
+#[inline(always)]
+pub(crate) const fn weight_bits<C: GouraudColor>() -> u32 {
+    let [a, b, c] = C::MAX;
+    let widest = if a > b { a } else { b };
+    let widest = if widest > c { widest } else { c };
+    // At least 1: a blend of 1-bit channels still needs its halves.
+    let bits = 8 - widest.leading_zeros();
+    if bits == 0 {
+        1
+    } else {
+        bits + 1
+    }
 }
 
 #[cfg(test)]
@@ -244,6 +266,80 @@ mod tests {
     use std::string::ToString;
 
     use super::*;
+
+    /// The blend is within 1 LSB of the exact bilinear value at the 16.16 coordinate (f64), for
+    /// every channel depth, at the largest contrasts (neighbours 0 and the channel's maximum):
+    /// the weights' bits (`weight_bits`) keep their rounding below half an LSB.
+    #[test]
+    fn bilinear_blends_are_within_an_lsb_of_the_exact_value() {
+        use embedded_graphics::pixelcolor::{BinaryColor, Gray4, Gray8, Rgb555, Rgb565, Rgb888};
+
+        fn check<C: GouraudColor>(seed: u32) -> f64 {
+            let mut state = seed;
+            let mut next = move || {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                state
+            };
+            let hash = |i: i32, j: i32| {
+                let h = (i as u32).wrapping_mul(0x9e37_79b9) ^ (j as u32).wrapping_mul(0x85eb_ca6b);
+                h ^ (h >> 15)
+            };
+            let mut worst = 0f64;
+            for round in 0..20_000 {
+                let salt = next();
+                // Channels at the extremes (the largest neighbour differences) or anywhere.
+                let texel = |i: i32, j: i32| {
+                    let h = hash(i, j) ^ salt;
+                    let channel = |k: usize| {
+                        let max = u32::from(C::MAX[k]);
+                        match (h >> (8 * k)) & 3 {
+                            0 | 1 => ((h >> (8 * k + 2)) & 1) * max,
+                            _ => (h >> (8 * k + 2)) % (max + 1),
+                        }
+                    };
+                    [channel(0) as u8, channel(1) as u8, channel(2) as u8]
+                };
+                let (x, y) = if round % 4 == 0 {
+                    // Fractions next to the weights' rounding edges.
+                    let edge = |r: u32| {
+                        let k = weight_bits::<C>();
+                        let f = ((r % (1 << k)) << (16 - k)) + (1 << (15 - k));
+                        ((r >> 8) as i32 & 0xff) << 16
+                            | (f as i32 + (r >> 20) as i32 % 3 - 1 + 0x8000) & 0xffff
+                    };
+                    (edge(next()), edge(next()))
+                } else {
+                    (next() as i32, next() as i32)
+                };
+                let got = bilinear_by(x, y, |i, j| C::from_channels(texel(i, j))).channels();
+                // The exact blend at (x − ½, y − ½).
+                let (fx, fy) = (f64::from(x) / 65536.0 - 0.5, f64::from(y) / 65536.0 - 0.5);
+                let (i, j) = (fx.floor(), fy.floor());
+                let (ax, ay) = (fx - i, fy - j);
+                let (i, j) = (i as i32, j as i32);
+                for (k, &got) in got.iter().enumerate().take(C::CHANNELS) {
+                    let t = |i: i32, j: i32| f64::from(texel(i, j)[k]);
+                    let top = t(i, j) * (1.0 - ax) + t(i + 1, j) * ax;
+                    let bottom = t(i, j + 1) * (1.0 - ax) + t(i + 1, j + 1) * ax;
+                    let exact = top * (1.0 - ay) + bottom * ay;
+                    worst = worst.max((f64::from(got) - exact).abs());
+                }
+            }
+            worst
+        }
+        for (name, worst) in [
+            ("BinaryColor", check::<BinaryColor>(1)),
+            ("Gray4", check::<Gray4>(2)),
+            ("Gray8", check::<Gray8>(3)),
+            ("Rgb555", check::<Rgb555>(4)),
+            ("Rgb565", check::<Rgb565>(5)),
+            ("Rgb888", check::<Rgb888>(6)),
+        ] {
+            assert!(worst < 1.0, "{name}: {worst}");
+        }
+    }
 
     /// The errors' messages: what was needed and what was given (issue #32, item 2).
     #[test]

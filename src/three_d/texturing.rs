@@ -726,7 +726,7 @@ where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
-    let Some(texture) = masked_565(sampler) else {
+    let Some((texture, bilinear)) = masked_565_texels(sampler) else {
         return TexturedDraw::Declined;
     };
     let l = levels.unwrap_or([0; 3]);
@@ -736,7 +736,7 @@ where
     };
     let mut vertices = [vertex(0), vertex(1), vertex(2)];
     let light = (levels.is_some(), affine_level::<C>() as u32);
-    let face = clip.textured_face(&mut vertices, texture, light);
+    let face = clip.textured_face(&mut vertices, texture, light, bilinear);
     C::textured_face_565(target.buffers_mut(), face)
 }
 
@@ -1172,7 +1172,7 @@ fn texel_rows<'w, S: TexelSource, const N: usize>(
     light: Option<RowLight>,
 ) -> Option<arch::TexturedRows<'w>> {
     let light = light?;
-    let (texels, x_mask, rows_mask, y_shift) = masked_565(sampler)?;
+    let ((texels, x_mask, rows_mask, y_shift), bilinear) = masked_565_texels(sampler)?;
     let maps = [shift_map(&maps[0])?, shift_map(&maps[1])?];
     let planes = scan.planes();
     let (first, step, row_step) = (planes.first(), planes.step(), planes.row_step());
@@ -1204,6 +1204,7 @@ fn texel_rows<'w, S: TexelSource, const N: usize>(
         texels,
         x_mask,
         rows_mask,
+        bilinear,
     })
 }
 
@@ -1211,11 +1212,23 @@ fn texel_rows<'w, S: TexelSource, const N: usize>(
 /// column mask, its row mask (in storage units) and `y`'s shift in [`Sampler::run`] (the bits
 /// of a row: the width less one is the column mask).
 #[inline(always)]
-fn masked_565<'w, S: TexelSource>(
+fn masked_565<'w, S: TexelSource>(sampler: &'w Sampler<'_, S>) -> Option<Masked565<'w>> {
+    masked_565_texels(sampler).and_then(|(texels, bilinear)| (!bilinear).then_some(texels))
+}
+
+/// The texels, the column and row masks and `y`'s shift of [`masked_565`].
+type Masked565<'w> = (&'w [u16], u32, u32, u32);
+
+/// [`masked_565`]'s texels, masks and shift of a masked sampler of either filter, and whether
+/// it is bilinear (where the target's row loop draws bilinear texels, else nearest only).
+#[inline(always)]
+fn masked_565_texels<'w, S: TexelSource>(
     sampler: &'w Sampler<'_, S>,
-) -> Option<(&'w [u16], u32, u32, u32)> {
-    let Sampler::MaskedNearest(masks, texels) = sampler else {
-        return None;
+) -> Option<(Masked565<'w>, bool)> {
+    let (masks, texels, bilinear) = match sampler {
+        Sampler::MaskedNearest(masks, texels) => (masks, texels, false),
+        Sampler::MaskedBilinear(masks, texels) if arch::BILINEAR_ROWS => (masks, texels, true),
+        _ => return None,
     };
     let texels = texels.rgb565_words()?.0;
     let (x_mask, rows_mask) = (masks.texel_index(-1, 0), masks.texel_index(0, -1));
@@ -1223,7 +1236,10 @@ fn masked_565<'w, S: TexelSource>(
     if x_mask | rows_mask > 0xffff {
         return None;
     }
-    Some((texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()))
+    Some((
+        (texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()),
+        bilinear,
+    ))
 }
 
 /// `map` as `(base, down)`, a plane value `p` mapping to `base + (p >> down)`, if it maps so
@@ -1846,8 +1862,10 @@ where
         );
         // The target's span loop where it draws these texels and light (the same pixels).
         if arch::PERSPECTIVE_SPAN && !W::BLENDS {
-            // The sampler first: a bilinear face's spans stop at its kind.
-            if let Some((texels, x_mask, rows_mask, y_shift)) = masked_565(&self.sampler) {
+            // The sampler first: a face's spans the loop does not sample stop at its kind.
+            if let Some(((texels, x_mask, rows_mask, y_shift), bilinear)) =
+                masked_565_texels(&self.sampler)
+            {
                 if let Some(level) = self.light.span_level() {
                     let ([dz, dq, dp1, dp2], [z, q, p1, p2]) = (steps, start);
                     let span = arch::PerspectiveSpan565 {
@@ -1862,6 +1880,7 @@ where
                         rows_mask,
                         y_shift,
                         chunk_room: room,
+                        bilinear,
                     };
                     if C::perspective_span_565(colors, depths, &span) {
                         return;

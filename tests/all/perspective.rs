@@ -1136,8 +1136,9 @@ struct Blend {
 }
 
 /// Draws `tris` (not overlapping) with bilinear filtering and compares every pixel with the
-/// reference blend at the reference coordinate: within 1 LSB (the 12-bit weights and the
-/// rounding) plus `D·(tol_x + tol_y)`, `D` the largest neighbour difference and `tol` the
+/// reference blend at the reference coordinate: within 1 LSB (the weights' rounding, under
+/// half an LSB with a bit more than the channel's, and the blend's) plus `D·(tol_x + tol_y)`,
+/// `D` the largest neighbour difference and `tol` the
 /// coordinate tolerance of nearest filtering (`eps` plus the chord's deviation) — the blend
 /// changes by at most `D` a texel along either axis.
 fn check_bilinear(
