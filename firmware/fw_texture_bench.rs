@@ -184,8 +184,8 @@ fn xorshift(mut state: u32) -> impl FnMut() -> u32 {
 const CHECK_TRIANGLES: u32 = 300;
 
 /// Untimed: [`CHECK_TRIANGLES`] random triangles over and around the screen with random texel
-/// coordinates (spreads from a fraction of a texel to 2¹⁵ texels, anywhere in the range), nearest,
-/// from the texels as textures of several power-of-two shapes, drawn into the framebuffer (which
+/// coordinates (spreads from a fraction of a texel to 2¹⁵ texels, anywhere in the range), nearest
+/// and bilinear (every other one), from the texels as textures of several power-of-two shapes, drawn into the framebuffer (which
 /// the caller clears). Out of line: its frame is not `main`'s, under [`check_3d`]'s deep draws
 /// (a micro:bit's stack is 4 KB).
 #[inline(never)]
@@ -197,6 +197,11 @@ fn check(fb: &mut SliceFramebuffer<'_, Rgb565>) {
         let (tw, th) = shapes[(k % shapes.len() as u32) as usize];
         let Ok(texture) = Texture::new(Rgb565Texels(&TEXELS), tw, th) else {
             return;
+        };
+        // Every other one bilinear (ARMv7E-M's span loop blends them).
+        let texture = match k % 2 {
+            0 => texture,
+            _ => texture.with_filter(Filter::Bilinear),
         };
         let (base_u, base_v) = (next() as i32, next() as i32);
         let spread = 8 + next() % 24;

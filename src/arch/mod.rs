@@ -29,6 +29,8 @@ pub(crate) use thumbv6m::depth_masked_nearest_565;
 pub(crate) use thumbv6m::masked_nearest_565;
 #[cfg(armv6m)]
 pub(crate) use thumbv6m::premultiplied_565;
+#[cfg(armv7em)]
+pub(crate) use thumbv7m::bilinear_span_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::blend_solid_565;
 #[cfg(armv7m)]
@@ -269,7 +271,7 @@ pub(crate) const MASKED_NEAREST_565: bool = cfg!(armv6m);
 /// implementation outside the crate can name.
 #[derive(Clone, Copy, Debug)]
 // Read only where the assembly is (and by the host's test of its arithmetic).
-#[cfg_attr(not(any(armv6m, test)), allow(dead_code))]
+#[cfg_attr(not(any(armv6m, armv7em, test)), allow(dead_code))]
 pub struct MaskedSpan565<'a> {
     /// The texels (row-major).
     pub(crate) texels: &'a [u16],
@@ -289,6 +291,14 @@ pub struct MaskedSpan565<'a> {
 #[cfg(not(any(armv6m, armv7m, rv32)))]
 #[inline(always)]
 pub(crate) fn blend_solid_565<C>(_pixels: &mut [C], _weights: &[u32; 4]) -> bool {
+    false
+}
+
+/// [`bilinear_span_565`] where there is none (ARMv7E-M's dual products draw it): draws nothing
+/// and says so.
+#[cfg(not(armv7em))]
+#[inline(always)]
+pub(crate) fn bilinear_span_565<C: Copy>(_pixels: &mut [C], _span: &MaskedSpan565<'_>) -> bool {
     false
 }
 

@@ -44,6 +44,8 @@ use core::mem::MaybeUninit;
 
 use embedded_graphics::pixelcolor::raw::RawU16;
 
+#[cfg(armv7em)]
+use super::MaskedSpan565;
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
 use super::{TexturedDraw, TexturedFace, TexturedRows, BILINEAR_ROWS};
 
@@ -430,6 +432,18 @@ macro_rules! bilinear_texel {
             "\n",
             "lsr r0, r4, #16\n",
             "strh r0, [r9, r8]\n",
+            bilinear_blend!($ys),
+        )
+    };
+}
+
+/// [`bilinear_texel`]'s blend into r0, without the depth test: r5/r6 the point, r11 the
+/// texels, r12/lr the masks, `[sp, #$ys]` (after the 12 bytes it pushes) `y`'s shift plus 9.
+/// Clobbers r1-r3 (r7, r9, r10 saved and restored).
+#[cfg(armv7em)]
+macro_rules! bilinear_blend {
+    ($ys:literal) => {
+        concat!(
             "push {{r7, r9, r10}}\n",
             // The rows j (r1) and j + 1 (r2) in storage units, the columns i (r0), i + 1 (r3).
             "and r1, lr, r6, lsr #16\n",
@@ -603,6 +617,107 @@ core::arch::global_asm!(
     ),
     ".size embedded_raster_bilinear_rows_v7em, . - embedded_raster_bilinear_rows_v7em",
 );
+
+// An affine span of bilinear texels (the 2D textured fill's, ARMv7E-M): r0 = the block of
+// `bilinear_span_565`.
+#[cfg(armv7em)]
+core::arch::global_asm!(
+    ".section .text.embedded_raster_bilinear_span_v7em,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_bilinear_span_v7em",
+    ".hidden embedded_raster_bilinear_span_v7em",
+    ".type embedded_raster_bilinear_span_v7em,%function",
+    ".thumb_func",
+    "embedded_raster_bilinear_span_v7em:",
+    "push {{r4-r11, lr}}",
+    // [sp]: `y`'s shift plus 9.
+    "sub sp, #8",
+    "ldr r1, [r0, #36]",
+    "str r1, [sp]",
+    // r9/r10 = the pixel and the end, r5/r4 = x and its step, r6/r8 = y (shifted) and its step.
+    "ldrd r9, r10, [r0]",
+    "ldrd r5, r4, [r0, #8]",
+    "ldrd r6, r8, [r0, #16]",
+    "ldr r11, [r0, #24]",
+    "ldrd r12, lr, [r0, #28]",
+    "1:",
+    bilinear_blend!("12"),
+    "strh r0, [r9], #2",
+    "add r5, r5, r4",
+    "add r6, r6, r8",
+    "cmp r9, r10",
+    "bne 1b",
+    "add sp, #8",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_bilinear_span_v7em, . - embedded_raster_bilinear_span_v7em",
+);
+
+/// What the affine bilinear span's assembly reads (offsets are its).
+#[cfg(armv7em)]
+#[repr(C)]
+struct BilinearSpanBlock {
+    /// 0: the first pixel; 4: past the last.
+    pixels: *mut u16,
+    end: *mut u16,
+    /// 8, 12: `x` (moved by [`BILINEAR_OFFSET`]) and its step; 16, 20: `y` (moved, then
+    /// shifted by the row's bits) and its step (shifted).
+    x: [i32; 2],
+    y: [i32; 2],
+    /// 24: the texels; 28: the column mask; 32: the row mask; 36: `y`'s shift plus 9.
+    texels: *const u16,
+    x_mask: u32,
+    rows_mask: u32,
+    y_shift_9: u32,
+}
+
+#[cfg(armv7em)]
+extern "C" {
+    /// The assembly function above.
+    ///
+    /// # Safety
+    ///
+    /// `block` is valid for reads; its pointers address at least one 2-byte aligned `u16`
+    /// pixel between them; every index of at most `rows_mask | x_mask` is inside its texels;
+    /// its shift is below 32.
+    fn embedded_raster_bilinear_span_v7em(block: *const BilinearSpanBlock);
+}
+
+/// Fills `pixels` with the affine span `span` of bilinear texels (`texture::map::bilinear_by`'s
+/// blend at `(x, y) + i·(dx, dy)`, `y` as [`MaskedSpan565`] scales it). `false` without
+/// drawing anything if a texel index the masks allow is not inside `span.texels` or `C` is not
+/// a 16-bit colour. `C` must be the 5-6-5 format whose raw value is the texels' (the caller's
+/// promise).
+#[cfg(armv7em)]
+#[inline(always)]
+pub(crate) fn bilinear_span_565<C: Copy>(pixels: &mut [C], span: &MaskedSpan565<'_>) -> bool {
+    let y_shift = 32 - span.x_mask.leading_zeros();
+    if !masked_texels::<C>(span.texels, span.x_mask, span.rows, &[y_shift]) {
+        return false;
+    }
+    if pixels.is_empty() {
+        return true;
+    }
+    let range = pixels.as_mut_ptr_range();
+    let block = BilinearSpanBlock {
+        pixels: range.start.cast(),
+        end: range.end.cast(),
+        x: [span.x.0.wrapping_sub(BILINEAR_OFFSET), span.x.1],
+        y: [span.y.0.wrapping_sub(BILINEAR_OFFSET << y_shift), span.y.1],
+        texels: span.texels.as_ptr(),
+        x_mask: span.x_mask,
+        rows_mask: span.rows,
+        y_shift_9: y_shift + 9,
+    };
+    // SAFETY: the function writes the pixels from `start` to `end` (at least one, 2-byte
+    // aligned `u16`s: `C` is a 2-byte colour whose raw value the texels are, the caller's
+    // promise), reads the texels at indices of at most `rows | x_mask` (inside them, checked
+    // above) with a shift below 32 (a mask's bits), reads the block, and saves and restores
+    // every register the AAPCS asks it to, its stack frame its own.
+    unsafe { embedded_raster_bilinear_span_v7em(&block) };
+    true
+}
 
 /// The textured row loop's entry: the bilinear variants (bit 4) are another function's.
 #[cfg(armv7em)]

@@ -257,6 +257,17 @@ pub trait GouraudColor: PixelColor {
         false
     }
 
+    /// Fills `dst` with an affine span of bilinear Rgb565 texels (`span` as for
+    /// [`fill_masked_565`](Self::fill_masked_565)) by a loop of the target's own, if this
+    /// format has one there (Rgb565 on ARMv7E-M); `false` without writing anything where it
+    /// has none (the default). Hidden: its argument's type cannot be named outside the crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn fill_bilinear_565(dst: &mut [Self], span: &MaskedSpan565<'_>) -> bool {
+        let _ = (dst, span);
+        false
+    }
+
     /// Draws the depth-tested pixels of a perspective-correct chunk of nearest Rgb565 texels
     /// into `colors` and `depths`, the depth plane's value and step a pixel `depth`, by a loop of
     /// the target's own, if this format has one there (Rgb565 on Cortex-M0); `false` without
@@ -384,6 +395,10 @@ macro_rules! rgb_color {
                     span: &crate::arch::PerspectiveSpan565<'_>,
                 ) -> bool {
                     $order == [0, 1, 2] && crate::arch::perspective_span(colors, depths, span)
+                }
+                #[inline(always)]
+                fn fill_bilinear_565(dst: &mut [Self], span: &MaskedSpan565<'_>) -> bool {
+                    $order == [0, 1, 2] && crate::arch::bilinear_span_565(dst, span)
                 }
                 #[inline]
                 fn prepare_steps(step: [u32; 3]) -> SpanSteps {

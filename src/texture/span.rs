@@ -121,6 +121,18 @@ pub(crate) trait SampledLoop<C> {
     /// given as `(x, y << y_shift)` (wrapping: the loop steps the shifted `y` by the shifted
     /// step).
     fn run(self, sample: impl Fn(i32, i32) -> C, y_shift: u32) -> Self::Output;
+
+    /// Runs the loop with bilinear texels of raw Rgb565 `words` addressed by `masks` by the
+    /// target's own loop, if it has one for this loop (ARMv7E-M's dual products), or gives the
+    /// loop back (the default), nothing drawn.
+    #[inline(always)]
+    fn run_bilinear_565(self, masks: PowerOfTwoRepeat, words: &[u16]) -> Result<Self::Output, Self>
+    where
+        Self: Sized,
+    {
+        let _ = (masks, words);
+        Err(self)
+    }
 }
 
 /// How a texture is sampled, decided once per triangle: by masks alone into storage cut to the
@@ -187,6 +199,16 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
                 body.run(sample, 0)
             }
             &Sampler::MaskedBilinear(masks, texels) => {
+                // The target's loop for raw Rgb565 texels, if the body has one.
+                let body = match texels.rgb565_words() {
+                    Some(words) if arch::BILINEAR_ROWS => {
+                        match body.run_bilinear_565(masks, words.0) {
+                            Ok(output) => return output,
+                            Err(body) => body,
+                        }
+                    }
+                    _ => body,
+                };
                 let sample = move |x, y| {
                     bilinear_by(x, y, |i, j| {
                         // SAFETY: as above.
@@ -236,7 +258,7 @@ struct Affine<'d, C> {
     step: (i32, i32),
 }
 
-impl<C> SampledLoop<C> for Affine<'_, C> {
+impl<C: GouraudColor> SampledLoop<C> for Affine<'_, C> {
     type Output = ();
 
     // Out of line: the walk's values stay out of the loop's registers (a call a span).
@@ -248,6 +270,14 @@ impl<C> SampledLoop<C> for Affine<'_, C> {
             *px = sample(x, y);
             x = x.wrapping_add(dx);
             y = y.wrapping_add(dy);
+        }
+    }
+
+    #[inline(always)]
+    fn run_bilinear_565(self, masks: PowerOfTwoRepeat, words: &[u16]) -> Result<(), Self> {
+        match masks.span_565(words, self.at, self.step) {
+            Some(span) if C::fill_bilinear_565(self.dst, &span) => Ok(()),
+            _ => Err(self),
         }
     }
 }
