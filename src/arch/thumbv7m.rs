@@ -323,10 +323,9 @@ macro_rules! textured_rows {
     };
 }
 
-/// The depth test and the texel's index and fetch (into r0) of the pixel at r8 (r9 the depth
-/// pointer, r4 the depth, r5/r6 = x/y, r12/lr their masks, r11 the texels); `$skip` the next
-/// pixel. Clobbers r1.
-macro_rules! textured_texel {
+/// The depth test of the pixel at r8 (r9 the depth pointer, r4 the depth plane): to `$skip`
+/// unless nearer than the stored depth, which it then replaces. Clobbers r0.
+macro_rules! depth_test {
     ($skip:literal) => {
         concat!(
             "ldrh r0, [r9, r8]\n",
@@ -336,6 +335,17 @@ macro_rules! textured_texel {
             "\n",
             "lsr r0, r4, #16\n",
             "strh r0, [r9, r8]\n",
+        )
+    };
+}
+
+/// The depth test and the texel's index and fetch (into r0) of the pixel at r8 (r9 the depth
+/// pointer, r4 the depth, r5/r6 = x/y, r12/lr their masks, r11 the texels); `$skip` the next
+/// pixel. Clobbers r1.
+macro_rules! textured_texel {
+    ($skip:literal) => {
+        concat!(
+            depth_test!($skip),
             "and r0, lr, r6, lsr #16\n",
             "and r1, r12, r5, lsr #16\n",
             "orr r0, r0, r1\n",
@@ -373,11 +383,14 @@ macro_rules! scaled_texel {
     };
 }
 
-/// An unlit pixel: the texel as it is.
+/// An unlit pixel: the texel as it is (the nearest one, or `$texel`'s, which skips to 4).
 macro_rules! unlit_pixel {
     () => {
+        unlit_pixel!(textured_texel!("4f"))
+    };
+    ($texel:expr) => {
         concat!(
-            textured_texel!("4f"),
+            $texel,
             "strh r0, [r10, r8]\n",
             "4:\n",
             "ldm sp, {{r0-r2}}\n",
@@ -389,11 +402,15 @@ macro_rules! unlit_pixel {
 }
 
 /// A pixel lit by the level plane (r7): `f = ((l >> 12)·257) >> 12`, each channel `c` of the
-/// texel replaced by `(c·f + 2¹⁵) >> 16`, blue, green, red.
+/// texel (the nearest one, or `$texel`'s, which skips to 4) replaced by `(c·f + 2¹⁵) >> 16`,
+/// blue, green, red.
 macro_rules! lit_pixel {
     () => {
+        lit_pixel!(textured_texel!("4f"))
+    };
+    ($texel:expr) => {
         concat!(
-            textured_texel!("4f"),
+            $texel,
             "lsr r1, r7, #12\n",
             "add r1, r1, r1, lsl #8\n",
             "lsr r1, r1, #12\n",
@@ -424,16 +441,7 @@ macro_rules! lit_pixel {
 #[cfg(armv7em)]
 macro_rules! bilinear_texel {
     ($skip:literal, $ys:literal) => {
-        concat!(
-            "ldrh r0, [r9, r8]\n",
-            "cmp r0, r4, lsr #16\n",
-            "bls ",
-            $skip,
-            "\n",
-            "lsr r0, r4, #16\n",
-            "strh r0, [r9, r8]\n",
-            bilinear_blend!($ys),
-        )
+        concat!(depth_test!($skip), bilinear_blend!($ys),)
     };
 }
 
@@ -507,42 +515,6 @@ macro_rules! bilinear_blend {
     };
 }
 
-/// An unlit bilinear pixel of the row loop.
-#[cfg(armv7em)]
-macro_rules! bilinear_pixel {
-    () => {
-        concat!(
-            bilinear_texel!("4f", "32"),
-            "strh r0, [r10, r8]\n",
-            "4:\n",
-            "ldm sp, {{r0-r2}}\n",
-            "add r4, r0\n",
-            "add r5, r1\n",
-            "add r6, r2\n",
-        )
-    };
-}
-
-/// A bilinear pixel of the row loop lit by the level plane (r7), as [`lit_pixel`].
-#[cfg(armv7em)]
-macro_rules! lit_bilinear_pixel {
-    () => {
-        concat!(
-            bilinear_texel!("4f", "32"),
-            "lsr r1, r7, #12\n",
-            "add r1, r1, r1, lsl #8\n",
-            "lsr r1, r1, #12\n",
-            scaled_texel!("r1"),
-            "4:\n",
-            "ldm sp, {{r0-r3}}\n",
-            "add r4, r0\n",
-            "add r5, r1\n",
-            "add r6, r2\n",
-            "add r7, r3\n",
-        )
-    };
-}
-
 /// Where the bilinear loops take a pixel's coordinates: `x` and `y` less ½ texel plus 2⁻⁸
 /// (32,512 units of 2⁻¹⁶), as [`bilinear_texel`] reads them.
 const BILINEAR_OFFSET: i32 = (1 << 15) - (1 << 8);
@@ -588,14 +560,14 @@ core::arch::global_asm!(
     "beq 11f",
     textured_rows!(
         "cmp r2, r1\nit gt\nmovgt r1, r2",
-        bilinear_pixel!(),
+        unlit_pixel!(bilinear_texel!("4f", "32")),
         bilinear_offset!(),
         "28"
     ),
     "11:",
     textured_rows!(
         "cmp r2, r3\nit lt\nmovlt r3, r2",
-        bilinear_pixel!(),
+        unlit_pixel!(bilinear_texel!("4f", "32")),
         bilinear_offset!(),
         "28"
     ),
@@ -604,14 +576,14 @@ core::arch::global_asm!(
     "beq 21f",
     textured_rows!(
         "cmp r2, r1\nit gt\nmovgt r1, r2",
-        lit_bilinear_pixel!(),
+        lit_pixel!(bilinear_texel!("4f", "32")),
         bilinear_offset!(),
         "28"
     ),
     "21:",
     textured_rows!(
         "cmp r2, r3\nit lt\nmovlt r3, r2",
-        lit_bilinear_pixel!(),
+        lit_pixel!(bilinear_texel!("4f", "32")),
         bilinear_offset!(),
         "28"
     ),
