@@ -287,6 +287,22 @@ const CHECK_FACES: u32 = 50_000;
 /// A cell's side in pixels: more than a small face's box (16 px) and a pixel.
 const CELL: i32 = 20;
 
+/// 64 × 64 hashed 4-bit palette indices for [`check_faces`], two a byte.
+#[cfg(not(armv6m))]
+static NOISE_INDICES: [u8; SIDE * SIDE / 2] = {
+    let mut indices = [0; SIDE * SIDE / 2];
+    let mut i = 0;
+    while i < indices.len() {
+        let mut x = (i as u32).wrapping_mul(0x2c1b_3c6d);
+        x ^= x >> 12;
+        x = x.wrapping_mul(0x297a_2d39);
+        x ^= x >> 15;
+        indices[i] = x as u8;
+        i += 1;
+    }
+    indices
+};
+
 /// 64 × 64 texels of hashed colours for [`check_faces`]: neighbours differ (a coordinate a unit
 /// off at a texel's edge shows).
 static NOISE: [u16; SIDE * SIDE] = {
@@ -315,8 +331,8 @@ fn spread(next: &mut impl FnMut() -> u32) -> i32 {
     }
 }
 
-/// Untimed: [`CHECK_FACES`] random small depth-tested textured faces, nearest and bilinear,
-/// unlit and lit,
+/// Untimed: [`CHECK_FACES`] random small depth-tested textured faces, nearest, bilinear and
+/// from 4-bit palette indices, unlit and lit,
 /// from hashed texels ([`NOISE`]) as textures of several shapes (power-of-two ones and one that is not), each
 /// into a cell of its own, clipped by the cell or less of it and by the screen's edges (the
 /// cells overhang them). Their boxes reach and pass the small set-up's 4096 sub-pixels, some
@@ -343,14 +359,17 @@ fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
             }
             drawn += 1;
             let (tw, th) = shapes[(next() % shapes.len() as u32) as usize];
+            // A quarter bilinear (ARMv7E-M's row loop blends them), a quarter 4-bit palette
+            // indices (ARMv7-M's looks them up; a palette of 11 colours in a quarter of those;
+            // raw Rgb565 words on the micro:bit's 64 × 48, whose flash has no room for a fill
+            // of another texel source), the rest raw Rgb565 words.
+            let (kind, short) = (next() % 4, next() % 4 == 0);
             let Ok(texture) = Texture::new(Rgb565Texels(&NOISE), tw, th) else {
                 return 0;
             };
-            // A third bilinear (ARMv7E-M's row loop blends them).
-            let texture = if next() % 3 == 0 {
-                texture.with_filter(Filter::Bilinear)
-            } else {
-                texture
+            let texture = match kind {
+                0 => texture.with_filter(Filter::Bilinear),
+                _ => texture,
             };
             let (cx, cy) = (
                 (cell as i32 % columns) * CELL - CELL / 2,
@@ -421,11 +440,22 @@ fn check_faces(fb: &mut DepthTarget<'_, Rgb565>) -> u32 {
                 y1 -= (next() % 9) as i32;
             }
             let clip = Rectangle::with_corners(Point::new(x0, y0), Point::new(x1 - 1, y1 - 1));
-            if next() % 2 == 0 {
-                draw_3d(fb, &clip, &v, &texture, None);
-            } else {
-                draw_3d(fb, &clip, &v, &texture, Some(random_levels(&mut next)));
+            let levels = (next() % 2 == 1).then(|| random_levels(&mut next));
+            #[cfg(not(armv6m))]
+            if kind == 1 && w > 64 {
+                let palette: &[Rgb565] = if short { &PALETTE[..11] } else { &PALETTE };
+                let indices = Indexed4 {
+                    indices: &NOISE_INDICES,
+                    palette,
+                };
+                if let Ok(indexed) = Texture::new(indices, tw, th) {
+                    draw_3d(fb, &clip, &v, &indexed, levels);
+                }
+                continue;
             }
+            #[cfg(armv6m)]
+            let _ = short;
+            draw_3d(fb, &clip, &v, &texture, levels);
         }
         // The batch's colour and depth hashes, their bytes low first.
         let colors = scene::checksum(fb.framebuffer().pixels());

@@ -640,10 +640,12 @@ pub struct TexturedFace<'v> {
     x_mask: u32,
     rows_mask: u32,
     /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane,
-    /// 4 if bilinear; 100: the screen-space bound of the levels (`texturing::affine_level`).
+    /// 4 if bilinear, 8 if 4-bit palette indices; 100: the screen-space bound of the levels
+    /// (`texturing::affine_level`); 104: the palette's 16 raw Rgb565 words (palette indices).
     lit: u32,
     affine_level: u32,
-    /// The texels' length (not the assembly's).
+    palette: *const u16,
+    /// The texels' count (not the assembly's).
     texels_len: usize,
     borrowed: core::marker::PhantomData<&'v mut [u16]>,
 }
@@ -651,19 +653,17 @@ pub struct TexturedFace<'v> {
 impl<'v> TexturedFace<'v> {
     /// The face of `vertices` inside `clip` (see [`ClipBounds`]), its planes rounded by `half`,
     /// drawn in rows `rows` (as [`LevelFace::new`]'s), sampled from `(texels, x_mask,
-    /// rows_mask, y_shift)` (as [`TexturedRows`] has them), bilinear if `bilinear` (where
-    /// [`BILINEAR_ROWS`]), lit by the level plane if `lit` (its levels then within
-    /// `affine_level` of the perspective-correct ones in screen space, as the texel coordinates
-    /// within 1/16 texel).
+    /// rows_mask, y_shift)` (as [`TexturedRows`] has them, the texels as [`FaceTexels`] says),
+    /// lit by the level plane if `lit` (its levels then within `affine_level` of the
+    /// perspective-correct ones in screen space, as the texel coordinates within 1/16 texel).
     #[inline(always)]
     pub(crate) fn new(
         vertices: &'v mut [TexturedVertex; 3],
         clip: ClipBounds,
         half: [u32; 4],
         rows: [i32; 2],
-        (texels, x_mask, rows_mask, y_shift): (&'v [u16], u32, u32, u32),
+        (texels, x_mask, rows_mask, y_shift): (FaceTexels<'v>, u32, u32, u32),
         (lit, affine_level): (bool, u32),
-        bilinear: bool,
     ) -> Self {
         let [a, b, c] = vertices;
         TexturedFace {
@@ -676,12 +676,59 @@ impl<'v> TexturedFace<'v> {
             rows,
             maps: [0; 4],
             y_shift,
-            texels: texels.as_ptr(),
+            texels: texels.texels,
             x_mask,
             rows_mask,
-            lit: if lit { 2 } else { 0 } | if bilinear { 4 } else { 0 },
+            lit: if lit { 2 } else { 0 } | texels.kind,
             affine_level,
-            texels_len: texels.len(),
+            palette: texels.palette,
+            texels_len: texels.count,
+            borrowed: core::marker::PhantomData,
+        }
+    }
+}
+
+/// The texels of a [`TexturedFace`], each kind addressed by the same masks (`row | column`):
+/// raw Rgb565 words read nearest or bilinear, or 4-bit palette indices with the raw words of
+/// their 16 colours (their fields as the face has them).
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) struct FaceTexels<'v> {
+    /// The storage's address (words, or the indices' bytes).
+    texels: *const u16,
+    /// The texels it holds.
+    count: usize,
+    /// The row loop's variant bit: 0 nearest, 4 bilinear, 8 palette indices.
+    kind: u32,
+    /// The palette's 16 raw words (null unless palette indices).
+    palette: *const u16,
+    borrowed: core::marker::PhantomData<&'v [u16]>,
+}
+
+#[cfg_attr(not(armv7m), allow(dead_code))]
+impl<'v> FaceTexels<'v> {
+    /// Raw Rgb565 `words`, bilinear (where [`BILINEAR_ROWS`]) or nearest.
+    #[inline(always)]
+    pub(crate) fn words(words: &'v [u16], bilinear: bool) -> Self {
+        FaceTexels {
+            texels: words.as_ptr(),
+            count: words.len(),
+            kind: if bilinear { 4 } else { 0 },
+            palette: core::ptr::null(),
+            borrowed: core::marker::PhantomData,
+        }
+    }
+
+    /// 4-bit palette `indices`, two a byte (the even texel in the high nibble), nearest, naming
+    /// the colours whose raw Rgb565 words `palette` holds.
+    #[inline(always)]
+    pub(crate) fn palette4(indices: &'v [u8], palette: &'v [u16; 16]) -> Self {
+        FaceTexels {
+            // The indices' address as the texels' (the loop reads them by bytes).
+            texels: indices.as_ptr().cast::<u16>(),
+            count: indices.len().saturating_mul(2),
+            kind: 8,
+            palette: palette.as_ptr(),
             borrowed: core::marker::PhantomData,
         }
     }

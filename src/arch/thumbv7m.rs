@@ -541,6 +541,8 @@ core::arch::global_asm!(
     ".type embedded_raster_bilinear_rows_v7em,%function",
     ".thumb_func",
     "embedded_raster_bilinear_rows_v7em:",
+    "cmp r1, #8",
+    "bhs.w embedded_raster_palette_rows_v7m",
     "push {{r4-r11, lr}}",
     // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: `y`'s shift plus 9.
     "sub sp, #28",
@@ -699,13 +701,97 @@ macro_rules! bilinear_rows_entry {
     };
 }
 
-/// Without the DSP extension there are no bilinear variants.
+/// Without the DSP extension there are no bilinear variants: the palette's (bit 8) are another
+/// function's.
 #[cfg(not(armv7em))]
 macro_rules! bilinear_rows_entry {
     () => {
-        ""
+        "cmp r1, #8\nbhs.w embedded_raster_palette_rows_v7m\n"
     };
 }
+
+/// The texel of the pixel at r8 from 4-bit palette indices (r11 their bytes, two a byte, the
+/// even texel in the high nibble; `[sp, #20]` the 16 colours' raw words) into r0, after the
+/// depth test, as [`textured_texel`] finds its index: `palette[(bytes[i >> 1] >> (4 − 4·(i &
+/// 1))) & 15]`, as `Indexed4` reads it. Clobbers r1.
+macro_rules! palette_texel {
+    ($skip:literal) => {
+        concat!(
+            depth_test!($skip),
+            "and r0, lr, r6, lsr #16\n",
+            "and r1, r12, r5, lsr #16\n",
+            "orr r0, r0, r1\n",
+            "lsr r1, r0, #1\n",
+            "ldrb r1, [r11, r1]\n",
+            "lsls r0, r0, #31\n",
+            "it pl\n",
+            "lsrpl r1, r1, #4\n",
+            "and r1, r1, #15\n",
+            "ldr r0, [sp, #20]\n",
+            "ldrh r0, [r0, r1, lsl #1]\n",
+        )
+    };
+}
+
+// The 4-bit palette variants of the textured row loop: entered from
+// `embedded_raster_textured_rows_v7m` with its arguments, the variant's bit 8 set and r2 the
+// palette's 16 raw words.
+core::arch::global_asm!(
+    ".section .text.embedded_raster_palette_rows_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_palette_rows_v7m",
+    ".hidden embedded_raster_palette_rows_v7m",
+    ".type embedded_raster_palette_rows_v7m,%function",
+    ".thumb_func",
+    "embedded_raster_palette_rows_v7m:",
+    "push {{r4-r11, lr}}",
+    // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: the palette.
+    "sub sp, #28",
+    "str r0, [sp, #16]",
+    "str r2, [sp, #20]",
+    "ldr r2, [r0, #80]",
+    "ldr r3, [r0, #92]",
+    "str r2, [sp]",
+    "str r3, [sp, #12]",
+    "add r2, r0, #132",
+    "ldm r2, {{r11, r12, lr}}",
+    "cmp r1, #10",
+    "bhs 20f",
+    "cmp r1, #8",
+    "beq 11f",
+    textured_rows!(
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
+        unlit_pixel!(palette_texel!("4f")),
+        "",
+        "28"
+    ),
+    "11:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        unlit_pixel!(palette_texel!("4f")),
+        "",
+        "28"
+    ),
+    "20:",
+    "cmp r1, #10",
+    "beq 21f",
+    textured_rows!(
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
+        lit_pixel!(palette_texel!("4f")),
+        "",
+        "28"
+    ),
+    "21:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        lit_pixel!(palette_texel!("4f")),
+        "",
+        "28"
+    ),
+    ".size embedded_raster_palette_rows_v7m, . - embedded_raster_palette_rows_v7m",
+);
 
 core::arch::global_asm!(
     ".section .text.embedded_raster_textured_rows_v7m,\"ax\",%progbits",
@@ -717,7 +803,7 @@ core::arch::global_asm!(
     ".type embedded_raster_textured_rows_v7m,%function",
     ".thumb_func",
     // r0 = the block, r1 = the variant: 1 if the middle bound is a start bound, plus 2 if lit,
-    // plus 4 if bilinear (ARMv7E-M).
+    // plus 4 if bilinear (ARMv7E-M) or 8 if 4-bit palette indices (then r2 = the palette).
     "embedded_raster_textured_rows_v7m:",
     bilinear_rows_entry!(),
     "push {{r4-r11, lr}}",
@@ -2549,6 +2635,7 @@ core::arch::global_asm!(
     "ldr r1, [sp, #152]",
     "ldr r2, [r0, #96]",
     "orr r1, r1, r2",
+    "ldr r2, [r0, #104]",
     "mov r0, sp",
     "bl embedded_raster_textured_rows_v7m",
     "80:",

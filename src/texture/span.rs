@@ -334,6 +334,15 @@ impl PowerOfTwoRepeat {
         })
     }
 
+    /// The column mask and the row mask in storage units (the last column's index and the last
+    /// row's first), if the texture has at most 2¹⁶ texels: the target's row loops' masks.
+    #[inline(always)]
+    pub(crate) fn masks_565(&self) -> Option<(u32, u32)> {
+        let (x_mask, rows_mask) = (self.texel_index(-1, 0), self.texel_index(0, -1));
+        let (x_mask, rows_mask) = (x_mask as u32, rows_mask as u32);
+        (x_mask | rows_mask <= 0xffff).then_some((x_mask, rows_mask))
+    }
+
     /// The index of the texture's last texel (its texels less one: a power of two less one).
     #[inline(always)]
     fn last(&self) -> usize {

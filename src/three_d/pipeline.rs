@@ -767,7 +767,7 @@ where
             lit_texels,
             clip,
             fill,
-            texture: FrameTexture::new(material.texture, material.opacity),
+            texture: FrameTexture::new::<C>(material.texture, material.opacity),
             // A translucent textured material blends by its type (`FrameTexture`'s `W`).
             blend: None,
         }

@@ -643,18 +643,16 @@ impl<R: RowWindow> TargetClip<R> {
 
     /// The face of `v` for the assembly's set-up of the textured fill
     /// ([`arch::textured_face`]): this clip's bounds and rows, the depth plane's rounding (the
-    /// other planes' is 0), the `texture`, the light and the filter (as `TexturedFace::new`
-    /// takes them).
+    /// other planes' is 0), the `texture` and the light (as `TexturedFace::new` takes them).
     #[inline(always)]
     pub(super) fn textured_face<'v>(
         &self,
         v: &'v mut [arch::TexturedVertex; 3],
-        texture: (&'v [u16], u32, u32, u32),
+        texture: (arch::FaceTexels<'v>, u32, u32, u32),
         light: (bool, u32),
-        bilinear: bool,
     ) -> arch::TexturedFace<'v> {
         let (bounds, rows, half) = (self.bounds, self.face_rows(), [DEPTH_HALF, 0, 0, 0]);
-        arch::TexturedFace::new(v, bounds, half, rows, texture, light, bilinear)
+        arch::TexturedFace::new(v, bounds, half, rows, texture, light)
     }
 
     /// The rows the assembly's set-ups draw, first and last: a band's, or every row of a frame

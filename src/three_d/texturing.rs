@@ -168,6 +168,7 @@ pub fn draw_textured<S, C>(
     let q = vertices.map(|v| Inverse::of(inverse_w(v.w)));
     let texels = vertices.map(|v| [v.u.to_bits(), v.v.to_bits()]);
     let screen = vertices.each_ref().map(|v| &v.screen);
+    let palette = palette_565::<S, C>(texture);
     fill_textured(
         target,
         &clip,
@@ -175,6 +176,7 @@ pub fn draw_textured<S, C>(
         q,
         texels,
         Sampler::new(texture),
+        palette.as_ref(),
         Opaque,
         TexelLight::Full,
     );
@@ -227,6 +229,7 @@ pub fn draw_textured_lit<S, C>(
     let screen = vertices.each_ref().map(|v| &v.screen);
     // 8.8 levels: 255 is 255 · 256, the full fraction.
     let levels = levels.map(|l| u16::from(l) << 8);
+    let palette = palette_565::<S, C>(texture);
     fill_textured(
         target,
         &clip,
@@ -234,9 +237,31 @@ pub fn draw_textured_lit<S, C>(
         q,
         texels,
         Sampler::new(texture),
+        palette.as_ref(),
         Opaque,
         TexelLight::Levels(levels),
     );
+}
+
+/// The raw Rgb565 words of the 16 colours a 4-bit palette texture's indices name (its
+/// palette's, the first's for an index past its end, as [`Indexed4`](crate::texture::Indexed4)
+/// reads them) as `C` has them, where `C` is a 5-6-5 colour and the target's row loop looks
+/// indices up (ARMv7-M); `None` elsewhere.
+#[inline(always)]
+fn palette_565<S, C>(texture: &Texture<S>) -> Option<[u16; 16]>
+where
+    S: TexelSource,
+    C: GouraudColor + From<S::Color>,
+{
+    if !arch::TEXTURED_FACE || !S::PALETTE4 || C::MAX != [31, 63, 31] {
+        return None;
+    }
+    let (_, palette) = texture.source().palette4()?;
+    let first = *palette.first()?;
+    Some(core::array::from_fn(|i| {
+        let [r, g, b] = C::from(*palette.get(i).unwrap_or(&first)).channels();
+        u16::from(r) << 11 | u16::from(g) << 5 | u16::from(b)
+    }))
 }
 
 /// `2⁴⁷ / w` (of the raw `I16F16` bits, at least 1): a `q` for the perspective planes.
@@ -323,15 +348,21 @@ impl<C> FaceTexture<C> for NoTexture {
 pub struct FrameTexture<'t, S, W = Opaque> {
     size: (u32, u32),
     sampler: Sampler<'t, S>,
+    /// A 4-bit palette texture's colours as the target's row loop looks them up, if it does.
+    palette: Option<[u16; 16]>,
     write: W,
 }
 
 impl<'t, S: TexelSource, W> FrameTexture<'t, S, W> {
-    /// The texture of a draw, its texels written as `write` says.
-    pub(crate) fn new(texture: &'t Texture<S>, write: W) -> Self {
+    /// The texture of a draw into `C`, its texels written as `write` says.
+    pub(crate) fn new<C>(texture: &'t Texture<S>, write: W) -> Self
+    where
+        C: GouraudColor + From<S::Color>,
+    {
         FrameTexture {
             size: (texture.width(), texture.height()),
             sampler: Sampler::new(texture),
+            palette: palette_565::<S, C>(texture),
             write,
         }
     }
@@ -365,6 +396,7 @@ where
             q,
             texels,
             self.sampler,
+            self.palette.as_ref(),
             self.write,
             light,
         );
@@ -564,6 +596,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     q: [Inverse; 3],
     texels: [[i32; 2]; 3],
     sampler: Sampler<'_, S>,
+    palette: Option<&[u16; 16]>,
     write: W,
     light: TexelLight<'_>,
 ) where
@@ -579,7 +612,7 @@ pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     };
     let mut perspective = false;
     if let Some(levels) = levels.filter(|_| arch::TEXTURED_FACE && !W::BLENDS) {
-        match textured_face(target, clip, screen, &q, &texels, levels, &sampler) {
+        match textured_face(target, clip, screen, &q, &texels, levels, &sampler, palette) {
             TexturedDraw::Done => return,
             TexturedDraw::Perspective => perspective = true,
             TexturedDraw::Declined => {}
@@ -712,6 +745,7 @@ fn fill_screen_space<S, C, R: RowWindow, W: Opacity>(
 /// target and `C` have it: drawn (done), not within the screen-space bound of
 /// [`nearly_affine`] (perspective), or declined (and then as elsewhere), nothing drawn in
 /// either. The same pixels as the portable screen-space fill.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn textured_face<S, C, R: RowWindow>(
     target: &mut DepthTarget<'_, C>,
@@ -721,12 +755,13 @@ fn textured_face<S, C, R: RowWindow>(
     texels: &[[i32; 2]; 3],
     levels: Option<[u16; 3]>,
     sampler: &Sampler<'_, S>,
+    palette: Option<&[u16; 16]>,
 ) -> TexturedDraw
 where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
-    let Some((texture, bilinear)) = masked_565_texels(sampler) else {
+    let Some(texture) = face_texels(sampler, palette) else {
         return TexturedDraw::Declined;
     };
     let l = levels.unwrap_or([0; 3]);
@@ -736,8 +771,38 @@ where
     };
     let mut vertices = [vertex(0), vertex(1), vertex(2)];
     let light = (levels.is_some(), affine_level::<C>() as u32);
-    let face = clip.textured_face(&mut vertices, texture, light, bilinear);
+    let face = clip.textured_face(&mut vertices, texture, light);
     C::textured_face_565(target.buffers_mut(), face)
+}
+
+/// The texels of a face for the target's set-up ([`arch::FaceTexels`]), their masks and `y`'s
+/// shift: raw Rgb565 words of a masked sampler ([`masked_565_texels`]), or the 4-bit indices of
+/// a masked nearest sampler with the raw words of their `palette` if there are those.
+#[inline(always)]
+fn face_texels<'w, S: TexelSource>(
+    sampler: &'w Sampler<'_, S>,
+    palette: Option<&'w [u16; 16]>,
+) -> Option<(arch::FaceTexels<'w>, u32, u32, u32)> {
+    if let Some(((words, x_mask, rows_mask, y_shift), bilinear)) = masked_565_texels(sampler) {
+        let texels = arch::FaceTexels::words(words, bilinear);
+        return Some((texels, x_mask, rows_mask, y_shift));
+    }
+    palette_face_texels(sampler, palette?)
+}
+
+/// [`face_texels`]' 4-bit palette indices (out of line: the other faces' code stays as small).
+#[inline(never)]
+fn palette_face_texels<'w, S: TexelSource>(
+    sampler: &'w Sampler<'_, S>,
+    palette: &'w [u16; 16],
+) -> Option<(arch::FaceTexels<'w>, u32, u32, u32)> {
+    let Sampler::MaskedNearest(masks, texels) = sampler else {
+        return None;
+    };
+    let (indices, _) = texels.palette4()?;
+    let (x_mask, rows_mask) = masks.masks_565()?;
+    let texels = arch::FaceTexels::palette4(indices, palette);
+    Some((texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()))
 }
 
 /// [`fill_textured`] of a face interpolated perspective-correct.
@@ -1231,11 +1296,7 @@ fn masked_565_texels<'w, S: TexelSource>(
         _ => return None,
     };
     let texels = texels.rgb565_words()?.0;
-    let (x_mask, rows_mask) = (masks.texel_index(-1, 0), masks.texel_index(0, -1));
-    let (x_mask, rows_mask) = (x_mask as u32, rows_mask as u32);
-    if x_mask | rows_mask > 0xffff {
-        return None;
-    }
+    let (x_mask, rows_mask) = masks.masks_565()?;
     Some((
         (texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()),
         bilinear,
