@@ -287,17 +287,21 @@ const CHECK_FACES: u32 = 50_000;
 /// A cell's side in pixels: more than a small face's box (16 px) and a pixel.
 const CELL: i32 = 20;
 
+/// `i` hashed by two multiply-xorshift rounds with the odd multipliers `m` and the shifts `s`.
+const fn mix(i: usize, m: [u32; 2], s: [u32; 2]) -> u32 {
+    let mut x = (i as u32).wrapping_mul(m[0]);
+    x ^= x >> s[0];
+    x = x.wrapping_mul(m[1]);
+    x ^ (x >> s[1])
+}
+
 /// 64 × 64 hashed 4-bit palette indices for [`check_faces`], two a byte.
 #[cfg(not(armv6m))]
 static NOISE_INDICES: [u8; SIDE * SIDE / 2] = {
     let mut indices = [0; SIDE * SIDE / 2];
     let mut i = 0;
     while i < indices.len() {
-        let mut x = (i as u32).wrapping_mul(0x2c1b_3c6d);
-        x ^= x >> 12;
-        x = x.wrapping_mul(0x297a_2d39);
-        x ^= x >> 15;
-        indices[i] = x as u8;
+        indices[i] = mix(i, [0x2c1b_3c6d, 0x297a_2d39], [12, 15]) as u8;
         i += 1;
     }
     indices
@@ -309,11 +313,7 @@ static NOISE: [u16; SIDE * SIDE] = {
     let mut texels = [0; SIDE * SIDE];
     let mut i = 0;
     while i < texels.len() {
-        let mut x = (i as u32).wrapping_mul(0x9e37_79b1);
-        x ^= x >> 15;
-        x = x.wrapping_mul(0x85eb_ca6b);
-        x ^= x >> 13;
-        texels[i] = x as u16;
+        texels[i] = mix(i, [0x9e37_79b1, 0x85eb_ca6b], [15, 13]) as u16;
         i += 1;
     }
     texels
