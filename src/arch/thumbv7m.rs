@@ -346,10 +346,20 @@ macro_rules! textured_texel {
     ($skip:literal) => {
         concat!(
             depth_test!($skip),
+            texel_index!(),
+            "ldrh r0, [r11, r0, lsl #1]\n",
+        )
+    };
+}
+
+/// The storage index (into r0) of the texel at r5/r6 = x/y (`y` shifted), r12/lr their masks:
+/// `row | column`. Clobbers r1.
+macro_rules! texel_index {
+    () => {
+        concat!(
             "and r0, lr, r6, lsr #16\n",
             "and r1, r12, r5, lsr #16\n",
             "orr r0, r0, r1\n",
-            "ldrh r0, [r11, r0, lsl #1]\n",
         )
     };
 }
@@ -516,14 +526,14 @@ macro_rules! bilinear_blend {
 }
 
 /// Where the bilinear loops take a pixel's coordinates: `x` and `y` less ½ texel plus 2⁻⁸
-/// (32,512 units of 2⁻¹⁶), as [`bilinear_texel`] reads them.
+/// (32,512 units of 2⁻¹⁶, an immediate Thumb-2 encodes), as [`bilinear_texel`] reads them.
 const BILINEAR_OFFSET: i32 = (1 << 15) - (1 << 8);
 
 /// A run's first coordinates moved for the bilinear pixel (by [`BILINEAR_OFFSET`]).
 #[cfg(armv7em)]
 macro_rules! bilinear_offset {
     () => {
-        "sub r5, r5, #32512\nsub r6, r6, #32512\n"
+        "sub r5, r5, #{bilinear_offset}\nsub r6, r6, #{bilinear_offset}\n"
     };
 }
 
@@ -590,6 +600,7 @@ core::arch::global_asm!(
         "28"
     ),
     ".size embedded_raster_bilinear_rows_v7em, . - embedded_raster_bilinear_rows_v7em",
+    bilinear_offset = const BILINEAR_OFFSET,
 );
 
 // An affine span of bilinear texels (the 2D textured fill's, ARMv7E-M): r0 = the block of
@@ -718,9 +729,7 @@ macro_rules! palette_texel {
     ($skip:literal) => {
         concat!(
             depth_test!($skip),
-            "and r0, lr, r6, lsr #16\n",
-            "and r1, r12, r5, lsr #16\n",
-            "orr r0, r0, r1\n",
+            texel_index!(),
             "lsr r1, r0, #1\n",
             "ldrb r1, [r11, r1]\n",
             "lsls r0, r0, #31\n",

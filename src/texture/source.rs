@@ -63,11 +63,6 @@ pub trait TexelSource: Copy {
         None
     }
 
-    /// Whether [`palette4`](Self::palette4) can say yes (known when the code is compiled, so
-    /// that the other sources' draws carry nothing for palettes). Hidden, as it.
-    #[doc(hidden)]
-    const PALETTE4: bool = false;
-
     /// The texels as 4-bit palette indices and their palette, if they are stored so (as
     /// [`Indexed4`]: two indices a byte, the even texel in the high nibble): for the row loops
     /// that look them up. Hidden: the crate's own sources say yes.
@@ -261,8 +256,6 @@ impl<C: PixelColor + Default> TexelSource for Indexed4<'_, C> {
             palette: self.palette,
         })
     }
-
-    const PALETTE4: bool = true;
 
     #[inline(always)]
     fn palette4(&self) -> Option<(&[u8], &[C])> {

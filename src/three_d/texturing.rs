@@ -253,7 +253,7 @@ where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
-    if !arch::TEXTURED_FACE || !S::PALETTE4 || C::MAX != [31, 63, 31] {
+    if !arch::TEXTURED_FACE || C::MAX != [31, 63, 31] {
         return None;
     }
     let (_, palette) = texture.source().palette4()?;
