@@ -3,11 +3,15 @@
 //! * `armv6m`: ARMv6-M (Cortex-M0/M0+) — no 32 × 32 → 64-bit multiply, no `clz`, no divider;
 //!   the 5-6-5 span loop is Thumb-1 assembly.
 //! * `armv7m`: ARMv7-M/ARMv7E-M (Cortex-M3/M4/M7) — long multiply and `clz`, no 64-bit divider.
-//! * `armv8m`: ARMv8-M Mainline (Cortex-M33, the `thumbv8m.main` targets) — also `armv7m`: it
-//!   has ARMv7-M's instructions, and their Thumb-2 loops run there unchanged. Its DSP extension
-//!   is optional, so not `armv7em` (measured with it, `-C target-cpu=cortex-m33`: no faster).
-//! * `armv7em`: ARMv7E-M (Cortex-M4/M7, the `thumbv7em` targets) — also the DSP extension's
-//!   16-bit lane instructions (`uxtb16`, `uxtab16`), which the Cortex-M3 lacks.
+//! * `armv8m`: ARMv8-M Mainline (Cortex-M33/M35P/M55/M85, the `thumbv8m.main` targets) — also
+//!   `armv7m`: it has ARMv7-M's instructions, and their Thumb-2 loops run there unchanged.
+//! * `arm_dsp`: the DSP extension's instructions (`uxtb16`, `uxtab16`, `pkhbt`, `smuad`, `smlad`):
+//!   ARMv7E-M (Cortex-M4/M7, the `thumbv7em` targets), which always has them, and ARMv8-M
+//!   Mainline with this crate's `dsp` feature. There the extension is optional, so the feature
+//!   is the user's promise that the core has it (the Cortex-M33 of the RP2350, nRF5340, STM32U5
+//!   and most others do; an instruction of it faults on a core without it); the target's name
+//!   cannot say, and rustc does not expose the `dsp` target feature as a `cfg`. The Cortex-M3
+//!   lacks it.
 //! * `rv32`: RISC-V's 32-bit targets with the M extension (`riscv32imc`, `riscv32imac`, …) —
 //!   a multiplier and a divider, 31 registers, no `clz` without Zbb; the rows of a small lit 3D
 //!   face are assembly. (Without M, as `riscv32i`, the portable code.)
@@ -30,7 +34,7 @@
 use std::env;
 
 fn main() {
-    for name in ["armv6m", "armv7m", "armv7em", "armv8m", "rv32", "sse2_rows"] {
+    for name in ["armv6m", "armv7m", "arm_dsp", "armv8m", "rv32", "sse2_rows"] {
         println!("cargo::rustc-check-cfg=cfg({name})");
     }
     let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
@@ -46,8 +50,9 @@ fn main() {
     match arch.as_str() {
         "arm" if thumb2 => {
             println!("cargo::rustc-cfg=armv7m");
-            if target.starts_with("thumbv7em") {
-                println!("cargo::rustc-cfg=armv7em");
+            let dsp = env::var_os("CARGO_FEATURE_DSP").is_some();
+            if target.starts_with("thumbv7em") || (dsp && target.starts_with("thumbv8m.main")) {
+                println!("cargo::rustc-cfg=arm_dsp");
             }
             if target.starts_with("thumbv8m.main") {
                 println!("cargo::rustc-cfg=armv8m");

@@ -61,9 +61,11 @@ mod firmware {
     fn code() -> &'static str {
         if cfg!(armv6m) {
             "thumbv6m-none-eabi (Cortex-M0 code)"
+        } else if cfg!(all(armv8m, arm_dsp)) {
+            "thumbv8m.main-none-eabihf, feature dsp (Cortex-M33 code with the DSP extension)"
         } else if cfg!(armv8m) {
             "thumbv8m.main-none-eabihf (Cortex-M33 code)"
-        } else if cfg!(armv7em) {
+        } else if cfg!(arm_dsp) {
             "thumbv7em-none-eabihf (Cortex-M4F code)"
         } else if cfg!(armv7m) {
             "thumbv7m-none-eabi (Cortex-M3 code)"

@@ -1,7 +1,7 @@
 //! Target-specific code, and the target facts the portable code branches on.
 //!
 //! Every `target_arch` decision of the crate is here or in `build.rs`, which names the targets
-//! as `cfg`s (`armv6m`, `armv7m`, `armv7em`, `armv8m`, `rv32`, `sse2_rows`). The portable code asks the
+//! as `cfg`s (`armv6m`, `armv7m`, `arm_dsp`, `armv8m`, `rv32`, `sse2_rows`). The portable code asks the
 //! constants below; the instruction-level code (SSE2 intrinsics, Thumb and RISC-V assembly)
 //! lives in one file per target, each computing exactly what a portable function computes
 //! (tested on the host, and by the firmware checksums in CI).
@@ -29,7 +29,7 @@ pub(crate) use thumbv6m::depth_masked_nearest_565;
 pub(crate) use thumbv6m::masked_nearest_565;
 #[cfg(armv6m)]
 pub(crate) use thumbv6m::premultiplied_565;
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 pub(crate) use thumbv7m::bilinear_span_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::blend_solid_565;
@@ -271,7 +271,7 @@ pub(crate) const MASKED_NEAREST_565: bool = cfg!(armv6m);
 /// implementation outside the crate can name.
 #[derive(Clone, Copy, Debug)]
 // Read only where the assembly is (and by the host's test of its arithmetic).
-#[cfg_attr(not(any(armv6m, armv7em, test)), allow(dead_code))]
+#[cfg_attr(not(any(armv6m, arm_dsp, test)), allow(dead_code))]
 pub struct MaskedSpan565<'a> {
     /// The texels (row-major).
     pub(crate) texels: &'a [u16],
@@ -296,7 +296,7 @@ pub(crate) fn blend_solid_565<C>(_pixels: &mut [C], _weights: &[u32; 4]) -> bool
 
 /// [`bilinear_span_565`] where there is none (ARMv7E-M's dual products draw it): draws nothing
 /// and says so.
-#[cfg(not(armv7em))]
+#[cfg(not(arm_dsp))]
 #[inline(always)]
 pub(crate) fn bilinear_span_565<C: Copy>(_pixels: &mut [C], _span: &MaskedSpan565<'_>) -> bool {
     false
@@ -493,7 +493,7 @@ pub(crate) const TEXTURED_ROWS: bool = cfg!(armv7m);
 
 /// ARMv7E-M: [`textured_rows`] and [`textured_face`] draw bilinear texels too (with the DSP
 /// extension's dual 16-bit products).
-pub(crate) const BILINEAR_ROWS: bool = cfg!(armv7em);
+pub(crate) const BILINEAR_ROWS: bool = cfg!(arm_dsp);
 
 /// The rows of a small textured face for [`textured_rows`]: the region and its runs as
 /// [`LevelRows`] has them, the planes of the depth, the texel coordinates and the light level,

@@ -1,4 +1,4 @@
-//! ARMv7-M (Cortex-M3/M4/M7): the rows of a small depth-tested triangle with interpolated light
+//! ARMv7-M (Cortex-M3/M4/M7, and ARMv8-M Mainline: Cortex-M33 and after): the rows of a small depth-tested triangle with interpolated light
 //! levels (the 3D pipeline's Gouraud fill) in Thumb-2 assembly, and the span loops of the
 //! textured fills and of a constant colour blended at a constant opacity into 5-6-5 pixels.
 //!
@@ -7,6 +7,10 @@
 //! Cortex-M3, without `uxtb16`), every constant in a register, eight pixels a pass with one
 //! `ldm` and one `stm`. It gives the portable loop's integers (every lane below 2¹⁶); CI checks
 //! the M3 and M4 scenes' translucent triangles against the host's checksums.
+//!
+//! The DSP extension's code (`arm_dsp`: ARMv7E-M, and ARMv8-M Mainline with the `dsp` feature)
+//! is in blocks that name the extension to the assembler (`dsp_directive!`) where the target
+//! does not have it; CI runs it on the Cortex-M4 and on the Cortex-M33 with the feature.
 //!
 //! The triangles of a 3D mesh cover a few pixels each: spans of one or two pixels on four rows.
 //! LLVM's code for them keeps the row state on the stack (it needs more registers than there
@@ -44,10 +48,28 @@ use core::mem::MaybeUninit;
 
 use embedded_graphics::pixelcolor::raw::RawU16;
 
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 use super::MaskedSpan565;
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
 use super::{TexturedDraw, TexturedFace, TexturedRows, BILINEAR_ROWS};
+
+/// The assembler directive that lets a block use the DSP extension's instructions where the
+/// target itself does not have them (ARMv8-M Mainline, whose DSP extension is optional, with the
+/// crate's `dsp` feature: the user's promise that the core has it); none elsewhere. LLVM's
+/// assembler knows no `.arch_extension dsp`; the Cortex-M33 is the ARMv8-M Mainline core with
+/// it, and its instructions are encoded alike on the later cores (M35P, M55, M85).
+#[cfg(all(arm_dsp, armv8m))]
+macro_rules! dsp_directive {
+    () => {
+        ".cpu cortex-m33"
+    };
+}
+#[cfg(not(all(arm_dsp, armv8m)))]
+macro_rules! dsp_directive {
+    () => {
+        ""
+    };
+}
 
 /// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
 /// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
@@ -113,6 +135,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_level_rows_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_level_rows_v7m",
     ".hidden embedded_raster_level_rows_v7m",
@@ -448,7 +471,7 @@ macro_rules! lit_pixel {
 /// `x − ½ + 2⁻⁸`'s fraction is cut to 7 bits, and where the portable `fx` is 128 the index here
 /// is one more with `fx` 0: the same texel weighted by the same 128, the same sum. Clobbers
 /// r1-r3 (r7, r9, r10 saved and restored).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 macro_rules! bilinear_texel {
     ($skip:literal, $ys:literal) => {
         concat!(depth_test!($skip), bilinear_blend!($ys),)
@@ -458,7 +481,7 @@ macro_rules! bilinear_texel {
 /// [`bilinear_texel`]'s blend into r0, without the depth test: r5/r6 the point, r11 the
 /// texels, r12/lr the masks, `[sp, #$ys]` (after the 12 bytes it pushes) `y`'s shift plus 9.
 /// Clobbers r1-r3 (r7, r9, r10 saved and restored).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 macro_rules! bilinear_blend {
     ($ys:literal) => {
         concat!(
@@ -530,7 +553,7 @@ macro_rules! bilinear_blend {
 const BILINEAR_OFFSET: i32 = (1 << 15) - (1 << 8);
 
 /// A run's first coordinates moved for the bilinear pixel (by [`BILINEAR_OFFSET`]).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 macro_rules! bilinear_offset {
     () => {
         "sub r5, r5, #{bilinear_offset}\nsub r6, r6, #{bilinear_offset}\n"
@@ -540,11 +563,12 @@ macro_rules! bilinear_offset {
 // The bilinear variants of the textured row loop (ARMv7E-M: `smuad`, `smlad` and `pkhbt` are
 // the DSP extension's): entered from `embedded_raster_textured_rows_v7m` with its arguments,
 // the variant's bit 4 set.
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 core::arch::global_asm!(
     ".section .text.embedded_raster_bilinear_rows_v7em,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_bilinear_rows_v7em",
     ".hidden embedded_raster_bilinear_rows_v7em",
@@ -605,11 +629,12 @@ core::arch::global_asm!(
 
 // An affine span of bilinear texels (the 2D textured fill's, ARMv7E-M): r0 = the block of
 // `bilinear_span_565`.
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 core::arch::global_asm!(
     ".section .text.embedded_raster_bilinear_span_v7em,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_bilinear_span_v7em",
     ".hidden embedded_raster_bilinear_span_v7em",
@@ -640,7 +665,7 @@ core::arch::global_asm!(
 );
 
 /// What the affine bilinear span's assembly reads (offsets are its).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 #[repr(C)]
 struct BilinearSpanBlock {
     /// 0: the first pixel; 4: past the last.
@@ -657,7 +682,7 @@ struct BilinearSpanBlock {
     y_shift_9: u32,
 }
 
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 extern "C" {
     /// The assembly function above.
     ///
@@ -674,7 +699,7 @@ extern "C" {
 /// drawing anything if a texel index the masks allow is not inside `span.texels` or `C` is not
 /// a 16-bit colour. `C` must be the 5-6-5 format whose raw value is the texels' (the caller's
 /// promise).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 #[inline(always)]
 pub(crate) fn bilinear_span_565<C: Copy>(pixels: &mut [C], span: &MaskedSpan565<'_>) -> bool {
     let y_shift = 32 - span.x_mask.leading_zeros();
@@ -705,7 +730,7 @@ pub(crate) fn bilinear_span_565<C: Copy>(pixels: &mut [C], span: &MaskedSpan565<
 }
 
 /// The textured row loop's entry: the bilinear variants (bit 4) are another function's.
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 macro_rules! bilinear_rows_entry {
     () => {
         "cmp r1, #4\nbhs.w embedded_raster_bilinear_rows_v7em\n"
@@ -714,7 +739,7 @@ macro_rules! bilinear_rows_entry {
 
 /// Without the DSP extension there are no bilinear variants: the palette's (bit 8) are another
 /// function's.
-#[cfg(not(armv7em))]
+#[cfg(not(arm_dsp))]
 macro_rules! bilinear_rows_entry {
     () => {
         "cmp r1, #8\nbhs.w embedded_raster_palette_rows_v7m\n"
@@ -749,6 +774,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_palette_rows_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_palette_rows_v7m",
     ".hidden embedded_raster_palette_rows_v7m",
@@ -806,6 +832,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_textured_rows_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_textured_rows_v7m",
     ".hidden embedded_raster_textured_rows_v7m",
@@ -1055,7 +1082,7 @@ macro_rules! lit_step {
 /// registers as the lit loop's set-up finds them (the block's `u` and `v` bases moved by
 /// `−½ + 2⁻⁸` texel): unlit, lit with no clamp, lit with the level clamped — the lit loop's
 /// with [`bilinear_texel`]'s texel (`y`'s shift plus 9 at [sp, #44]).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 macro_rules! perspective_bilinear {
     () => {
         concat!(
@@ -1118,7 +1145,7 @@ macro_rules! perspective_bilinear {
 }
 
 /// Without the DSP extension there are no bilinear loops (the span is declined before).
-#[cfg(not(armv7em))]
+#[cfg(not(arm_dsp))]
 macro_rules! perspective_bilinear {
     () => {
         ""
@@ -1127,7 +1154,7 @@ macro_rules! perspective_bilinear {
 
 /// The perspective span's dispatch on its flags (r11): lit (1), bilinear (2, ARMv7E-M) or
 /// neither (falls through).
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 macro_rules! perspective_dispatch {
     () => {
         "cmp r11, #1\nbeq 30f\nbhi 50f\n"
@@ -1135,7 +1162,7 @@ macro_rules! perspective_dispatch {
 }
 
 /// Without the DSP extension: lit or not.
-#[cfg(not(armv7em))]
+#[cfg(not(arm_dsp))]
 macro_rules! perspective_dispatch {
     () => {
         "cmp r11, #0\nbne 30f\n"
@@ -1146,6 +1173,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_perspective_span_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_perspective_span_v7m",
     ".hidden embedded_raster_perspective_span_v7m",
@@ -1552,6 +1580,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_premultiplied_565_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_premultiplied_565_v7m",
     ".hidden embedded_raster_premultiplied_565_v7m",
@@ -1670,7 +1699,7 @@ fn region_stride(len: usize, rows: &LevelRows) -> Option<u32> {
 /// the middle and bottom lanes' blended values are bits 8–15 of theirs, which `uxtb16` and
 /// `uxtab16` take (below 64, so the bytes hold them), the bottom one added into the lanes'
 /// clear low bits: 10 instructions.
-#[cfg(armv7em)]
+#[cfg(arm_dsp)]
 #[rustfmt::skip]
 macro_rules! blend_pair_v7m {
     ($d:literal, $t:literal, $m:literal) => {
@@ -1692,7 +1721,7 @@ macro_rules! blend_pair_v7m {
 /// The same on the Cortex-M3, which has no `uxtb16`/`uxtab16`: the middle and bottom lanes'
 /// values taken with the mask 0x003F003F (the bottom ones are below 32) and the bottom ones
 /// or'ed in: 11 instructions.
-#[cfg(not(armv7em))]
+#[cfg(not(arm_dsp))]
 #[rustfmt::skip]
 macro_rules! blend_pair_v7m {
     ($d:literal, $t:literal, $m:literal) => {
@@ -1716,6 +1745,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_blend_565_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_blend_565_v7m",
     ".hidden embedded_raster_blend_565_v7m",
@@ -2188,6 +2218,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_level_face_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_level_face_v7m",
     ".hidden embedded_raster_level_face_v7m",
@@ -2471,6 +2502,7 @@ core::arch::global_asm!(
     ".section .text.embedded_raster_textured_face_v7m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
+    dsp_directive!(),
     ".p2align 2",
     ".global embedded_raster_textured_face_v7m",
     ".hidden embedded_raster_textured_face_v7m",
