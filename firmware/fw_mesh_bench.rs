@@ -46,6 +46,7 @@ mod firmware {
     use crate::board::entry;
     use crate::board::hprintln;
     use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_raster::band::BinEntry;
     use embedded_raster::three_d::{DepthTarget, ProjectedVertex, TexCoord, Vec3};
     use embedded_raster::three_d::{LightSource, Lights, Material, Scalar, Shading, Specular};
 
@@ -90,6 +91,9 @@ mod firmware {
     static mut FLOOR_I: [[u16; 3]; FLOOR_FACES] = [[0; 3]; FLOOR_FACES];
     static mut BAND_COLORS: [Rgb565; BAND_PIXELS] = [Rgb565::new(0, 0, 0); BAND_PIXELS];
     static mut BAND_DEPTH: [u16; BAND_PIXELS] = [0; BAND_PIXELS];
+    /// The textured bands' bin: bands at one row (the most a layout of the frame has) plus
+    /// spot's faces (5,856).
+    static mut BIN_STORAGE: [BinEntry; 240 + 5856] = [BinEntry::EMPTY; 240 + 5856];
 
     #[entry]
     fn main() -> ! {
@@ -279,7 +283,8 @@ mod firmware {
             };
             textured[k] = Some((line, clock::instructions(ticks, calibration)));
         }
-        // The nearest frame in bands of 16 and 7 rows: the hashes of the frame drawn whole.
+        // The nearest frame in bands of 16 and 7 rows, each band drawing the mesh or a bin's faces
+        // of it (its frame re-clipped a band at a time): the hashes of the frame drawn whole.
         // SAFETY: as for the statics above: these are their only references.
         let (band_colors, band_depth) = unsafe {
             (
@@ -294,9 +299,15 @@ mod firmware {
             Some(&mut scratch[..]),
         );
         let whole = textured3d::hashes(target.framebuffer().pixels(), target.depth());
+        // SAFETY: as for the statics above: its only reference.
+        let bin = unsafe { &mut *core::ptr::addr_of_mut!(BIN_STORAGE) };
         let bands = [16, 7].into_iter().all(|rows| {
-            let hashes = textured3d::render_bands(texture, rows, band_colors, band_depth, scratch);
-            hashes == whole
+            [false, true].into_iter().all(|binned| {
+                let bin = binned.then_some(&mut bin[..]);
+                let hashes =
+                    textured3d::render_bands(texture, rows, band_colors, band_depth, scratch, bin);
+                hashes == whole
+            })
         });
         for line in lines.iter().flatten() {
             hprintln!("{}", line);
@@ -485,7 +496,8 @@ fn main() {
         );
         println!("{line}");
     }
-    use textured3d::{Textured, BAND_PIXELS};
+    use embedded_raster::band::BinEntry;
+    use textured3d::{Textured, BAND_PIXELS, SPOT_TEXTURED};
     let mut fv = Box::new([Vec3::ZERO; textured3d::FLOOR_VERTICES]);
     let mut fnorm = Box::new([Vec3::ZERO; textured3d::FLOOR_VERTICES]);
     let mut ft =
@@ -501,17 +513,21 @@ fn main() {
     let whole = textured3d::hashes(target.framebuffer().pixels(), target.depth());
     let (mut band_colors, mut band_depth) =
         (vec![Rgb565::BLACK; BAND_PIXELS], vec![0; BAND_PIXELS]);
+    let mut bin = vec![BinEntry::EMPTY; 240 + SPOT_TEXTURED.indices.len()];
     for rows in [16, 7] {
-        let hashes = textured3d::render_bands(
-            &texels,
-            rows,
-            &mut band_colors,
-            &mut band_depth,
-            &mut scratch,
-        );
-        assert_eq!(
-            hashes, whole,
-            "the textured frame in bands of {rows} rows differs"
-        );
+        for binned in [false, true] {
+            let hashes = textured3d::render_bands(
+                &texels,
+                rows,
+                &mut band_colors,
+                &mut band_depth,
+                &mut scratch,
+                binned.then_some(&mut bin[..]),
+            );
+            assert_eq!(
+                hashes, whole,
+                "the textured frame in bands of {rows} rows (binned: {binned}) differs"
+            );
+        }
     }
 }

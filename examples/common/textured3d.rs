@@ -16,7 +16,9 @@ use core::convert::Infallible;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_raster::band::{BandLayout, Callback, ColorBands, DepthBands};
+use embedded_raster::band::{
+    BandError, BandLayout, BinEntry, Callback, ColorBands, DepthBands, MeshBin,
+};
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
 use embedded_raster::three_d::{Angle, Mat4, Mesh, TexCoord, TexturedMaterial, Vec3};
 use embedded_raster::three_d::{
@@ -222,15 +224,16 @@ pub fn hashes(colors: &[Rgb565], depth: &[u16]) -> (u32, u32) {
 
 /// The nearest frame ([`Textured::Nearest`], `texels` [`expand`]ed) drawn with `scratch` in
 /// bands of `rows` rows into the band buffers `colors` and `depth` (their first `320 · rows`
-/// entries), each band's colours and depths hashed as a display would receive them: the
-/// frame's [`hashes`] if the bands draw the frame drawn whole; zeros if the buffers are too
-/// short.
+/// entries) — each band drawing the mesh, or, with `bin` storage, a `MeshBin`'s faces of it —
+/// each band's colours and depths hashed as a display would receive them: the frame's
+/// [`hashes`] if the bands draw the frame drawn whole; zeros if the buffers are too short.
 pub fn render_bands(
     texels: &[u16],
     rows: u32,
     colors: &mut [Rgb565],
     depth: &mut [u16],
     scratch: &mut [ProjectedVertex],
+    bin: Option<&mut [BinEntry]>,
 ) -> (u32, u32) {
     let (w, h) = (SPOT_TEXTURE_WIDTH, SPOT_TEXTURE_HEIGHT);
     let Ok(texture) = Texture::new(Rgb565Texels(texels), w, h) else {
@@ -251,6 +254,16 @@ pub fn render_bands(
     let Ok(mut bands) = DepthBands::new(colors, depth) else {
         return (0, 0);
     };
+    let mesh: &Mesh<'_> = &SPOT_TEXTURED;
+    let mut bin = match bin {
+        Some(storage) => {
+            match MeshBin::new_textured(&pipeline, mesh, &material, &layout, scratch, storage) {
+                Ok(bin) => Ok(bin),
+                Err(_) => return (0, 0),
+            }
+        }
+        None => Err(scratch),
+    };
     let (mut color_hash, mut depth_hash) = (FNV_START, FNV_START);
     let mut output = Callback(|_: &_, pixels: &[Rgb565]| {
         color_hash = fnv(color_hash, pixels.iter().map(|c| c.into_storage()));
@@ -258,8 +271,13 @@ pub fn render_bands(
     });
     let drawn = bands.render(&mut output, |band| {
         band.clear(BACKGROUND);
-        let mesh: &Mesh<'_> = &SPOT_TEXTURED;
-        let _ = pipeline.draw_textured_mesh_with(mesh, &material, band, scratch);
+        let _ = match &mut bin {
+            Ok(bin) => bin.draw(band),
+            Err(scratch) => pipeline
+                .draw_textured_mesh_with(mesh, &material, band, scratch)
+                .map(|_| ())
+                .map_err(BandError::from),
+        };
         depth_hash = fnv(depth_hash, band.depth().iter().copied());
     });
     match drawn {

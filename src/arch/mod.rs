@@ -409,16 +409,17 @@ const _: () = {
     assert!(offset_of!(LevelBlock, colors) == 64 && offset_of!(LevelBlock, numerators) == 68);
     assert!(offset_of!(LevelBlock, rows) == 80 && offset_of!(SmallSetup, x0) == 84);
     assert!(offset_of!(SmallSetup, middle_starts) == 92 && size_of::<SmallSetup>() == 96);
+    type Template = TexturedTemplate;
+    assert!(offset_of!(Template, rows) == 0 && offset_of!(Template, y_shift) == 8);
+    assert!(offset_of!(Template, clip) == 12 && offset_of!(Template, half) == 28);
+    assert!(offset_of!(Template, x_mask) == 44 && offset_of!(Template, rows_mask) == 48);
+    assert!(offset_of!(Template, affine_level) == 52);
     type Textured = TexturedFace<'static>;
-    assert!(offset_of!(Textured, clip) == 12 && offset_of!(Textured, depths) == 28);
-    assert!(offset_of!(Textured, color_offset) == 32 && offset_of!(Textured, stride) == 36);
-    assert!(offset_of!(Textured, half) == 40 && offset_of!(Textured, rows) == 56);
-    assert!(offset_of!(Textured, maps) == 64 && offset_of!(Textured, y_shift) == 80);
-    assert!(offset_of!(Textured, texels) == 84 && offset_of!(Textured, x_mask) == 88);
-    assert!(offset_of!(Textured, rows_mask) == 92 && offset_of!(Textured, lit) == 96);
-    assert!(offset_of!(Textured, affine_level) == 100);
-    assert!(offset_of!(TexturedVertex, values) == 8 && offset_of!(TexturedVertex, texel) == 16);
-    assert!(offset_of!(TexturedVertex, q) == 24 && offset_of!(TexturedVertex, q_shift) == 26);
+    assert!(offset_of!(Textured, vertices) == 0 && offset_of!(Textured, depths) == 12);
+    assert!(offset_of!(Textured, color_offset) == 16 && offset_of!(Textured, stride) == 20);
+    assert!(offset_of!(Textured, texels) == 24 && offset_of!(Textured, lit) == 28);
+    assert!(offset_of!(Textured, palette) == 32);
+    assert!(offset_of!(TexturedVertex, texel) == 16 && offset_of!(TexturedVertex, values) == 24);
     assert!(size_of::<TexturedVertex>() == 28 && align_of::<TexturedVertex>() == 4);
 };
 
@@ -560,22 +561,38 @@ pub(crate) fn textured_rows<C: Copy>(
 pub(crate) const TEXTURED_FACE: bool = cfg!(armv7m);
 
 /// A vertex of a [`TexturedFace`]: its position (sub-pixels), depth and light level as the
-/// planes take them, its texel coordinates (16.16) and its `q ∝ 1/w` as `mantissa ·
-/// 2^shift`; [`textured_face`] writes the coordinates' plane values (`texture::PlaneMap`'s).
+/// planes take them, its `q ∝ 1/w` as `mantissa · 2^shift`, its texel coordinates (16.16);
+/// [`textured_face`] writes the coordinates' plane values (`texture::PlaneMap`'s). Its first 16
+/// bytes are laid out as a [`ProjectedPrefix`]'s, so that one is copied whole.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(crate) struct TexturedVertex {
-    /// 0, 4: the position.
-    x: i32,
-    y: i32,
-    /// 8, 10, 12, 14: the depth, `u`'s and `v`'s plane values (written by the set-up) and the
-    /// level.
-    values: [u16; 4],
+    /// 0-15, in native byte order: the position's x and y (`i32`) at 0 and 4, the depth and
+    /// the level (`u16`) at 8 and 10, `q`'s mantissa (`u16`) at 12 and its shift (`u8`) at 15
+    /// (14 is not read).
+    prefix: [u32; 4],
     /// 16, 20: the texel coordinates.
     texel: [i32; 2],
-    /// 24, 26: `q`'s mantissa and shift.
-    q: u16,
-    q_shift: u8,
+    /// 24, 26: `u`'s and `v`'s plane values (written by the set-up).
+    values: [u16; 2],
+}
+
+/// A vertex whose first 16 bytes [`TexturedVertex::of_projected`] copies whole.
+///
+/// # Safety
+///
+/// An implementor is 4-byte aligned, at least 16 bytes, and its first 16 bytes are initialised
+/// (no padding among them) and laid out as a [`TexturedVertex`]'s: the position's x and y
+/// (sub-pixels, `i32`) at bytes 0 and 4, the depth (`u16`) at 8, the light level (8.8, `u16`)
+/// at 10, `q`'s mantissa (`u16`) at 12 and its shift (`u8`) at 15.
+#[allow(unsafe_code)]
+pub(crate) unsafe trait ProjectedPrefix {}
+
+/// The word of the `u16`s `low` (at its lower address) and `high`, in native byte order.
+#[inline(always)]
+fn halves(low: u16, high: u16) -> u32 {
+    let ([a, b], [c, d]) = (low.to_ne_bytes(), high.to_ne_bytes());
+    u32::from_ne_bytes([a, b, c, d])
 }
 
 impl TexturedVertex {
@@ -589,13 +606,37 @@ impl TexturedVertex {
         texel: [i32; 2],
         (q, q_shift): (u16, u8),
     ) -> Self {
+        let prefix = [
+            x as u32,
+            y as u32,
+            halves(depth, level),
+            halves(q, u16::from_ne_bytes([0, q_shift])),
+        ];
         TexturedVertex {
-            x,
-            y,
-            values: [depth, 0, 0, level],
+            prefix,
             texel,
-            q,
-            q_shift,
+            values: [0; 2],
+        }
+    }
+
+    /// The vertex `v` (its position, depth, level and `q` copied as they are) with texel
+    /// coordinates `texel`; its level 0 unless `lit`.
+    #[allow(unsafe_code)]
+    #[inline(always)]
+    pub(crate) fn of_projected<V: ProjectedPrefix>(v: &V, texel: [i32; 2], lit: bool) -> Self {
+        const { assert!(core::mem::size_of::<V>() >= 16 && core::mem::align_of::<V>() >= 4) };
+        // SAFETY: `V`'s first 16 bytes are initialised (the trait's contract), any bits are a
+        // value of `[u32; 4]`, and `V` is at least as aligned (4 bytes, asserted above); the
+        // read is inside `*v`.
+        let mut prefix = unsafe { core::ptr::read((v as *const V).cast::<[u32; 4]>()) };
+        if !lit {
+            // The depth alone: the level's bytes 0.
+            prefix[2] &= halves(u16::MAX, 0);
+        }
+        TexturedVertex {
+            prefix,
+            texel,
+            values: [0; 2],
         }
     }
 }
@@ -612,80 +653,115 @@ pub enum TexturedDraw {
     Perspective,
 }
 
-/// A face for [`textured_face`] (offsets are the assembly's): its vertices, the clip, the
-/// buffers, the planes' rounding terms, the rows drawn, the coordinates' maps and the texture.
+/// What the faces of a textured draw have in common for [`textured_face`] (offsets are the
+/// assembly's): the rows drawn, `y`'s shift, the clip, the planes' rounding terms, the texels'
+/// masks and the levels' screen-space bound. No addresses: a face's are its
+/// [`TexturedFace`]'s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C)]
 // Read only where the assembly is.
 #[cfg_attr(not(armv7m), allow(dead_code))]
-pub struct TexturedFace<'v> {
+pub struct TexturedTemplate {
+    /// 0, 4: the rows drawn, first and last (a band's); the buffers' first row is the first.
+    rows: [i32; 2],
+    /// 8: `y`'s shift (as [`TexturedRows`]).
+    y_shift: u32,
+    /// 12-24: the clip's first column and row, its last column and row (where a
+    /// [`LevelFace`] has them: the set-ups share that code).
+    clip: [i32; 4],
+    /// 28-40: the four planes' rounding terms.
+    half: [u32; 4],
+    /// 44: the column mask; 48: the row mask (as [`TexturedRows`]).
+    x_mask: u32,
+    rows_mask: u32,
+    /// 52: the screen-space bound of the levels (`texturing::affine_level`).
+    affine_level: u32,
+}
+
+impl TexturedTemplate {
+    /// The template of a draw inside `clip` (see [`ClipBounds`]), its planes rounded by `half`,
+    /// drawn in rows `rows` (as [`LevelFace::new`]'s), its texels addressed by `(x_mask,
+    /// rows_mask, y_shift)` (as [`TexturedRows`] has them), a lit face's levels within
+    /// `affine_level` of the perspective-correct ones in screen space (as the texel
+    /// coordinates within 1/16 texel).
+    #[inline(always)]
+    pub(crate) fn new(
+        clip: ClipBounds,
+        half: [u32; 4],
+        rows: [i32; 2],
+        (x_mask, rows_mask, y_shift): (u32, u32, u32),
+        affine_level: u32,
+    ) -> Self {
+        TexturedTemplate {
+            rows,
+            y_shift,
+            clip: clip.words(),
+            half,
+            x_mask,
+            rows_mask,
+            affine_level,
+        }
+    }
+
+    /// The template inside `clip`, drawn in rows `rows` instead (as [`new`](Self::new)'s).
+    #[inline(always)]
+    pub(crate) fn with_clip(&self, clip: ClipBounds, rows: [i32; 2]) -> Self {
+        TexturedTemplate {
+            clip: clip.words(),
+            rows,
+            ..*self
+        }
+    }
+
+    /// The face of `vertices` of a draw with this template, sampled from `texels` (which its
+    /// masks address), lit by the level plane if `lit`.
+    #[inline(always)]
+    pub(crate) fn face<'w>(
+        &'w self,
+        vertices: &'w mut [TexturedVertex; 3],
+        texels: FaceTexels<'w>,
+        lit: bool,
+    ) -> TexturedFace<'w> {
+        let [a, b, c] = vertices;
+        TexturedFace {
+            vertices: [a, b, c].map(|v| v as *mut TexturedVertex),
+            depths: core::ptr::null_mut(),
+            color_offset: 0,
+            stride: 0,
+            texels: texels.texels,
+            lit: if lit { 2 } else { 0 } | texels.kind,
+            palette: texels.palette,
+            texels_len: texels.count,
+            template: self,
+            borrowed: core::marker::PhantomData,
+        }
+    }
+}
+
+/// A face for [`textured_face`] (offsets are the assembly's): its vertices, the buffers, its
+/// texels and light, and its draw's [`TexturedTemplate`].
+#[repr(C)]
+// Read only where the assembly is.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub struct TexturedFace<'w> {
     /// 0, 4, 8: the vertices.
     vertices: [*mut TexturedVertex; 3],
-    /// 12-24: the clip's first column and row, its last column and row.
-    clip: [i32; 4],
-    /// 28: the depth buffer; 32: the colour buffer's offset from it in bytes (wrapping); 36: a
+    /// 12: the depth buffer; 16: the colour buffer's offset from it in bytes (wrapping); 20: a
     /// buffer row in bytes ([`textured_face`] sets them).
     depths: *mut u16,
     color_offset: u32,
     stride: u32,
-    /// 40-52: the four planes' rounding terms.
-    half: [u32; 4],
-    /// 56, 60: the rows drawn, first and last (a band's); the buffers' first row is the first.
-    rows: [i32; 2],
-    /// 64-76: the coordinates' maps, `u`'s base and `down` then `v`'s (as
-    /// [`TexturedRows::maps`], found by the set-up); 80: `y`'s shift.
-    maps: [u32; 4],
-    y_shift: u32,
-    /// 84: the texels; 88: the column mask; 92: the row mask (as [`TexturedRows`]).
+    /// 24: the texels (as [`TexturedRows`]).
     texels: *const u16,
-    x_mask: u32,
-    rows_mask: u32,
-    /// 96: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane,
-    /// 4 if bilinear, 8 if 4-bit palette indices; 100: the screen-space bound of the levels
-    /// (`texturing::affine_level`); 104: the palette's 16 raw Rgb565 words (palette indices).
+    /// 28: the row loop's variant bits beside the middle bound's: 2 if lit by the level plane,
+    /// 4 if bilinear, 8 if 4-bit palette indices; 32: the palette's 16 raw Rgb565 words
+    /// (palette indices).
     lit: u32,
-    affine_level: u32,
     palette: *const u16,
-    /// The texels' count (not the assembly's).
+    /// The texels' count and the template (not the assembly's).
     texels_len: usize,
-    borrowed: core::marker::PhantomData<&'v mut [u16]>,
-}
-
-impl<'v> TexturedFace<'v> {
-    /// The face of `vertices` inside `clip` (see [`ClipBounds`]), its planes rounded by `half`,
-    /// drawn in rows `rows` (as [`LevelFace::new`]'s), sampled from `(texels, x_mask,
-    /// rows_mask, y_shift)` (as [`TexturedRows`] has them, the texels as [`FaceTexels`] says),
-    /// lit by the level plane if `lit` (its levels then within `affine_level` of the
-    /// perspective-correct ones in screen space, as the texel coordinates within 1/16 texel).
-    #[inline(always)]
-    pub(crate) fn new(
-        vertices: &'v mut [TexturedVertex; 3],
-        clip: ClipBounds,
-        half: [u32; 4],
-        rows: [i32; 2],
-        (texels, x_mask, rows_mask, y_shift): (FaceTexels<'v>, u32, u32, u32),
-        (lit, affine_level): (bool, u32),
-    ) -> Self {
-        let [a, b, c] = vertices;
-        TexturedFace {
-            vertices: [a, b, c].map(|v| v as *mut TexturedVertex),
-            clip: clip.words(),
-            depths: core::ptr::null_mut(),
-            color_offset: 0,
-            stride: 0,
-            half,
-            rows,
-            maps: [0; 4],
-            y_shift,
-            texels: texels.texels,
-            x_mask,
-            rows_mask,
-            lit: if lit { 2 } else { 0 } | texels.kind,
-            affine_level,
-            palette: texels.palette,
-            texels_len: texels.count,
-            borrowed: core::marker::PhantomData,
-        }
-    }
+    template: &'w TexturedTemplate,
+    borrowed: core::marker::PhantomData<&'w mut [u16]>,
 }
 
 /// The texels of a [`TexturedFace`], each kind addressed by the same masks (`row | column`):

@@ -51,7 +51,7 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 #[cfg(arm_dsp)]
 use super::MaskedSpan565;
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
-use super::{TexturedDraw, TexturedFace, TexturedRows, BILINEAR_ROWS};
+use super::{TexturedDraw, TexturedFace, TexturedRows, TexturedTemplate, BILINEAR_ROWS};
 
 /// The assembler directive that lets a block use the DSP extension's instructions where the
 /// target itself does not have them (ARMv8-M Mainline, whose DSP extension is optional, with the
@@ -2012,7 +2012,7 @@ macro_rules! min3 {
 }
 
 /// The face set-up's first part, as `raster::scan` computes it: the oriented vertices' addresses
-/// (from r0's first three words) at `$ptrs` (and `$ptrs1`, 4 more), the box and the 16-px test,
+/// (r1-r3 after `$load`) at `$ptrs` (and `$ptrs1`, 4 more), the box and the 16-px test,
 /// the region inside the clip (r0's words at 12-24; its first column at `$x0`, first and last
 /// rows at `$y0`, columns at `$columns`, rows at `$rows`), the doubled area (r4, made positive,
 /// the vertices' addresses swapped for a negative one), the edges' bounds into the block (their
@@ -2022,10 +2022,11 @@ macro_rules! min3 {
 /// r6-r9 = o1x, o1y, o2x, o2y after it.
 #[rustfmt::skip]
 macro_rules! face_scan {
-    ($ptrs:literal, $ptrs1:literal, $x0:literal, $y0:literal, $columns:literal, $rows:literal,
-     $divisors:literal, $steps:literal, $numerators:literal, $ms:literal, $l12:literal) => {
+    ($load:literal, $ptrs:literal, $ptrs1:literal, $x0:literal, $y0:literal, $columns:literal,
+     $rows:literal, $divisors:literal, $steps:literal, $numerators:literal, $ms:literal,
+     $l12:literal) => {
         concat!(
-            "ldm r0, {{r1, r2, r3}}\n",
+            $load,
             "add r4, sp, #", $ptrs, "\n",
             "stm r4, {{r1, r2, r3}}\n",
             "ldrd r4, r5, [r1]\n",
@@ -2235,7 +2236,20 @@ core::arch::global_asm!(
     "embedded_raster_level_face_v7m:",
     "push {{r4-r11, lr}}",
     "sub sp, #164",
-    face_scan!("136", "140", "148", "152", "48", "80", "36", "24", "68", "92", "84"),
+    face_scan!(
+        "ldm r0, {{r1, r2, r3}}\n",
+        "136",
+        "140",
+        "148",
+        "152",
+        "48",
+        "80",
+        "36",
+        "24",
+        "68",
+        "92",
+        "84"
+    ),
     attribute_numerators!("8", "96", "44", "128", "112", "136", "140"),
     attribute_numerators!("12", "104", "48", "132", "120", "136", "140"),
     face_reciprocal!("84"),
@@ -2455,7 +2469,7 @@ macro_rules! round_shift {
 /// `i32` at `$at` of the vertices r1-r3), its least value and spread at `$spread` (sp-relative),
 /// the scale's shift (the least whose rounded spread is within 2¹⁶ − 256 steps), each vertex's
 /// value `128 + round(c − least)` at `$value`, the map `(least − 128·2^shift, 16 − shift)` at
-/// the face's `$map`; a shift of 17 declines (90). Clobbers r4-r11. (After the screen-space
+/// `$map` (sp-relative: the row loop's block); a shift of 17 declines (90). Clobbers r4-r11. (After the screen-space
 /// bound has held, a spread is below 2²⁹, so the shift is at most 14 and `down` at least 2: the
 /// decline here and `down` = 0 in the texel steps below are defence, never taken.)
 #[rustfmt::skip]
@@ -2493,7 +2507,7 @@ macro_rules! plane_map {
             "lsl r5, r5, r11\n",
             "sub r9, r9, r5\n",
             "rsb r11, r11, #16\n",
-            "strd r9, r11, [r0, #", $map, "]\n",
+            "strd r9, r11, [sp, #", $map, "]\n",
         )
     };
 }
@@ -2508,25 +2522,27 @@ core::arch::global_asm!(
     ".hidden embedded_raster_textured_face_v7m",
     ".type embedded_raster_textured_face_v7m,%function",
     ".thumb_func",
-    // r0 = the face (`TexturedFace`). Returns 0 if done (drawn, or nothing to draw), 1 if
-    // declined (not small, a sliver, or a coordinate's scale past 2¹⁶), 3 if not within the
-    // screen-space bound: nothing drawn. The frame (byte ranges end-exclusive): the textured
-    // row loop's block at sp (0..144), then scratch: 144, 148 = l1, l2; 152 = whether the
+    // r0 = the draw's template (`TexturedTemplate`), r1 = the face (`TexturedFace`). Returns 0 if done
+    // (drawn, or nothing to draw), 1 if declined (not small, a sliver, or a coordinate's scale
+    // past 2¹⁶), 3 if not within the screen-space bound: nothing drawn. The frame (byte ranges
+    // end-exclusive): the textured row loop's block at sp (0..144; the coordinates' maps are
+    // written into it at 96..112 first), then scratch: 144, 148 = l1, l2; 152 = whether the
     // middle bound starts; 156..188 = the depth's, `u`'s, `v`'s and the level's d1, d2;
     // 188..220 = their nx, ny; 220..236 = their value terms; 236..248 = the oriented vertices'
     // addresses; 248, 252, 256 = the region's first column, first and last rows; 260..276 =
-    // the coordinates' least values and spreads; 276..284 unused (the frame's 8-byte
-    // alignment).
+    // the coordinates' least values and spreads; 276 = the face's address; 280..284 unused
+    // (the frame's 8-byte alignment).
     "embedded_raster_textured_face_v7m:",
     "push {{r4-r11, lr}}",
     "sub sp, #284",
+    "str r1, [sp, #276]",
     // The screen-space bound (`texturing::nearly_affine`): r1-r3 = the vertices; their `q` in
     // a common scale (shifts apart by at most 8, else perspective), r5 = the ratio term
     // `q_max − q_min + 2^(most + 1)`, r4 = `4·q_min`.
-    "ldm r0, {{r1, r2, r3}}",
-    "ldrb r4, [r1, #26]",
-    "ldrb r5, [r2, #26]",
-    "ldrb r6, [r3, #26]",
+    "ldm r1, {{r1, r2, r3}}",
+    "ldrb r4, [r1, #15]",
+    "ldrb r5, [r2, #15]",
+    "ldrb r6, [r3, #15]",
     min3!("r7", "r4", "r5", "r6", "lt"),
     min3!("r8", "r4", "r5", "r6", "gt"),
     "sub r8, r8, r7",
@@ -2535,11 +2551,11 @@ core::arch::global_asm!(
     "sub r4, r4, r7",
     "sub r5, r5, r7",
     "sub r6, r6, r7",
-    "ldrh r9, [r1, #24]",
+    "ldrh r9, [r1, #12]",
     "lsl r9, r9, r4",
-    "ldrh r10, [r2, #24]",
+    "ldrh r10, [r2, #12]",
     "lsl r10, r10, r5",
-    "ldrh r11, [r3, #24]",
+    "ldrh r11, [r3, #12]",
     "lsl r11, r11, r6",
     min3!("r4", "r9", "r10", "r11", "lo"),
     min3!("r5", "r9", "r10", "r11", "hi"),
@@ -2562,46 +2578,50 @@ core::arch::global_asm!(
     "subs r8, r8, r6",
     "sbcs r9, r9, r7",
     "blo 93f",
-    // Lit: the levels' spread times the ratio against the bound (the face's word 100) times
-    // 4·q_min.
-    "ldr r6, [r0, #96]",
+    // Lit (the face's word 28): the levels' spread times the ratio against the bound (the
+    // template's word 52) times 4·q_min.
+    "ldr r6, [sp, #276]",
+    "ldr r6, [r6, #28]",
     "lsls r6, r6, #30",
     "bpl 23f",
-    "ldrh r6, [r1, #14]",
-    "ldrh r7, [r2, #14]",
-    "ldrh r8, [r3, #14]",
+    "ldrh r6, [r1, #10]",
+    "ldrh r7, [r2, #10]",
+    "ldrh r8, [r3, #10]",
     min3!("r9", "r6", "r7", "r8", "lo"),
     min3!("r10", "r6", "r7", "r8", "hi"),
     "sub r9, r10, r9",
     "umull r6, r7, r9, r5",
-    "ldr r8, [r0, #100]",
+    "ldr r8, [r0, #52]",
     "umull r8, r9, r8, r4",
     "subs r8, r8, r6",
     "sbcs r9, r9, r7",
     "blo 93f",
     "23:",
     // The coordinates' planes (`texture::PlaneMap::new`): their values into the vertices, the
-    // maps into the face; a scale past 2¹⁶ declines (its map shifts left).
-    plane_map!("16", "260", "10", "64"),
-    plane_map!("20", "268", "12", "72"),
-    face_scan!("236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144"),
-    attribute_numerators!("8", "156", "40", "220", "188", "236", "240"),
-    attribute_numerators!("10", "164", "44", "224", "196", "236", "240"),
-    attribute_numerators!("12", "172", "48", "228", "204", "236", "240"),
-    attribute_numerators!("14", "180", "52", "232", "212", "236", "240"),
+    // maps into the block; a scale past 2¹⁶ declines (its map shifts left).
+    plane_map!("16", "260", "24", "96"),
+    plane_map!("20", "268", "26", "104"),
+    face_scan!("", "236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144"),
+    attribute_numerators!("8", "156", "28", "220", "188", "236", "240"),
+    attribute_numerators!("24", "164", "32", "224", "196", "236", "240"),
+    attribute_numerators!("26", "172", "36", "228", "204", "236", "240"),
+    attribute_numerators!("10", "180", "40", "232", "212", "236", "240"),
     face_reciprocal!("144"),
     attribute_plane!("156", "220", "188", "0", "80", "32"),
     attribute_plane!("164", "224", "196", "4", "84", "36"),
     attribute_plane!("172", "228", "204", "8", "88", "40"),
     attribute_plane!("180", "232", "212", "12", "92", "44"),
-    // The maps and `y`'s shift (the face's 64-80 to the block's 96-112), the texels and masks
-    // (84-92 to 132-140).
-    "add r1, r0, #64",
-    "ldm r1, {{r2-r9}}",
-    "add r1, sp, #96",
-    "stm r1, {{r2-r6}}",
+    // `y`'s shift (the template's word 8) to the block's 112, the texels (the face's word 24)
+    // and the masks (the template's 44, 48) to 132-140.
+    "ldr r1, [sp, #276]",
+    "ldr r7, [r1, #24]",
+    "ldrd r8, r9, [r0, #44]",
     "add r1, sp, #132",
     "stm r1, {{r7-r9}}",
+    "ldr r6, [r0, #8]",
+    "str r6, [sp, #112]",
+    "ldr r3, [sp, #100]",
+    "ldr r5, [sp, #108]",
     // The texel steps a pixel from the coordinates' steps a column (r1, r2), as
     // `PlaneMap::step`: `(s >> down) + ((s >> (down − 1)) & 1)`, or `s` for `down` = 0 (r3,
     // r5); `y`'s shifted by r6.
@@ -2626,7 +2646,7 @@ core::arch::global_asm!(
     // last): rows above it skipped (the numerators and planes stepped by r6 rows), none in it,
     // done. Rows counted from the band's first in the buffers.
     "ldrd r1, r3, [sp, #252]",
-    "ldrd r4, r5, [r0, #56]",
+    "ldrd r4, r5, [r0, #0]",
     "cmp r1, r4",
     "bge 26f",
     "cmp r3, r4",
@@ -2662,21 +2682,23 @@ core::arch::global_asm!(
     "add r3, r3, #1",
     "str r3, [sp, #128]",
     "sub r1, r1, r4",
-    // The stride, the depth pointer at the first pixel, the colour buffer's offset; then the
-    // rows (r1 = the variant: the middle bound's bit and the light's).
-    "ldr r3, [r0, #36]",
+    // The stride, the depth pointer at the first pixel, the colour buffer's offset (the face's
+    // words 20, 12, 16); then the rows (r1 = the variant: the middle bound's bit and the face's
+    // word 28, r2 = its palette, word 32).
+    "ldr r9, [sp, #276]",
+    "ldr r3, [r9, #20]",
     "str r3, [sp, #48]",
     "mul r3, r3, r1",
     "ldr r6, [sp, #248]",
     "add r3, r3, r6, lsl #1",
-    "ldrd r7, r8, [r0, #28]",
+    "ldrd r7, r8, [r9, #12]",
     "add r7, r7, r3",
     "str r7, [sp, #16]",
     "str r8, [sp, #124]",
     "ldr r1, [sp, #152]",
-    "ldr r2, [r0, #96]",
+    "ldr r2, [r9, #28]",
     "orr r1, r1, r2",
-    "ldr r2, [r0, #104]",
+    "ldr r2, [r9, #32]",
     "mov r0, sp",
     "bl embedded_raster_textured_rows_v7m",
     "80:",
@@ -2696,7 +2718,10 @@ core::arch::global_asm!(
 
 extern "C" {
     /// The assembly function above.
-    fn embedded_raster_textured_face_v7m(face: *mut TexturedFace<'_>) -> u32;
+    fn embedded_raster_textured_face_v7m(
+        template: *const TexturedTemplate,
+        face: *const TexturedFace<'_>,
+    ) -> u32;
 }
 
 /// Sets up and draws the small face `face` with depth, texel coordinate and light-level planes
@@ -2715,13 +2740,14 @@ pub(crate) fn textured_face<C: Copy>(
     (colors, depths, width): (&mut [C], &mut [u16], usize),
     mut face: TexturedFace<'_>,
 ) -> TexturedDraw {
-    let last_texel = (face.rows_mask | face.x_mask) as usize;
+    let template = face.template;
+    let last_texel = (template.rows_mask | template.x_mask) as usize;
     let colour = core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2;
-    if !colour || last_texel >= face.texels_len || face.y_shift > 31 {
+    if !colour || last_texel >= face.texels_len || template.y_shift > 31 {
         return TexturedDraw::Declined;
     }
     // The last pixel the face can write, in both buffers, as in `level_face_result`.
-    let ([x0, y0, x1, y1], [first, last]) = (face.clip, face.rows);
+    let ([x0, y0, x1, y1], [first, last]) = (template.clip, template.rows);
     let (top, bottom) = (y0.max(first), y1.min(last));
     if x0 > x1 || top > bottom {
         return TexturedDraw::Done;
@@ -2735,9 +2761,9 @@ pub(crate) fn textured_face<C: Copy>(
     face.depths = depths.as_mut_ptr();
     face.color_offset = (colors.as_mut_ptr() as usize).wrapping_sub(face.depths as usize) as u32;
     face.stride = (width * 2) as u32;
-    // SAFETY: the function reads the face and writes its maps (words 64-76), and through its
-    // addresses reads the three `TexturedVertex`s (28 bytes each, borrowed mutably by the face)
-    // and writes their coordinates' plane values (bytes 10-13); it writes only pixels of its
+    // SAFETY: the function reads the template and the face, and through the face's addresses
+    // reads the three `TexturedVertex`s (28 bytes each, borrowed mutably by the face)
+    // and writes their coordinates' plane values (bytes 24-27); it writes only pixels of its
     // region — rows and columns of the clip (inside both buffers, checked above), at
     // `row·stride + 2·column` bytes from the buffers' starts, as 2-byte aligned `u16`s (`C` is
     // a 2-byte colour whose raw value the texels are, the caller's promise) — through
@@ -2746,7 +2772,7 @@ pub(crate) fn textured_face<C: Copy>(
     // at most 16, `y`'s checked above); it divides by non-zero divisors only (the area's top
     // half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and saves and
     // restores every register the AAPCS asks it to.
-    match unsafe { embedded_raster_textured_face_v7m(&mut face) } {
+    match unsafe { embedded_raster_textured_face_v7m(template, &face) } {
         0 => TexturedDraw::Done,
         3 => TexturedDraw::Perspective,
         _ => TexturedDraw::Declined,

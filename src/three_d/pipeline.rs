@@ -82,7 +82,7 @@ use super::texturing::{
     FaceTexture, FrameTexture, NoTexture, Opacity, PixelLight, TexelLight, TexturedMaterial,
 };
 use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, VertexStage};
-use crate::arch;
+use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
 use crate::raster::arith::mul_i32_wide;
@@ -710,6 +710,10 @@ pub(crate) struct Frame<'p, C, R = AllRows, T = NoTexture> {
     /// Whether a textured draw lights its vertices where it projects them (shading through the
     /// vertices' levels): each one's `texel_level`, found once, not once a face using it.
     lit_texels: bool,
+    /// Whether a textured draw's faces go to the target's set-up from their vertices as they
+    /// are ([`FaceTexture::fill_small`]): lit by their levels (`Some(true)`: `lit_texels`) or
+    /// unlit, untinted and without a highlight.
+    small: Option<bool>,
     /// The pipeline's lights ([`Lights`]) when they light anything: then every level and
     /// specular term comes from them instead of `light`.
     rig: Option<LightRig>,
@@ -757,6 +761,13 @@ where
             (&fill, material.shading),
             (Fill::Textured(_), Shading::Gouraud | Shading::Quadratic)
         );
+        let texture = FrameTexture::new::<C, R>(material.texture, material.opacity, &clip);
+        let plain = !tinted && highlight.is_none() && FaceTexture::<C>::sets_up_small(&texture);
+        let small = match material.shading {
+            Shading::Unlit if plain && !SIZE_OVER_SPEED => Some(false),
+            Shading::Gouraud | Shading::Quadratic if plain && lit_texels => Some(true),
+            _ => None,
+        };
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
@@ -765,9 +776,10 @@ where
             rig,
             vertex_rig: false,
             lit_texels,
+            small,
             clip,
             fill,
-            texture: FrameTexture::new::<C>(material.texture, material.opacity),
+            texture,
             // A translucent textured material blends by its type (`FrameTexture`'s `W`).
             blend: None,
         }
@@ -827,6 +839,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
             rig,
             vertex_rig,
             lit_texels: false,
+            small: None,
             clip,
             fill,
             texture: NoTexture,
@@ -856,10 +869,11 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             rig: self.rig,
             vertex_rig: self.vertex_rig,
             lit_texels: self.lit_texels,
+            small: self.small,
             band: clip.rows().band().map(|b| BandPlanes::new(&self.stage, &b)),
+            texture: self.texture.clipped(&clip),
             clip,
             fill: self.fill,
-            texture: self.texture,
             blend: self.blend,
         }
     }
@@ -1359,7 +1373,14 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         if T::TEXTURED {
             match &self.fill {
                 Fill::Textured(texturing) => {
-                    self.fill_textured(mesh, idx, model, v, bary, texturing, target)
+                    // Most faces: the target's set-up from the vertices as they are.
+                    let set_up = match bary {
+                        None if self.small.is_some() => self.fill_small(mesh, idx, v, target),
+                        _ => None,
+                    };
+                    if set_up != Some(TexturedDraw::Done) {
+                        self.fill_textured(mesh, idx, model, v, bary, texturing, set_up, target)
+                    }
                 }
                 Fill::TexturedPixel(texturing) => {
                     self.fill_textured_pixel(mesh, idx, model, v, bary, texturing, target)
@@ -1392,7 +1413,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 self.fill_quadratic_lights(mesh, idx, model, v, bary, *color, highlight, target)
             }
             Fill::Textured(texturing) => {
-                self.fill_textured(mesh, idx, model, v, bary, texturing, target)
+                self.fill_textured(mesh, idx, model, v, bary, texturing, None, target)
             }
             Fill::TexturedPixel(texturing) => {
                 self.fill_textured_pixel(mesh, idx, model, v, bary, texturing, target)
@@ -1525,8 +1546,29 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         [at(0), at(1), at(2)]
     }
 
+    /// The target's set-up of a textured face from its vertices as they are, where the draw
+    /// allows it ([`FaceTexture::fill_small`]; a fan's triangles and vertices without a normal
+    /// in a lit draw take the fill's light): what it did, if it was offered the face. Out of
+    /// line, apart from [`fill_textured`](Self::fill_textured) and its large frame, which the
+    /// faces it draws then never set up.
+    #[inline(never)]
+    fn fill_small(
+        &self,
+        mesh: &Mesh<'_>,
+        idx: &[usize; 3],
+        v: [&ProjectedVertex; 3],
+        target: &mut DepthTarget<'_, C>,
+    ) -> Option<TexturedDraw> {
+        let lit = self.small?;
+        if lit && !v.iter().all(|v| v.has_normal()) {
+            return None;
+        }
+        let texels = self.texels(mesh, idx);
+        Some(self.texture.fill_small(target, v, texels, lit))
+    }
+
     /// [`fill`](Self::fill) of a textured draw (out of line: the untextured fills keep their
-    /// registers).
+    /// registers); `set_up` is what [`fill_small`](Self::fill_small) did with it, if anything.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     fn fill_textured(
@@ -1537,6 +1579,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         v: [&ProjectedVertex; 3],
         bary: Option<[Bary; 3]>,
         texturing: &Texturing,
+        set_up: Option<TexturedDraw>,
         target: &mut DepthTarget<'_, C>,
     ) {
         let Texturing {
@@ -1580,7 +1623,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 }
             }
         };
-        self.fill_texels(mesh, idx, v, bary, light, target);
+        self.fill_texels(mesh, idx, v, bary, light, set_up, target);
     }
 
     /// [`fill`](Self::fill) of a textured draw lit per pixel (out of line, as
@@ -1607,11 +1650,12 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         let h = texturing.pixel.as_ref();
         let pixel = PixelLight::new(&normals, &self.pipeline.light, h, sources);
         let light = TexelLight::Quadratic(&pixel);
-        self.fill_texels(mesh, idx, v, bary, light, target);
+        self.fill_texels(mesh, idx, v, bary, light, None, target);
     }
 
     /// The textured face's triangle `v` (a fan's at `bary`) filled with its texels lit by
-    /// `light`.
+    /// `light` (`set_up`: what the target's set-up did with it, if it was offered there).
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn fill_texels(
         &self,
@@ -1620,6 +1664,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         v: [&ProjectedVertex; 3],
         bary: Option<[Bary; 3]>,
         light: TexelLight<'_>,
+        set_up: Option<TexturedDraw>,
         target: &mut DepthTarget<'_, C>,
     ) {
         let texels = self.texels(mesh, idx);
@@ -1627,7 +1672,8 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         let texels = texels.map(|t| t.map(|c| c as i32));
         let q = v.map(|v| v.q());
         let tri = v.map(|v| v.screen());
-        self.texture.fill(target, &self.clip, tri, q, texels, light);
+        self.texture
+            .fill(target, &self.clip, tri, q, texels, light, set_up);
     }
 
     /// The specular terms of a textured face's vertices `idx` (at `model`; a fan's at `bary`)

@@ -641,18 +641,28 @@ impl<R: RowWindow> TargetClip<R> {
         arch::LevelFace::new(v, self.bounds, [DEPTH_HALF, LEVEL_HALF], self.face_rows())
     }
 
-    /// The face of `v` for the assembly's set-up of the textured fill
-    /// ([`arch::textured_face`]): this clip's bounds and rows, the depth plane's rounding (the
-    /// other planes' is 0), the `texture` and the light (as `TexturedFace::new` takes them).
+    /// What the faces of a draw have in common for the assembly's set-up of the textured fill
+    /// ([`arch::textured_face`]; each face's vertices, texels and light are set by
+    /// [`arch::TexturedTemplate::face`]): this clip's bounds and rows, the depth plane's
+    /// rounding (the other planes' is 0), the texels' `masks` and the levels' bound
+    /// `affine_level`.
     #[inline(always)]
-    pub(super) fn textured_face<'v>(
+    pub(super) fn textured_template(
         &self,
-        v: &'v mut [arch::TexturedVertex; 3],
-        texture: (arch::FaceTexels<'v>, u32, u32, u32),
-        light: (bool, u32),
-    ) -> arch::TexturedFace<'v> {
+        masks: (u32, u32, u32),
+        affine_level: u32,
+    ) -> arch::TexturedTemplate {
         let (bounds, rows, half) = (self.bounds, self.face_rows(), [DEPTH_HALF, 0, 0, 0]);
-        arch::TexturedFace::new(v, bounds, half, rows, texture, light)
+        arch::TexturedTemplate::new(bounds, half, rows, masks, affine_level)
+    }
+
+    /// `template` (a [`textured_template`](Self::textured_template)) inside this clip instead.
+    #[inline(always)]
+    pub(super) fn textured_reclipped(
+        &self,
+        template: &arch::TexturedTemplate,
+    ) -> arch::TexturedTemplate {
+        template.with_clip(self.bounds, self.face_rows())
     }
 
     /// The rows the assembly's set-ups draw, first and last: a band's, or every row of a frame

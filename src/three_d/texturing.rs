@@ -97,7 +97,7 @@ use super::shading::{
     highlighted_channels, pixel_terms, scale_channels, with_depth, QuadraticNormals, TargetClip,
     DEPTH_SHIFT,
 };
-use super::vertex::Inverse;
+use super::vertex::{Inverse, ProjectedVertex};
 use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
 use crate::color::GouraudColor;
 use crate::raster::arith::mul_i32_wide;
@@ -179,6 +179,7 @@ pub fn draw_textured<S, C>(
         palette.as_ref(),
         Opaque,
         TexelLight::Full,
+        None,
     );
 }
 
@@ -240,6 +241,7 @@ pub fn draw_textured_lit<S, C>(
         palette.as_ref(),
         Opaque,
         TexelLight::Levels(levels),
+        None,
     );
 }
 
@@ -306,7 +308,9 @@ pub(crate) trait FaceTexture<C>: Copy {
     fn size(&self) -> (u32, u32);
 
     /// Fills the face of `vertices` with their `q ∝ 1/w` and 16.16 texel coordinates, lit by
-    /// `light`.
+    /// `light`; `set_up` is what [`fill_small`](Self::fill_small) did with it if it was offered
+    /// there (then not again).
+    #[allow(clippy::too_many_arguments)]
     fn fill<R: RowWindow>(
         &self,
         target: &mut DepthTarget<'_, C>,
@@ -315,7 +319,38 @@ pub(crate) trait FaceTexture<C>: Copy {
         q: [Inverse; 3],
         texels: [[i32; 2]; 3],
         light: TexelLight<'_>,
+        set_up: Option<TexturedDraw>,
     );
+
+    /// Whether [`fill_small`](Self::fill_small) may draw a face (the target has a set-up for
+    /// this texture and colour); none where there is no such set-up (the default).
+    #[inline(always)]
+    fn sets_up_small(&self) -> bool {
+        false
+    }
+
+    /// The same texture for a draw inside `clip` (a band's rows of the draw).
+    #[inline(always)]
+    fn clipped<R: RowWindow>(&self, clip: &TargetClip<R>) -> Self {
+        let _ = clip;
+        *self
+    }
+
+    /// Sets up and draws the face of `vertices` (their levels if `lit`, else unlit) with 16.16
+    /// texel coordinates `texels` by the target's own code with the draw's template, if the
+    /// target has it and the face is small: what [`fill`](Self::fill)'s first step does, without
+    /// building the face's light. Declined where there is none (the default).
+    #[inline(always)]
+    fn fill_small(
+        &self,
+        target: &mut DepthTarget<'_, C>,
+        vertices: [&ProjectedVertex; 3],
+        texels: [[i32; 2]; 3],
+        lit: bool,
+    ) -> TexturedDraw {
+        let _ = (target, vertices, texels, lit);
+        TexturedDraw::Declined
+    }
 }
 
 /// No texture: the draws of a [`Material`](super::Material) (the default texture type of a
@@ -338,6 +373,7 @@ impl<C> FaceTexture<C> for NoTexture {
         _: [Inverse; 3],
         _: [[i32; 2]; 3],
         _: TexelLight<'_>,
+        _: Option<TexturedDraw>,
     ) {
     }
 }
@@ -350,19 +386,34 @@ pub struct FrameTexture<'t, S, W = Opaque> {
     sampler: Sampler<'t, S>,
     /// A 4-bit palette texture's colours as the target's row loop looks them up, if it does.
     palette: Option<[u16; 16]>,
+    /// What the draw's faces have in common for the target's face set-up, if it has one for
+    /// this texture and `C` ([`FaceTexture::fill_small`]).
+    face: Option<arch::TexturedTemplate>,
     write: W,
 }
 
-impl<'t, S: TexelSource, W> FrameTexture<'t, S, W> {
-    /// The texture of a draw into `C`, its texels written as `write` says.
-    pub(crate) fn new<C>(texture: &'t Texture<S>, write: W) -> Self
+impl<'t, S: TexelSource, W: Opacity> FrameTexture<'t, S, W> {
+    /// The texture of a draw into `C` inside `clip`, its texels written as `write` says.
+    pub(crate) fn new<C, R: RowWindow>(
+        texture: &'t Texture<S>,
+        write: W,
+        clip: &TargetClip<R>,
+    ) -> Self
     where
         C: GouraudColor + From<S::Color>,
     {
+        let sampler = Sampler::new(texture);
+        let palette = palette_565::<S, C>(texture);
+        // Opaque draws of texels the set-up reads (the words, or indices with their palette).
+        let words = face_words(&sampler, palette.as_ref()).is_some();
+        let face = face_masks(&sampler)
+            .filter(|_| arch::TEXTURED_FACE && !W::BLENDS && words)
+            .map(|masks| clip.textured_template(masks, affine_level::<C>() as u32));
         FrameTexture {
             size: (texture.width(), texture.height()),
-            sampler: Sampler::new(texture),
-            palette: palette_565::<S, C>(texture),
+            sampler,
+            palette,
+            face,
             write,
         }
     }
@@ -388,6 +439,7 @@ where
         q: [Inverse; 3],
         texels: [[i32; 2]; 3],
         light: TexelLight<'_>,
+        set_up: Option<TexturedDraw>,
     ) {
         fill_textured(
             target,
@@ -399,7 +451,39 @@ where
             self.palette.as_ref(),
             self.write,
             light,
+            set_up,
         );
+    }
+
+    #[inline(always)]
+    fn sets_up_small(&self) -> bool {
+        self.face.is_some()
+    }
+
+    #[inline(always)]
+    fn clipped<R: RowWindow>(&self, clip: &TargetClip<R>) -> Self {
+        FrameTexture {
+            face: self.face.map(|face| clip.textured_reclipped(&face)),
+            ..*self
+        }
+    }
+
+    #[inline(always)]
+    fn fill_small(
+        &self,
+        target: &mut DepthTarget<'_, C>,
+        vertices: [&ProjectedVertex; 3],
+        texels: [[i32; 2]; 3],
+        lit: bool,
+    ) -> TexturedDraw {
+        let words = face_words(&self.sampler, self.palette.as_ref());
+        let (Some(template), Some(words)) = (&self.face, words) else {
+            return TexturedDraw::Declined;
+        };
+        let vertex = |k: usize| arch::TexturedVertex::of_projected(vertices[k], texels[k], lit);
+        let mut vertices = [vertex(0), vertex(1), vertex(2)];
+        let face = template.face(&mut vertices, words, lit);
+        C::textured_face_565(target.buffers_mut(), face)
     }
 }
 
@@ -599,19 +683,22 @@ pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
     palette: Option<&[u16; 16]>,
     write: W,
     light: TexelLight<'_>,
+    set_up: Option<TexturedDraw>,
 ) where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
     // A small face of an opaque draw: set up and drawn by the target's own code if it has it
-    // (which tests the screen-space bound first, as `fill_portable`).
+    // (which tests the screen-space bound first, as `fill_portable`), unless it was offered
+    // there already.
     let levels = match light {
         TexelLight::Full if !SIZE_OVER_SPEED => Some(None),
         TexelLight::Levels(l) => Some(Some(l)),
         _ => None,
     };
-    let mut perspective = false;
-    if let Some(levels) = levels.filter(|_| arch::TEXTURED_FACE && !W::BLENDS) {
+    let mut perspective = set_up == Some(TexturedDraw::Perspective);
+    let offer = arch::TEXTURED_FACE && !W::BLENDS && set_up.is_none();
+    if let Some(levels) = levels.filter(|_| offer) {
         match textured_face(target, clip, screen, &q, &texels, levels, &sampler, palette) {
             TexturedDraw::Done => return,
             TexturedDraw::Perspective => perspective = true,
@@ -761,7 +848,7 @@ where
     S: TexelSource,
     C: GouraudColor + From<S::Color>,
 {
-    let Some(texture) = face_texels(sampler, palette) else {
+    let (Some(words), Some(masks)) = (face_words(sampler, palette), face_masks(sampler)) else {
         return TexturedDraw::Declined;
     };
     let l = levels.unwrap_or([0; 3]);
@@ -770,39 +857,41 @@ where
         arch::TexturedVertex::new(position, screen[k].depth, l[k], texels[k], q[k].parts())
     };
     let mut vertices = [vertex(0), vertex(1), vertex(2)];
-    let light = (levels.is_some(), affine_level::<C>() as u32);
-    let face = clip.textured_face(&mut vertices, texture, light);
+    let template = clip.textured_template(masks, affine_level::<C>() as u32);
+    let face = template.face(&mut vertices, words, levels.is_some());
     C::textured_face_565(target.buffers_mut(), face)
 }
 
-/// The texels of a face for the target's set-up ([`arch::FaceTexels`]), their masks and `y`'s
-/// shift: raw Rgb565 words of a masked sampler ([`masked_565_texels`]), or the 4-bit indices of
-/// a masked nearest sampler with the raw words of their `palette` if there are those.
+/// The texels of a face for the target's set-up ([`arch::FaceTexels`]): raw Rgb565 words of a
+/// masked sampler (read nearest, or bilinear where the target's row loop has that), or the
+/// 4-bit indices of a masked nearest sampler with the raw words of their `palette` if there are
+/// those. Their masks are [`face_masks`]'.
 #[inline(always)]
-fn face_texels<'w, S: TexelSource>(
+fn face_words<'w, S: TexelSource>(
     sampler: &'w Sampler<'_, S>,
     palette: Option<&'w [u16; 16]>,
-) -> Option<(arch::FaceTexels<'w>, u32, u32, u32)> {
-    if let Some(((words, x_mask, rows_mask, y_shift), bilinear)) = masked_565_texels(sampler) {
-        let texels = arch::FaceTexels::words(words, bilinear);
-        return Some((texels, x_mask, rows_mask, y_shift));
+) -> Option<arch::FaceTexels<'w>> {
+    match sampler {
+        Sampler::MaskedNearest(_, texels) => match texels.rgb565_words() {
+            Some(words) => Some(arch::FaceTexels::words(words.0, false)),
+            None => Some(arch::FaceTexels::palette4(texels.palette4()?.0, palette?)),
+        },
+        Sampler::MaskedBilinear(_, texels) if arch::BILINEAR_ROWS => {
+            Some(arch::FaceTexels::words(texels.rgb565_words()?.0, true))
+        }
+        _ => None,
     }
-    palette_face_texels(sampler, palette?)
 }
 
-/// [`face_texels`]' 4-bit palette indices (out of line: the other faces' code stays as small).
-#[inline(never)]
-fn palette_face_texels<'w, S: TexelSource>(
-    sampler: &'w Sampler<'_, S>,
-    palette: &'w [u16; 16],
-) -> Option<(arch::FaceTexels<'w>, u32, u32, u32)> {
-    let Sampler::MaskedNearest(masks, texels) = sampler else {
+/// The column and row masks (in texels, up to 2¹⁶ of them) and `y`'s shift of
+/// [`face_words`]' texels.
+#[inline(always)]
+fn face_masks<S: TexelSource>(sampler: &Sampler<'_, S>) -> Option<(u32, u32, u32)> {
+    let (Sampler::MaskedNearest(masks, _) | Sampler::MaskedBilinear(masks, _)) = sampler else {
         return None;
     };
-    let (indices, _) = texels.palette4()?;
     let (x_mask, rows_mask) = masks.masks_565()?;
-    let texels = arch::FaceTexels::palette4(indices, palette);
-    Some((texels, x_mask, rows_mask, 32 - x_mask.leading_zeros()))
+    Some((x_mask, rows_mask, 32 - x_mask.leading_zeros()))
 }
 
 /// [`fill_textured`] of a face interpolated perspective-correct.

@@ -64,9 +64,18 @@ pub struct ProjectedVertex {
 #[allow(unsafe_code)]
 unsafe impl crate::arch::LevelVertex for ProjectedVertex {}
 
+// SAFETY: as above, and every one of its 16 bytes is a field's (their sizes add up to 16: no
+// padding), the texel level at 10, `q`'s mantissa (`level`) at 12 and its shift at 15 (asserted
+// below).
+#[allow(unsafe_code)]
+unsafe impl crate::arch::ProjectedPrefix for ProjectedVertex {}
+
 const _: () = {
     use core::mem::{align_of, offset_of, size_of};
     assert!(size_of::<ProjectedVertex>() == 16 && align_of::<ProjectedVertex>() == 4);
+    assert!(offset_of!(ProjectedVertex, texel_level) == 10);
+    assert!(offset_of!(ProjectedVertex, code) == 14 && offset_of!(ProjectedVertex, q_shift) == 15);
+    assert!(2 * size_of::<Coord>() + 3 * size_of::<u16>() + 2 == 16);
     assert!(offset_of!(ProjectedVertex, x) == 0 && offset_of!(ProjectedVertex, y) == 4);
     assert!(offset_of!(ProjectedVertex, depth) == 8 && offset_of!(ProjectedVertex, level) == 12);
     assert!(offset_of!(ScreenVertex, x) == 0 && offset_of!(ScreenVertex, y) == 4);
