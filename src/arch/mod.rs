@@ -738,6 +738,42 @@ impl TexturedTemplate {
     }
 }
 
+/// A draw's [`TexturedTemplate`] as its frame keeps it: the template where the target has the
+/// set-up ([`TEXTURED_FACE`]); elsewhere a type without values, so that `Option<TemplateSlot>`
+/// takes no room.
+#[cfg(armv7m)]
+pub(crate) type TemplateSlot = TexturedTemplate;
+/// A draw's [`TexturedTemplate`] as its frame keeps it: none here (no set-up).
+#[cfg(not(armv7m))]
+pub(crate) type TemplateSlot = core::convert::Infallible;
+
+/// `template` in a slot, where the target keeps one.
+#[inline(always)]
+pub(crate) fn template_slot(template: TexturedTemplate) -> Option<TemplateSlot> {
+    #[cfg(armv7m)]
+    {
+        Some(template)
+    }
+    #[cfg(not(armv7m))]
+    {
+        let _ = template;
+        None
+    }
+}
+
+/// The template in `slot`.
+#[inline(always)]
+pub(crate) fn slot_template(slot: &TemplateSlot) -> &TexturedTemplate {
+    #[cfg(armv7m)]
+    {
+        slot
+    }
+    #[cfg(not(armv7m))]
+    {
+        match *slot {}
+    }
+}
+
 /// A face for [`textured_face`] (offsets are the assembly's): its vertices, the buffers, its
 /// texels and light, and its draw's [`TexturedTemplate`].
 #[repr(C)]

@@ -1373,9 +1373,12 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         if T::TEXTURED {
             match &self.fill {
                 Fill::Textured(texturing) => {
-                    // Most faces: the target's set-up from the vertices as they are.
+                    // Most faces: the target's set-up from the vertices as they are (where
+                    // there is one: a constant test).
                     let set_up = match bary {
-                        None if self.small.is_some() => self.fill_small(mesh, idx, v, target),
+                        None if arch::TEXTURED_FACE && self.small.is_some() => {
+                            self.fill_small(mesh, idx, v, target)
+                        }
                         _ => None,
                     };
                     if set_up != Some(TexturedDraw::Done) {

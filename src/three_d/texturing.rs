@@ -388,7 +388,7 @@ pub struct FrameTexture<'t, S, W = Opaque> {
     palette: Option<[u16; 16]>,
     /// What the draw's faces have in common for the target's face set-up, if it has one for
     /// this texture and `C` ([`FaceTexture::fill_small`]).
-    face: Option<arch::TexturedTemplate>,
+    face: Option<arch::TemplateSlot>,
     write: W,
 }
 
@@ -408,7 +408,9 @@ impl<'t, S: TexelSource, W: Opacity> FrameTexture<'t, S, W> {
         let words = face_words(&sampler, palette.as_ref()).is_some();
         let face = face_masks(&sampler)
             .filter(|_| arch::TEXTURED_FACE && !W::BLENDS && words)
-            .map(|masks| clip.textured_template(masks, affine_level::<C>() as u32));
+            .and_then(|masks| {
+                arch::template_slot(clip.textured_template(masks, affine_level::<C>() as u32))
+            });
         FrameTexture {
             size: (texture.width(), texture.height()),
             sampler,
@@ -463,7 +465,9 @@ where
     #[inline(always)]
     fn clipped<R: RowWindow>(&self, clip: &TargetClip<R>) -> Self {
         FrameTexture {
-            face: self.face.map(|face| clip.textured_reclipped(&face)),
+            face: self.face.as_ref().and_then(|slot| {
+                arch::template_slot(clip.textured_reclipped(arch::slot_template(slot)))
+            }),
             ..*self
         }
     }
@@ -477,9 +481,10 @@ where
         lit: bool,
     ) -> TexturedDraw {
         let words = face_words(&self.sampler, self.palette.as_ref());
-        let (Some(template), Some(words)) = (&self.face, words) else {
+        let (Some(slot), Some(words)) = (&self.face, words) else {
             return TexturedDraw::Declined;
         };
+        let template = arch::slot_template(slot);
         let vertex = |k: usize| arch::TexturedVertex::of_projected(vertices[k], texels[k], lit);
         let mut vertices = [vertex(0), vertex(1), vertex(2)];
         let face = template.face(&mut vertices, words, lit);
@@ -696,6 +701,8 @@ pub(crate) fn fill_textured<S, C, R: RowWindow, W: Opacity>(
         TexelLight::Levels(l) => Some(Some(l)),
         _ => None,
     };
+    // Only a target with the set-up has offered a face to it (a constant elsewhere).
+    let set_up = set_up.filter(|_| arch::TEXTURED_FACE);
     let mut perspective = set_up == Some(TexturedDraw::Perspective);
     let offer = arch::TEXTURED_FACE && !W::BLENDS && set_up.is_none();
     if let Some(levels) = levels.filter(|_| offer) {
