@@ -560,6 +560,23 @@ macro_rules! bilinear_offset {
     };
 }
 
+/// What every textured row loop keeps from its block (r0; the loop's frame at sp, 16 bytes or
+/// more): the depth's and the level's steps a pixel (the block's words 80 and 92) at [sp] and
+/// [sp, #12], and the texels, the column mask and the row mask (words 132-140) in r11, r12 and
+/// lr. Clobbers r2, r3.
+macro_rules! row_loop_state {
+    () => {
+        concat!(
+            "ldr r2, [r0, #80]\n",
+            "ldr r3, [r0, #92]\n",
+            "str r2, [sp]\n",
+            "str r3, [sp, #12]\n",
+            "add r2, r0, #132\n",
+            "ldm r2, {{r11, r12, lr}}\n",
+        )
+    };
+}
+
 // The bilinear variants of the textured row loop (ARMv7E-M: `smuad`, `smlad` and `pkhbt` are
 // the DSP extension's): entered from `embedded_raster_textured_rows_v7m` with its arguments,
 // the variant's bit 4 set.
@@ -581,15 +598,10 @@ core::arch::global_asm!(
     // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: `y`'s shift plus 9.
     "sub sp, #28",
     "str r0, [sp, #16]",
-    "ldr r2, [r0, #80]",
-    "ldr r3, [r0, #92]",
-    "str r2, [sp]",
-    "str r3, [sp, #12]",
     "ldr r2, [r0, #112]",
     "add r2, r2, #9",
     "str r2, [sp, #20]",
-    "add r2, r0, #132",
-    "ldm r2, {{r11, r12, lr}}",
+    row_loop_state!(),
     "cmp r1, #6",
     "bhs 20f",
     "cmp r1, #4",
@@ -786,12 +798,7 @@ core::arch::global_asm!(
     "sub sp, #28",
     "str r0, [sp, #16]",
     "str r2, [sp, #20]",
-    "ldr r2, [r0, #80]",
-    "ldr r3, [r0, #92]",
-    "str r2, [sp]",
-    "str r3, [sp, #12]",
-    "add r2, r0, #132",
-    "ldm r2, {{r11, r12, lr}}",
+    row_loop_state!(),
     "cmp r1, #10",
     "bhs 20f",
     "cmp r1, #8",
@@ -847,12 +854,7 @@ core::arch::global_asm!(
     // the block.
     "sub sp, #20",
     "str r0, [sp, #16]",
-    "ldr r2, [r0, #80]",
-    "ldr r3, [r0, #92]",
-    "str r2, [sp]",
-    "str r3, [sp, #12]",
-    "add r2, r0, #132",
-    "ldm r2, {{r11, r12, lr}}",
+    row_loop_state!(),
     "cmp r1, #2",
     "bhs 20f",
     "cmp r1, #0",
