@@ -327,6 +327,17 @@ mod firmware {
             "{}",
             scene3d::render_scatter(&scatter, &mut target, scratch)
         );
+        // SAFETY: as for the statics above: these are their only references (the scatter
+        // mesh's borrows end above).
+        let (depths_v, depths_n, depths_i) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(SCATTER_V),
+                &mut *core::ptr::addr_of_mut!(SCATTER_N),
+                &mut *core::ptr::addr_of_mut!(SCATTER_I),
+            )
+        };
+        let depths = scene3d::depths(depths_v, depths_n, depths_i);
+        hprintln!("{}", scene3d::render_depths(&depths, &mut target, scratch));
         for (line, _) in textured.iter().flatten() {
             hprintln!("{}", line);
         }
@@ -477,6 +488,11 @@ fn main() {
     println!(
         "{}",
         scene3d::render_scatter(&scatter, &mut target, &mut scratch)
+    );
+    let depths = scene3d::depths(&mut sv[..], &mut sn[..], &mut si[..]);
+    println!(
+        "{}",
+        scene3d::render_depths(&depths, &mut target, &mut scratch)
     );
     let mut texels = vec![0u16; textured3d::TEXELS];
     textured3d::expand(&mut texels);

@@ -301,6 +301,153 @@ pub fn render_scatter(
     }
 }
 
+/// Faces of the [`depths`] cluster mesh (it fits the [`scatter`] arrays).
+pub const DEPTHS_FACES: usize = 400;
+
+/// The [`depths`] frame's clusters: the distance of each from the camera (units, near to far)
+/// and the direction of its centre (view-space `x/−z` and `y/−z`, hundredths): a 4 × 3 grid over
+/// the screen. Distances from 0.5 to 1024: `w` from 2¹⁵ to past 2²⁶ (the vertex stage's far
+/// points, `w ≥ 2²⁵`, from 512 on), exact powers of two among them (a normalised `w` of 2³¹).
+const DEPTHS_CLUSTERS: [(f32, [i32; 2]); 12] = [
+    (0.5, [-45, 30]),
+    (0.9, [-15, 30]),
+    (1.0, [15, 30]),
+    (3.7, [45, 30]),
+    (8.0, [-45, 0]),
+    (13.0, [-15, 0]),
+    (64.0, [15, 0]),
+    (100.0, [45, 0]),
+    (300.0, [-45, -30]),
+    (512.0, [-15, -30]),
+    (700.0, [15, -30]),
+    (1024.0, [45, -30]),
+];
+
+/// The cluster of small faces that the [`depths`] frame draws at each distance, into the first
+/// entries of the caller's arrays: [`DEPTHS_FACES`] faces in the box ±0.15 (2 to 12 px across
+/// where the frame scales the cluster by its distance), random orientations and normals, every
+/// fourth face's first vertex at `z` = 0 (its `w` the cluster's distance exactly).
+pub fn depths<'a>(
+    vertices: &'a mut [Vec3],
+    normals: &'a mut [Vec3],
+    indices: &'a mut [[u16; 3]],
+) -> Mesh<'a> {
+    let mut state = 0xde97_4500_1234_5679u64;
+    let mut next = move |bits: u32| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> (64 - bits)) as i32
+    };
+    let (vertices, normals) = (
+        &mut vertices[..3 * DEPTHS_FACES],
+        &mut normals[..3 * DEPTHS_FACES],
+    );
+    let indices = &mut indices[..DEPTHS_FACES];
+    for (k, face) in indices.iter_mut().enumerate() {
+        // The centre within ±0.12 (raw ±7864), the corners within 983·2⁻ʲ of it (0.015).
+        let centre = [(); 3].map(|_| next(14) - (1 << 13));
+        let size = 1966 >> next(2);
+        for j in 0..3 {
+            let mut p = centre.map(|c| c + ((next(12) * size) >> 11) - size);
+            if j == 0 && k % 4 == 0 {
+                p[2] = 0;
+            }
+            let v = 3 * k + j;
+            vertices[v] = Vec3::from_bits(p[0], p[1], p[2]);
+            let n = [(); 3].map(|_| next(16) - (1 << 15));
+            normals[v] = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
+        }
+        *face = [0, 1, 2].map(|j| (3 * k + j) as u16);
+    }
+    Mesh::new(&vertices[..], &normals[..], &indices[..])
+}
+
+/// The line of the [`depths`] frame (each cluster drawn with the scratch): the counts summed,
+/// covered pixels and checksum, compared like the frame lines.
+pub struct DepthsLine {
+    /// The pipeline's counts, summed over the clusters.
+    pub stats: DrawStats,
+    /// [`covered`] pixels.
+    pub covered: u32,
+    /// [`checksum`] of colours and depths.
+    pub checksum: u32,
+    /// FNV-1a of every cluster's projected vertices (the scratch's entries, each as `Hash`
+    /// writes it): the vertex stage's integers, which the pixels show only in part.
+    pub vertices: u32,
+}
+
+impl core::fmt::Display for DepthsLine {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write_frame_line(f, "depths", &self.stats, self.covered, self.checksum)?;
+        write!(f, " vertices={:#010x}", self.vertices)
+    }
+}
+
+/// FNV-1a over the bytes a value's `Hash` writes (the same on every target for the fixed-width
+/// integers a `ProjectedVertex` holds).
+struct FnvHasher(u32);
+
+impl core::hash::Hasher for FnvHasher {
+    fn finish(&self) -> u64 {
+        u64::from(self.0)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u32::from(b)).wrapping_mul(0x0100_0193);
+        }
+    }
+}
+
+/// The [`depths`] frame: the cluster `mesh` drawn (with `scratch`) at each of twelve distances
+/// from 0.5 to 1024, scaled by its distance, through a 60° camera whose depth range is 0.25 to
+/// 2048. Each cluster's box is inside the view volume, so its vertices take a core's own vertex
+/// stage where it has one (`arch::project_positions`): the frame tests it against the host's
+/// over the range of `w`.
+pub fn render_depths(
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: &mut [ProjectedVertex],
+) -> DepthsLine {
+    let (w, h) = SIZE;
+    let camera = Mat4::perspective(
+        Angle::from_degrees(60),
+        Scalar::from_num(w) / Scalar::from_num(h),
+        Scalar::from_bits(1 << 14),
+        Scalar::from_num(2048),
+    )
+    .unwrap_or(Mat4::from_bits([[0; 4]; 4]));
+    let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
+    target.clear(BACKGROUND);
+    let mut stats = DrawStats::default();
+    let mut vertices = FnvHasher(0x811c_9dc5);
+    for (distance, [x, y]) in DEPTHS_CLUSTERS {
+        let d = Scalar::from_num(distance);
+        let slope = |c: i32| d * Scalar::from_num(c) / Scalar::from_num(100);
+        let place = Mat4::translation(Vec3::new(slope(x), slope(y), -d));
+        let model = place * Mat4::scaling(d);
+        let pipeline = Pipeline::new(model, camera, viewport, light());
+        let s = pipeline
+            .draw_mesh_with(mesh, &MATERIAL, target, scratch)
+            .unwrap_or_default();
+        stats.drawn += s.drawn;
+        stats.culled += s.culled;
+        stats.clipped += s.clipped;
+        stats.rejected += s.rejected;
+        stats.degenerate += s.degenerate;
+        for v in scratch.iter().take(3 * DEPTHS_FACES) {
+            core::hash::Hash::hash(v, &mut vertices);
+        }
+    }
+    DepthsLine {
+        stats,
+        covered: covered(target.depth()),
+        checksum: checksum(target.framebuffer().pixels(), target.depth()),
+        vertices: vertices.0,
+    }
+}
+
 /// One frame of `mesh` posed as `model`: clears colour and depth, draws — each vertex
 /// transformed once into `scratch` if given (it must hold a vertex per mesh vertex), or once per
 /// face without.

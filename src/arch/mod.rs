@@ -40,6 +40,8 @@ pub(crate) use thumbv7m::perspective_span;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::premultiplied_565;
 #[cfg(armv7m)]
+pub(crate) use thumbv7m::project_positions;
+#[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_face;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
@@ -418,9 +420,8 @@ const _: () = {
     assert!(offset_of!(Textured, vertices) == 0 && offset_of!(Textured, depths) == 12);
     assert!(offset_of!(Textured, color_offset) == 16 && offset_of!(Textured, stride) == 20);
     assert!(offset_of!(Textured, texels) == 24 && offset_of!(Textured, lit) == 28);
-    assert!(offset_of!(Textured, palette) == 32);
-    assert!(offset_of!(TexturedVertex, texel) == 16 && offset_of!(TexturedVertex, values) == 24);
-    assert!(size_of::<TexturedVertex>() == 28 && align_of::<TexturedVertex>() == 4);
+    assert!(offset_of!(Textured, palette) == 32 && offset_of!(Textured, coordinates) == 36);
+    assert!(size_of::<VertexPrefix>() == 16 && align_of::<VertexPrefix>() == 4);
 };
 
 #[cfg(any(armv7m, rv32))]
@@ -560,33 +561,34 @@ pub(crate) fn textured_rows<C: Copy>(
 /// [`textured_rows`]; elsewhere by `raster::scan`.
 pub(crate) const TEXTURED_FACE: bool = cfg!(armv7m);
 
-/// A vertex of a [`TexturedFace`]: its position (sub-pixels), depth and light level as the
-/// planes take them, its `q ∝ 1/w` as `mantissa · 2^shift`, its texel coordinates (16.16);
-/// [`textured_face`] writes the coordinates' plane values (`texture::PlaneMap`'s). Its first 16
-/// bytes are laid out as a [`ProjectedPrefix`]'s, so that one is copied whole.
+/// A vertex of a [`TexturedFace`] that is not a [`ProjectedPrefix`] already (a face of the
+/// general textured fill): its position (sub-pixels), depth and light level as the planes take
+/// them, and its `q ∝ 1/w` as `mantissa · 2^shift`, laid out as a [`ProjectedPrefix`]'s.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
-pub(crate) struct TexturedVertex {
-    /// 0-15, in native byte order: the position's x and y (`i32`) at 0 and 4, the depth and
-    /// the level (`u16`) at 8 and 10, `q`'s mantissa (`u16`) at 12 and its shift (`u8`) at 15
-    /// (14 is not read).
-    prefix: [u32; 4],
-    /// 16, 20: the texel coordinates.
-    texel: [i32; 2],
-    /// 24, 26: `u`'s and `v`'s plane values (written by the set-up).
-    values: [u16; 2],
+pub(crate) struct VertexPrefix {
+    /// In native byte order: the position's x and y (`i32`) at 0 and 4, the depth and the level
+    /// (`u16`) at 8 and 10, `q`'s mantissa (`u16`) at 12 and its shift (`u8`) at 15 (14 is not
+    /// read).
+    words: [u32; 4],
 }
 
-/// A vertex whose first 16 bytes [`TexturedVertex::of_projected`] copies whole.
+/// A vertex whose first 16 bytes [`textured_face`] reads and [`project_positions`] writes.
 ///
 /// # Safety
 ///
 /// An implementor is 4-byte aligned, at least 16 bytes, and its first 16 bytes are initialised
-/// (no padding among them) and laid out as a [`TexturedVertex`]'s: the position's x and y
-/// (sub-pixels, `i32`) at bytes 0 and 4, the depth (`u16`) at 8, the light level (8.8, `u16`)
-/// at 10, `q`'s mantissa (`u16`) at 12 and its shift (`u8`) at 15.
+/// (no padding among them), any 16 bytes there are a value of the fields they hold (integers),
+/// and they are laid out as a [`VertexPrefix`]'s: the position's x and y (sub-pixels, `i32`) at
+/// bytes 0 and 4, the depth (`u16`) at 8, the light level (8.8, `u16`) at 10, `q`'s mantissa
+/// (`u16`) at 12, the clip code (`u8`) at 14 and `q`'s shift (`u8`) at 15.
 #[allow(unsafe_code)]
 pub(crate) unsafe trait ProjectedPrefix {}
+
+// SAFETY: `repr(C)`, four `u32`s: 16 bytes, 4-byte aligned, every bit pattern a value, its
+// fields where the trait says (its constructor's).
+#[allow(unsafe_code)]
+unsafe impl ProjectedPrefix for VertexPrefix {}
 
 /// The word of the `u16`s `low` (at its lower address) and `high`, in native byte order.
 #[inline(always)]
@@ -595,49 +597,17 @@ fn halves(low: u16, high: u16) -> u32 {
     u32::from_ne_bytes([a, b, c, d])
 }
 
-impl TexturedVertex {
-    /// The vertex at `(x, y)` with `depth`, light `level`, texel coordinates `texel` and `q`
-    /// `(mantissa, shift)`.
+impl VertexPrefix {
+    /// The vertex at `(x, y)` with `depth`, light `level` and `q` `(mantissa, shift)`.
     #[inline(always)]
-    pub(crate) fn new(
-        (x, y): (i32, i32),
-        depth: u16,
-        level: u16,
-        texel: [i32; 2],
-        (q, q_shift): (u16, u8),
-    ) -> Self {
-        let prefix = [
+    pub(crate) fn new((x, y): (i32, i32), depth: u16, level: u16, (q, q_shift): (u16, u8)) -> Self {
+        let words = [
             x as u32,
             y as u32,
             halves(depth, level),
             halves(q, u16::from_ne_bytes([0, q_shift])),
         ];
-        TexturedVertex {
-            prefix,
-            texel,
-            values: [0; 2],
-        }
-    }
-
-    /// The vertex `v` (its position, depth, level and `q` copied as they are) with texel
-    /// coordinates `texel`; its level 0 unless `lit`.
-    #[allow(unsafe_code)]
-    #[inline(always)]
-    pub(crate) fn of_projected<V: ProjectedPrefix>(v: &V, texel: [i32; 2], lit: bool) -> Self {
-        const { assert!(core::mem::size_of::<V>() >= 16 && core::mem::align_of::<V>() >= 4) };
-        // SAFETY: `V`'s first 16 bytes are initialised (the trait's contract), any bits are a
-        // value of `[u32; 4]`, and `V` is at least as aligned (4 bytes, asserted above); the
-        // read is inside `*v`.
-        let mut prefix = unsafe { core::ptr::read((v as *const V).cast::<[u32; 4]>()) };
-        if !lit {
-            // The depth alone: the level's bytes 0.
-            prefix[2] &= halves(u16::MAX, 0);
-        }
-        TexturedVertex {
-            prefix,
-            texel,
-            values: [0; 2],
-        }
+        VertexPrefix { words }
     }
 }
 
@@ -713,24 +683,26 @@ impl TexturedTemplate {
         }
     }
 
-    /// The face of `vertices` of a draw with this template, sampled from `texels` (which its
-    /// masks address), lit by the level plane if `lit`.
+    /// The face of `vertices` with the 16.16 texel coordinates `coordinates` of a draw with this
+    /// template, sampled from `texels` (which its masks address), lit by the vertices' levels
+    /// if `lit` (their levels are not read otherwise).
     #[inline(always)]
-    pub(crate) fn face<'w>(
+    pub(crate) fn face<'w, V: ProjectedPrefix>(
         &'w self,
-        vertices: &'w mut [TexturedVertex; 3],
+        vertices: [&'w V; 3],
+        coordinates: &'w [[i32; 2]; 3],
         texels: FaceTexels<'w>,
         lit: bool,
     ) -> TexturedFace<'w> {
-        let [a, b, c] = vertices;
         TexturedFace {
-            vertices: [a, b, c].map(|v| v as *mut TexturedVertex),
+            vertices: vertices.map(|v| (v as *const V).cast::<u8>()),
             depths: core::ptr::null_mut(),
             color_offset: 0,
             stride: 0,
             texels: texels.texels,
             lit: if lit { 2 } else { 0 } | texels.kind,
             palette: texels.palette,
+            coordinates: coordinates.as_ptr(),
             texels_len: texels.count,
             template: self,
             borrowed: core::marker::PhantomData,
@@ -780,8 +752,8 @@ pub(crate) fn slot_template(slot: &TemplateSlot) -> &TexturedTemplate {
 // Read only where the assembly is.
 #[cfg_attr(not(armv7m), allow(dead_code))]
 pub struct TexturedFace<'w> {
-    /// 0, 4, 8: the vertices.
-    vertices: [*mut TexturedVertex; 3],
+    /// 0, 4, 8: the vertices ([`ProjectedPrefix`]es: their first 16 bytes are read).
+    vertices: [*const u8; 3],
     /// 12: the depth buffer; 16: the colour buffer's offset from it in bytes (wrapping); 20: a
     /// buffer row in bytes ([`textured_face`] sets them).
     depths: *mut u16,
@@ -794,10 +766,12 @@ pub struct TexturedFace<'w> {
     /// (palette indices).
     lit: u32,
     palette: *const u16,
+    /// 36: the vertices' texel coordinates (16.16), three pairs.
+    coordinates: *const [i32; 2],
     /// The texels' count and the template (not the assembly's).
     texels_len: usize,
     template: &'w TexturedTemplate,
-    borrowed: core::marker::PhantomData<&'w mut [u16]>,
+    borrowed: core::marker::PhantomData<&'w [u16]>,
 }
 
 /// The texels of a [`TexturedFace`], each kind addressed by the same masks (`row | column`):
@@ -854,6 +828,77 @@ pub(crate) fn textured_face<C: Copy>(
     _face: TexturedFace<'_>,
 ) -> TexturedDraw {
     TexturedDraw::Declined
+}
+
+/// ARMv7-M: the vertex stage of a draw whose positions are all inside the view volume — the
+/// transform, the perspective divide and the viewport mapping — is one assembly loop
+/// ([`project_positions`]); elsewhere `three_d`'s portable loop.
+pub(crate) const PROJECT_POSITIONS: bool = cfg!(armv7m);
+
+/// A model-space position that [`project_positions`] reads where it is.
+///
+/// # Safety
+///
+/// An implementor is 12 bytes, 4-byte aligned, every byte a field's: the raw `x`, `y` and `z`
+/// (`I16F16` bits, `i32`) at bytes 0, 4 and 8.
+#[allow(unsafe_code)]
+pub(crate) unsafe trait ModelPosition {}
+
+/// What the vertices of a draw have in common for [`project_positions`] (offsets are the
+/// assembly's): `three_d`'s `VertexStage` with its transform rows' rounding folded in.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub(crate) struct ProjectionBlock {
+    /// 0-80, 20 bytes a row of clip-space `x`, `y`, `z` and `w`: the row's first three
+    /// entries (raw), then its translation `t` as the 64-bit `t·2¹⁶ + 2¹⁵` (low word first).
+    rows: [[i32; 5]; 4],
+    /// 80, 84: the viewport's centre (sub-pixels).
+    centre: [i32; 2],
+    /// 88, 92: the half sizes times 2ᵉ.
+    half: [u32; 2],
+    /// 96: `e`.
+    exponent: u32,
+    /// 100, 104: `2^(31 + e)`, low word first.
+    round: [u32; 2],
+    /// 108: the mask of the vertices' word at 12 (`q`'s mantissa and shift): all ones for a
+    /// textured draw, none for others (their level and shift 0).
+    q_mask: u32,
+}
+
+impl ProjectionBlock {
+    /// The block of the raw model-view-projection matrix `mvp`, the viewport's `centre`, its
+    /// half sizes times 2ᵉ `half` and `exponent` `e` (at most 22), keeping `q` if `textured`.
+    #[cfg_attr(not(armv7m), allow(dead_code))]
+    pub(crate) fn new(
+        mvp: &[[i32; 4]; 4],
+        (centre, half, exponent): ((i32, i32), (u32, u32), u32),
+        textured: bool,
+    ) -> Self {
+        let rows = mvp.map(|[a, b, c, t]| {
+            let bias = (i64::from(t) << 16) + (1 << 15);
+            [a, b, c, bias as i32, (bias >> 32) as i32]
+        });
+        let round = 1u64 << (31 + exponent.min(32));
+        ProjectionBlock {
+            rows,
+            centre: [centre.0, centre.1],
+            half: [half.0, half.1],
+            exponent,
+            round: [round as u32, (round >> 32) as u32],
+            q_mask: if textured { u32::MAX } else { 0 },
+        }
+    }
+}
+
+/// [`project_positions`] where there is none: writes nothing and says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn project_positions<P: ModelPosition, V: ProjectedPrefix>(
+    _block: &ProjectionBlock,
+    _positions: &[P],
+    _out: &mut [V],
+) -> bool {
+    false
 }
 
 /// ARMv7-M: a depth-tested span of the perspective-correct textured fill with nearest texels of

@@ -51,6 +51,7 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 #[cfg(arm_dsp)]
 use super::MaskedSpan565;
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
+use super::{ModelPosition, ProjectedPrefix, ProjectionBlock};
 use super::{TexturedDraw, TexturedFace, TexturedRows, TexturedTemplate, BILINEAR_ROWS};
 
 /// The assembler directive that lets a block use the DSP extension's instructions where the
@@ -1967,31 +1968,37 @@ macro_rules! attribute_plane {
 }
 
 /// One digit `⌊rem·2¹⁶/d⌋` of the reciprocal's schoolbook division (`raster::arith`'s
-/// `reciprocal_63_by_digits`): r1 = rem (below d), r3 = d's top half, r12 = d; the digit in
-/// `$q`, the next remainder (low word) in r1. The estimate `rem/high` is at most two above the
-/// digit: it comes down by one for each of `q·d > rem·2¹⁶` and `q·d > rem·2¹⁶ + d` (64-bit
-/// compares; r5, r6 = q·d, r7, r8 = rem·2¹⁶ plus what has been taken off, r10 scratch).
+/// `reciprocal_63_by_digits`): `$rem` = rem (below d), `$high` = d's top half, `$d` = d; the
+/// digit in `$q`, the next remainder (low word) in `$rem`. The estimate `rem/high` is at most two
+/// above the digit: it comes down by one for each of `q·d > rem·2¹⁶` and `q·d > rem·2¹⁶ + d`
+/// (64-bit compares; `$pl`, `$ph` = q·d, `$sl`, `$sh` = rem·2¹⁶ plus what has been taken off,
+/// `$t` scratch). The face set-ups' registers by default: r1 = rem, r3 = high, r12 = d, r5-r8 and
+/// r10.
 #[rustfmt::skip]
 macro_rules! reciprocal_digit {
     ($q:literal) => {
+        reciprocal_digit!($q, "r1", "r3", "r12", "r5", "r6", "r7", "r8", "r10")
+    };
+    ($q:literal, $rem:literal, $high:literal, $d:literal, $pl:literal, $ph:literal,
+     $sl:literal, $sh:literal, $t:literal) => {
         concat!(
-            "udiv ", $q, ", r1, r3\n",
-            "umull r5, r6, ", $q, ", r12\n",
-            "lsl r7, r1, #16\n",
-            "lsr r8, r1, #16\n",
-            "subs r10, r7, r5\n",
-            "sbcs r10, r8, r6\n",
+            "udiv ", $q, ", ", $rem, ", ", $high, "\n",
+            "umull ", $pl, ", ", $ph, ", ", $q, ", ", $d, "\n",
+            "lsl ", $sl, ", ", $rem, ", #16\n",
+            "lsr ", $sh, ", ", $rem, ", #16\n",
+            "subs ", $t, ", ", $sl, ", ", $pl, "\n",
+            "sbcs ", $t, ", ", $sh, ", ", $ph, "\n",
             "bhs 14f\n",
             "sub ", $q, ", ", $q, ", #1\n",
-            "adds r7, r7, r12\n",
-            "adc r8, r8, #0\n",
-            "subs r10, r7, r5\n",
-            "sbcs r10, r8, r6\n",
+            "adds ", $sl, ", ", $sl, ", ", $d, "\n",
+            "adc ", $sh, ", ", $sh, ", #0\n",
+            "subs ", $t, ", ", $sl, ", ", $pl, "\n",
+            "sbcs ", $t, ", ", $sh, ", ", $ph, "\n",
             "bhs 14f\n",
             "sub ", $q, ", ", $q, ", #1\n",
-            "add r7, r7, r12\n",
+            "add ", $sl, ", ", $sl, ", ", $d, "\n",
             "14:\n",
-            "sub r1, r7, r5\n",
+            "sub ", $rem, ", ", $sl, ", ", $pl, "\n",
         )
     };
 }
@@ -2434,6 +2441,20 @@ pub(crate) fn level_face_keeping<'s, C: Copy>(
     }
 }
 
+/// A vertex's record for the textured set-up at lr (which moves on by its 28 bytes): the 16
+/// bytes at `$v` and the texel coordinates at r12 (which moves on by their 8). Clobbers r4-r9.
+#[rustfmt::skip]
+macro_rules! texel_record {
+    ($v:literal) => {
+        concat!(
+            "ldm ", $v, ", {{r4-r7}}\n",
+            "ldm r12!, {{r8, r9}}\n",
+            "stm lr!, {{r4-r9}}\n",
+            "add lr, lr, #4\n",
+        )
+    };
+}
+
 /// A texel coordinate (the `i32` at `$at` of the vertices r1-r3): its least value (signed) and
 /// its spread (the greatest less it, wrapping) at `$out` and 4 more; the spread also in r7.
 /// Clobbers r6, r8-r10.
@@ -2530,18 +2551,39 @@ core::arch::global_asm!(
     // end-exclusive): the textured row loop's block at sp (0..144; the coordinates' maps are
     // written into it at 96..112 first), then scratch: 144, 148 = l1, l2; 152 = whether the
     // middle bound starts; 156..188 = the depth's, `u`'s, `v`'s and the level's d1, d2;
-    // 188..220 = their nx, ny; 220..236 = their value terms; 236..248 = the oriented vertices'
+    // 188..220 = their nx, ny; 220..236 = their value terms; 236..248 = the oriented records'
     // addresses; 248, 252, 256 = the region's first column, first and last rows; 260..276 =
-    // the coordinates' least values and spreads; 276 = the face's address; 280..284 unused
+    // the coordinates' least values and spreads; 276 = the face's address; 280..284 unused;
+    // 284..368 = the vertices' records, 28 bytes each (a vertex's 16 bytes, its texel
+    // coordinates at 16 and 20, `u`'s and `v`'s plane values at 24 and 26); 368..372 unused
     // (the frame's 8-byte alignment).
     "embedded_raster_textured_face_v7m:",
     "push {{r4-r11, lr}}",
-    "sub sp, #284",
+    "sub sp, #372",
     "str r1, [sp, #276]",
-    // The screen-space bound (`texturing::nearly_affine`): r1-r3 = the vertices; their `q` in
+    // The vertices' records: each vertex's 16 bytes and its texel coordinates (the face's word
+    // 36 addresses the three pairs), the plane values' 4 bytes after them; the levels 0 unless
+    // lit (the face's word 28, bit 1).
+    "ldr r12, [r1, #36]",
+    "ldr r11, [r1, #28]",
+    "ldm r1, {{r1, r2, r3}}",
+    "add lr, sp, #284",
+    texel_record!("r1"),
+    texel_record!("r2"),
+    texel_record!("r3"),
+    "lsls r11, r11, #30",
+    "bmi 24f",
+    "movs r4, #0",
+    "strh r4, [sp, #294]",
+    "strh r4, [sp, #322]",
+    "strh r4, [sp, #350]",
+    "24:",
+    // The screen-space bound (`texturing::nearly_affine`): r1-r3 = the records; their `q` in
     // a common scale (shifts apart by at most 8, else perspective), r5 = the ratio term
     // `q_max − q_min + 2^(most + 1)`, r4 = `4·q_min`.
-    "ldm r1, {{r1, r2, r3}}",
+    "add r1, sp, #284",
+    "add r2, sp, #312",
+    "add r3, sp, #340",
     "ldrb r4, [r1, #15]",
     "ldrb r5, [r2, #15]",
     "ldrb r6, [r3, #15]",
@@ -2705,15 +2747,15 @@ core::arch::global_asm!(
     "bl embedded_raster_textured_rows_v7m",
     "80:",
     "movs r0, #0",
-    "add sp, #284",
+    "add sp, #372",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #1",
-    "add sp, #284",
+    "add sp, #372",
     "pop {{r4-r11, pc}}",
     "93:",
     "movs r0, #3",
-    "add sp, #284",
+    "add sp, #372",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_textured_face_v7m, . - embedded_raster_textured_face_v7m",
 );
@@ -2764,8 +2806,8 @@ pub(crate) fn textured_face<C: Copy>(
     face.color_offset = (colors.as_mut_ptr() as usize).wrapping_sub(face.depths as usize) as u32;
     face.stride = (width * 2) as u32;
     // SAFETY: the function reads the template and the face, and through the face's addresses
-    // reads the three `TexturedVertex`s (28 bytes each, borrowed mutably by the face)
-    // and writes their coordinates' plane values (bytes 24-27); it writes only pixels of its
+    // the first 16 bytes of each of its three vertices (`ProjectedPrefix`es, borrowed by the
+    // face) and their three pairs of texel coordinates (24 bytes); it writes only pixels of its
     // region — rows and columns of the clip (inside both buffers, checked above), at
     // `row·stride + 2·column` bytes from the buffers' starts, as 2-byte aligned `u16`s (`C` is
     // a 2-byte colour whose raw value the texels are, the caller's promise) — through
@@ -2779,4 +2821,178 @@ pub(crate) fn textured_face<C: Copy>(
         3 => TexturedDraw::Perspective,
         _ => TexturedDraw::Declined,
     }
+}
+
+/// One row of the transform (`three_d::vertex`'s `direct_row`): the row's three entries and its
+/// 64-bit bias `t·2¹⁶ + 2¹⁵` from r0 (which moves on by the row's 20 bytes) into r7-r11, the
+/// products with the position's r4-r6 added to the bias, the sum shifted down by 16 into `$out`
+/// (its low 32 bits: the sum's, below 2⁴⁶ in magnitude, fits after the shift).
+#[rustfmt::skip]
+macro_rules! transform_row {
+    ($out:literal) => {
+        concat!(
+            "ldm r0!, {{r7-r11}}\n",
+            "smlal r10, r11, r7, r4\n",
+            "smlal r10, r11, r8, r5\n",
+            "smlal r10, r11, r9, r6\n",
+            "lsr r10, r10, #16\n",
+            "orr ", $out, ", r10, r11, lsl #16\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_project_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_project_v7m",
+    ".hidden embedded_raster_project_v7m",
+    ".type embedded_raster_project_v7m,%function",
+    ".thumb_func",
+    // r0 = the block (`ProjectionBlock`), r1 = the positions (12 bytes each), r2 = the vertices
+    // (16 bytes each), r3 = their number (at least one). The frame: 0, 4, 8 = the clip-space
+    // z, x and y of the vertex; 12 = the end of the vertices.
+    "embedded_raster_project_v7m:",
+    "push {{r4-r11, lr}}",
+    "sub sp, #16",
+    "add r3, r2, r3, lsl #4",
+    "str r3, [sp, #12]",
+    "1:",
+    // The clip-space position: x, y and z to the frame, w in r4.
+    "ldm r1!, {{r4-r6}}",
+    transform_row!("r12"),
+    transform_row!("lr"),
+    transform_row!("r3"),
+    "stm sp, {{r3, r12, lr}}",
+    transform_row!("r4"),
+    "sub r0, r0, #80",
+    // w at least W_MIN (256), normalised: d = w·2ˢ in [2³¹, 2³²) (r4), s (r5) in [1, 23]; r =
+    // ⌊2⁶³/d⌋ in r6 (2³² − 1 for d = 2³¹), two 16-bit digits.
+    "cmp r4, #256",
+    "it lt",
+    "movlt r4, #256",
+    "clz r5, r4",
+    "lsl r4, r4, r5",
+    "cmp r4, #0x80000000",
+    "beq 50f",
+    "lsr r7, r4, #16",
+    "mov r8, #0x80000000",
+    reciprocal_digit!("r9", "r8", "r7", "r4", "r10", "r11", "r12", "lr", "r3"),
+    reciprocal_digit!("r6", "r8", "r7", "r4", "r10", "r11", "r12", "lr", "r3"),
+    "orr r6, r6, r9, lsl #16",
+    "51:",
+    // k = ⌊h·r / 2²⁴⌋ for the half sizes (r7, r8); x and y (r4, r9) scaled by 2^(s − 7) (z in r3).
+    "ldrd r7, r8, [r0, #88]",
+    "umull r9, r10, r7, r6",
+    "lsr r9, r9, #24",
+    "orr r7, r9, r10, lsl #8",
+    "umull r9, r10, r8, r6",
+    "lsr r9, r9, #24",
+    "orr r8, r9, r10, lsl #8",
+    "ldm sp, {{r3, r4, r9}}",
+    "subs r10, r5, #7",
+    "bmi 60f",
+    "lsl r4, r4, r10",
+    "lsl r9, r9, r10",
+    "61:",
+    // The offsets ⌊(c·k + 2^(31 + e)) / 2³²⌋ >> e from the centre: x in r8, y in r9.
+    "ldrd r11, r12, [r0, #100]",
+    "smull r10, lr, r4, r7",
+    "adds r10, r10, r11",
+    "adc lr, lr, r12",
+    "smull r4, r7, r9, r8",
+    "adds r4, r4, r11",
+    "adc r7, r7, r12",
+    "ldr r10, [r0, #96]",
+    "asr lr, lr, r10",
+    "asr r7, r7, r10",
+    "ldrd r8, r9, [r0, #80]",
+    "add r8, r8, lr",
+    "sub r9, r9, r7",
+    // The depth (r10): 32767 + ⌊(z·2^(s − 1)·kz + 2⁴⁵) / 2⁴⁶⌋ for kz = ⌊32767·r / 2¹⁶⌋, clamped
+    // to 0..=65534.
+    "movw r12, #32767",
+    "umull r10, r11, r6, r12",
+    "lsr r10, r10, #16",
+    "orr r10, r10, r11, lsl #16",
+    "sub r11, r5, #1",
+    "lsl r3, r3, r11",
+    "smull r11, lr, r3, r10",
+    "add lr, lr, #8192",
+    "asr lr, lr, #14",
+    "add lr, lr, r12",
+    "usat r10, #16, lr",
+    "cmp r10, r12, lsl #1",
+    "it hi",
+    "lslhi r10, r12, #1",
+    // `q`: r's high half and s at 15 (r11, masked); the vertex; the next.
+    "ldr r11, [r0, #108]",
+    "lsr r6, r6, #16",
+    "orr r6, r6, r5, lsl #24",
+    "and r11, r11, r6",
+    "ldr r3, [sp, #12]",
+    "stm r2!, {{r8-r11}}",
+    "cmp r2, r3",
+    "bne 1b",
+    "add sp, #16",
+    "pop {{r4-r11, pc}}",
+    "50:",
+    "mvn r6, #0",
+    "b 51b",
+    // Far points (w ≥ 2²⁵, s < 7): x and y shifted down by 7 − s.
+    "60:",
+    "rsb r10, r10, #0",
+    "asr r4, r4, r10",
+    "asr r9, r9, r10",
+    "b 61b",
+    ".size embedded_raster_project_v7m, . - embedded_raster_project_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_project_v7m(
+        block: *const ProjectionBlock,
+        positions: *const u8,
+        vertices: *mut u8,
+        count: u32,
+    );
+}
+
+/// Transforms, projects and maps to the viewport each position of `positions` into the vertex
+/// of `out` at its index (as many as both have) as `block` describes: what `three_d`'s portable
+/// vertex stage computes for a position inside the view volume (`direct_row`, `project_inverse`),
+/// from the same integers — the clip code and the level 0, `q` kept or 0 by the block. The
+/// caller's promise: every position is inside the view volume once transformed, and the
+/// transform's sums stay below 2⁴⁶ in magnitude (its `direct` and `inside` draws); for other
+/// positions the vertices are some integers, never a write outside `out`. Always `true`.
+#[inline(always)]
+pub(crate) fn project_positions<P: ModelPosition, V: ProjectedPrefix>(
+    block: &ProjectionBlock,
+    positions: &[P],
+    out: &mut [V],
+) -> bool {
+    const {
+        assert!(core::mem::size_of::<P>() == 12 && core::mem::align_of::<P>() >= 4);
+        assert!(core::mem::size_of::<V>() == 16 && core::mem::align_of::<V>() >= 4);
+    };
+    let count = positions.len().min(out.len());
+    if count == 0 {
+        return true;
+    }
+    // SAFETY: the function reads the block and `count` positions of 12 bytes from
+    // `positions`'s start (inside it: `P` is 12 bytes, asserted above), and writes `count`
+    // vertices of 16 bytes from `out`'s start (inside it: `V` is 16 bytes), 4-byte aligned (both
+    // types are); any 16 bytes are a `V` (`ProjectedPrefix`'s contract). Its divisions are by
+    // `d`'s top half, at least 2¹⁵ (d > 2³¹ there), its shifts by amounts below 32; it keeps its
+    // stack frame its own and saves and restores every register the AAPCS asks it to.
+    unsafe {
+        embedded_raster_project_v7m(
+            block,
+            positions.as_ptr().cast(),
+            out.as_mut_ptr().cast(),
+            count as u32,
+        )
+    };
+    true
 }

@@ -495,6 +495,7 @@ pub fn inv_sqrt(x: u64) -> (u32, u32) {
 
 /// A 3D vector of [`Scalar`]s.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+#[repr(C)]
 pub struct Vec3 {
     /// x component.
     pub x: Scalar,

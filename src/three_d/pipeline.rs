@@ -982,12 +982,22 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             if !self.lit_texels {
                 // Unlit and per-pixel draws: a loop of their own, without the general loop's
                 // tests for each vertex (kept: without it they measured slower).
-                for (out, p) in scratch.iter_mut().zip(vertices) {
-                    *out = self.stage.textured_vertex(*p);
+                if !self.stage.project_inside(vertices, scratch, true) {
+                    for (out, p) in scratch.iter_mut().zip(vertices) {
+                        *out = self.stage.textured_vertex(*p);
+                    }
                 }
             } else if self.rig.is_none() && normals.len() >= vertices.len() {
                 // The common case with its tests hoisted: every vertex has a normal, and the
                 // light is the pipeline's own (the same levels as `textured_vertex`'s).
+                if self.stage.project_inside(vertices, scratch, true) {
+                    // Every vertex inside the view volume.
+                    let count = vertices.len().min(scratch.len());
+                    let out = &mut scratch[..count];
+                    self.light
+                        .light_all(normals, out, |v, level| *v = v.with_texel_level(level));
+                    return;
+                }
                 for ((out, p), n) in scratch.iter_mut().zip(vertices).zip(normals) {
                     let vertex = self.stage.textured_vertex(*p);
                     *out = match vertex.outside() {

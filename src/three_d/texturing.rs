@@ -485,9 +485,7 @@ where
             return TexturedDraw::Declined;
         };
         let template = arch::slot_template(slot);
-        let vertex = |k: usize| arch::TexturedVertex::of_projected(vertices[k], texels[k], lit);
-        let mut vertices = [vertex(0), vertex(1), vertex(2)];
-        let face = template.face(&mut vertices, words, lit);
+        let face = template.face(vertices, &texels, words, lit);
         C::textured_face_565(target.buffers_mut(), face)
     }
 }
@@ -861,11 +859,11 @@ where
     let l = levels.unwrap_or([0; 3]);
     let vertex = |k: usize| {
         let position = (screen[k].x.to_bits(), screen[k].y.to_bits());
-        arch::TexturedVertex::new(position, screen[k].depth, l[k], texels[k], q[k].parts())
+        arch::VertexPrefix::new(position, screen[k].depth, l[k], q[k].parts())
     };
-    let mut vertices = [vertex(0), vertex(1), vertex(2)];
+    let vertices = [vertex(0), vertex(1), vertex(2)];
     let template = clip.textured_template(masks, affine_level::<C>() as u32);
-    let face = template.face(&mut vertices, words, levels.is_some());
+    let face = template.face(vertices.each_ref(), texels, words, levels.is_some());
     C::textured_face_565(target.buffers_mut(), face)
 }
 

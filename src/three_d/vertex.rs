@@ -21,7 +21,7 @@ use super::clip::{ClipVolume, W_MIN};
 use super::depth::{ScreenVertex, DEPTH_FAR};
 use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
-use crate::arch::NO_LONG_MULTIPLY;
+use crate::arch::{self, NO_LONG_MULTIPLY};
 use crate::fixed_point::Coord;
 use crate::raster::arith::{
     leading_zeros_32, leading_zeros_64, mul_i32_wide, mul_u32_wide, reciprocal_63,
@@ -70,8 +70,15 @@ unsafe impl crate::arch::LevelVertex for ProjectedVertex {}
 #[allow(unsafe_code)]
 unsafe impl crate::arch::ProjectedPrefix for ProjectedVertex {}
 
+// SAFETY: `Vec3` is `repr(C)`: three `I16F16`s (`repr(transparent)` `i32`s) at bytes 0, 4
+// and 8, 12 bytes, 4-byte aligned (asserted below).
+#[allow(unsafe_code)]
+unsafe impl crate::arch::ModelPosition for Vec3 {}
+
 const _: () = {
     use core::mem::{align_of, offset_of, size_of};
+    assert!(size_of::<Vec3>() == 12 && align_of::<Vec3>() == 4);
+    assert!(offset_of!(Vec3, x) == 0 && offset_of!(Vec3, y) == 4 && offset_of!(Vec3, z) == 8);
     assert!(size_of::<ProjectedVertex>() == 16 && align_of::<ProjectedVertex>() == 4);
     assert!(offset_of!(ProjectedVertex, texel_level) == 10);
     assert!(offset_of!(ProjectedVertex, code) == 14 && offset_of!(ProjectedVertex, q_shift) == 15);
@@ -397,6 +404,27 @@ impl VertexLight {
         self.level_of_unit(n)
     }
 
+    /// Lights each vertex of `out` by `set` with the level of the normal of `normals` at its
+    /// index (as many as both have): [`level`](Self::level)'s levels, the normal matrix's case
+    /// decided once for them all.
+    #[inline(always)]
+    pub(crate) fn light_all(
+        &self,
+        normals: &[Vec3],
+        out: &mut [ProjectedVertex],
+        set: impl Fn(&mut ProjectedVertex, u16),
+    ) {
+        if self.normal_matrix.is_none() {
+            for (v, n) in out.iter_mut().zip(normals) {
+                set(v, self.level_of_unit(*n));
+            }
+        } else {
+            for (v, n) in out.iter_mut().zip(normals) {
+                set(v, self.level(*n));
+            }
+        }
+    }
+
     /// [`level`](Self::level) for a normal already in the light's space and of unit length.
     #[inline]
     pub(crate) fn level_of_unit(&self, n: Vec3) -> u16 {
@@ -661,6 +689,26 @@ impl VertexStage {
         self.light.as_ref().map_or(0, |l| l.level(n))
     }
 
+    /// The vertices of `positions` into `out` (as many as both have) by the target's assembly
+    /// loop ([`arch::project_positions`]) where it has one and the draw's box is inside the view
+    /// volume: [`placed`](Self::placed)'s vertices, or if `textured`
+    /// [`textured_vertex`](Self::textured_vertex)'s, unlit. `false`, with nothing written,
+    /// elsewhere.
+    #[inline(always)]
+    pub(crate) fn project_inside(
+        &self,
+        positions: &[Vec3],
+        out: &mut [ProjectedVertex],
+        textured: bool,
+    ) -> bool {
+        if !arch::PROJECT_POSITIONS || !self.inside {
+            return false;
+        }
+        let viewport = (self.centre, self.half, self.exponent);
+        let block = arch::ProjectionBlock::new(&self.mvp, viewport, textured);
+        arch::project_positions(&block, positions, out)
+    }
+
     /// Transforms, classifies, projects (if inside) and lights the vertex at `p` with normal `n`.
     #[inline(always)]
     pub(crate) fn vertex(&self, p: Vec3, n: Option<&Vec3>) -> ProjectedVertex {
@@ -682,6 +730,24 @@ impl VertexStage {
         normals: &[Vec3],
         out: &mut [ProjectedVertex],
     ) {
+        if self.project_inside(positions, out, false) {
+            let count = positions.len().min(out.len());
+            let out = &mut out[..count];
+            match self.light {
+                Some(light) if normals.len() >= out.len() => {
+                    light.light_all(normals, out, |v, level| v.level = level);
+                }
+                _ => {
+                    for (k, out) in out.iter_mut().enumerate() {
+                        match normals.get(k) {
+                            Some(n) => out.level = self.level(*n),
+                            None => out.code |= NO_NORMAL,
+                        }
+                    }
+                }
+            }
+            return;
+        }
         match self.light {
             Some(light) if light.normal_matrix.is_none() && normals.len() >= positions.len() => {
                 for ((out, p), n) in out.iter_mut().zip(positions).zip(normals) {
