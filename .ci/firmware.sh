@@ -73,12 +73,12 @@ FULL_FLASH_GOAL=16384
 
 # The 3D bench frames (320×240, fw_mesh_bench) on the Cortex-M4, instructions a frame with the
 # vertex scratch, held at the set-up issue's (#29) figures with margins of about 10 %: spot
-# 2.45 M (its goal 2.2 M; 2.67 M before the Thumb-2 vertex stage of stop 50, 2.97 M before the
-# Thumb-2 face set-up of stop 45), the most expensive pose of spot's turntable 2.70 M, the knot
-# 3.03 M.
-SPOT_FRAME_LIMIT=2700000
-SPOT_TURNTABLE_LIMIT=2970000
-MESH_FRAME_LIMIT=3330000
+# 2.41 M (its goal 2.2 M; 2.67 M before the Thumb-2 vertex stage of stop 50, 2.97 M before the
+# Thumb-2 face set-up of stop 45), the most expensive pose of spot's turntable 2.65 M, the knot
+# 2.98 M.
+SPOT_FRAME_LIMIT=2650000
+SPOT_TURNTABLE_LIMIT=2920000
+MESH_FRAME_LIMIT=3280000
 # The knot's hidden-line wireframe (its faces filled unlit into the z-buffer, then their edges as
 # depth-tested thin lines: `Pipeline::draw_wireframe`, issue #30): measured 33.9 M, most of it the
 # thin line's exact end-pixel tests on edges a few pixels long; a margin of about 10 %.
@@ -88,13 +88,13 @@ WIREFRAME_FRAME_LIMIT=37500000
 M0_SPOT_FRAME_LIMIT=8100000
 M0_MESH_FRAME_LIMIT=9800000
 # The textured spot frame (nearest, Rgb565 texels in RAM; the texture issue's goal is 3.4 M, TGX
-# takes 4.04 M): held where it is (measured 4.16 M at stop 50 with the Thumb-2 vertex stage and
+# takes 4.04 M): held where it is (measured 4.12 M at stop 50 with the Thumb-2 vertex stage and
 # the set-up's own vertex records, 4.54 M at stop 49, 4.77 M at stop 47; a margin of 10 %) so
 # that it only comes down.
-TEXTURED_FRAME_LIMIT=4600000
-# The same with a Blinn-Phong highlight (measured 7.13 M at stop 50, a margin of 10 %).
-SPECULAR_TEXTURED_FRAME_LIMIT=7850000
-# The same lit per pixel (Shading::Quadratic, the highlight per pixel; measured 22.13 M, a margin
+TEXTURED_FRAME_LIMIT=4550000
+# The same with a Blinn-Phong highlight (measured 7.09 M at stop 50, a margin of 10 %).
+SPECULAR_TEXTURED_FRAME_LIMIT=7800000
+# The same lit per pixel (Shading::Quadratic, the highlight per pixel; measured 22.09 M, a margin
 # of 10 %): held where it is.
 QUADRATIC_TEXTURED_FRAME_LIMIT=24300000
 
@@ -107,9 +107,9 @@ QUADRATIC_TEXTURED_FRAME_LIMIT=24300000
 # point apart in two builds; +17.0 % at stop 41, the frame drawn whole 0.14 M faster and the
 # bin's frame 0.12 M; +17.7 % at stop 45, the frame drawn whole 0.41 M faster with the Thumb-2
 # face set-up and the bin's 0.43 M, a band's copy of the draw's state made a word copy: 0.3
-# points left; +19.0 % at stop 50, the same 0.58 M of overhead over a frame drawn whole 0.2 M
-# faster with the Thumb-2 vertex stage, which the bin's frame takes too: the limit 18 → 21, two
-# points for compilers as before), and
+# points left; +19.0 % at stop 50 with the Thumb-2 vertex stage, the same 0.58 M of overhead over
+# a frame drawn whole 0.2 M faster, then +18.2 % with the z-buffer cleared by `stm`s, which the
+# bands' clears take too: the limit 18 → 21, as the ratio moves with the frame's speed), and
 # the micro:bit's frame in 8-row bands without a bin at most this many instructions (88.9 M
 # measured at stop 41, 130.9 M before the M0's products from limbs).
 BAND_BIN_OVERHEAD_LIMIT=21

@@ -1,7 +1,7 @@
 //! Profiling firmware: draws one triangle set many times with one renderer, for QEMU's
 //! execution log (`-d in_asm,exec,nochain`), which `.ci/qprof.py` turns into instructions per
 //! function. The renderer and set are chosen at build time with the `PROFILE` environment
-//! variable, `<solid|gouraud|aa>-<large|small|tiny>` (default `gouraud-tiny`; `aa`: solid
+//! variable, `<solid|gouraud|aa|polygon|opacity>-<large|small|tiny>` (default `gouraud-tiny`; `aa`: solid
 //! anti-aliased):
 //!
 //! ```text
@@ -77,6 +77,10 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
                 if let Ok(polygon) = Polygon::<3>::from_points(&corners) {
                     polygon.filled(Rgb565::RED).draw_into(fb);
                 }
+            } else if PROFILE.starts_with("opacity") {
+                SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
+                    .with_opacity(128)
+                    .draw_into(fb);
             } else if PROFILE.starts_with("aa") {
                 SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
                     .anti_aliased()

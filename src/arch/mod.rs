@@ -968,7 +968,8 @@ pub(crate) fn perspective_span<C: Copy>(
 /// a time. A 16-bit buffer is only known to be 2-byte aligned where it is cleared, and LLVM
 /// turns a fill at that alignment into the byte-granular `memset` call, on Cortex-M four times
 /// the instructions of the word-aligned one it picks here (on RV32, whose library `memset` stores
-/// a word a pass of three instructions, an unrolled loop of eight).
+/// a word a pass of three instructions, an unrolled loop of eight; on ARMv7-M two `stm`s of four
+/// words a pass).
 #[allow(unsafe_code)]
 pub(crate) fn fill_u16(entries: &mut [u16], value: u16) {
     // SAFETY: any two `u16`s are a valid `u32` and any `u32` is two valid `u16`s; `align_to_mut`
@@ -978,7 +979,9 @@ pub(crate) fn fill_u16(entries: &mut [u16], value: u16) {
     let word = u32::from(value) * 0x0001_0001;
     #[cfg(rv32)]
     riscv32::fill_words(middle, word);
-    #[cfg(not(rv32))]
+    #[cfg(armv7m)]
+    thumbv7m::fill_words(middle, word);
+    #[cfg(not(any(rv32, armv7m)))]
     middle.fill(word);
     tail.fill(value);
 }

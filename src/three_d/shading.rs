@@ -1012,8 +1012,6 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     v: [&ProjectedVertex; 3],
     table: &ShadeTable<C>,
 ) {
-    let vertices = v.map(|v| v.screen());
-    let levels = v.map(|v| [v.level()]);
     // A small face of an opaque draw: set up and drawn by the assembly.
     if arch::LEVEL_FACE && target.blend().is_none() {
         let face = clip.level_face(v);
@@ -1021,6 +1019,8 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
             return;
         }
     }
+    let vertices = v.map(|v| v.screen());
+    let levels = v.map(|v| [v.level()]);
     let attributes = with_depth(vertices, levels, [LEVEL_HALF]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
 }
