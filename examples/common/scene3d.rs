@@ -148,18 +148,24 @@ pub fn pipeline(model: Model) -> Pipeline {
 /// The frame's camera, light and viewport with the model posed by `pose`.
 pub fn posed(pose: Mat4) -> Pipeline {
     let (w, h) = SIZE;
-    let projection = Mat4::perspective(
-        Angle::from_degrees(60),
-        Scalar::from_num(w) / Scalar::from_num(h),
-        Scalar::from_bits(1 << 15),
-        Scalar::from_num(8),
-    )
-    // Constants that make a projection: never `None`. A fallback, not a panic path, for the
-    // firmware (a zero matrix would draw nothing, which the frame checksums would catch).
-    .unwrap_or(Mat4::from_bits([[0; 4]; 4]));
+    let projection = projection(Scalar::from_bits(1 << 15), Scalar::from_num(8));
     let view = Mat4::translation(Vec3::from_bits(0, 0, -(5 << 16) / 2));
     let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
     Pipeline::new(pose, projection * view, viewport, light())
+}
+
+/// The frames' 60° perspective projection onto [`SIZE`] with the depth range `near` to `far`.
+fn projection(near: Scalar, far: Scalar) -> Mat4 {
+    let (w, h) = SIZE;
+    Mat4::perspective(
+        Angle::from_degrees(60),
+        Scalar::from_num(w) / Scalar::from_num(h),
+        near,
+        far,
+    )
+    // Constants that make a projection: never `None`. A fallback, not a panic path, for the
+    // firmware (a zero matrix would draw nothing, which the frame checksums would catch).
+    .unwrap_or(Mat4::from_bits([[0; 4]; 4]))
 }
 
 /// The light of every frame here (the bench scene's).
@@ -201,6 +207,17 @@ pub fn torus<'a>(
     Mesh::new(&vertices[..], &normals[..], &indices[..])
 }
 
+/// A 64-bit LCG (Knuth's MMIX constants) from `seed`: each call the top `bits` of its next state.
+fn random_bits(seed: u64) -> impl FnMut(u32) -> i32 {
+    let mut state = seed;
+    move |bits: u32| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> (64 - bits)) as i32
+    }
+}
+
 /// Faces of the [`scatter`] mesh.
 pub const SCATTER_FACES: usize = 1600;
 
@@ -218,14 +235,7 @@ pub fn scatter<'a>(
     normals: &'a mut [Vec3; SCATTER_VERTICES],
     indices: &'a mut [[u16; 3]; SCATTER_FACES],
 ) -> Mesh<'a> {
-    // A 64-bit LCG (Knuth's MMIX constants), its top bits.
-    let mut state = 0x5ca7_7e2e_d000_0001u64;
-    let mut next = move |bits: u32| {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> (64 - bits)) as i32
-    };
+    let mut next = random_bits(0x5ca7_7e2e_d000_0001);
     // A quarter pixel of the camera's 256-px viewport: 1/512 of the unit.
     const QUARTER: i32 = 1 << 7;
     for (k, face) in indices.iter_mut().enumerate() {
@@ -332,13 +342,7 @@ pub fn depths<'a>(
     normals: &'a mut [Vec3],
     indices: &'a mut [[u16; 3]],
 ) -> Mesh<'a> {
-    let mut state = 0xde97_4500_1234_5679u64;
-    let mut next = move |bits: u32| {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> (64 - bits)) as i32
-    };
+    let mut next = random_bits(0xde97_4500_1234_5679);
     let (vertices, normals) = (
         &mut vertices[..3 * DEPTHS_FACES],
         &mut normals[..3 * DEPTHS_FACES],
@@ -411,13 +415,7 @@ pub fn render_depths(
     scratch: &mut [ProjectedVertex],
 ) -> DepthsLine {
     let (w, h) = SIZE;
-    let camera = Mat4::perspective(
-        Angle::from_degrees(60),
-        Scalar::from_num(w) / Scalar::from_num(h),
-        Scalar::from_bits(1 << 14),
-        Scalar::from_num(2048),
-    )
-    .unwrap_or(Mat4::from_bits([[0; 4]; 4]));
+    let camera = projection(Scalar::from_bits(1 << 14), Scalar::from_num(2048));
     let viewport = Rectangle::new(Point::zero(), Size::new(w, h));
     target.clear(BACKGROUND);
     let mut stats = DrawStats::default();

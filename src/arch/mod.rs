@@ -977,11 +977,33 @@ pub(crate) fn fill_u16(entries: &mut [u16], value: u16) {
     let (head, middle, tail) = unsafe { entries.align_to_mut::<u32>() };
     head.fill(value);
     let word = u32::from(value) * 0x0001_0001;
-    #[cfg(rv32)]
-    riscv32::fill_words(middle, word);
-    #[cfg(armv7m)]
-    thumbv7m::fill_words(middle, word);
-    #[cfg(not(any(rv32, armv7m)))]
-    middle.fill(word);
+    fill_words(middle, word);
     tail.fill(value);
+}
+
+/// Sets every word of `words` to `value`: where the target has a loop of eight words a pass of
+/// its own (RV32, ARMv7-M: `fill_eights`), the whole eights by it, then the rest.
+#[allow(unsafe_code)]
+#[inline(always)]
+fn fill_words(words: &mut [u32], value: u32) {
+    #[cfg(any(rv32, armv7m))]
+    let words = {
+        let whole = words.len() & !7;
+        let (eights, rest) = words.split_at_mut(whole);
+        if !eights.is_empty() {
+            let range = eights.as_mut_ptr_range();
+            // SAFETY: `eights` is writable, its words 4-byte aligned, a multiple of eight of
+            // them and at least eight.
+            #[cfg(rv32)]
+            unsafe {
+                riscv32::fill_eights(range.start, range.end, value)
+            };
+            #[cfg(armv7m)]
+            unsafe {
+                thumbv7m::fill_eights(range.start, range.end, value)
+            };
+        }
+        rest
+    };
+    words.fill(value);
 }

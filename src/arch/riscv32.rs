@@ -186,38 +186,35 @@ pub(crate) fn level_rows<C: Copy>(
     true
 }
 
-/// Sets every word of `words` to `value`: eight stores and two loop instructions a pass (the
-/// library `memset` LLVM calls otherwise stores one word a pass of three).
+/// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart:
+/// eight stores and two loop instructions a pass (the library `memset` LLVM calls otherwise
+/// stores one word a pass of three). `super::fill_words`' loop.
+///
+/// # Safety
+///
+/// `start..end` is a range of writable, 4-byte aligned words whose length is a multiple of
+/// eight, at least eight.
 #[inline(always)]
-pub(crate) fn fill_words(words: &mut [u32], value: u32) {
-    let whole = words.len() & !7;
-    if whole > 0 {
-        let start = words.as_mut_ptr();
-        let end = start.wrapping_add(whole);
-        // SAFETY: stores words only in `start..end`, the first `whole` (a multiple of eight, at
-        // least eight) words of `words`, each 4-byte aligned as `words`' are; touches no stack.
-        unsafe {
-            core::arch::asm!(
-                "2:",
-                "sw {value}, 0({p})",
-                "sw {value}, 4({p})",
-                "sw {value}, 8({p})",
-                "sw {value}, 12({p})",
-                "sw {value}, 16({p})",
-                "sw {value}, 20({p})",
-                "sw {value}, 24({p})",
-                "sw {value}, 28({p})",
-                "addi {p}, {p}, 32",
-                "bltu {p}, {end}, 2b",
-                p = inout(reg) start => _,
-                end = in(reg) end,
-                value = in(reg) value,
-                options(nostack, preserves_flags),
-            );
-        }
-    }
-    if let Some(rest) = words.get_mut(whole..) {
-        rest.fill(value);
+pub(crate) unsafe fn fill_eights(start: *mut u32, end: *mut u32, value: u32) {
+    // SAFETY: stores words only in `start..end` (the caller's promise); touches no stack.
+    unsafe {
+        core::arch::asm!(
+            "2:",
+            "sw {value}, 0({p})",
+            "sw {value}, 4({p})",
+            "sw {value}, 8({p})",
+            "sw {value}, 12({p})",
+            "sw {value}, 16({p})",
+            "sw {value}, 20({p})",
+            "sw {value}, 24({p})",
+            "sw {value}, 28({p})",
+            "addi {p}, {p}, 32",
+            "bltu {p}, {end}, 2b",
+            p = inout(reg) start => _,
+            end = in(reg) end,
+            value = in(reg) value,
+            options(nostack, preserves_flags),
+        );
     }
 }
 

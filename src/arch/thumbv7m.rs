@@ -2997,36 +2997,33 @@ pub(crate) fn project_positions<P: ModelPosition, V: ProjectedPrefix>(
     true
 }
 
-/// Sets every word of `words` to `value`: two `stm`s of four registers and two loop
-/// instructions a pass of eight words (the library `memset` LLVM calls for a byte-uniform word
-/// takes about 15 instructions for those 32 bytes, its store loop 10).
+/// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart: two
+/// `stm`s of four registers and two loop instructions a pass (the library `memset` LLVM calls
+/// for a byte-uniform word takes about 15 instructions for those 32 bytes, its store loop 10).
+/// `super::fill_words`' loop.
+///
+/// # Safety
+///
+/// `start..end` is a range of writable, 4-byte aligned words whose length is a multiple of
+/// eight, at least eight.
 #[inline(always)]
-pub(crate) fn fill_words(words: &mut [u32], value: u32) {
-    let whole = words.len() & !7;
-    if whole > 0 {
-        let start = words.as_mut_ptr();
-        let end = start.wrapping_add(whole);
-        // SAFETY: stores words only in `start..end`, the first `whole` (a multiple of eight, at
-        // least eight) words of `words`, each 4-byte aligned as `words`' are; touches no stack
-        // and reads no memory.
-        unsafe {
-            core::arch::asm!(
-                "2:",
-                "stm {p}!, {{r0, r1, r2, r3}}",
-                "stm {p}!, {{r0, r1, r2, r3}}",
-                "cmp {p}, {end}",
-                "bne 2b",
-                p = inout(reg) start => _,
-                end = in(reg) end,
-                in("r0") value,
-                in("r1") value,
-                in("r2") value,
-                in("r3") value,
-                options(nostack),
-            );
-        }
-    }
-    if let Some(rest) = words.get_mut(whole..) {
-        rest.fill(value);
+pub(crate) unsafe fn fill_eights(start: *mut u32, end: *mut u32, value: u32) {
+    // SAFETY: stores words only in `start..end` (the caller's promise); touches no stack and
+    // reads no memory.
+    unsafe {
+        core::arch::asm!(
+            "2:",
+            "stm {p}!, {{r0, r1, r2, r3}}",
+            "stm {p}!, {{r0, r1, r2, r3}}",
+            "cmp {p}, {end}",
+            "bne 2b",
+            p = inout(reg) start => _,
+            end = in(reg) end,
+            in("r0") value,
+            in("r1") value,
+            in("r2") value,
+            in("r3") value,
+            options(nostack),
+        );
     }
 }
