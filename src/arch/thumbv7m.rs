@@ -35,6 +35,13 @@
 //! weights the halves of another — 57 instructions a drawn pixel; the integers of the portable
 //! `texture::map::bilinear_by`, checked by `fw_texture_bench`'s random faces on the M4.
 //!
+//! The vertex stage ([`project_positions`]): LLVM keeps the sixteen matrix entries of the
+//! transform on the stack and rounds each row apart (about 188 instructions a vertex); here a
+//! row is one `ldm` of its entries and a 64-bit bias that carries its translation and rounding,
+//! and three `smlal`, and the whole vertex 94 instructions. The integers of the portable
+//! `direct_row` and `project_inverse`, which `fw_mesh_bench`'s depths frame checks vertex by
+//! vertex on the boards.
+//!
 //! The blend of an alpha per vertex over 5-6-5 pixels ([`premultiplied_pairs_565`]): LLVM
 //! unrolls the portable pair loop and spills its planes (fw_bench: 43.18 instructions a pixel,
 //! 33.42 pixel by pixel through the channels); here a pair of pixels is one word loaded and
