@@ -867,18 +867,17 @@ pub(crate) struct ProjectionBlock {
 
 impl ProjectionBlock {
     /// The block of the raw model-view-projection matrix `mvp`, the viewport's `centre`, its
-    /// half sizes times 2ᵉ `half` and `exponent` `e` (at most 22), keeping `q` if `textured`.
-    #[cfg_attr(not(armv7m), allow(dead_code))]
+    /// half sizes times 2ᵉ `half`, `exponent` `e` and the offsets' rounding `round`
+    /// (`2^(31 + e)`), keeping `q` if `textured`.
     pub(crate) fn new(
         mvp: &[[i32; 4]; 4],
-        (centre, half, exponent): ((i32, i32), (u32, u32), u32),
+        (centre, half, exponent, round): ((i32, i32), (u32, u32), u32, i64),
         textured: bool,
     ) -> Self {
         let rows = mvp.map(|[a, b, c, t]| {
             let bias = (i64::from(t) << 16) + (1 << 15);
             [a, b, c, bias as i32, (bias >> 32) as i32]
         });
-        let round = 1u64 << (31 + exponent.min(32));
         ProjectionBlock {
             rows,
             centre: [centre.0, centre.1],

@@ -704,7 +704,7 @@ impl VertexStage {
         if !arch::PROJECT_POSITIONS || !self.inside {
             return false;
         }
-        let viewport = (self.centre, self.half, self.exponent);
+        let viewport = (self.centre, self.half, self.exponent, self.round);
         let block = arch::ProjectionBlock::new(&self.mvp, viewport, textured);
         arch::project_positions(&block, positions, out)
     }
@@ -713,11 +713,17 @@ impl VertexStage {
     #[inline(always)]
     pub(crate) fn vertex(&self, p: Vec3, n: Option<&Vec3>) -> ProjectedVertex {
         let mut vertex = self.placed(p);
+        self.light_vertex(&mut vertex, n);
+        vertex
+    }
+
+    /// Lights `vertex` by its normal `n`, or marks it as without one.
+    #[inline(always)]
+    fn light_vertex(&self, vertex: &mut ProjectedVertex, n: Option<&Vec3>) {
         match n {
             Some(n) => vertex.level = self.level(*n),
             None => vertex.code |= NO_NORMAL,
         }
-        vertex
     }
 
     /// [`vertex`](Self::vertex) for every position of `positions` (with `normals[k]` for
@@ -739,10 +745,7 @@ impl VertexStage {
                 }
                 _ => {
                     for (k, out) in out.iter_mut().enumerate() {
-                        match normals.get(k) {
-                            Some(n) => out.level = self.level(*n),
-                            None => out.code |= NO_NORMAL,
-                        }
+                        self.light_vertex(out, normals.get(k));
                     }
                 }
             }
