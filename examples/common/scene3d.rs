@@ -225,9 +225,9 @@ pub const SCATTER_FACES: usize = 1600;
 pub const SCATTER_VERTICES: usize = 3 * SCATTER_FACES;
 
 /// Small faces scattered over the screen and past its edges, into the caller's arrays: each face
-/// its own three vertices, from 16 px across down to 2, a sliver in eight,
-/// at random depths and orientations (about half face away), with random normals. Through
-/// [`scatter_pipeline`]'s orthographic camera the positions land on quarter pixels, so pixel
+/// its own three vertices, from 16 px across down to 2, a sliver in eight, one in 64 with an index
+/// past the vertices, at random depths and orientations (about half face away), with random
+/// normals. Through [`scatter_pipeline`]'s orthographic camera the positions land on quarter pixels, so pixel
 /// centres lie exactly on many edges (the fill rule's cases). The frame that tests the set-up
 /// of small faces where a core has its own (`arch::level_face`) against the host's.
 pub fn scatter<'a>(
@@ -262,13 +262,41 @@ pub fn scatter<'a>(
         } else {
             corner(2)
         };
-        for (j, p) in [a, b, c].into_iter().enumerate() {
+        let mut corners = [a, b, c];
+        // One face in 400 large, each way round in turn: 220 × 220 px near the middle, at the
+        // back, a doubled area between 2³¹ and 2³² sub-pixels² (its low word's top bit set).
+        if k % 400 == 100 {
+            const HALF: i32 = 440 * QUARTER;
+            let (x, y, z) = (centre[0] / 8, centre[1] / 8, 63 << 10);
+            corners = [
+                [x - HALF, y - HALF, z],
+                [x + HALF, y - HALF, z],
+                [x, y + HALF, z],
+            ];
+            if k % 800 == 100 {
+                corners.swap(1, 2);
+            }
+        }
+        // Past the guard band, right, left, down and up in turn (30,000 units: 3.8 M px): one
+        // corner of one face in 64 (clipped), all three of another (rejected).
+        let far = [(0, 1), (0, -1), (1, 1), (1, -1)][k / 64 % 4];
+        for (j, p) in corners.iter_mut().enumerate() {
+            if k % 64 == 45 || (k % 64 == 29 && j == 2) {
+                p[far.0] = far.1 * (30_000 << 16);
+            }
+        }
+        for (j, p) in corners.into_iter().enumerate() {
             let v = 3 * k + j;
             vertices[v] = Vec3::from_bits(p[0], p[1], p[2]);
             let n = [(); 3].map(|_| next(16) - (1 << 15));
             normals[v] = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
         }
         *face = [0, 1, 2].map(|j| (3 * k + j) as u16);
+        // One face in 64 with an index past the vertices (each corner in turn): never drawn,
+        // counted as invalid.
+        if k % 64 == 13 {
+            face[k / 64 % 3] = u16::MAX;
+        }
     }
     Mesh::new(&vertices[..], &normals[..], &indices[..])
 }
@@ -363,6 +391,11 @@ pub fn depths<'a>(
             normals[v] = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
         }
         *face = [0, 1, 2].map(|j| (3 * k + j) as u16);
+        // One face in 64 with an index past the vertices (each corner in turn): never drawn,
+        // counted as invalid.
+        if k % 64 == 13 {
+            face[k / 64 % 3] = u16::MAX;
+        }
     }
     Mesh::new(&vertices[..], &normals[..], &indices[..])
 }
@@ -595,9 +628,13 @@ fn write_frame_line(
 ) -> core::fmt::Result {
     write!(
         f,
-        "frame {name} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} covered={} fnv1a={:#010x}",
-        SIZE.0, SIZE.1, s.drawn, s.culled, s.clipped, s.rejected, s.degenerate, covered, checksum
-    )
+        "frame {name} {}x{} drawn={} culled={} clipped={} rejected={} degenerate={} ",
+        SIZE.0, SIZE.1, s.drawn, s.culled, s.clipped, s.rejected, s.degenerate
+    )?;
+    if s.invalid != 0 {
+        write!(f, "invalid={} ", s.invalid)?;
+    }
+    write!(f, "covered={covered} fnv1a={checksum:#010x}")
 }
 
 /// The line of the [`turntable`]'s frames ([`turntable_checksum`]), compared like the frame

@@ -573,7 +573,8 @@ pub(crate) struct VertexPrefix {
     words: [u32; 4],
 }
 
-/// A vertex whose first 16 bytes [`textured_face`] reads and [`project_positions`] writes.
+/// A vertex whose first 16 bytes [`textured_face`] and [`FaceScan`] read and [`project_positions`]
+/// writes.
 ///
 /// # Safety
 ///
@@ -581,7 +582,8 @@ pub(crate) struct VertexPrefix {
 /// (no padding among them), any 16 bytes there are a value of the fields they hold (integers),
 /// and they are laid out as a [`VertexPrefix`]'s: the position's x and y (sub-pixels, `i32`) at
 /// bytes 0 and 4, the depth (`u16`) at 8, the light level (8.8, `u16`) at 10, `q`'s mantissa
-/// (`u16`) at 12, the clip code (`u8`) at 14 and `q`'s shift (`u8`) at 15.
+/// (`u16`) at 12, the clip code (`u8`: the clip planes the vertex is outside in bits 0-6, bit 7
+/// another flag) at 14 and `q`'s shift (`u8`) at 15.
 #[allow(unsafe_code)]
 pub(crate) unsafe trait ProjectedPrefix {}
 
@@ -886,6 +888,100 @@ impl ProjectionBlock {
             round: [round as u32, (round >> 32) as u32],
             q_mask: if textured { u32::MAX } else { 0 },
         }
+    }
+}
+
+/// ARMv7-M: the face stage's first look at each face of a mesh drawn from its vertex scratch —
+/// indices in range, clip codes, the doubled area's sign and zero, the culled side — is one
+/// assembly loop ([`FaceScan::next_batch`]) that hands on only the faces left to clip or fill;
+/// elsewhere the pipeline's own loop decides each face.
+pub(crate) const FACE_SCAN: bool = cfg!(armv7m);
+
+/// The faces a [`FaceScan::next_batch`] hands on at most.
+pub(crate) const FACE_BATCH: usize = 16;
+
+/// A face entry of [`FaceScan::next_batch`]: the face's number times 4 plus its kind, this one
+/// (every vertex inside the view volume, of non-zero area, facing the kept side: to fill).
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) const SCANNED_KEPT: u32 = 0;
+
+/// A face entry's kind: a vertex outside a clip plane and not all of them outside the same one
+/// (to clip).
+pub(crate) const SCANNED_CLIPPED: u32 = 1;
+
+/// A face entry's kind: an index past the scratch.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) const SCANNED_INVALID: u32 = 2;
+
+/// The face scan of a mesh's faces over its vertex scratch ([`FACE_SCAN`]): for each face in
+/// order, what the pipeline's verdict decides from the projected vertices alone (for a draw of
+/// every row, faces of one side culled) — dropped and counted (all vertices outside one clip
+/// plane: rejected; no area: degenerate; the other side: culled, the faces left over), or
+/// handed on as an entry ([`SCANNED_KEPT`], [`SCANNED_CLIPPED`], [`SCANNED_INVALID`]).
+///
+/// The doubled area is the verdict's: `(x₁ − x₀)(y₂ − y₀) − (x₂ − x₀)(y₁ − y₀)` from wrapping
+/// 32-bit differences, 64-bit products, wrapping.
+#[derive(Debug)]
+#[repr(C)]
+// Read only where the assembly is (elsewhere `new` gives none).
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) struct FaceScan<'a> {
+    /// 0: the next face's indices; 4: past the last face's.
+    next: *const [u16; 3],
+    end: *const [u16; 3],
+    /// 8: the scratch's first vertex (16 bytes each, a [`ProjectedPrefix`]); 12: its vertices.
+    scratch: *const u8,
+    vertices: u32,
+    /// 16: the next face's number times 4.
+    number: u32,
+    /// 20: 0 to keep the faces of negative doubled area, all ones for those of positive area.
+    flip: u32,
+    /// 24, 28: the faces rejected and degenerate so far.
+    rejected: u32,
+    degenerate: u32,
+    borrows: core::marker::PhantomData<&'a [[u16; 3]]>,
+}
+
+impl<'a> FaceScan<'a> {
+    /// The scan of `faces` over the vertices `scratch`, keeping the faces of negative doubled
+    /// area (`keep_negative`, the pipeline's front faces) or of positive area. `None` where
+    /// there is no scan, or for more than 2³⁰ faces.
+    pub(crate) fn new<V: ProjectedPrefix>(
+        faces: &'a [[u16; 3]],
+        scratch: &'a [V],
+        keep_negative: bool,
+    ) -> Option<Self> {
+        const { assert!(core::mem::size_of::<V>() == 16) };
+        if !FACE_SCAN || faces.len() > 1 << 30 {
+            return None;
+        }
+        let range = faces.as_ptr_range();
+        Some(FaceScan {
+            next: range.start,
+            end: range.end,
+            scratch: scratch.as_ptr().cast(),
+            vertices: u32::try_from(scratch.len()).unwrap_or(u32::MAX),
+            number: 0,
+            flip: if keep_negative { 0 } else { u32::MAX },
+            rejected: 0,
+            degenerate: 0,
+            borrows: core::marker::PhantomData,
+        })
+    }
+
+    /// The next faces handed on (none once every face is scanned), into `out`.
+    #[inline(always)]
+    pub(crate) fn next_batch<'o>(&mut self, out: &'o mut [u32; FACE_BATCH]) -> &'o [u32] {
+        #[cfg(armv7m)]
+        let count = thumbv7m::scan_faces(self, out);
+        #[cfg(not(armv7m))]
+        let count = 0;
+        &out[..count.min(FACE_BATCH)]
+    }
+
+    /// The faces rejected and degenerate among those scanned.
+    pub(crate) fn dropped(&self) -> (u32, u32) {
+        (self.rejected, self.degenerate)
     }
 }
 

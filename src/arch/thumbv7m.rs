@@ -57,9 +57,10 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 
 #[cfg(arm_dsp)]
 use super::MaskedSpan565;
+use super::{FaceScan, ModelPosition, ProjectedPrefix, ProjectionBlock, FACE_BATCH};
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
-use super::{ModelPosition, ProjectedPrefix, ProjectionBlock};
 use super::{TexturedDraw, TexturedFace, TexturedRows, TexturedTemplate, BILINEAR_ROWS};
+use super::{SCANNED_CLIPPED, SCANNED_INVALID, SCANNED_KEPT};
 
 /// The assembler directive that lets a block use the DSP extension's instructions where the
 /// target itself does not have them (ARMv8-M Mainline, whose DSP extension is optional, with the
@@ -1896,8 +1897,8 @@ macro_rules! edge_bound {
 /// addresses at sp + 136, 140, 144), its differences from vertex 0 stored at `$d` (d1, d2), its
 /// value term (`base·2¹⁶ + half`, the half at `$half` of the face) at `$base`, and its
 /// numerators `nx = d1·a1 + d2·a2`, `ny = d1·b1 + d2·b2` (the edges opposite oriented vertices 1
-/// and 2: r6-r9 = o1x, o1y, o2x, o2y) at `$n`; a numerator past the limit (r5) declines the
-/// face.
+/// and 2: r6-r9 = o1x, o1y, o2x, o2y) at `$n`, each numerator's magnitude (less one if
+/// negative: `n ^ (n >> 31)`) or-ed into lr for [`numerators_within`]. Clobbers r1-r3, r10-r12.
 #[rustfmt::skip]
 macro_rules! attribute_numerators {
     ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal, $p0:literal, $p1:literal) => {
@@ -1918,15 +1919,25 @@ macro_rules! attribute_numerators {
             "mul r11, r3, r6\n",
             "mls r11, r2, r8, r11\n",
             "strd r10, r11, [sp, #", $n, "]\n",
-            "cmp r10, #0\n",
-            "it mi\n",
-            "rsbmi r10, r10, #0\n",
-            "cmp r10, r5\n",
-            "bhs 90f\n",
-            "cmp r11, #0\n",
-            "it mi\n",
-            "rsbmi r11, r11, #0\n",
-            "cmp r11, r5\n",
+            "eor r12, r10, r10, asr #31\n",
+            "orr lr, lr, r12\n",
+            "eor r12, r11, r11, asr #31\n",
+            "orr lr, lr, r12\n",
+        )
+    };
+}
+
+/// After the faces' [`attribute_numerators`] (lr = their magnitudes or-ed, from 0): declines the
+/// face (90) unless every numerator is within the limit (r5, then r5 − 1): `|n| < limit` for
+/// each where the or is below `limit − 1` (a magnitude taken one less, `|n| − 1`, for a negative
+/// `n`). Where every `|n|` is below the limit but their or is not, the face is declined too
+/// (the portable set-up draws it): only with a numerator of at least half the limit.
+#[rustfmt::skip]
+macro_rules! numerators_within {
+    () => {
+        concat!(
+            "sub r5, r5, #1\n",
+            "cmp lr, r5\n",
             "bhs 90f\n",
         )
     };
@@ -2060,12 +2071,13 @@ macro_rules! face_scan {
             "cmp r3, #4096\n",
             "bhs 90f\n",
             // The region: pixels whose centres are in the box, inside the clip (r10-r11 columns, r1-r2
-            // rows); none: done.
+            // rows; a first one `x >> 8`, one more if `x`'s fraction is past ½ — the carry of
+            // comparing it with 129 —, a last one `x >> 8`, one less if the fraction is below ½);
+            // none: done.
             "uxtb r3, r10\n",
             "asr r10, r10, #8\n",
-            "cmp r3, #0x80\n",
-            "it hi\n",
-            "addhi r10, r10, #1\n",
+            "cmp r3, #0x81\n",
+            "adc r10, r10, #0\n",
             "ldr r3, [r0, #12]\n",
             "cmp r10, r3\n",
             "it lt\n",
@@ -2073,8 +2085,7 @@ macro_rules! face_scan {
             "uxtb r3, r11\n",
             "asr r11, r11, #8\n",
             "cmp r3, #0x80\n",
-            "it lo\n",
-            "sublo r11, r11, #1\n",
+            "sbc r11, r11, #0\n",
             "ldr r3, [r0, #20]\n",
             "cmp r11, r3\n",
             "it gt\n",
@@ -2083,9 +2094,8 @@ macro_rules! face_scan {
             "bgt 80f\n",
             "uxtb r3, r1\n",
             "asr r1, r1, #8\n",
-            "cmp r3, #0x80\n",
-            "it hi\n",
-            "addhi r1, r1, #1\n",
+            "cmp r3, #0x81\n",
+            "adc r1, r1, #0\n",
             "ldr r3, [r0, #16]\n",
             "cmp r1, r3\n",
             "it lt\n",
@@ -2093,8 +2103,7 @@ macro_rules! face_scan {
             "uxtb r3, r2\n",
             "asr r2, r2, #8\n",
             "cmp r3, #0x80\n",
-            "it lo\n",
-            "sublo r2, r2, #1\n",
+            "sbc r2, r2, #0\n",
             "ldr r3, [r0, #24]\n",
             "cmp r2, r3\n",
             "it gt\n",
@@ -2266,8 +2275,10 @@ core::arch::global_asm!(
         "92",
         "84"
     ),
+    "movs lr, #0",
     attribute_numerators!("8", "96", "44", "128", "112", "136", "140"),
     attribute_numerators!("12", "104", "48", "132", "120", "136", "140"),
+    numerators_within!(),
     face_reciprocal!("84"),
     // The depth and level planes, then the rows; and, given a set-up to fill (a band's draw),
     // first the block, the region's first pixel and whether the middle bound starts there.
@@ -2653,10 +2664,12 @@ core::arch::global_asm!(
     plane_map!("16", "260", "24", "96"),
     plane_map!("20", "268", "26", "104"),
     face_scan!("", "236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144"),
+    "movs lr, #0",
     attribute_numerators!("8", "156", "28", "220", "188", "236", "240"),
     attribute_numerators!("24", "164", "32", "224", "196", "236", "240"),
     attribute_numerators!("26", "172", "36", "228", "204", "236", "240"),
     attribute_numerators!("10", "180", "40", "232", "212", "236", "240"),
+    numerators_within!(),
     face_reciprocal!("144"),
     attribute_plane!("156", "220", "188", "0", "80", "32"),
     attribute_plane!("164", "224", "196", "4", "84", "36"),
@@ -3002,6 +3015,142 @@ pub(crate) fn project_positions<P: ModelPosition, V: ProjectedPrefix>(
         )
     };
     true
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_scan_faces_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_scan_faces_v7m",
+    ".hidden embedded_raster_scan_faces_v7m",
+    ".type embedded_raster_scan_faces_v7m,%function",
+    ".thumb_func",
+    // r0 = the scan (`FaceScan`), r1 = the entries, r2 = their room (at least one). Returns the
+    // entries written. [sp]: the scan, [sp, #4]: the entries.
+    "embedded_raster_scan_faces_v7m:",
+    "push {{r0-r2, r4-r11, lr}}",
+    "mov lr, r1",
+    "add r11, r1, r2, lsl #2",
+    "ldrd r12, r10, [r0, #16]",
+    "ldm r0, {{r0-r3}}",
+    // r0 = the next face, r1 = past the last, r2 = the scratch, r3 = its vertices, r12 = the
+    // face's number times 4, r10 = the flip, lr = the next entry, r11 = past the last.
+    "cmp r0, r1",
+    "bhs 9f",
+    "1:",
+    "ldrh r4, [r0]",
+    "ldrh r5, [r0, #2]",
+    "ldrh r6, [r0, #4]",
+    "adds r0, r0, #6",
+    "cmp r4, r3",
+    "itt lo",
+    "cmplo r5, r3",
+    "cmplo r6, r3",
+    "bhs 20f",
+    "add r4, r2, r4, lsl #4",
+    "add r5, r2, r5, lsl #4",
+    "add r6, r2, r6, lsl #4",
+    // Any vertex outside a clip plane (bits 0-6 of its code): to 30.
+    "ldrb r7, [r4, #14]",
+    "ldrb r8, [r5, #14]",
+    "ldrb r9, [r6, #14]",
+    "orr r7, r7, r8",
+    "orr r7, r7, r9",
+    "tst r7, #0x7f",
+    "bne 30f",
+    // The doubled area (r8:r7): none, to 40; kept if its sign differs from the flip's.
+    "ldrd r7, r8, [r4]",
+    "ldrd r4, r9, [r6]",
+    "ldrd r5, r6, [r5]",
+    "sub r5, r5, r7",
+    "sub r9, r9, r8",
+    "sub r4, r4, r7",
+    "sub r6, r6, r8",
+    "smull r7, r8, r5, r9",
+    "smull r5, r9, r4, r6",
+    "subs r7, r7, r5",
+    "sbc r8, r8, r9",
+    "orrs r7, r7, r8",
+    "beq 40f",
+    "teq r8, r10",
+    "bmi 10f",
+    // Culled (or counted): the next face.
+    "2:",
+    "add r12, r12, #4",
+    "cmp r0, r1",
+    "blo 1b",
+    // Every face scanned, or the entries full (from 11): the scan's next face and number kept.
+    "9:",
+    "pop {{r1-r3}}",
+    "str r0, [r1]",
+    "str r12, [r1, #16]",
+    "sub r0, lr, r2",
+    "lsr r0, r0, #2",
+    "pop {{r4-r11, pc}}",
+    // Kept: its entry; the next face unless the entries are full.
+    "10:",
+    "orr r4, r12, #{kept}",
+    "str r4, [lr], #4",
+    "11:",
+    "cmp lr, r11",
+    "blo 2b",
+    "add r12, r12, #4",
+    "b 9b",
+    // An index past the scratch.
+    "20:",
+    "orr r4, r12, #{invalid}",
+    "str r4, [lr], #4",
+    "b 11b",
+    // Outside: all vertices outside one plane, rejected (counted); else to clip.
+    "30:",
+    "ldrb r7, [r4, #14]",
+    "ldrb r8, [r5, #14]",
+    "ldrb r9, [r6, #14]",
+    "and r7, r7, r8",
+    "and r7, r7, r9",
+    "tst r7, #0x7f",
+    "bne 31f",
+    "orr r4, r12, #{clipped}",
+    "str r4, [lr], #4",
+    "b 11b",
+    "31:",
+    "ldr r4, [sp]",
+    "ldr r5, [r4, #24]",
+    "add r5, r5, #1",
+    "str r5, [r4, #24]",
+    "b 2b",
+    // No area: degenerate (counted).
+    "40:",
+    "ldr r4, [sp]",
+    "ldr r5, [r4, #28]",
+    "add r5, r5, #1",
+    "str r5, [r4, #28]",
+    "b 2b",
+    ".size embedded_raster_scan_faces_v7m, . - embedded_raster_scan_faces_v7m",
+    kept = const SCANNED_KEPT,
+    clipped = const SCANNED_CLIPPED,
+    invalid = const SCANNED_INVALID,
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_scan_faces_v7m(scan: *mut FaceScan<'_>, out: *mut u32, room: u32) -> u32;
+}
+
+/// Scans the faces of `scan` on from its next one as [`FaceScan`] describes, until every face
+/// is scanned or `out` is full: the entries written to `out`'s start, how many.
+#[inline(always)]
+pub(crate) fn scan_faces(scan: &mut FaceScan<'_>, out: &mut [u32; FACE_BATCH]) -> usize {
+    const { assert!(core::mem::size_of::<FaceScan<'_>>() == 32) };
+    // SAFETY: the function reads the scan's faces from `next` up to `end` (its borrowed
+    // slice's, 2-byte aligned `u16`s) and, through an index below `vertices` (the borrowed
+    // scratch's length), 16 bytes of that vertex (`FaceScan::new` takes only 16-byte
+    // `ProjectedPrefix`es, 4-byte aligned) at `scratch + 16·index`; it writes the scan's
+    // words 0, 16, 24 and 28 (integers, and `next` moved on by whole faces up to `end`) and at
+    // most `room` (`FACE_BATCH`, at least one) entries from `out`'s start, 4-byte aligned; it
+    // keeps its stack frame its own and saves and restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_scan_faces_v7m(scan, out.as_mut_ptr(), FACE_BATCH as u32) as usize }
 }
 
 /// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart: two

@@ -1039,6 +1039,18 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         scratch: &[ProjectedVertex],
         sink: &mut S,
     ) -> DrawStats {
+        // A draw of every row, one side culled: the target's face scan, where there is one.
+        let keep_front = match self.pipeline.cull {
+            Cull::Back => Some(true),
+            Cull::Front => Some(false),
+            Cull::None => None,
+        };
+        if arch::FACE_SCAN && self.clip.rows().band().is_none() {
+            let scan = keep_front.and_then(|f| arch::FaceScan::new(mesh.indices, scratch, f));
+            if let Some(scan) = scan {
+                return self.scanned_faces(mesh, scratch, scan, sink);
+            }
+        }
         let mut stats = DrawStats::default();
         for (k, face) in mesh.indices.iter().enumerate() {
             let idx = face.map(usize::from);
@@ -1056,23 +1068,95 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             if verdict == Verdict::Dropped {
                 continue;
             }
-            // Only flat shading, faces without normals and clipping need the positions again:
-            // in range, as the scratch has one entry per vertex.
-            let vertices = mesh.vertices;
-            if arch::MCU {
-                // By value: a closure holding the address of `idx` would keep it in memory
-                // every face, for the clipped ones.
-                let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
-                self.kept_face(verdict, mesh, k, &idx, model, [a, b, c], sink, &mut stats);
-            } else {
-                // The mesh's own indices: the copy of `idx` above is stored every face, and a
-                // host reading the three stored words back as one stalls its store forwarding.
-                let model =
-                    move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
-                self.kept_face(verdict, mesh, k, &idx, model, [a, b, c], sink, &mut stats);
-            }
+            self.scratch_face(verdict, mesh, k, face, [a, b, c], sink, &mut stats);
         }
         stats
+    }
+
+    /// [`scratch_faces`](Self::scratch_faces) through the face scan `scan` of the mesh's faces
+    /// (`arch::FACE_SCAN`): the faces it hands on clipped or filled, in order, the same counts.
+    #[inline(always)]
+    fn scanned_faces<S: FaceSink<C>>(
+        &self,
+        mesh: &Mesh<'_>,
+        scratch: &[ProjectedVertex],
+        mut scan: arch::FaceScan<'_>,
+        sink: &mut S,
+    ) -> DrawStats {
+        let mut stats = DrawStats::default();
+        let mut batch = [0; arch::FACE_BATCH];
+        let mut handed = 0u32;
+        loop {
+            let entries = scan.next_batch(&mut batch);
+            if entries.is_empty() {
+                break;
+            }
+            handed += entries.len() as u32;
+            for &entry in entries {
+                let k = (entry >> 2) as usize;
+                let Some(face) = mesh.indices.get(k) else {
+                    continue;
+                };
+                let (Some(a), Some(b), Some(c)) = (
+                    scratch.get(usize::from(face[0])),
+                    scratch.get(usize::from(face[1])),
+                    scratch.get(usize::from(face[2])),
+                ) else {
+                    // `SCANNED_INVALID`.
+                    stats.invalid += 1;
+                    continue;
+                };
+                let verdict = if entry & 3 == arch::SCANNED_CLIPPED {
+                    Verdict::Clipped
+                } else {
+                    stats.drawn += 1;
+                    Verdict::Drawn
+                };
+                self.scratch_face(verdict, mesh, k, face, [a, b, c], sink, &mut stats);
+            }
+        }
+        // The faces not handed on: rejected, degenerate or culled.
+        let (rejected, degenerate) = scan.dropped();
+        stats.rejected += rejected;
+        stats.degenerate += degenerate;
+        stats.culled += (mesh.indices.len() as u32)
+            .wrapping_sub(handed)
+            .wrapping_sub(rejected)
+            .wrapping_sub(degenerate);
+        stats
+    }
+
+    /// Hands the face `k` (`face`, its vertices `v` in the scratch) that `verdict` keeps to
+    /// `sink`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn scratch_face<S: FaceSink<C>>(
+        &self,
+        verdict: Verdict,
+        mesh: &Mesh<'_>,
+        k: usize,
+        face: &[u16; 3],
+        v: [&ProjectedVertex; 3],
+        sink: &mut S,
+        stats: &mut DrawStats,
+    ) {
+        let idx = face.map(usize::from);
+        // Only flat shading, faces without normals and clipping need the positions again:
+        // in range, as the scratch has one entry per vertex.
+        let vertices = mesh.vertices;
+        if arch::MCU {
+            // By value: a closure holding the address of `idx` would keep it in memory
+            // every face, for the clipped ones.
+            let model = move || idx.map(|i| vertices.get(i).copied().unwrap_or_default());
+            self.kept_face(verdict, mesh, k, &idx, model, v, sink, stats);
+        } else {
+            // The mesh's own indices: the copy of `idx` above is stored every face, and a
+            // host reading the three stored words back as one stalls its store forwarding.
+            let face = *face;
+            let model =
+                move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
+            self.kept_face(verdict, mesh, k, &idx, model, v, sink, stats);
+        }
     }
 
     /// Fills the face of `mesh` of the vertices `idx` (a face
