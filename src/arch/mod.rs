@@ -46,7 +46,7 @@ pub(crate) use thumbv7m::textured_face;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 #[cfg(armv7m)]
-pub(crate) use thumbv7m::{level_face, level_face_keeping};
+pub(crate) use thumbv7m::{level_face, level_face_keeping, level_faces};
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one
 /// SSE2 register.
@@ -245,6 +245,38 @@ impl<'v> LevelFace<'v> {
             borrowed: core::marker::PhantomData,
         }
     }
+}
+
+impl LevelFace<'static> {
+    /// The faces of a draw inside `clip`, the planes rounded by `half`, drawn in rows `rows`
+    /// (as [`new`](Self::new)), without vertices: the [`FaceScan`]'s, which sets each face's
+    /// vertices before its set-up ([`level_faces`]).
+    #[inline(always)]
+    pub(crate) fn without_vertices(clip: ClipBounds, half: [u32; 2], rows: [i32; 2]) -> Self {
+        LevelFace {
+            vertices: [core::ptr::null(); 3],
+            clip: clip.words(),
+            colors: core::ptr::null_mut(),
+            depths: core::ptr::null_mut(),
+            stride: 0,
+            table: core::ptr::null(),
+            half,
+            setup: core::ptr::null_mut(),
+            rows,
+            borrowed: core::marker::PhantomData,
+        }
+    }
+}
+
+/// [`level_faces`] where there is no set-up: none.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn level_faces<C: Copy>(
+    _buffers: (&mut [C], &mut [u16], usize),
+    _face: LevelFace<'static>,
+    _table: &[C; 256],
+) -> Option<LevelFace<'static>> {
+    None
 }
 
 /// [`level_face`] where there is none: draws nothing and says so.
@@ -934,11 +966,16 @@ pub(crate) struct FaceScan<'a> {
     vertices: u32,
     /// 16: the next face's number times 4.
     number: u32,
-    /// 20: 0 to keep the faces of negative doubled area, all ones for those of positive area.
+    /// 20: the sign bit clear to keep the faces of negative doubled area, set for those of
+    /// positive area (the other bits likewise); bit 0 set while `level` is not null.
     flip: u32,
     /// 24, 28: the faces rejected and degenerate so far.
     rejected: u32,
     degenerate: u32,
+    /// 32: during a batch, the level faces its kept faces are drawn as ([`level_faces`]), or
+    /// null; 36: the faces drawn so.
+    level: *mut LevelFace<'static>,
+    drawn: u32,
     borrows: core::marker::PhantomData<&'a [[u16; 3]]>,
 }
 
@@ -965,23 +1002,36 @@ impl<'a> FaceScan<'a> {
             flip: if keep_negative { 0 } else { u32::MAX },
             rejected: 0,
             degenerate: 0,
+            level: core::ptr::null_mut(),
+            drawn: 0,
             borrows: core::marker::PhantomData,
         })
     }
 
-    /// The next faces handed on (none once every face is scanned), into `out`.
+    /// The next faces handed on (none once every face is scanned), into `out`. With `level`
+    /// (the draw's [`level_faces`], its buffers borrowed for the call), a kept face whose
+    /// vertices all have a normal (bit 7 of their codes clear) is drawn there by [`level_face`]
+    /// and counted instead, unless the set-up declines it.
     #[inline(always)]
-    pub(crate) fn next_batch<'o>(&mut self, out: &'o mut [u32; FACE_BATCH]) -> &'o [u32] {
+    pub(crate) fn next_batch<'o>(
+        &mut self,
+        out: &'o mut [u32; FACE_BATCH],
+        level: Option<&mut LevelFace<'static>>,
+    ) -> &'o [u32] {
+        self.level = level.map_or(core::ptr::null_mut(), |face| face);
+        self.flip = (self.flip & !1) | u32::from(!self.level.is_null());
         #[cfg(armv7m)]
         let count = thumbv7m::scan_faces(self, out);
         #[cfg(not(armv7m))]
         let count = 0;
+        self.level = core::ptr::null_mut();
         &out[..count.min(FACE_BATCH)]
     }
 
-    /// The faces rejected and degenerate among those scanned.
-    pub(crate) fn dropped(&self) -> (u32, u32) {
-        (self.rejected, self.degenerate)
+    /// The faces rejected and degenerate among those scanned, and those drawn by
+    /// [`level_face`].
+    pub(crate) fn counts(&self) -> (u32, u32, u32) {
+        (self.rejected, self.degenerate, self.drawn)
     }
 }
 

@@ -2398,12 +2398,38 @@ pub(crate) fn level_face<C: Copy>(
 /// [`level_face`]'s call: 0 if done, 1 if declined, 2 if drawn with the set-up written out.
 #[inline(always)]
 fn level_face_result<C: Copy>(
-    (colors, depths, width): (&mut [C], &mut [u16], usize),
-    mut face: LevelFace<'_>,
+    buffers: (&mut [C], &mut [u16], usize),
+    face: LevelFace<'_>,
     table: &[C; 256],
 ) -> u32 {
+    match with_buffers(buffers, face, table) {
+        // SAFETY: the function reads the face and, through its addresses, 16 bytes of each
+        // vertex (`LevelVertex`'s layout); given a set-up to fill (`face.setup` is null, as
+        // `LevelFace::new` makes it, or a `MaybeUninit<SmallSetup>` of `level_face_keeping`), it
+        // writes its 96 bytes; it writes only pixels of its region — rows and columns of the
+        // clip (inside both buffers, `with_buffers` checked), at `row·stride + 2·column` bytes
+        // from the buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour: a copy of
+        // the table's bytes is a copy of its colours) — through `level_rows`'s loop (see its
+        // safety note), reads the table at `level >> 24 < 256`, divides by non-zero divisors
+        // only (the area's top half is at least 2¹⁵), keeps its stack frame 8-byte aligned for
+        // the call, and saves and restores every register the AAPCS asks it to.
+        Ok(mut face) => unsafe { embedded_raster_level_face_v7m(&mut face) },
+        Err(result) => result,
+    }
+}
+
+/// `face` with the buffers and the table set, if every pixel of its clip in its rows is inside
+/// both buffers (rows counted from the first of `rows`) and `C` is a 16-bit colour; else what
+/// [`level_face_result`] returns for it: 0 (nothing of the clip in the rows, and no set-up to
+/// write) or 1 (declined).
+#[inline(always)]
+fn with_buffers<'v, C: Copy>(
+    (colors, depths, width): (&mut [C], &mut [u16], usize),
+    mut face: LevelFace<'v>,
+    table: &[C; 256],
+) -> Result<LevelFace<'v>, u32> {
     if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
-        return 1;
+        return Err(1);
     }
     // The last pixel the face can write, in both buffers: rows counted from the first of
     // `rows` (at or above the top one, so the wrapping difference is the true one).
@@ -2412,30 +2438,34 @@ fn level_face_result<C: Copy>(
     // Nothing of the clip in the rows: done, unless the set-up is wanted for the rows below.
     let empty = x0 > x1 || top > bottom;
     if empty && face.setup.is_null() {
-        return 0;
+        return Err(0);
     }
     let len = colors.len().min(depths.len()) as u64;
     let row = u64::from(bottom.wrapping_sub(first) as u32);
     let inside = empty
         || (x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len);
     if !inside || width > (u32::MAX / 2) as usize {
-        return 1;
+        return Err(1);
     }
     face.colors = colors.as_mut_ptr().cast();
     face.depths = depths.as_mut_ptr();
     face.stride = (width * 2) as u32;
     face.table = table.as_ptr().cast();
-    // SAFETY: the function reads the face and, through its addresses, 16 bytes of each vertex
-    // (`LevelVertex`'s layout); given a set-up to fill (`face.setup` is null, as
-    // `LevelFace::new` makes it, or a `MaybeUninit<SmallSetup>` of `level_face_keeping`), it
-    // writes its 96 bytes; it writes only pixels of its region — rows and columns of the clip
-    // (inside both buffers, checked above), at `row·stride + 2·column` bytes from the
-    // buffers' starts, as 2-byte aligned `u16`s (`C` is a 2-byte colour: a copy of the table's
-    // bytes is a copy of its colours) — through `level_rows`'s loop (see its safety note),
-    // reads the table at `level >> 24 < 256`, divides by non-zero divisors only (the area's top
-    // half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and saves and
-    // restores every register the AAPCS asks it to.
-    unsafe { embedded_raster_level_face_v7m(&mut face) }
+    Ok(face)
+}
+
+/// The level faces of a draw (`face`, from `LevelFace::without_vertices`) into `colors` and
+/// `depths` (`width` pixels a row) with the colours of `table`, for a [`FaceScan`] to draw
+/// its kept faces by [`level_face`]'s set-up: its buffers and table set, if every pixel of its
+/// clip in its rows is inside both buffers and `C` is a 16-bit colour; else none (also when
+/// nothing of the clip is in the rows).
+#[inline(always)]
+pub(crate) fn level_faces<C: Copy>(
+    buffers: (&mut [C], &mut [u16], usize),
+    face: LevelFace<'static>,
+    table: &[C; 256],
+) -> Option<LevelFace<'static>> {
+    with_buffers(buffers, face, table).ok()
 }
 
 /// [`level_face`], its set-up (over the clip, before the rows outside `rows` are taken off)
@@ -3035,7 +3065,8 @@ core::arch::global_asm!(
     "ldrd r12, r10, [r0, #16]",
     "ldm r0, {{r0-r3}}",
     // r0 = the next face, r1 = past the last, r2 = the scratch, r3 = its vertices, r12 = the
-    // face's number times 4, r10 = the flip, lr = the next entry, r11 = past the last.
+    // face's number times 4, r10 = the flip (its bit 0: level faces), lr = the next entry, r11 =
+    // past the last.
     "cmp r0, r1",
     "bhs 9f",
     "1:",
@@ -3088,13 +3119,52 @@ core::arch::global_asm!(
     "sub r0, lr, r2",
     "lsr r0, r0, #2",
     "pop {{r4-r11, pc}}",
-    // Kept: its entry; the next face unless the entries are full.
+    // Kept: drawn by the level set-up where the batch has level faces (the flip's bit 0; the
+    // scan's word 32) and
+    // every vertex a normal (bit 7 of the codes clear), unless it declines (1); drawn ones
+    // counted (word 36).
     "10:",
+    "tst r10, #1",
+    "beq 12f",
+    "ldr r7, [sp]",
+    "ldr r7, [r7, #32]",
+    "ldrh r4, [r0, #-6]",
+    "ldrh r5, [r0, #-4]",
+    "ldrh r6, [r0, #-2]",
+    "add r4, r2, r4, lsl #4",
+    "add r5, r2, r5, lsl #4",
+    "add r6, r2, r6, lsl #4",
+    "ldrb r8, [r4, #14]",
+    "ldrb r9, [r5, #14]",
+    "orr r8, r8, r9",
+    "ldrb r9, [r6, #14]",
+    "orr r8, r8, r9",
+    "tst r8, #0x80",
+    "bne 12f",
+    "stm r7, {{r4-r6}}",
+    "push {{r0-r3, r12, lr}}",
+    "mov r0, r7",
+    "bl embedded_raster_level_face_v7m",
+    "mov r7, r0",
+    "pop {{r0-r3, r12, lr}}",
+    "cmp r7, #1",
+    "beq 12f",
+    "ldr r9, [sp]",
+    "ldr r8, [r9, #36]",
+    "add r8, r8, #1",
+    "str r8, [r9, #36]",
+    "b 2b",
+    // Its entry; the next face unless the entries are full, or the batch has level faces (the
+    // faces after it wait: the faces are drawn in order).
+    "12:",
     "orr r4, r12, #{kept}",
     "str r4, [lr], #4",
     "11:",
+    "tst r10, #1",
+    "bne 13f",
     "cmp lr, r11",
     "blo 2b",
+    "13:",
     "add r12, r12, #4",
     "b 9b",
     // An index past the scratch.
@@ -3139,17 +3209,23 @@ extern "C" {
 }
 
 /// Scans the faces of `scan` on from its next one as [`FaceScan`] describes, until every face
-/// is scanned or `out` is full: the entries written to `out`'s start, how many.
+/// is scanned or `out` is full: the entries written to `out`'s start, how many. Kept faces are
+/// drawn by [`level_face`]'s set-up where the scan has level faces (`FaceScan::next_batch`).
 #[inline(always)]
 pub(crate) fn scan_faces(scan: &mut FaceScan<'_>, out: &mut [u32; FACE_BATCH]) -> usize {
-    const { assert!(core::mem::size_of::<FaceScan<'_>>() == 32) };
+    const { assert!(core::mem::size_of::<FaceScan<'_>>() == 40) };
     // SAFETY: the function reads the scan's faces from `next` up to `end` (its borrowed
     // slice's, 2-byte aligned `u16`s) and, through an index below `vertices` (the borrowed
     // scratch's length), 16 bytes of that vertex (`FaceScan::new` takes only 16-byte
     // `ProjectedPrefix`es, 4-byte aligned) at `scratch + 16·index`; it writes the scan's
-    // words 0, 16, 24 and 28 (integers, and `next` moved on by whole faces up to `end`) and at
-    // most `room` (`FACE_BATCH`, at least one) entries from `out`'s start, 4-byte aligned; it
-    // keeps its stack frame its own and saves and restores every register the AAPCS asks it to.
+    // words 0, 16, 24, 28 and 36 (integers, and `next` moved on by whole faces up to `end`)
+    // and at most `room` (`FACE_BATCH`, at least one) entries from `out`'s start, 4-byte
+    // aligned. Given level faces (word 32: `level_faces`' face, its buffers set for this call
+    // and not otherwise used during it), it writes a kept face's three vertex addresses (inside
+    // the scratch, as above: `LevelVertex`es, a `ProjectedPrefix`'s layout) into its words 0-8
+    // and calls `embedded_raster_level_face_v7m` on it, as `level_face` does (see its safety
+    // note), its stack frame 8-byte aligned for the call. It keeps its stack frame its own and
+    // saves and restores every register the AAPCS asks it to.
     unsafe { embedded_raster_scan_faces_v7m(scan, out.as_mut_ptr(), FACE_BATCH as u32) as usize }
 }
 

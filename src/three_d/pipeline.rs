@@ -593,6 +593,19 @@ pub(crate) trait FaceSink<C> {
         v: [&ProjectedVertex; 3],
     );
 
+    /// Where the kept faces of `frame` may be drawn by the face scan itself
+    /// ([`arch::FaceScan::next_batch`]): the draw's level faces, for the scan's next batch
+    /// (none: every kept face is handed to [`face`](Self::face)). Only where that draws what
+    /// `face` would.
+    #[inline(always)]
+    fn level_faces<R: RowWindow, T: FaceTexture<C>>(
+        &mut self,
+        frame: &Frame<'_, C, R, T>,
+    ) -> Option<arch::LevelFace<'static>> {
+        let _ = frame;
+        None
+    }
+
     /// Face `k`, crossing the view volume's boundary (to be clipped; it may still be dropped:
     /// `stats` counts it).
     #[allow(clippy::too_many_arguments)]
@@ -620,6 +633,14 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         v: [&ProjectedVertex; 3],
     ) {
         frame.fill(mesh, idx, model, v, None, self);
+    }
+
+    #[inline(always)]
+    fn level_faces<R: RowWindow, T: FaceTexture<C>>(
+        &mut self,
+        frame: &Frame<'_, C, R, T>,
+    ) -> Option<arch::LevelFace<'static>> {
+        frame.level_faces(self)
     }
 
     #[inline(always)]
@@ -1087,7 +1108,8 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         let mut batch = [0; arch::FACE_BATCH];
         let mut handed = 0u32;
         loop {
-            let entries = scan.next_batch(&mut batch);
+            let mut level = sink.level_faces(self);
+            let entries = scan.next_batch(&mut batch, level.as_mut());
             if entries.is_empty() {
                 break;
             }
@@ -1115,14 +1137,16 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 self.scratch_face(verdict, mesh, k, face, [a, b, c], sink, &mut stats);
             }
         }
-        // The faces not handed on: rejected, degenerate or culled.
-        let (rejected, degenerate) = scan.dropped();
+        // The faces not handed on: drawn by the scan, rejected, degenerate or culled.
+        let (rejected, degenerate, drawn) = scan.counts();
         stats.rejected += rejected;
         stats.degenerate += degenerate;
+        stats.drawn += drawn;
         stats.culled += (mesh.indices.len() as u32)
             .wrapping_sub(handed)
             .wrapping_sub(rejected)
-            .wrapping_sub(degenerate);
+            .wrapping_sub(degenerate)
+            .wrapping_sub(drawn);
         stats
     }
 
@@ -1446,6 +1470,20 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             Cull::None => true,
             Cull::Back => front,
             Cull::Front => !front,
+        }
+    }
+
+    /// The draw's level faces into `target` ([`FaceSink::level_faces`]): where a kept face is
+    /// filled by [`shading::draw_levels`] as it is (an untextured Gouraud draw, opaque; the
+    /// scan takes only faces whose vertices all have normals, which [`fill`](Self::fill) draws
+    /// with their own levels) and the target has the small faces' set-up.
+    #[inline(always)]
+    fn level_faces(&self, target: &mut DepthTarget<'_, C>) -> Option<arch::LevelFace<'static>> {
+        match &self.fill {
+            Fill::Gouraud(table) if !T::TEXTURED && arch::LEVEL_FACE => {
+                shading::level_faces(target, &self.clip, table)
+            }
+            _ => None,
         }
     }
 

@@ -641,6 +641,11 @@ impl<R: RowWindow> TargetClip<R> {
         arch::LevelFace::new(v, self.bounds, [DEPTH_HALF, LEVEL_HALF], self.face_rows())
     }
 
+    /// [`level_face`](Self::level_face) without its vertices, for a face scan to set.
+    fn level_faces(&self) -> arch::LevelFace<'static> {
+        arch::LevelFace::without_vertices(self.bounds, [DEPTH_HALF, LEVEL_HALF], self.face_rows())
+    }
+
     /// What the faces of a draw have in common for the assembly's set-up of the textured fill
     /// ([`arch::textured_face`]; each face's vertices, texels and light are set by
     /// [`arch::TexturedTemplate::face`]): this clip's bounds and rows, the depth plane's
@@ -1023,6 +1028,21 @@ pub(crate) fn draw_levels<C: PixelColor, R: RowWindow>(
     let levels = v.map(|v| [v.level()]);
     let attributes = with_depth(vertices, levels, [LEVEL_HALF]);
     depth_fill(target, clip, vertices, &attributes, Leveled(&table.colors));
+}
+
+/// The level faces of an opaque [`draw_levels`] draw into `target` inside `clip` with `table`'s
+/// colours ([`arch::level_faces`]): a face given its vertices there is drawn as
+/// [`draw_levels`] draws it, where the set-up does not decline it. None for a translucent draw.
+#[inline(always)]
+pub(crate) fn level_faces<C: PixelColor, R: RowWindow>(
+    target: &mut DepthTarget<'_, C>,
+    clip: &TargetClip<R>,
+    table: &ShadeTable<C>,
+) -> Option<arch::LevelFace<'static>> {
+    if target.blend().is_some() {
+        return None;
+    }
+    arch::level_faces(target.buffers_mut(), clip.level_faces(), &table.colors)
 }
 
 /// The material colour at the interpolated light level (attribute 1) plus the white highlight
