@@ -352,6 +352,19 @@ mod firmware {
         };
         let stats = textured3d::render_floor(&floor, &mut target, scratch);
         hprintln!("{}", TexturedLine::of(Textured::Floor, stats, &target));
+        // SAFETY: as for the statics above: these are their only references (the floor's
+        // borrows end above).
+        let (scatter_v, scatter_n, scatter_i, uvs) = unsafe {
+            (
+                &mut *core::ptr::addr_of_mut!(SCATTER_V),
+                &mut *core::ptr::addr_of_mut!(SCATTER_N),
+                &mut *core::ptr::addr_of_mut!(SCATTER_I),
+                &mut *core::ptr::addr_of_mut!(FLOOR_T),
+            )
+        };
+        let scatter = scene3d::scatter(scatter_v, scatter_n, scatter_i);
+        let stats = textured3d::render_scatter_textured(&scatter, uvs, &mut target, scratch);
+        hprintln!("{}", TexturedLine::of(Textured::Scatter, stats, &target));
         hprintln!("\n### 3D frame, {}\n", code());
         hprintln!(
             "| mesh | faces | drawn | covered px | instructions a frame | per face | per drawn face | per covered px | without scratch |"
@@ -524,6 +537,13 @@ fn main() {
     println!(
         "{}",
         textured3d::TexturedLine::of(Textured::Floor, stats, &target)
+    );
+    let scatter = scene3d::scatter(&mut sv, &mut sn, &mut si);
+    let stats =
+        textured3d::render_scatter_textured(&scatter, &mut ft[..], &mut target, &mut scratch);
+    println!(
+        "{}",
+        textured3d::TexturedLine::of(Textured::Scatter, stats, &target)
     );
     textured3d::render(Textured::Nearest, &texels, &mut target, Some(&mut scratch));
     let whole = textured3d::hashes(target.framebuffer().pixels(), target.depth());

@@ -22,7 +22,7 @@ use embedded_raster::band::{
 use embedded_raster::texture::{Filter, Rgb565Texels, TexelSource, Texture};
 use embedded_raster::three_d::{Angle, Mat4, Mesh, TexCoord, TexturedMaterial, Vec3};
 use embedded_raster::three_d::{
-    DepthTarget, DrawStats, ProjectedVertex, Scalar, Shading, Specular,
+    DepthTarget, DrawStats, Pipeline, ProjectedVertex, Scalar, Shading, Specular,
 };
 
 use crate::scene3d::{self, fnv, pipeline, Model, BACKGROUND, FNV_START, SIZE};
@@ -66,6 +66,9 @@ pub enum Textured {
     /// The [`floor`] mesh, not spot: an 8 × 8 texture, nearest, Gouraud-lit, seen at a grazing
     /// angle ([`render_floor`]; not in [`ALL`](Self::ALL)).
     Floor,
+    /// The scatter mesh ([`scene3d::scatter`]) with the floor's texture, some faces handed back
+    /// by a face scan ([`render_scatter_textured`]; not in [`ALL`](Self::ALL)).
+    Scatter,
 }
 
 impl Textured {
@@ -91,6 +94,7 @@ impl Textured {
             Textured::QuadraticSpecular => "spot-textured-quadratic-specular",
             Textured::Unlit => "spot-textured-unlit",
             Textured::Floor => "floor-textured",
+            Textured::Scatter => "scatter-textured",
         }
     }
 
@@ -201,6 +205,17 @@ pub fn render_floor(
     target: &mut DepthTarget<'_, Rgb565>,
     scratch: &mut [ProjectedVertex],
 ) -> DrawStats {
+    draw_floor_textured(&scene3d::posed(Mat4::IDENTITY), mesh, target, scratch)
+}
+
+/// Clears colour and depth and draws `mesh` through `pipeline` with the [`floor`]'s 8 × 8
+/// texture of distinct colours, nearest, Gouraud-lit.
+fn draw_floor_textured(
+    pipeline: &Pipeline,
+    mesh: &Mesh<'_>,
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: &mut [ProjectedVertex],
+) -> DrawStats {
     let texels: [u16; 64] = core::array::from_fn(|k| {
         let c = Rgb565::new((k * 5 % 32) as u8, (k * 11 % 64) as u8, (k * 7 % 32) as u8);
         c.into_storage()
@@ -210,10 +225,33 @@ pub fn render_floor(
         return DrawStats::default();
     };
     let material = TexturedMaterial::new(&texture, Shading::Gouraud);
-    let pipeline = scene3d::posed(Mat4::IDENTITY);
     pipeline
         .draw_textured_mesh_with(mesh, &material, target, scratch)
         .unwrap_or_default()
+}
+
+/// The scatter frame textured: the [`scene3d::scatter`] mesh `mesh` with normals for its first
+/// sixteenth of vertices only and the texture coordinates `uvs` (fewer than its vertices, more
+/// than those normals; every corner of the first 100 faces and one vertex in 16 set to `u` =
+/// 30,000, whose products with the texture's size pass `i32`), drawn as the [`floor`]
+/// is through the scatter's camera. The frame whose faces a face scan's textured faces hand
+/// back untried: a vertex without a normal in a lit draw, an index past the coordinates, a
+/// texel coordinate that saturates.
+pub fn render_scatter_textured(
+    mesh: &Mesh<'_>,
+    uvs: &mut [TexCoord],
+    target: &mut DepthTarget<'_, Rgb565>,
+    scratch: &mut [ProjectedVertex],
+) -> DrawStats {
+    for (k, uv) in uvs.iter_mut().enumerate() {
+        // Every corner of the first 100 faces (lit), one vertex in 16 past them.
+        if k < 300 || k % 16 == 5 {
+            *uv = TexCoord::from_bits(30_000 << 16, uv.v.to_bits());
+        }
+    }
+    let normals = &mesh.normals[..mesh.normals.len() / 16];
+    let mesh = Mesh::new(mesh.vertices, normals, mesh.indices).with_uvs(uvs);
+    draw_floor_textured(&scene3d::scatter_pipeline(), &mesh, target, scratch)
 }
 
 /// The [`fnv`] hashes of a frame's colours (raw) and of its depths.

@@ -42,11 +42,11 @@ pub(crate) use thumbv7m::premultiplied_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::project_positions;
 #[cfg(armv7m)]
-pub(crate) use thumbv7m::textured_face;
-#[cfg(armv7m)]
 pub(crate) use thumbv7m::textured_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::{level_face, level_face_keeping, level_faces};
+#[cfg(armv7m)]
+pub(crate) use thumbv7m::{textured_face, textured_faces};
 
 /// Pixels of a row of a tiny triangle's box, drawn at once on x86-64: one 16-bit lane each, one
 /// SSE2 register.
@@ -742,6 +742,25 @@ impl TexturedTemplate {
             borrowed: core::marker::PhantomData,
         }
     }
+
+    /// [`face`](Self::face) without its vertices and coordinates: the faces of a
+    /// [`TexturedFaces`], whose scan sets them.
+    #[inline(always)]
+    pub(crate) fn faces<'w>(&'w self, texels: FaceTexels<'w>, lit: bool) -> TexturedFace<'w> {
+        TexturedFace {
+            vertices: [core::ptr::null(); 3],
+            depths: core::ptr::null_mut(),
+            color_offset: 0,
+            stride: 0,
+            texels: texels.texels,
+            lit: if lit { 2 } else { 0 } | texels.kind,
+            palette: texels.palette,
+            coordinates: core::ptr::null(),
+            texels_len: texels.count,
+            template: self,
+            borrowed: core::marker::PhantomData,
+        }
+    }
 }
 
 /// A draw's [`TexturedTemplate`] as its frame keeps it: the template where the target has the
@@ -808,6 +827,74 @@ pub struct TexturedFace<'w> {
     borrowed: core::marker::PhantomData<&'w [u16]>,
 }
 
+/// The textured faces of a draw for a [`FaceScan`] ([`textured_faces`]): the [`TexturedFace`]
+/// the set-up reads, whose vertices and texel coordinates the scan sets for each face, and
+/// what those come from — the mesh's texture coordinates and the texture's size: `u·width`
+/// and `(1 − v)·height` (16.16), as the pipeline scales them (offsets are the assembly's).
+///
+/// Public in this private module: the argument of a hidden `GouraudColor` method.
+#[repr(C)]
+// Read only where the assembly is.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub struct TexturedFaces<'w> {
+    /// 0: the face (its vertices and coordinates the scan's; 44: its template).
+    face: TexturedFace<'w>,
+    /// 48: the mesh's texture coordinates (raw `I16F16` pairs); 52: how many.
+    uvs: *const [i32; 2],
+    uvs_len: u32,
+    /// 56, 60: the texture's width and height.
+    size: [i32; 2],
+    /// 64: whether the faces are lit (a face needs a normal at each vertex).
+    lit: u32,
+    /// 68: the face's texel coordinates (the scan's).
+    coordinates: [[i32; 2]; 3],
+}
+
+#[cfg(all(armv7m, target_pointer_width = "32"))]
+const _: () = {
+    use core::mem::offset_of;
+    assert!(offset_of!(TexturedFace<'_>, coordinates) == 36);
+    assert!(offset_of!(TexturedFace<'_>, template) == 44);
+    assert!(offset_of!(TexturedFaces<'_>, uvs) == 48 && offset_of!(TexturedFaces<'_>, size) == 56);
+    assert!(offset_of!(TexturedFaces<'_>, lit) == 64);
+    assert!(offset_of!(TexturedFaces<'_>, coordinates) == 68);
+};
+
+impl<'w> TexturedFaces<'w> {
+    /// The faces of `face` (a template's, without vertices) with the texture coordinates `uvs`
+    /// of a texture `size` texels across, lit if `lit`. `None` for a side past 2¹⁵ texels.
+    #[inline(always)]
+    pub(crate) fn new<U: CoordinatePair>(
+        face: TexturedFace<'w>,
+        uvs: &'w [U],
+        size: (u32, u32),
+        lit: bool,
+    ) -> Option<Self> {
+        const { assert!(core::mem::size_of::<U>() == 8 && core::mem::align_of::<U>() == 4) };
+        if size.0 > 1 << 15 || size.1 > 1 << 15 {
+            return None;
+        }
+        Some(TexturedFaces {
+            face,
+            uvs: uvs.as_ptr().cast(),
+            uvs_len: u32::try_from(uvs.len()).unwrap_or(u32::MAX),
+            size: [size.0 as i32, size.1 as i32],
+            lit: u32::from(lit),
+            coordinates: [[0; 2]; 3],
+        })
+    }
+}
+
+/// [`textured_faces`] where there is no set-up: none.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn textured_faces<'w, C: Copy>(
+    _buffers: (&mut [C], &mut [u16], usize),
+    _faces: TexturedFaces<'w>,
+) -> Option<TexturedFaces<'w>> {
+    None
+}
+
 /// The texels of a [`TexturedFace`], each kind addressed by the same masks (`row | column`):
 /// raw Rgb565 words read nearest or bilinear, or 4-bit palette indices with the raw words of
 /// their 16 colours (their fields as the face has them).
@@ -868,6 +955,15 @@ pub(crate) fn textured_face<C: Copy>(
 /// transform, the perspective divide and the viewport mapping — is one assembly loop
 /// ([`project_positions`]); elsewhere `three_d`'s portable loop.
 pub(crate) const PROJECT_POSITIONS: bool = cfg!(armv7m);
+
+/// A texture coordinate that a [`FaceScan`]'s textured faces read where it is.
+///
+/// # Safety
+///
+/// An implementor is 8 bytes, 4-byte aligned, every byte a field's: the raw `u` and `v`
+/// (`I16F16` bits, `i32`) at bytes 0 and 4.
+#[allow(unsafe_code)]
+pub(crate) unsafe trait CoordinatePair {}
 
 /// A model-space position that [`project_positions`] reads where it is.
 ///
@@ -941,6 +1037,11 @@ pub(crate) const SCANNED_KEPT: u32 = 0;
 /// (to clip).
 pub(crate) const SCANNED_CLIPPED: u32 = 1;
 
+/// A face entry's kind: the textured set-up found the face not within its screen-space bound
+/// (`TexturedDraw::Perspective`: to draw perspective-correct).
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) const SCANNED_PERSPECTIVE: u32 = 3;
+
 /// A face entry's kind: an index past the scratch.
 #[cfg_attr(not(armv7m), allow(dead_code))]
 pub(crate) const SCANNED_INVALID: u32 = 2;
@@ -973,9 +1074,11 @@ pub(crate) struct FaceScan<'a> {
     rejected: u32,
     degenerate: u32,
     /// 32: during a batch, the level faces its kept faces are drawn as ([`level_faces`]), or
-    /// null; 36: the faces drawn so.
+    /// null; 36: the faces drawn so (or as textured faces); 40: during a batch, the textured
+    /// faces its kept faces are drawn as ([`textured_faces`]), or null.
     level: *mut LevelFace<'static>,
     drawn: u32,
+    textured: *mut TexturedFaces<'static>,
     borrows: core::marker::PhantomData<&'a [[u16; 3]]>,
 }
 
@@ -1004,6 +1107,7 @@ impl<'a> FaceScan<'a> {
             degenerate: 0,
             level: core::ptr::null_mut(),
             drawn: 0,
+            textured: core::ptr::null_mut(),
             borrows: core::marker::PhantomData,
         })
     }
@@ -1011,20 +1115,36 @@ impl<'a> FaceScan<'a> {
     /// The next faces handed on (none once every face is scanned), into `out`. With `level`
     /// (the draw's [`level_faces`], its buffers borrowed for the call), a kept face whose
     /// vertices all have a normal (bit 7 of their codes clear) is drawn there by [`level_face`]
-    /// and counted instead, unless the set-up declines it.
+    /// and counted instead, unless the set-up declines it. With `textured` (the draw's
+    /// [`textured_faces`], likewise; not with `level`), a kept face is drawn by
+    /// [`textured_face`] and counted, unless it declines it (handed on) or finds it not within
+    /// its bound (handed on as [`SCANNED_PERSPECTIVE`]); a face not lit as the draw asks (a
+    /// vertex without a normal in a lit draw), with an index past the texture coordinates or
+    /// a texel coordinate past `i32` is handed on untried. Every face handed on ends the
+    /// batch where there are level or textured faces: the faces are drawn in order.
     #[inline(always)]
     pub(crate) fn next_batch<'o>(
         &mut self,
         out: &'o mut [u32; FACE_BATCH],
         level: Option<&mut LevelFace<'static>>,
+        textured: Option<&mut TexturedFaces<'_>>,
     ) -> &'o [u32] {
         self.level = level.map_or(core::ptr::null_mut(), |face| face);
-        self.flip = (self.flip & !1) | u32::from(!self.level.is_null());
+        self.textured = match textured {
+            Some(faces) if self.level.is_null() => {
+                faces.face.coordinates = faces.coordinates.as_ptr();
+                (faces as *mut TexturedFaces<'_>).cast()
+            }
+            _ => core::ptr::null_mut(),
+        };
+        let bits = u32::from(!self.level.is_null()) | u32::from(!self.textured.is_null()) << 1;
+        self.flip = (self.flip & !3) | bits;
         #[cfg(armv7m)]
         let count = thumbv7m::scan_faces(self, out);
         #[cfg(not(armv7m))]
         let count = 0;
         self.level = core::ptr::null_mut();
+        self.textured = core::ptr::null_mut();
         &out[..count.min(FACE_BATCH)]
     }
 

@@ -59,7 +59,8 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 use super::MaskedSpan565;
 use super::{FaceScan, ModelPosition, ProjectedPrefix, ProjectionBlock, FACE_BATCH};
 use super::{FaceSetup, LevelBlock, LevelFace, LevelRows, PerspectiveSpan565, SmallSetup};
-use super::{TexturedDraw, TexturedFace, TexturedRows, TexturedTemplate, BILINEAR_ROWS};
+use super::{TexturedDraw, TexturedFace, TexturedFaces, TexturedRows, TexturedTemplate};
+use super::{BILINEAR_ROWS, SCANNED_PERSPECTIVE};
 use super::{SCANNED_CLIPPED, SCANNED_INVALID, SCANNED_KEPT};
 
 /// The assembler directive that lets a block use the DSP extension's instructions where the
@@ -2814,7 +2815,7 @@ extern "C" {
     /// The assembly function above.
     fn embedded_raster_textured_face_v7m(
         template: *const TexturedTemplate,
-        face: *const TexturedFace<'_>,
+        face: *mut TexturedFace<'_>,
     ) -> u32;
 }
 
@@ -2831,46 +2832,76 @@ extern "C" {
 /// is the texels' (the caller's promise, as [`textured_rows`]').
 #[inline(always)]
 pub(crate) fn textured_face<C: Copy>(
-    (colors, depths, width): (&mut [C], &mut [u16], usize),
-    mut face: TexturedFace<'_>,
+    buffers: (&mut [C], &mut [u16], usize),
+    face: TexturedFace<'_>,
 ) -> TexturedDraw {
+    let mut face = match textured_with_buffers(buffers, face) {
+        Ok(face) => face,
+        Err(draw) => return draw,
+    };
+    let template = face.template;
+    // SAFETY: the function reads the template and the face, and through the face's addresses
+    // the first 16 bytes of each of its three vertices (`ProjectedPrefix`es, borrowed by the
+    // face) and their three pairs of texel coordinates (24 bytes); it writes only pixels of its
+    // region — rows and columns of the clip (inside both buffers, checked by
+    // `textured_with_buffers`), at `row·stride + 2·column` bytes from the buffers' starts, as
+    // 2-byte aligned `u16`s (`C` is a 2-byte colour whose raw value the texels are, the
+    // caller's promise) — through `textured_rows`'s loop (see its safety note), which reads
+    // the texels at indices of at most `rows_mask | x_mask` (inside them, checked) with shifts
+    // below 32 (the maps' at most 16, `y`'s checked); it divides by non-zero divisors only (the
+    // area's top half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and
+    // saves and restores every register the AAPCS asks it to.
+    match unsafe { embedded_raster_textured_face_v7m(template, &mut face) } {
+        0 => TexturedDraw::Done,
+        3 => TexturedDraw::Perspective,
+        _ => TexturedDraw::Declined,
+    }
+}
+
+/// `face` with the buffers set, if its texels hold every index its masks allow, `y`'s shift is
+/// below 32, `C` is a 16-bit colour and every pixel of its clip in its rows is inside both
+/// buffers; else what [`textured_face`] returns for it (done: nothing of the clip in the rows).
+#[inline(always)]
+fn textured_with_buffers<'w, C: Copy>(
+    (colors, depths, width): (&mut [C], &mut [u16], usize),
+    mut face: TexturedFace<'w>,
+) -> Result<TexturedFace<'w>, TexturedDraw> {
     let template = face.template;
     let last_texel = (template.rows_mask | template.x_mask) as usize;
     let colour = core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2;
     if !colour || last_texel >= face.texels_len || template.y_shift > 31 {
-        return TexturedDraw::Declined;
+        return Err(TexturedDraw::Declined);
     }
-    // The last pixel the face can write, in both buffers, as in `level_face_result`.
+    // The last pixel the face can write, in both buffers, as in `with_buffers`.
     let ([x0, y0, x1, y1], [first, last]) = (template.clip, template.rows);
     let (top, bottom) = (y0.max(first), y1.min(last));
     if x0 > x1 || top > bottom {
-        return TexturedDraw::Done;
+        return Err(TexturedDraw::Done);
     }
     let len = colors.len().min(depths.len()) as u64;
     let row = u64::from(bottom.wrapping_sub(first) as u32);
     let inside = x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len;
     if !inside || width > (u32::MAX / 2) as usize {
-        return TexturedDraw::Declined;
+        return Err(TexturedDraw::Declined);
     }
     face.depths = depths.as_mut_ptr();
     face.color_offset = (colors.as_mut_ptr() as usize).wrapping_sub(face.depths as usize) as u32;
     face.stride = (width * 2) as u32;
-    // SAFETY: the function reads the template and the face, and through the face's addresses
-    // the first 16 bytes of each of its three vertices (`ProjectedPrefix`es, borrowed by the
-    // face) and their three pairs of texel coordinates (24 bytes); it writes only pixels of its
-    // region — rows and columns of the clip (inside both buffers, checked above), at
-    // `row·stride + 2·column` bytes from the buffers' starts, as 2-byte aligned `u16`s (`C` is
-    // a 2-byte colour whose raw value the texels are, the caller's promise) — through
-    // `textured_rows`'s loop (see its safety note), which reads the texels at indices of at
-    // most `rows_mask | x_mask` (inside them, checked above) with shifts below 32 (the maps'
-    // at most 16, `y`'s checked above); it divides by non-zero divisors only (the area's top
-    // half is at least 2¹⁵), keeps its stack frame 8-byte aligned for the call, and saves and
-    // restores every register the AAPCS asks it to.
-    match unsafe { embedded_raster_textured_face_v7m(template, &face) } {
-        0 => TexturedDraw::Done,
-        3 => TexturedDraw::Perspective,
-        _ => TexturedDraw::Declined,
-    }
+    Ok(face)
+}
+
+/// The textured faces `faces` of a draw into `colors` and `depths` (`width` pixels a row) for
+/// a [`FaceScan`] to draw its kept faces by [`textured_face`]'s set-up: their face's buffers
+/// set, if [`textured_face`] would draw into them (none where it would decline every face,
+/// or where nothing of the clip is in the rows). `C` must be the 5-6-5 format whose raw value
+/// is the texels' (the caller's promise).
+#[inline(always)]
+pub(crate) fn textured_faces<'w, C: Copy>(
+    buffers: (&mut [C], &mut [u16], usize),
+    mut faces: TexturedFaces<'w>,
+) -> Option<TexturedFaces<'w>> {
+    faces.face = textured_with_buffers(buffers, faces.face).ok()?;
+    Some(faces)
 }
 
 /// One row of the transform (`three_d::vertex`'s `direct_row`): the row's three entries and its
@@ -3047,6 +3078,29 @@ pub(crate) fn project_positions<P: ModelPosition, V: ProjectedPrefix>(
     true
 }
 
+/// A vertex's texel coordinates for the scan's textured faces: from the pair at index `$i` of
+/// the texture coordinates (r8), `u·width` and `(2¹⁶ − v)·height` (r2, r3), as the pipeline's
+/// saturating products where none saturates (one that would: to 17), stored at lr (which moves
+/// on by 8). Clobbers r0, r1, r9.
+#[rustfmt::skip]
+macro_rules! texel_coordinates {
+    ($i:literal) => {
+        concat!(
+            "add r9, r8, ", $i, ", lsl #3\n",
+            "ldrd r0, r1, [r9]\n",
+            "smull r0, r9, r0, r2\n",
+            "cmp r9, r0, asr #31\n",
+            "bne 17f\n",
+            "rsbs r1, r1, #0x10000\n",
+            "bvs 17f\n",
+            "smull r1, r9, r1, r3\n",
+            "cmp r9, r1, asr #31\n",
+            "bne 17f\n",
+            "strd r0, r1, [lr], #8\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_scan_faces_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -3125,7 +3179,7 @@ core::arch::global_asm!(
     // counted (word 36).
     "10:",
     "tst r10, #1",
-    "beq 12f",
+    "beq 19f",
     "ldr r7, [sp]",
     "ldr r7, [r7, #32]",
     "ldrh r4, [r0, #-6]",
@@ -3154,19 +3208,82 @@ core::arch::global_asm!(
     "add r8, r8, #1",
     "str r8, [r9, #36]",
     "b 2b",
-    // Its entry; the next face unless the entries are full, or the batch has level faces (the
-    // faces after it wait: the faces are drawn in order).
+    // No level faces: textured ones (the flip's bit 1), or the entry.
+    "19:",
+    "tst r10, #2",
+    "bne 15f",
+    // Its entry; the next face unless the entries are full, or the batch has level or textured
+    // faces (the faces after it wait: the faces are drawn in order).
     "12:",
     "orr r4, r12, #{kept}",
     "str r4, [lr], #4",
     "11:",
-    "tst r10, #1",
+    "tst r10, #3",
     "bne 13f",
     "cmp lr, r11",
     "blo 2b",
     "13:",
     "add r12, r12, #4",
     "b 9b",
+    // Kept, with textured faces (the scan's word 40, r7 below): the face's vertices, lit as
+    // the draw asks (word 64: every vertex with a normal), its texel coordinates `u·width` and
+    // `(2¹⁶ − v)·height` (any index past the coordinates, or a product past `i32`: handed on
+    // untried, 17), the set-up called: drawn (0, counted), perspective (3, an entry of its
+    // kind) or declined (an entry). r0-r3, r12 and lr kept on the stack meanwhile.
+    "15:",
+    "push {{r0-r3, r12, lr}}",
+    "ldr r7, [sp, #24]",
+    "ldr r7, [r7, #40]",
+    "ldrh r4, [r0, #-6]",
+    "ldrh r5, [r0, #-4]",
+    "ldrh r6, [r0, #-2]",
+    "ldr r8, [r7, #52]",
+    "cmp r4, r8",
+    "itt lo",
+    "cmplo r5, r8",
+    "cmplo r6, r8",
+    "bhs 17f",
+    "add r1, r2, r4, lsl #4",
+    "add r3, r2, r5, lsl #4",
+    "add r12, r2, r6, lsl #4",
+    "ldr r8, [r7, #64]",
+    "cmp r8, #0",
+    "beq 16f",
+    "ldrb r8, [r1, #14]",
+    "ldrb r9, [r3, #14]",
+    "orr r8, r8, r9",
+    "ldrb r9, [r12, #14]",
+    "orr r8, r8, r9",
+    "tst r8, #0x80",
+    "bne 17f",
+    "16:",
+    "stm r7, {{r1, r3, r12}}",
+    "ldr r8, [r7, #48]",
+    "ldrd r2, r3, [r7, #56]",
+    "add lr, r7, #68",
+    texel_coordinates!("r4"),
+    texel_coordinates!("r5"),
+    texel_coordinates!("r6"),
+    "ldr r0, [r7, #44]",
+    "mov r1, r7",
+    "bl embedded_raster_textured_face_v7m",
+    "mov r7, r0",
+    "pop {{r0-r3, r12, lr}}",
+    "cbz r7, 18f",
+    "cmp r7, #3",
+    "bne 12b",
+    "orr r4, r12, #{perspective}",
+    "str r4, [lr], #4",
+    "b 11b",
+    "17:",
+    "pop {{r0-r3, r12, lr}}",
+    "b 12b",
+    "18:",
+    "ldr r9, [sp]",
+    "ldr r8, [r9, #36]",
+    "add r8, r8, #1",
+    "str r8, [r9, #36]",
+    "b 2b",
     // An index past the scratch.
     "20:",
     "orr r4, r12, #{invalid}",
@@ -3201,6 +3318,7 @@ core::arch::global_asm!(
     kept = const SCANNED_KEPT,
     clipped = const SCANNED_CLIPPED,
     invalid = const SCANNED_INVALID,
+    perspective = const SCANNED_PERSPECTIVE,
 );
 
 extern "C" {
@@ -3213,7 +3331,7 @@ extern "C" {
 /// drawn by [`level_face`]'s set-up where the scan has level faces (`FaceScan::next_batch`).
 #[inline(always)]
 pub(crate) fn scan_faces(scan: &mut FaceScan<'_>, out: &mut [u32; FACE_BATCH]) -> usize {
-    const { assert!(core::mem::size_of::<FaceScan<'_>>() == 40) };
+    const { assert!(core::mem::size_of::<FaceScan<'_>>() == 44) };
     // SAFETY: the function reads the scan's faces from `next` up to `end` (its borrowed
     // slice's, 2-byte aligned `u16`s) and, through an index below `vertices` (the borrowed
     // scratch's length), 16 bytes of that vertex (`FaceScan::new` takes only 16-byte
@@ -3224,8 +3342,14 @@ pub(crate) fn scan_faces(scan: &mut FaceScan<'_>, out: &mut [u32; FACE_BATCH]) -
     // and not otherwise used during it), it writes a kept face's three vertex addresses (inside
     // the scratch, as above: `LevelVertex`es, a `ProjectedPrefix`'s layout) into its words 0-8
     // and calls `embedded_raster_level_face_v7m` on it, as `level_face` does (see its safety
-    // note), its stack frame 8-byte aligned for the call. It keeps its stack frame its own and
-    // saves and restores every register the AAPCS asks it to.
+    // note), its stack frame 8-byte aligned for the call. Given textured faces (word 40:
+    // `textured_faces`' faces, likewise set for this call), it reads a kept face's three pairs
+    // of texture coordinates at indices below their count (the borrowed slice's, 8-byte pairs,
+    // 4-byte aligned), writes the three vertex addresses and the three coordinate pairs into the
+    // faces' words 0-8 and 68-92 (whose word 36 addresses the pairs), and calls
+    // `embedded_raster_textured_face_v7m` with its template (word 44) and face, as
+    // `textured_face` does (see its safety note). It keeps its stack frame its own and saves
+    // and restores every register the AAPCS asks it to.
     unsafe { embedded_raster_scan_faces_v7m(scan, out.as_mut_ptr(), FACE_BATCH as u32) as usize }
 }
 

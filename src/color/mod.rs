@@ -138,6 +138,20 @@ pub trait GouraudColor: PixelColor {
         crate::arch::TexturedDraw::Declined
     }
 
+    /// The textured faces `faces` of a draw into `buffers` for the target's face scan (its
+    /// faces' set-up as [`textured_face_565`](Self::textured_face_565)'s), if this format has
+    /// that set-up there; none where it has none (the default). Hidden: its argument's type
+    /// cannot be named outside the crate.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn textured_faces_565<'w>(
+        buffers: (&mut [Self], &mut [u16], usize),
+        faces: crate::arch::TexturedFaces<'w>,
+    ) -> Option<crate::arch::TexturedFaces<'w>> {
+        let _ = (buffers, faces);
+        None
+    }
+
     /// Draws a span of the perspective-correct textured fill into `colors` and `depths` by a
     /// loop of the target's own, if this format has one there (Rgb565 on ARMv7-M, whose raw
     /// values the texels are); `false` without writing anything where it has none (the
@@ -387,6 +401,16 @@ macro_rules! rgb_color {
                         return crate::arch::TexturedDraw::Declined;
                     }
                     crate::arch::textured_face(buffers, face)
+                }
+                #[inline(always)]
+                fn textured_faces_565<'w>(
+                    buffers: (&mut [Self], &mut [u16], usize),
+                    faces: crate::arch::TexturedFaces<'w>,
+                ) -> Option<crate::arch::TexturedFaces<'w>> {
+                    if $order != [0, 1, 2] {
+                        return None;
+                    }
+                    crate::arch::textured_faces(buffers, faces)
                 }
                 #[inline(always)]
                 fn perspective_span_565(

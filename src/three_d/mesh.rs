@@ -10,12 +10,24 @@ use super::math::{Mat4, Scalar, ToScalar, Vec3};
 /// texture image and `(1, 1)` at its top-right (the OBJ and OpenGL convention; values outside
 /// `[0, 1]` are for wrapping textures).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+#[repr(C)]
 pub struct TexCoord {
     /// Horizontal coordinate.
     pub u: Scalar,
     /// Vertical coordinate, up.
     pub v: Scalar,
 }
+
+// SAFETY: `TexCoord` is `repr(C)`: two `I16F16`s (`repr(transparent)` `i32`s), `u` at 0 and
+// `v` at 4, 8 bytes, 4-byte aligned, no padding (asserted below).
+#[allow(unsafe_code)]
+unsafe impl crate::arch::CoordinatePair for TexCoord {}
+
+const _: () = {
+    use core::mem::{align_of, offset_of, size_of};
+    assert!(size_of::<TexCoord>() == 8 && align_of::<TexCoord>() == 4);
+    assert!(offset_of!(TexCoord, u) == 0 && offset_of!(TexCoord, v) == 4);
+};
 
 impl TexCoord {
     /// A texture coordinate from floats, integers or [`Scalar`]s (see [`ToScalar`]).

@@ -606,6 +606,35 @@ pub(crate) trait FaceSink<C> {
         None
     }
 
+    /// Where the kept faces of `frame` (a textured draw of `mesh`) may be drawn by the face
+    /// scan itself: the draw's textured faces, for the scan's next batch (none: every kept face
+    /// is handed to [`face`](Self::face)). Only where that draws what `face` would.
+    #[inline(always)]
+    fn textured_faces<'f, R: RowWindow, T: FaceTexture<C>>(
+        &mut self,
+        frame: &'f Frame<'_, C, R, T>,
+        mesh: &'f Mesh<'_>,
+    ) -> Option<arch::TexturedFaces<'f>> {
+        let _ = (frame, mesh);
+        None
+    }
+
+    /// [`face`](Self::face) of a face whose set-up found it not within its screen-space bound
+    /// (the scan's textured faces, `TexturedDraw::Perspective`): not offered to it again.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn perspective_face<R: RowWindow, T: FaceTexture<C>>(
+        &mut self,
+        frame: &Frame<'_, C, R, T>,
+        mesh: &Mesh<'_>,
+        k: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+    ) {
+        self.face(frame, mesh, k, idx, model, v);
+    }
+
     /// Face `k`, crossing the view volume's boundary (to be clipped; it may still be dropped:
     /// `stats` counts it).
     #[allow(clippy::too_many_arguments)]
@@ -632,7 +661,7 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
     ) {
-        frame.fill(mesh, idx, model, v, None, self);
+        frame.fill(mesh, idx, model, v, None, None, self);
     }
 
     #[inline(always)]
@@ -641,6 +670,29 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         frame: &Frame<'_, C, R, T>,
     ) -> Option<arch::LevelFace<'static>> {
         frame.level_faces(self)
+    }
+
+    #[inline(always)]
+    fn textured_faces<'f, R: RowWindow, T: FaceTexture<C>>(
+        &mut self,
+        frame: &'f Frame<'_, C, R, T>,
+        mesh: &'f Mesh<'_>,
+    ) -> Option<arch::TexturedFaces<'f>> {
+        frame.textured_faces(self, mesh)
+    }
+
+    #[inline(always)]
+    fn perspective_face<R: RowWindow, T: FaceTexture<C>>(
+        &mut self,
+        frame: &Frame<'_, C, R, T>,
+        mesh: &Mesh<'_>,
+        _: usize,
+        idx: &[usize; 3],
+        model: impl Fn() -> [Vec3; 3] + Copy,
+        v: [&ProjectedVertex; 3],
+    ) {
+        let tried = Some(TexturedDraw::Perspective);
+        frame.fill(mesh, idx, model, v, None, tried, self);
     }
 
     #[inline(always)]
@@ -667,6 +719,9 @@ enum Verdict {
     Clipped,
     /// Fill it.
     Drawn,
+    /// Fill it perspective-correct: the textured set-up found it not within its screen-space
+    /// bound (a face scan's textured faces).
+    Perspective,
 }
 
 /// Why the face stage drops a face it does not reject outright.
@@ -1109,7 +1164,8 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         let mut handed = 0u32;
         loop {
             let mut level = sink.level_faces(self);
-            let entries = scan.next_batch(&mut batch, level.as_mut());
+            let mut textured = sink.textured_faces(self, mesh);
+            let entries = scan.next_batch(&mut batch, level.as_mut(), textured.as_mut());
             if entries.is_empty() {
                 break;
             }
@@ -1128,12 +1184,14 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                     stats.invalid += 1;
                     continue;
                 };
-                let verdict = if entry & 3 == arch::SCANNED_CLIPPED {
-                    Verdict::Clipped
-                } else {
-                    stats.drawn += 1;
-                    Verdict::Drawn
+                let verdict = match entry & 3 {
+                    arch::SCANNED_CLIPPED => Verdict::Clipped,
+                    arch::SCANNED_PERSPECTIVE => Verdict::Perspective,
+                    _ => Verdict::Drawn,
                 };
+                if verdict != Verdict::Clipped {
+                    stats.drawn += 1;
+                }
                 self.scratch_face(verdict, mesh, k, face, [a, b, c], sink, &mut stats);
             }
         }
@@ -1204,7 +1262,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         if clipped {
             self.refill_clipped(mesh, &idx, &[*a, *b, *c], target);
         } else {
-            self.fill(mesh, &idx, model, [a, b, c], None, target);
+            self.fill(mesh, &idx, model, [a, b, c], None, None, target);
         }
     }
 
@@ -1423,6 +1481,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 sink.clipped(self, mesh, k, &idx, model, v.map(|v| *v), stats);
             }
             Verdict::Drawn => sink.face(self, mesh, k, idx, model, v),
+            Verdict::Perspective => sink.perspective_face(self, mesh, k, idx, model, v),
         }
     }
 
@@ -1487,8 +1546,27 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         }
     }
 
+    /// The draw's textured faces into `target` ([`FaceSink::textured_faces`]): where a kept
+    /// face is offered to the target's set-up as [`fill`](Self::fill) offers it (a textured draw
+    /// lit per vertex or not at all, whose frame offers its small faces: `small`) and the
+    /// target has that set-up for the draw's texture and colours.
+    #[inline(always)]
+    fn textured_faces<'f>(
+        &'f self,
+        target: &mut DepthTarget<'_, C>,
+        mesh: &'f Mesh<'_>,
+    ) -> Option<arch::TexturedFaces<'f>> {
+        match &self.fill {
+            Fill::Textured(_) if T::TEXTURED && arch::TEXTURED_FACE => {
+                let lit = self.small?;
+                self.texture.scan_faces(target, mesh.uvs, lit)
+            }
+            _ => None,
+        }
+    }
+
     /// Fills one screen triangle of the face; `bary` places its vertices in the face (clipped
-    /// faces' fans).
+    /// faces' fans); `tried` is what a face scan's set-up did with it, if it tried.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn fill(
@@ -1498,6 +1576,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
         bary: Option<[Bary; 3]>,
+        tried: Option<TexturedDraw>,
         target: &mut DepthTarget<'_, C>,
     ) {
         // A textured frame's fill is `Textured`: the material fills are not compiled into its
@@ -1506,8 +1585,9 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
             match &self.fill {
                 Fill::Textured(texturing) => {
                     // Most faces: the target's set-up from the vertices as they are (where
-                    // there is one: a constant test).
+                    // there is one: a constant test), unless a face scan tried it (`tried`).
                     let set_up = match bary {
+                        _ if tried.is_some() => tried,
                         None if arch::TEXTURED_FACE && self.small.is_some() => {
                             self.fill_small(mesh, idx, v, target)
                         }
@@ -2005,7 +2085,7 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 true => ProjectedVertex::with_q(s.0, s.2),
                 false => ProjectedVertex::lit(s.0, level(&s.1)),
             });
-            self.fill(mesh, idx, model, v.each_ref(), Some(bary), target);
+            self.fill(mesh, idx, model, v.each_ref(), Some(bary), None, target);
         }
     }
 }

@@ -93,6 +93,7 @@ use super::depth::{DepthTarget, ScreenVertex};
 use super::light::{Highlight, Light, Lights, PixelSource, Specular};
 use super::math::Vec3;
 use super::math::{zip3_with, Scalar};
+use super::mesh::TexCoord;
 use super::shading::{
     highlighted_channels, pixel_terms, scale_channels, with_depth, QuadraticNormals, TargetClip,
     DEPTH_SHIFT,
@@ -351,6 +352,21 @@ pub(crate) trait FaceTexture<C>: Copy {
         let _ = (target, vertices, texels, lit);
         TexturedDraw::Declined
     }
+
+    /// The draw's textured faces into `target` for the target's face scan: faces of a mesh with
+    /// the texture coordinates `uvs`, each offered to the set-up as
+    /// [`fill_small`](Self::fill_small) offers it (lit if `lit`), if the target has one for this
+    /// texture; none where it has none (the default).
+    #[inline(always)]
+    fn scan_faces<'s>(
+        &'s self,
+        target: &mut DepthTarget<'_, C>,
+        uvs: &'s [TexCoord],
+        lit: bool,
+    ) -> Option<arch::TexturedFaces<'s>> {
+        let _ = (target, uvs, lit);
+        None
+    }
 }
 
 /// No texture: the draws of a [`Material`](super::Material) (the default texture type of a
@@ -487,6 +503,19 @@ where
         let template = arch::slot_template(slot);
         let face = template.face(vertices, &texels, words, lit);
         C::textured_face_565(target.buffers_mut(), face)
+    }
+
+    #[inline(always)]
+    fn scan_faces<'s>(
+        &'s self,
+        target: &mut DepthTarget<'_, C>,
+        uvs: &'s [TexCoord],
+        lit: bool,
+    ) -> Option<arch::TexturedFaces<'s>> {
+        let words = face_words(&self.sampler, self.palette.as_ref())?;
+        let template = arch::slot_template(self.face.as_ref()?);
+        let faces = arch::TexturedFaces::new(template.faces(words, lit), uvs, self.size, lit)?;
+        C::textured_faces_565(target.buffers_mut(), faces)
     }
 }
 
