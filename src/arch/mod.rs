@@ -234,15 +234,7 @@ impl<'v> LevelFace<'v> {
     ) -> Self {
         LevelFace {
             vertices: vertices.map(|v| (v as *const V).cast()),
-            clip: clip.words(),
-            colors: core::ptr::null_mut(),
-            depths: core::ptr::null_mut(),
-            stride: 0,
-            table: core::ptr::null(),
-            half,
-            setup: core::ptr::null_mut(),
-            rows,
-            borrowed: core::marker::PhantomData,
+            ..LevelFace::without_vertices(clip, half, rows)
         }
     }
 }
@@ -730,16 +722,8 @@ impl TexturedTemplate {
     ) -> TexturedFace<'w> {
         TexturedFace {
             vertices: vertices.map(|v| (v as *const V).cast::<u8>()),
-            depths: core::ptr::null_mut(),
-            color_offset: 0,
-            stride: 0,
-            texels: texels.texels,
-            lit: if lit { 2 } else { 0 } | texels.kind,
-            palette: texels.palette,
             coordinates: coordinates.as_ptr(),
-            texels_len: texels.count,
-            template: self,
-            borrowed: core::marker::PhantomData,
+            ..self.faces(texels, lit)
         }
     }
 

@@ -895,6 +895,7 @@ impl<C: GouraudColor> FaceSink<C> for Recorder<'_> {
         idx: &[usize; 3],
         _: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
+        _: Option<crate::arch::TexturedDraw>,
     ) {
         let y = v.map(|v| v.position_bits().1);
         let heights = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));

@@ -581,7 +581,8 @@ struct Texturing {
 /// band's through a [`RowWindow`]), or a record of them (a band renderer's bin).
 pub(crate) trait FaceSink<C> {
     /// Face `k` of the mesh (vertices `idx` at `model`, projected `v`): inside the view volume,
-    /// not culled, of non-zero area.
+    /// not culled, of non-zero area; `tried` is what a face scan's textured set-up did with it,
+    /// if it tried (then not again: `TexturedDraw::Perspective`, to draw perspective-correct).
     #[allow(clippy::too_many_arguments)]
     fn face<R: RowWindow, T: FaceTexture<C>>(
         &mut self,
@@ -591,6 +592,7 @@ pub(crate) trait FaceSink<C> {
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
+        tried: Option<TexturedDraw>,
     );
 
     /// Where the kept faces of `frame` may be drawn by the face scan itself
@@ -619,22 +621,6 @@ pub(crate) trait FaceSink<C> {
         None
     }
 
-    /// [`face`](Self::face) of a face whose set-up found it not within its screen-space bound
-    /// (the scan's textured faces, `TexturedDraw::Perspective`): not offered to it again.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn perspective_face<R: RowWindow, T: FaceTexture<C>>(
-        &mut self,
-        frame: &Frame<'_, C, R, T>,
-        mesh: &Mesh<'_>,
-        k: usize,
-        idx: &[usize; 3],
-        model: impl Fn() -> [Vec3; 3] + Copy,
-        v: [&ProjectedVertex; 3],
-    ) {
-        self.face(frame, mesh, k, idx, model, v);
-    }
-
     /// Face `k`, crossing the view volume's boundary (to be clipped; it may still be dropped:
     /// `stats` counts it).
     #[allow(clippy::too_many_arguments)]
@@ -660,8 +646,9 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         idx: &[usize; 3],
         model: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
+        tried: Option<TexturedDraw>,
     ) {
-        frame.fill(mesh, idx, model, v, None, None, self);
+        frame.fill(mesh, idx, model, v, None, tried, self);
     }
 
     #[inline(always)]
@@ -679,20 +666,6 @@ impl<C: GouraudColor> FaceSink<C> for DepthTarget<'_, C> {
         mesh: &'f Mesh<'_>,
     ) -> Option<arch::TexturedFaces<'f>> {
         frame.textured_faces(self, mesh)
-    }
-
-    #[inline(always)]
-    fn perspective_face<R: RowWindow, T: FaceTexture<C>>(
-        &mut self,
-        frame: &Frame<'_, C, R, T>,
-        mesh: &Mesh<'_>,
-        _: usize,
-        idx: &[usize; 3],
-        model: impl Fn() -> [Vec3; 3] + Copy,
-        v: [&ProjectedVertex; 3],
-    ) {
-        let tried = Some(TexturedDraw::Perspective);
-        frame.fill(mesh, idx, model, v, None, tried, self);
     }
 
     #[inline(always)]
@@ -1480,8 +1453,11 @@ impl<C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'_, C, R, T> {
                 let idx = *idx;
                 sink.clipped(self, mesh, k, &idx, model, v.map(|v| *v), stats);
             }
-            Verdict::Drawn => sink.face(self, mesh, k, idx, model, v),
-            Verdict::Perspective => sink.perspective_face(self, mesh, k, idx, model, v),
+            Verdict::Drawn => sink.face(self, mesh, k, idx, model, v, None),
+            Verdict::Perspective => {
+                let tried = Some(TexturedDraw::Perspective);
+                sink.face(self, mesh, k, idx, model, v, tried);
+            }
         }
     }
 

@@ -180,6 +180,7 @@ impl<C: GouraudColor, W: RowWindow> FaceSink<C> for Edges<'_, '_, C, W> {
         idx: &[usize; 3],
         _: impl Fn() -> [Vec3; 3] + Copy,
         v: [&ProjectedVertex; 3],
+        _: Option<crate::arch::TexturedDraw>,
     ) {
         let clip = frame.clip_rect();
         let s = v.map(|v| v.screen());
