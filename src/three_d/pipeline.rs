@@ -1089,12 +1089,12 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         sink: &mut S,
     ) -> DrawStats {
         // A draw of every row, one side culled: the target's face scan, where there is one.
-        let keep_front = match self.pipeline.cull {
-            Cull::Back => Some(true),
-            Cull::Front => Some(false),
-            Cull::None => None,
-        };
         if arch::FACE_SCAN && self.clip.rows().band().is_none() {
+            let keep_front = match self.pipeline.cull {
+                Cull::Back => Some(true),
+                Cull::Front => Some(false),
+                Cull::None => None,
+            };
             let scan = keep_front.and_then(|f| arch::FaceScan::new(mesh.indices, scratch, f));
             if let Some(scan) = scan {
                 return self.scanned_faces(mesh, scratch, scan, sink);
@@ -1117,7 +1117,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
             if verdict == Verdict::Dropped {
                 continue;
             }
-            self.scratch_face(verdict, mesh, k, face, [a, b, c], sink, &mut stats);
+            self.scratch_face(verdict, mesh, k, (face, idx), [a, b, c], sink, &mut stats);
         }
         stats
     }
@@ -1148,10 +1148,11 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 let Some(face) = mesh.indices.get(k) else {
                     continue;
                 };
+                let idx = face.map(usize::from);
                 let (Some(a), Some(b), Some(c)) = (
-                    scratch.get(usize::from(face[0])),
-                    scratch.get(usize::from(face[1])),
-                    scratch.get(usize::from(face[2])),
+                    scratch.get(idx[0]),
+                    scratch.get(idx[1]),
+                    scratch.get(idx[2]),
                 ) else {
                     // `SCANNED_INVALID`.
                     stats.invalid += 1;
@@ -1165,7 +1166,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                 if verdict != Verdict::Clipped {
                     stats.drawn += 1;
                 }
-                self.scratch_face(verdict, mesh, k, face, [a, b, c], sink, &mut stats);
+                self.scratch_face(verdict, mesh, k, (face, idx), [a, b, c], sink, &mut stats);
             }
         }
         // The faces not handed on: drawn by the scan, rejected, degenerate or culled.
@@ -1190,12 +1191,11 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         verdict: Verdict,
         mesh: &Mesh<'_>,
         k: usize,
-        face: &[u16; 3],
+        (face, idx): (&[u16; 3], [usize; 3]),
         v: [&ProjectedVertex; 3],
         sink: &mut S,
         stats: &mut DrawStats,
     ) {
-        let idx = face.map(usize::from);
         // Only flat shading, faces without normals and clipping need the positions again:
         // in range, as the scratch has one entry per vertex.
         let vertices = mesh.vertices;
@@ -1207,7 +1207,6 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         } else {
             // The mesh's own indices: the copy of `idx` above is stored every face, and a
             // host reading the three stored words back as one stalls its store forwarding.
-            let face = *face;
             let model =
                 move || face.map(|i| vertices.get(usize::from(i)).copied().unwrap_or_default());
             self.kept_face(verdict, mesh, k, &idx, model, v, sink, stats);
