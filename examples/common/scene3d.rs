@@ -325,13 +325,30 @@ impl core::fmt::Display for ScatterLine {
     }
 }
 
-/// The [`scatter`] frame of `mesh` (with `scratch`): its line.
+/// The [`scatter`] frame of `mesh` (with `scratch`): its line. The mesh is drawn three times:
+/// through [`scatter_pipeline`], then through the same camera onto viewports over the screen's
+/// left and right edges (the counts summed).
 pub fn render_scatter(
     mesh: &Mesh<'_>,
     target: &mut DepthTarget<'_, Rgb565>,
     scratch: &mut [ProjectedVertex],
 ) -> ScatterLine {
-    let stats = render_with(&scatter_pipeline(), mesh, target, Some(scratch));
+    let mut stats = render_with(&scatter_pipeline(), mesh, target, Some(scratch));
+    // Then over each side edge of the screen (the viewport past it): faces inside the view
+    // volume whose columns the screen cuts (each way: the set-ups' runs clamped to the clip).
+    for x in [-192, 200] {
+        let viewport = Rectangle::new(Point::new(x, -8), Size::new(256, 256));
+        let pipeline = Pipeline::new(Mat4::IDENTITY, Mat4::IDENTITY, viewport, light());
+        let more = pipeline
+            .draw_mesh_with(mesh, &MATERIAL, target, &mut *scratch)
+            .unwrap_or_default();
+        stats.drawn += more.drawn;
+        stats.clipped += more.clipped;
+        stats.rejected += more.rejected;
+        stats.culled += more.culled;
+        stats.degenerate += more.degenerate;
+        stats.invalid += more.invalid;
+    }
     ScatterLine {
         stats,
         covered: covered(target.depth()),

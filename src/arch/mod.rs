@@ -1230,6 +1230,39 @@ pub(crate) fn fill_u16(entries: &mut [u16], value: u16) {
     tail.fill(value);
 }
 
+/// Sets the pixels of `pixels` after its first two to those two (the same colour), where `C` is
+/// a 16-bit colour and the target has a loop of eight words a pass (RV32, ARMv7-M): `pixels`
+/// starts at a 4-byte boundary and is a whole number of sixteen pixels long, at least sixteen.
+/// `false`, with nothing written, elsewhere.
+#[allow(unsafe_code)]
+#[inline(always)]
+pub(crate) fn repeat_first_pair<C: Copy>(pixels: &mut [C]) -> bool {
+    let fits = core::mem::size_of::<C>() == 2
+        && core::mem::align_of::<C>() == 2
+        && pixels.as_ptr() as usize % 4 == 0
+        && !pixels.is_empty()
+        && pixels.len() % 16 == 0;
+    if !cfg!(any(rv32, armv7m)) || !fits {
+        return false;
+    }
+    let range = pixels.as_mut_ptr_range();
+    let (start, end) = (range.start.cast::<u32>(), range.end.cast::<u32>());
+    // SAFETY: `pixels` is writable, its first pixel 4-byte aligned and its 2-byte pixels a
+    // multiple of sixteen (checked above): a range of 4-byte aligned words, a multiple of eight
+    // of them and at least eight; each word is written with the bytes of the first, two
+    // pixels, so each pixel gets the bytes of a pixel.
+    #[cfg(rv32)]
+    unsafe {
+        riscv32::repeat_first_word(start, end)
+    };
+    #[cfg(armv7m)]
+    unsafe {
+        thumbv7m::repeat_first_word(start, end)
+    };
+    let _ = (start, end);
+    true
+}
+
 /// Sets every word of `words` to `value`: where the target has a loop of eight words a pass of
 /// its own (RV32, ARMv7-M: `fill_eights`), the whole eights by it, then the rest.
 #[allow(unsafe_code)]

@@ -88,22 +88,52 @@ macro_rules! dsp_directive {
     };
 }
 
-/// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
-/// (r11). Registers: r0 = the block, r1-r3 = the numerators, lr = rows left; the rest are free.
-macro_rules! level_row {
-    ($middle:literal) => {
+/// The clamp of a row's run to the region's columns, start ≥ 0 and end ≤ columns (the word at
+/// `$columns` of the block in r0), for runs `$start..$end` (`$t` scratch). A run that is not
+/// empty needs it only where the clip cut columns off the region (see [`face_scan`]).
+macro_rules! clamped_run {
+    ($start:literal, $end:literal, $t:literal, $columns:literal) => {
         concat!(
-            // The run: three divisions, start ≥ 0, end ≤ columns.
+            "bic ",
+            $start,
+            ", ",
+            $start,
+            ", ",
+            $start,
+            ", asr #31\n",
+            "ldr ",
+            $t,
+            ", [r0, #",
+            $columns,
+            "]\n",
+            "cmp ",
+            $end,
+            ", ",
+            $t,
+            "\n",
+            "it gt\n",
+            "movgt ",
+            $end,
+            ", ",
+            $t,
+            "\n",
+        )
+    };
+}
+
+/// One row of the loop, `$middle` folding the middle bound (r12) into the start (r10) or the end
+/// (r11), `$clamp` the clamp to the columns (or none). Registers: r0 = the block, r1-r3 = the
+/// numerators, lr = rows left; the rest are free.
+macro_rules! level_row {
+    ($middle:literal, $clamp:expr) => {
+        concat!(
+            // The run: three divisions (start ≥ 0, end ≤ columns).
             "ldrd r7, r8, [r0, #36]\n",
             "ldr r9, [r0, #44]\n",
             "sdiv r10, r1, r7\n",
             "sdiv r11, r3, r9\n",
             "sdiv r12, r2, r8\n",
-            "bic r10, r10, r10, asr #31\n",
-            "ldr r9, [r0, #48]\n",
-            "cmp r11, r9\n",
-            "it gt\n",
-            "movgt r11, r9\n",
+            $clamp,
             $middle,
             "\n",
             "cmp r11, r10\n",
@@ -148,6 +178,36 @@ macro_rules! level_row {
     };
 }
 
+/// The level row loop's function body (r0 = the block, r1 = whether the middle bound is a start
+/// bound), each run clamped by `$clamp`.
+macro_rules! level_rows_body {
+    ($clamp:expr) => {
+        concat!(
+            "push {{r4-r11, lr}}\n",
+            // The colour pointer as an offset from the depth pointer after its post-increment.
+            "ldr r2, [r0, #8]\n",
+            "ldr r3, [r0, #64]\n",
+            "sub r3, r3, r2\n",
+            "sub r3, r3, #2\n",
+            "str r3, [r0, #64]\n",
+            "add r12, r0, #68\n",
+            "cmp r1, #0\n",
+            "beq 5f\n",
+            "ldm r12, {{r1, r2, r3, lr}}\n",
+            "1:\n",
+            level_row!("cmp r12, r10\nit gt\nmovgt r10, r12", $clamp),
+            "bne 1b\n",
+            "pop {{r4-r11, pc}}\n",
+            "5:\n",
+            "ldm r12, {{r1, r2, r3, lr}}\n",
+            "6:\n",
+            level_row!("cmp r12, r11\nit lt\nmovlt r11, r12", $clamp),
+            "bne 6b\n",
+            "pop {{r4-r11, pc}}\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".section .text.embedded_raster_level_rows_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -160,28 +220,25 @@ core::arch::global_asm!(
     ".thumb_func",
     // r0 = the block, r1 = whether the middle bound is a start bound.
     "embedded_raster_level_rows_v7m:",
-    "push {{r4-r11, lr}}",
-    // The colour pointer as an offset from the depth pointer after its post-increment.
-    "ldr r2, [r0, #8]",
-    "ldr r3, [r0, #64]",
-    "sub r3, r3, r2",
-    "sub r3, r3, #2",
-    "str r3, [r0, #64]",
-    "add r12, r0, #68",
-    "cmp r1, #0",
-    "beq 5f",
-    "ldm r12, {{r1, r2, r3, lr}}",
-    "1:",
-    level_row!("cmp r12, r10\nit gt\nmovgt r10, r12"),
-    "bne 1b",
-    "pop {{r4-r11, pc}}",
-    "5:",
-    "ldm r12, {{r1, r2, r3, lr}}",
-    "6:",
-    level_row!("cmp r12, r11\nit lt\nmovlt r11, r12"),
-    "bne 6b",
-    "pop {{r4-r11, pc}}",
+    level_rows_body!(clamped_run!("r10", "r11", "r9", "48")),
     ".size embedded_raster_level_rows_v7m, . - embedded_raster_level_rows_v7m",
+);
+
+// The same rows where no run needs the clamp to the columns (the clip cut none off the region:
+// `face_scan`'s word).
+core::arch::global_asm!(
+    ".section .text.embedded_raster_level_rows_inside_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    dsp_directive!(),
+    ".p2align 2",
+    ".global embedded_raster_level_rows_inside_v7m",
+    ".hidden embedded_raster_level_rows_inside_v7m",
+    ".type embedded_raster_level_rows_inside_v7m,%function",
+    ".thumb_func",
+    "embedded_raster_level_rows_inside_v7m:",
+    level_rows_body!(""),
+    ".size embedded_raster_level_rows_inside_v7m, . - embedded_raster_level_rows_inside_v7m",
 );
 
 extern "C" {
@@ -248,8 +305,8 @@ struct TexturedBlock {
 const _: () = assert!(core::mem::size_of::<TexturedBlock>() == 144);
 
 /// The rows of the textured loop. `$middle` folds the middle bound (r2) into the start (r1) or
-/// the end (r3); `$pixel` draws the pixel at r8 (the negative byte offset from the run's end)
-/// and steps the planes; `$offset` moves a run's first coordinates (r5, r6: `y` before its
+/// the end (r3); `$pixel` steps the planes to the pixel at r8 (the negative byte offset from the
+/// run's end; entered at its label 8 for the run's first pixel) and draws it; `$offset` moves a run's first coordinates (r5, r6: `y` before its
 /// shift) where the pixel wants them moved; `$frame` is the bytes of the stack frame below the
 /// saved registers. The block's pointer is at [sp, #16]; the per-pixel steps at [sp] (depth,
 /// `x`, `y`, level); r11 = the texels, r12 = the column mask, lr = the row mask throughout.
@@ -258,22 +315,28 @@ macro_rules! textured_rows {
         textured_rows!($middle, $pixel, "", "20")
     };
     ($middle:literal, $pixel:expr, $offset:expr, $frame:literal) => {
+        textured_rows!(
+            $middle,
+            $pixel,
+            $offset,
+            $frame,
+            clamped_run!("r1", "r3", "r4", "76")
+        )
+    };
+    ($middle:literal, $pixel:expr, $offset:expr, $frame:literal, $clamp:expr) => {
         concat!(
-            "1:\n",
             "ldr r0, [sp, #16]\n",
-            // The run: three divisions, start ≥ 0, end ≤ columns.
-            "ldrd r1, r2, [r0, #20]\n",
-            "ldr r3, [r0, #28]\n",
-            "ldrd r4, r5, [r0, #64]\n",
-            "ldr r6, [r0, #72]\n",
-            "sdiv r1, r1, r4\n",
-            "sdiv r3, r3, r6\n",
-            "sdiv r2, r2, r5\n",
-            "bic r1, r1, r1, asr #31\n",
-            "ldr r4, [r0, #76]\n",
-            "cmp r3, r4\n",
-            "it gt\n",
-            "movgt r3, r4\n",
+            "ldr r6, [r0, #20]\n",
+            "ldrd r7, r8, [r0, #24]\n",
+            // The run (the block in r0, the numerators in r6-r8, as the step to the next row
+            // leaves them): three divisions (`$clamp`: start ≥ 0, end ≤ columns).
+            "1:\n",
+            "ldrd r2, r3, [r0, #64]\n",
+            "ldr r4, [r0, #72]\n",
+            "sdiv r1, r6, r2\n",
+            "sdiv r2, r7, r3\n",
+            "sdiv r3, r8, r4\n",
+            $clamp,
             $middle,
             "\n",
             "cmp r3, r1\n",
@@ -308,30 +371,30 @@ macro_rules! textured_rows {
             "ldr r1, [r0, #112]\n",
             "lsl r6, r6, r1\n",
             "lsl r8, r8, #1\n",
+            // The pixels, the planes stepped between them (not past the last).
+            "b 8f\n",
             "2:\n",
             $pixel,
             "adds r8, #2\n",
             "bne 2b\n",
-            // The next row: the planes, the depth pointer and the numerators stepped.
+            // The next row: the planes, the depth pointer and the numerators (words 0-7)
+            // stepped by words 8-15.
             "3:\n",
             "ldr r0, [sp, #16]\n",
-            "ldm r0, {{r1-r4}}\n",
-            "add r9, r0, #32\n",
-            "ldm r9, {{r5-r8}}\n",
-            "add r1, r5\n",
-            "add r2, r6\n",
-            "add r3, r7\n",
-            "add r4, r8\n",
-            "stm r0, {{r1-r4}}\n",
-            "add r10, r0, #16\n",
-            "ldm r10, {{r1-r4}}\n",
-            "add r9, r0, #48\n",
-            "ldm r9, {{r5-r8}}\n",
-            "add r1, r5\n",
-            "add r2, r6\n",
-            "add r3, r7\n",
-            "add r4, r8\n",
-            "stm r10, {{r1-r4}}\n",
+            "ldm r0, {{r1-r8}}\n",
+            "ldrd r9, r10, [r0, #32]\n",
+            "add r1, r9\n",
+            "add r2, r10\n",
+            "ldrd r9, r10, [r0, #40]\n",
+            "add r3, r9\n",
+            "add r4, r10\n",
+            "ldrd r9, r10, [r0, #48]\n",
+            "add r5, r9\n",
+            "add r6, r10\n",
+            "ldrd r9, r10, [r0, #56]\n",
+            "add r7, r9\n",
+            "add r8, r10\n",
+            "stm r0, {{r1-r8}}\n",
             "ldr r1, [r0, #128]\n",
             "subs r1, #1\n",
             "str r1, [r0, #128]\n",
@@ -405,7 +468,8 @@ macro_rules! texel_index {
 }
 
 /// The texel (r0) with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for `$f`, stored
-/// at the lit loop's pixel. Clobbers r2, r3.
+/// at the lit loop's pixel. Clobbers r2, r3 (and r1 with the DSP extension).
+#[cfg(not(arm_dsp))]
 macro_rules! scaled_texel {
     ($f:literal) => {
         concat!(
@@ -433,44 +497,108 @@ macro_rules! scaled_texel {
     };
 }
 
-/// An unlit pixel: the texel as it is (the nearest one, or `$texel`'s, which skips to 4).
+/// The same with the DSP extension: `f·2⁵` into r1, then [`scaled_by_f5`].
+#[cfg(arm_dsp)]
+macro_rules! scaled_texel {
+    ($f:literal) => {
+        concat!("lsl r1, ", $f, ", #5\n", scaled_by_f5!())
+    };
+}
+
+/// The texel (r0) with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for r1 = `f·2⁵`
+/// (`f` below 2²⁶), stored at the lit loop's pixel, by the DSP extension's rounded high
+/// product: `smmulr` gives `(a·b + 2³¹) >> 32`, which for `a = c·2¹¹` and `b = f·2⁵` (or `c·2⁵`
+/// and `f·2¹¹`: each below 2³¹, the product exact in 64 bits) is `(c·f + 2¹⁵) >> 16`. Each
+/// result's bits past its field are dropped (by `bfi` and the halfword store; for the `f` of the
+/// loops, at most `2¹⁶·257/256`, none are set). Clobbers r1-r3.
+#[cfg(arm_dsp)]
+macro_rules! scaled_by_f5 {
+    () => {
+        concat!(
+            // Red (c·2¹¹ in place), blue (moved up to c·2¹¹), green (c·2⁵ in place, f·2¹¹).
+            "and r2, r0, #0xF800\n",
+            "smmulr r2, r2, r1\n",
+            "lsl r3, r0, #27\n",
+            "lsr r3, r3, #16\n",
+            "smmulr r3, r3, r1\n",
+            "and r0, r0, #0x7E0\n",
+            "lsl r1, r1, #6\n",
+            "smmulr r0, r0, r1\n",
+            "bfi r3, r0, #5, #6\n",
+            "bfi r3, r2, #11, #5\n",
+            "strh r3, [r10, r8]\n",
+        )
+    };
+}
+
+/// An unlit pixel, the loop's body from the step to it (the planes stepped, entered at 8 for a
+/// run's first pixel): the texel as it is (the nearest one, or `$texel`'s, which skips to 4).
 macro_rules! unlit_pixel {
     () => {
         unlit_pixel!(textured_texel!("4f"))
     };
     ($texel:expr) => {
         concat!(
-            $texel,
-            "strh r0, [r10, r8]\n",
-            "4:\n",
             "ldm sp, {{r0-r2}}\n",
             "add r4, r0\n",
             "add r5, r1\n",
             "add r6, r2\n",
+            "8:\n",
+            $texel,
+            "strh r0, [r10, r8]\n",
+            "4:\n",
         )
     };
 }
 
-/// A pixel lit by the level plane (r7): `f = ((l >> 12)·257) >> 12`, each channel `c` of the
-/// texel (the nearest one, or `$texel`'s, which skips to 4) replaced by `(c·f + 2¹⁵) >> 16`,
-/// blue, green, red.
+/// The texel (r0) lit by the level plane (r7) and stored at the lit loop's pixel: `f = ((l >>
+/// 12)·257) >> 12`, each channel `c` replaced by `(c·f + 2¹⁵) >> 16`, blue, green, red (each
+/// result's bits past its field dropped, as `bfi` drops them). Clobbers r1-r3.
+#[cfg(not(arm_dsp))]
+macro_rules! lit_texel {
+    () => {
+        concat!(
+            "lsr r1, r7, #12\n",
+            "add r1, r1, r1, lsl #8\n",
+            "lsr r1, r1, #12\n",
+            scaled_texel!("r1"),
+        )
+    };
+}
+
+/// The same with the DSP extension: `f·2⁵` as the low five bits of `((l >> 12)·257) >> 7`
+/// cleared, then [`scaled_by_f5`] (15 instructions where the `mla`s take 17).
+#[cfg(arm_dsp)]
+macro_rules! lit_texel {
+    () => {
+        concat!(
+            "lsr r1, r7, #12\n",
+            "add r1, r1, r1, lsl #8\n",
+            "lsr r1, r1, #7\n",
+            "bic r1, r1, #31\n",
+            scaled_by_f5!(),
+        )
+    };
+}
+
+/// A pixel lit by the level plane (r7), the loop's body from the step to it (as
+/// [`unlit_pixel`]'s): the texel (the nearest one, or `$texel`'s, which skips to 4) scaled by
+/// [`lit_texel`].
 macro_rules! lit_pixel {
     () => {
         lit_pixel!(textured_texel!("4f"))
     };
     ($texel:expr) => {
         concat!(
-            $texel,
-            "lsr r1, r7, #12\n",
-            "add r1, r1, r1, lsl #8\n",
-            "lsr r1, r1, #12\n",
-            scaled_texel!("r1"),
-            "4:\n",
             "ldm sp, {{r0-r3}}\n",
             "add r4, r0\n",
             "add r5, r1\n",
             "add r6, r2\n",
             "add r7, r3\n",
+            "8:\n",
+            $texel,
+            lit_texel!(),
+            "4:\n",
         )
     };
 }
@@ -886,6 +1014,66 @@ core::arch::global_asm!(
     "21:",
     textured_rows!("cmp r2, r3\nit lt\nmovlt r3, r2", lit_pixel!()),
     ".size embedded_raster_textured_rows_v7m, . - embedded_raster_textured_rows_v7m",
+);
+
+// The nearest variants (0-3) of the textured rows where no run needs the clamp to the columns
+// (the clip cut none off the region: `face_scan`'s word); the others go to
+// `embedded_raster_textured_rows_v7m`.
+core::arch::global_asm!(
+    ".section .text.embedded_raster_textured_rows_inside_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    dsp_directive!(),
+    ".p2align 2",
+    ".global embedded_raster_textured_rows_inside_v7m",
+    ".hidden embedded_raster_textured_rows_inside_v7m",
+    ".type embedded_raster_textured_rows_inside_v7m,%function",
+    ".thumb_func",
+    "embedded_raster_textured_rows_inside_v7m:",
+    "cmp r1, #4",
+    "bhs.w embedded_raster_textured_rows_v7m",
+    "push {{r4-r11, lr}}",
+    "sub sp, #20",
+    "str r0, [sp, #16]",
+    row_loop_state!(),
+    "cmp r1, #2",
+    "bhs 20f",
+    "cmp r1, #0",
+    "beq 11f",
+    textured_rows!(
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
+        unlit_pixel!(),
+        "",
+        "20",
+        ""
+    ),
+    "11:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        unlit_pixel!(),
+        "",
+        "20",
+        ""
+    ),
+    "20:",
+    "cmp r1, #2",
+    "beq 21f",
+    textured_rows!(
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
+        lit_pixel!(),
+        "",
+        "20",
+        ""
+    ),
+    "21:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        lit_pixel!(),
+        "",
+        "20",
+        ""
+    ),
+    ".size embedded_raster_textured_rows_inside_v7m, . - embedded_raster_textured_rows_inside_v7m",
 );
 
 extern "C" {
@@ -2029,19 +2217,24 @@ macro_rules! reciprocal_digit {
     };
 }
 
-/// `$out` = the least (`$c` = "lt" signed, "lo" unsigned) or the greatest ("gt", "hi") of
-/// `$a`, `$b`, `$d` (`$out` another register).
+/// `$lo` = the least and `$hi` the greatest of `$a`, `$b`, `$d` (`$lt`, `$gt` = "lt", "gt"
+/// signed or "lo", "hi" unsigned; `$lo`, `$hi` other registers): 12 instructions.
 #[rustfmt::skip]
-macro_rules! min3 {
-    ($out:literal, $a:literal, $b:literal, $d:literal, $c:literal) => {
+macro_rules! minmax3 {
+    ($lo:literal, $hi:literal, $a:literal, $b:literal, $d:literal, $lt:literal, $gt:literal) => {
         concat!(
-            "mov ", $out, ", ", $a, "\n",
-            "cmp ", $b, ", ", $out, "\n",
-            "it ", $c, "\n",
-            "mov", $c, " ", $out, ", ", $b, "\n",
-            "cmp ", $d, ", ", $out, "\n",
-            "it ", $c, "\n",
-            "mov", $c, " ", $out, ", ", $d, "\n",
+            "mov ", $lo, ", ", $a, "\n",
+            "mov ", $hi, ", ", $b, "\n",
+            "cmp ", $a, ", ", $b, "\n",
+            "itt ", $gt, "\n",
+            "mov", $gt, " ", $lo, ", ", $b, "\n",
+            "mov", $gt, " ", $hi, ", ", $a, "\n",
+            "cmp ", $d, ", ", $lo, "\n",
+            "it ", $lt, "\n",
+            "mov", $lt, " ", $lo, ", ", $d, "\n",
+            "cmp ", $d, ", ", $hi, "\n",
+            "it ", $gt, "\n",
+            "mov", $gt, " ", $hi, ", ", $d, "\n",
         )
     };
 }
@@ -2054,24 +2247,26 @@ macro_rules! min3 {
 /// divisors at `$divisors`, steps a row at `$steps` and numerators at `$numerators`, starts
 /// from slot 0, ends from slot 2), whether the middle bound starts at `$ms`, the edge values
 /// l1, l2 at `$l12`, and the numerators' limit in r5; done (80) or declined (90) on the way;
-/// r6-r9 = o1x, o1y, o2x, o2y after it.
+/// r6-r9 = o1x, o1y, o2x, o2y after it. The word at `$inside` is left non-zero where the clip
+/// cut no column off the region (then a row's run, if not empty, lies within the region's
+/// columns: its pixel centres are the triangle's, inside the box), 0 where it did (the columns
+/// are clipped by [`face_scan_clips`], which the function places out of the way).
 #[rustfmt::skip]
 macro_rules! face_scan {
     ($load:literal, $ptrs:literal, $ptrs1:literal, $x0:literal, $y0:literal, $columns:literal,
      $rows:literal, $divisors:literal, $steps:literal, $numerators:literal, $ms:literal,
-     $l12:literal) => {
+     $l12:literal, $inside:literal) => {
         concat!(
             $load,
+            "str r0, [sp, #", $inside, "]\n",
             "add r4, sp, #", $ptrs, "\n",
             "stm r4, {{r1, r2, r3}}\n",
             "ldrd r4, r5, [r1]\n",
             "ldrd r6, r7, [r2]\n",
             "ldrd r8, r9, [r3]\n",
             // The box: r10, r11 = least and greatest x, r1, r2 = y; each extent below 16 pixels.
-            min3!("r10", "r4", "r6", "r8", "lt"),
-            min3!("r11", "r4", "r6", "r8", "gt"),
-            min3!("r1", "r5", "r7", "r9", "lt"),
-            min3!("r2", "r5", "r7", "r9", "gt"),
+            minmax3!("r10", "r11", "r4", "r6", "r8", "lt", "gt"),
+            minmax3!("r1", "r2", "r5", "r7", "r9", "lt", "gt"),
             "sub r3, r11, r10\n",
             "cmp r3, #4096\n",
             "bhs 90f\n",
@@ -2088,16 +2283,16 @@ macro_rules! face_scan {
             "adc r10, r10, #0\n",
             "ldr r3, [r0, #12]\n",
             "cmp r10, r3\n",
-            "it lt\n",
-            "movlt r10, r3\n",
+            "blt 71f\n",
+            "72:\n",
             "uxtb r3, r11\n",
             "asr r11, r11, #8\n",
             "cmp r3, #0x80\n",
             "sbc r11, r11, #0\n",
             "ldr r3, [r0, #20]\n",
             "cmp r11, r3\n",
-            "it gt\n",
-            "movgt r11, r3\n",
+            "bgt 73f\n",
+            "74:\n",
             "cmp r10, r11\n",
             "bgt 80f\n",
             "uxtb r3, r1\n",
@@ -2192,6 +2387,26 @@ macro_rules! face_scan {
     };
 }
 
+/// [`face_scan`]'s columns clipped (the first at 71, the last at 73), each then marking the word
+/// at `$inside` 0 and going back.
+#[rustfmt::skip]
+macro_rules! face_scan_clips {
+    ($inside:literal) => {
+        concat!(
+            "71:\n",
+            "mov r10, r3\n",
+            "movs r3, #0\n",
+            "str r3, [sp, #", $inside, "]\n",
+            "b 72b\n",
+            "73:\n",
+            "mov r11, r3\n",
+            "movs r3, #0\n",
+            "str r3, [sp, #", $inside, "]\n",
+            "b 74b\n",
+        )
+    };
+}
+
 /// The area's reciprocal and the barycentrics at the first pixel, as `raster::scan`'s
 /// `small_planes`: r = ⌊2⁶³/d⌋ / 2 in r9, s in r11, 2^(s−1) in r10, 32 − s in r8, b1 in r3 and
 /// b2 in r2 (l1, l2 read at `$l12`); a sliver declines (90).
@@ -2265,10 +2480,11 @@ core::arch::global_asm!(
     // the first pixel); 92 = whether the middle bound starts; 96-108 = the depth's and the
     // level's d1, d2; 112-124 = their nx, ny; 128, 132 = their value terms; 136-144 = the
     // oriented vertices' addresses; 148, 152, 156 = the region's first column, first and last
-    // rows; 160 = the result once drawn.
+    // rows; 160 = the result once drawn; 164 = whether the clip left the region's columns whole
+    // (`face_scan`'s).
     "embedded_raster_level_face_v7m:",
     "push {{r4-r11, lr}}",
-    "sub sp, #164",
+    "sub sp, #168",
     face_scan!(
         "ldm r0, {{r1, r2, r3}}\n",
         "136",
@@ -2281,7 +2497,8 @@ core::arch::global_asm!(
         "24",
         "68",
         "92",
-        "84"
+        "84",
+        "164"
     ),
     "movs lr, #0",
     attribute_numerators!("8", "96", "44", "128", "112", "136", "140"),
@@ -2367,19 +2584,25 @@ core::arch::global_asm!(
     "str r3, [sp, #60]",
     "mov r0, sp",
     "ldr r1, [sp, #92]",
+    "ldr r3, [sp, #164]",
+    "cbz r3, 7f",
+    "bl embedded_raster_level_rows_inside_v7m",
+    "b 81f",
+    "7:",
     "bl embedded_raster_level_rows_v7m",
     "81:",
     "ldr r0, [sp, #160]",
-    "add sp, #164",
+    "add sp, #168",
     "pop {{r4-r11, pc}}",
     "80:",
     "movs r0, #0",
-    "add sp, #164",
+    "add sp, #168",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #1",
-    "add sp, #164",
+    "add sp, #168",
     "pop {{r4-r11, pc}}",
+    face_scan_clips!("164"),
     ".size embedded_raster_level_face_v7m, . - embedded_raster_level_face_v7m",
 );
 
@@ -2521,8 +2744,7 @@ macro_rules! coordinate_spread {
             "ldr r6, [r1, #", $at, "]\n",
             "ldr r7, [r2, #", $at, "]\n",
             "ldr r8, [r3, #", $at, "]\n",
-            min3!("r9", "r6", "r7", "r8", "lt"),
-            min3!("r10", "r6", "r7", "r8", "gt"),
+            minmax3!("r9", "r10", "r6", "r7", "r8", "lt", "gt"),
             "sub r7, r10, r9\n",
             "strd r9, r7, [sp, #", $out, "]\n",
         )
@@ -2567,20 +2789,26 @@ macro_rules! plane_map {
             "addhi r11, r11, #1\n",
             "cmp r11, #16\n",
             "bhi 90f\n",
+            // Each value `128 + round(v / 2^s)` for `v = c − least` as `(2v >> s) + 257) >> 1`
+            // (for s = 0 too), `2v` as `2c − 2·least` (wrapping; `v` is below 2²⁹).
+            "lsl r10, r9, #1\n",
             "ldr r6, [r1, #", $at, "]\n",
             "ldr r7, [r2, #", $at, "]\n",
             "ldr r8, [r3, #", $at, "]\n",
-            "sub r6, r6, r9\n",
-            round_shift!("r6", "r11", "r5"),
-            "add r6, r6, #128\n",
+            "rsb r6, r10, r6, lsl #1\n",
+            "lsr r6, r6, r11\n",
+            "add r6, r6, #257\n",
+            "lsr r6, r6, #1\n",
             "strh r6, [r1, #", $value, "]\n",
-            "sub r7, r7, r9\n",
-            round_shift!("r7", "r11", "r5"),
-            "add r7, r7, #128\n",
+            "rsb r7, r10, r7, lsl #1\n",
+            "lsr r7, r7, r11\n",
+            "add r7, r7, #257\n",
+            "lsr r7, r7, #1\n",
             "strh r7, [r2, #", $value, "]\n",
-            "sub r8, r8, r9\n",
-            round_shift!("r8", "r11", "r5"),
-            "add r8, r8, #128\n",
+            "rsb r8, r10, r8, lsl #1\n",
+            "lsr r8, r8, r11\n",
+            "add r8, r8, #257\n",
+            "lsr r8, r8, #1\n",
             "strh r8, [r3, #", $value, "]\n",
             "movs r5, #128\n",
             "lsl r5, r5, r11\n",
@@ -2609,7 +2837,8 @@ core::arch::global_asm!(
     // middle bound starts; 156..188 = the depth's, `u`'s, `v`'s and the level's d1, d2;
     // 188..220 = their nx, ny; 220..236 = their value terms; 236..248 = the oriented records'
     // addresses; 248, 252, 256 = the region's first column, first and last rows; 260..276 =
-    // the coordinates' least values and spreads; 276 = the face's address; 280..284 unused;
+    // the coordinates' least values and spreads; 276 = the face's address; 280 = whether the
+    // clip left the region's columns whole (`face_scan`'s);
     // 284..368 = the vertices' records, 28 bytes each (a vertex's 16 bytes, its texel
     // coordinates at 16 and 20, `u`'s and `v`'s plane values at 24 and 26); 368..372 unused
     // (the frame's 8-byte alignment).
@@ -2636,32 +2865,31 @@ core::arch::global_asm!(
     "24:",
     // The screen-space bound (`texturing::nearly_affine`): r1-r3 = the records; their `q` in
     // a common scale (shifts apart by at most 8, else perspective), r5 = the ratio term
-    // `q_max − q_min + 2^(most + 1)`, r4 = `4·q_min`.
+    // `q_max − q_min + 2^(most + 1)`, r4 = `4·q_min`. A `q` is `mantissa·2^shift`, and a
+    // mantissa is below 2¹⁶ and at least 2¹⁵ where the shift is not 0 (`Inverse`), so the
+    // least and the greatest `q` are those of the least and the greatest key `shift·2²⁴ +
+    // mantissa` (the vertex's word 12 without its code byte): in the common scale the least is
+    // its mantissa and the greatest its mantissa shifted by the shifts' difference.
     "add r1, sp, #284",
     "add r2, sp, #312",
     "add r3, sp, #340",
-    "ldrb r4, [r1, #15]",
-    "ldrb r5, [r2, #15]",
-    "ldrb r6, [r3, #15]",
-    min3!("r7", "r4", "r5", "r6", "lt"),
-    min3!("r8", "r4", "r5", "r6", "gt"),
-    "sub r8, r8, r7",
-    "cmp r8, #8",
+    "ldr r4, [r1, #12]",
+    "ldr r5, [r2, #12]",
+    "ldr r6, [r3, #12]",
+    "bic r4, r4, #0x00FF0000",
+    "bic r5, r5, #0x00FF0000",
+    "bic r6, r6, #0x00FF0000",
+    minmax3!("r7", "r8", "r4", "r5", "r6", "lo", "hi"),
+    "lsr r9, r8, #24",
+    "sub r9, r9, r7, lsr #24",
+    "cmp r9, #8",
     "bhi 93f",
-    "sub r4, r4, r7",
-    "sub r5, r5, r7",
-    "sub r6, r6, r7",
-    "ldrh r9, [r1, #12]",
-    "lsl r9, r9, r4",
-    "ldrh r10, [r2, #12]",
-    "lsl r10, r10, r5",
-    "ldrh r11, [r3, #12]",
-    "lsl r11, r11, r6",
-    min3!("r4", "r9", "r10", "r11", "lo"),
-    min3!("r5", "r9", "r10", "r11", "hi"),
+    "uxth r4, r7",
+    "uxth r5, r8",
+    "lsl r5, r5, r9",
     "sub r5, r5, r4",
     "movs r6, #2",
-    "lsl r6, r6, r8",
+    "lsl r6, r6, r9",
     "add r5, r5, r6",
     "lsl r4, r4, #2",
     // The texel coordinates' least values and spreads (sp + 260-272), the larger spread
@@ -2687,8 +2915,7 @@ core::arch::global_asm!(
     "ldrh r6, [r1, #10]",
     "ldrh r7, [r2, #10]",
     "ldrh r8, [r3, #10]",
-    min3!("r9", "r6", "r7", "r8", "lo"),
-    min3!("r10", "r6", "r7", "r8", "hi"),
+    minmax3!("r9", "r10", "r6", "r7", "r8", "lo", "hi"),
     "sub r9, r10, r9",
     "umull r6, r7, r9, r5",
     "ldr r8, [r0, #52]",
@@ -2701,7 +2928,7 @@ core::arch::global_asm!(
     // maps into the block; a scale past 2¹⁶ declines (its map shifts left).
     plane_map!("16", "260", "24", "96"),
     plane_map!("20", "268", "26", "104"),
-    face_scan!("", "236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144"),
+    face_scan!("", "236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144", "280"),
     "movs lr, #0",
     attribute_numerators!("8", "156", "28", "220", "188", "236", "240"),
     attribute_numerators!("24", "164", "32", "224", "196", "236", "240"),
@@ -2802,6 +3029,11 @@ core::arch::global_asm!(
     "orr r1, r1, r2",
     "ldr r2, [r9, #32]",
     "mov r0, sp",
+    "ldr r3, [sp, #280]",
+    "cbz r3, 27f",
+    "bl embedded_raster_textured_rows_inside_v7m",
+    "b 80f",
+    "27:",
     "bl embedded_raster_textured_rows_v7m",
     "80:",
     "movs r0, #0",
@@ -2815,6 +3047,7 @@ core::arch::global_asm!(
     "movs r0, #3",
     "add sp, #372",
     "pop {{r4-r11, pc}}",
+    face_scan_clips!("280"),
     ".size embedded_raster_textured_face_v7m, . - embedded_raster_textured_face_v7m",
 );
 
@@ -3358,6 +3591,39 @@ pub(crate) fn scan_faces(scan: &mut FaceScan<'_>, out: &mut [u32; FACE_BATCH]) -
     // `textured_face` does (see its safety note). It keeps its stack frame its own and saves
     // and restores every register the AAPCS asks it to.
     unsafe { embedded_raster_scan_faces_v7m(scan, out.as_mut_ptr(), FACE_BATCH as u32) as usize }
+}
+
+/// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart, to
+/// the word at `start`: [`fill_eights`] with the value loaded by the assembly (a pair of 16-bit
+/// colours, whose bytes Rust does not read as an integer).
+///
+/// # Safety
+///
+/// As [`fill_eights`]'; the word at `start` is readable.
+#[inline(always)]
+pub(crate) unsafe fn repeat_first_word(start: *mut u32, end: *mut u32) {
+    // SAFETY: reads the word at `start` and stores words only in `start..end` (the caller's
+    // promise); touches no stack.
+    unsafe {
+        core::arch::asm!(
+            "ldr r0, [{p}]",
+            "mov r1, r0",
+            "mov r2, r0",
+            "mov r3, r0",
+            "2:",
+            "stm {p}!, {{r0, r1, r2, r3}}",
+            "stm {p}!, {{r0, r1, r2, r3}}",
+            "cmp {p}, {end}",
+            "bne 2b",
+            p = inout(reg) start => _,
+            end = in(reg) end,
+            out("r0") _,
+            out("r1") _,
+            out("r2") _,
+            out("r3") _,
+            options(nostack),
+        );
+    }
 }
 
 /// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart: two

@@ -326,7 +326,7 @@ impl<'a, C: PixelColor> ColorBand<'a, C> {
 
     /// Sets every pixel of the band to `color`.
     pub fn clear(&mut self, color: C) {
-        crate::draw::fill_row(self.pixels.pixels_mut(), color);
+        crate::color::fill_all(self.pixels.pixels_mut(), color);
     }
 
     /// Blends `color` with the summed coverage of `mask` into the band (see [`CoverageMask`];

@@ -532,6 +532,25 @@ impl GouraudColor for BinaryColor {
     }
 }
 
+/// Sets every pixel of `pixels` (a whole buffer: a clear) to `color`: as [`fill_row`], and where
+/// `C` is a 16-bit colour and the target has a loop of eight words a pass (RV32, ARMv7-M) the
+/// 4-byte aligned middle by it, 16 pixels for 4 instructions on the Cortex-M4 (against 10).
+pub(crate) fn fill_all<C: Copy>(pixels: &mut [C], color: C) {
+    let head = (pixels.as_ptr() as usize >> 1) & 1;
+    let len = pixels.len();
+    let whole = len.saturating_sub(head) & !15;
+    let (start, rest) = pixels.split_at_mut(head.min(len));
+    let (middle, tail) = rest.split_at_mut(whole);
+    if let [a, b, ..] = middle {
+        (*a, *b) = (color, color);
+    }
+    if !crate::arch::repeat_first_pair(middle) {
+        fill_row(middle, color);
+    }
+    fill_row(start, color);
+    fill_row(tail, color);
+}
+
 /// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
 /// pixel on Cortex-M4 against 3 for `slice::fill`, which LLVM leaves as one store per iteration
 /// for 16-bit colours on Thumb.

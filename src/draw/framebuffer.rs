@@ -436,7 +436,7 @@ impl<C: PixelColor> DrawTarget for SliceFramebuffer<'_, C> {
     }
 
     fn clear(&mut self, color: C) -> Result<(), Infallible> {
-        fill_row(self.pixels, color);
+        crate::color::fill_all(self.pixels, color);
         Ok(())
     }
 }

@@ -7,7 +7,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::draw::{draw_rows, fill_row, FramebufferError, SliceFramebuffer};
+use crate::draw::{draw_rows, FramebufferError, SliceFramebuffer};
 use crate::fixed_point::{Coord, ToCoord};
 use crate::raster::Span;
 
@@ -177,7 +177,7 @@ impl<'a, C: PixelColor> DepthTarget<'a, C> {
 
     /// Fills the colour buffer with `color` and resets the z-buffer.
     pub fn clear(&mut self, color: C) {
-        fill_row(self.color.pixels_mut(), color);
+        crate::color::fill_all(self.color.pixels_mut(), color);
         self.clear_depth();
     }
 
