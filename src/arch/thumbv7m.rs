@@ -147,7 +147,12 @@ macro_rules! level_row {
             "add r9, r6, r11, lsl #1\n",
             "add r6, r6, r10, lsl #1\n",
             "ldrd r10, r11, [r0, #60]\n",
+            // The pixels, the planes stepped between them (not past the last).
+            "b 8f\n",
             "2:\n",
+            "add r4, r7\n",
+            "add r5, r8\n",
+            "8:\n",
             "ldrh r12, [r6], #2\n",
             "cmp r12, r4, lsr #16\n",
             "bls 4f\n",
@@ -157,12 +162,12 @@ macro_rules! level_row {
             "ldrh r12, [r10, r12, lsl #1]\n",
             "strh r12, [r6, r11]\n",
             "4:\n",
-            "add r4, r7\n",
-            "add r5, r8\n",
             "cmp r6, r9\n",
             "blo 2b\n",
-            // The next row.
+            // The next row, if any (to 9 if none).
             "3:\n",
+            "subs lr, #1\n",
+            "beq 9f\n",
             "ldm r0, {{r4, r5, r6}}\n",
             "add r7, r0, #12\n",
             "ldm r7, {{r7, r8, r9, r10, r11, r12}}\n",
@@ -173,7 +178,6 @@ macro_rules! level_row {
             "add r1, r10\n",
             "add r2, r11\n",
             "add r3, r12\n",
-            "subs lr, #1\n",
         )
     };
 }
@@ -196,13 +200,15 @@ macro_rules! level_rows_body {
             "ldm r12, {{r1, r2, r3, lr}}\n",
             "1:\n",
             level_row!("cmp r12, r10\nit gt\nmovgt r10, r12", $clamp),
-            "bne 1b\n",
+            "b 1b\n",
+            "9:\n",
             "pop {{r4-r11, pc}}\n",
             "5:\n",
             "ldm r12, {{r1, r2, r3, lr}}\n",
             "6:\n",
             level_row!("cmp r12, r11\nit lt\nmovlt r11, r12", $clamp),
-            "bne 6b\n",
+            "b 6b\n",
+            "9:\n",
             "pop {{r4-r11, pc}}\n",
         )
     };
@@ -377,10 +383,14 @@ macro_rules! textured_rows {
             $pixel,
             "adds r8, #2\n",
             "bne 2b\n",
-            // The next row: the planes, the depth pointer and the numerators (words 0-7)
-            // stepped by words 8-15.
+            // The next row, if any: the planes, the depth pointer and the numerators (words
+            // 0-7) stepped by words 8-15.
             "3:\n",
             "ldr r0, [sp, #16]\n",
+            "ldr r1, [r0, #128]\n",
+            "subs r1, #1\n",
+            "beq 9f\n",
+            "str r1, [r0, #128]\n",
             "ldm r0, {{r1-r8}}\n",
             "ldrd r9, r10, [r0, #32]\n",
             "add r1, r9\n",
@@ -395,10 +405,8 @@ macro_rules! textured_rows {
             "add r7, r9\n",
             "add r8, r10\n",
             "stm r0, {{r1-r8}}\n",
-            "ldr r1, [r0, #128]\n",
-            "subs r1, #1\n",
-            "str r1, [r0, #128]\n",
-            "bne 1b\n",
+            "b 1b\n",
+            "9:\n",
             "add sp, #",
             $frame,
             "\n",
@@ -1036,18 +1044,14 @@ core::arch::global_asm!(
     "sub sp, #20",
     "str r0, [sp, #16]",
     row_loop_state!(),
-    "cmp r1, #2",
-    "bhs 20f",
-    "cmp r1, #0",
-    "beq 11f",
-    textured_rows!(
-        "cmp r2, r1\nit gt\nmovgt r1, r2",
-        unlit_pixel!(),
-        "",
-        "20",
-        ""
-    ),
-    "11:",
+    // The variant's rows by a table of halfword offsets from the table (r1 below 4).
+    "tbh [pc, r1, lsl #1]",
+    "30:",
+    ".hword (31f - 30b) / 2",
+    ".hword (32f - 30b) / 2",
+    ".hword (33f - 30b) / 2",
+    ".hword (34f - 30b) / 2",
+    "31:",
     textured_rows!(
         "cmp r2, r3\nit lt\nmovlt r3, r2",
         unlit_pixel!(),
@@ -1055,19 +1059,25 @@ core::arch::global_asm!(
         "20",
         ""
     ),
-    "20:",
-    "cmp r1, #2",
-    "beq 21f",
+    "32:",
     textured_rows!(
         "cmp r2, r1\nit gt\nmovgt r1, r2",
+        unlit_pixel!(),
+        "",
+        "20",
+        ""
+    ),
+    "33:",
+    textured_rows!(
+        "cmp r2, r3\nit lt\nmovlt r3, r2",
         lit_pixel!(),
         "",
         "20",
         ""
     ),
-    "21:",
+    "34:",
     textured_rows!(
-        "cmp r2, r3\nit lt\nmovlt r3, r2",
+        "cmp r2, r1\nit gt\nmovgt r1, r2",
         lit_pixel!(),
         "",
         "20",
@@ -2123,6 +2133,34 @@ macro_rules! attribute_numerators {
     };
 }
 
+/// [`attribute_numerators`] with the oriented vertices' addresses in r1-r3 (kept) and r4, r5
+/// free (clobbered, with r10-r12).
+#[rustfmt::skip]
+macro_rules! held_attribute_numerators {
+    ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal) => {
+        concat!(
+            "ldrh r4, [r1, #", $at, "]\n",
+            "ldrh r5, [r2, #", $at, "]\n",
+            "ldrh r10, [r3, #", $at, "]\n",
+            "sub r5, r5, r4\n",
+            "sub r10, r10, r4\n",
+            "strd r5, r10, [sp, #", $d, "]\n",
+            "ldr r11, [r0, #", $half, "]\n",
+            "add r4, r11, r4, lsl #16\n",
+            "str r4, [sp, #", $base, "]\n",
+            "mul r11, r5, r9\n",
+            "mls r11, r10, r7, r11\n",
+            "mul r12, r10, r6\n",
+            "mls r12, r5, r8, r12\n",
+            "strd r11, r12, [sp, #", $n, "]\n",
+            "eor r4, r11, r11, asr #31\n",
+            "orr lr, lr, r4\n",
+            "eor r4, r12, r12, asr #31\n",
+            "orr lr, lr, r4\n",
+        )
+    };
+}
+
 /// After the faces' [`attribute_numerators`] (lr = their magnitudes or-ed, from 0): declines the
 /// face (90) unless every numerator is within the limit (r5, then r5 − 1): `|n| < limit` for
 /// each where the or is below `limit − 1` (a magnitude taken one less, `|n| − 1`, for a negative
@@ -2841,10 +2879,11 @@ core::arch::global_asm!(
     // clip left the region's columns whole (`face_scan`'s);
     // 284..368 = the vertices' records, 28 bytes each (a vertex's 16 bytes, its texel
     // coordinates at 16 and 20, `u`'s and `v`'s plane values at 24 and 26); 368..372 unused
-    // (the frame's 8-byte alignment).
+    // (the frame's 8-byte alignment); 372..380 = the area and the numerators' limit while the
+    // numerators are found.
     "embedded_raster_textured_face_v7m:",
     "push {{r4-r11, lr}}",
-    "sub sp, #372",
+    "sub sp, #380",
     "str r1, [sp, #276]",
     // The vertices' records: each vertex's 16 bytes and its texel coordinates (the face's word
     // 36 addresses the three pairs), the plane values' 4 bytes after them; the levels 0 unless
@@ -2906,12 +2945,10 @@ core::arch::global_asm!(
     "subs r8, r8, r6",
     "sbcs r9, r9, r7",
     "blo 93f",
-    // Lit (the face's word 28): the levels' spread times the ratio against the bound (the
-    // template's word 52) times 4·q_min.
-    "ldr r6, [sp, #276]",
-    "ldr r6, [r6, #28]",
-    "lsls r6, r6, #30",
-    "bpl 23f",
+    // Lit (the face's word 28, its bit 1 still r11's sign): the levels' spread times the ratio
+    // against the bound (the template's word 52) times 4·q_min.
+    "cmp r11, #0",
+    "bge 23f",
     "ldrh r6, [r1, #10]",
     "ldrh r7, [r2, #10]",
     "ldrh r8, [r3, #10]",
@@ -2930,10 +2967,16 @@ core::arch::global_asm!(
     plane_map!("20", "268", "26", "104"),
     face_scan!("", "236", "240", "248", "252", "76", "128", "64", "52", "20", "152", "144", "280"),
     "movs lr, #0",
-    attribute_numerators!("8", "156", "28", "220", "188", "236", "240"),
-    attribute_numerators!("24", "164", "32", "224", "196", "236", "240"),
-    attribute_numerators!("26", "172", "36", "228", "204", "236", "240"),
-    attribute_numerators!("10", "180", "40", "232", "212", "236", "240"),
+    // The four attributes' numerators with the oriented records' addresses held in r1-r3 (the
+    // area and the limit kept at 372 meanwhile).
+    "strd r4, r5, [sp, #372]",
+    "ldr r1, [sp, #236]",
+    "ldrd r2, r3, [sp, #240]",
+    held_attribute_numerators!("8", "156", "28", "220", "188"),
+    held_attribute_numerators!("24", "164", "32", "224", "196"),
+    held_attribute_numerators!("26", "172", "36", "228", "204"),
+    held_attribute_numerators!("10", "180", "40", "232", "212"),
+    "ldrd r4, r5, [sp, #372]",
     numerators_within!(),
     face_reciprocal!("144"),
     attribute_plane!("156", "220", "188", "0", "80", "32"),
@@ -2953,21 +2996,20 @@ core::arch::global_asm!(
     "ldr r5, [sp, #108]",
     // The texel steps a pixel from the coordinates' steps a column (r1, r2), as
     // `PlaneMap::step`: `(s >> down) + ((s >> (down − 1)) & 1)`, or `s` for `down` = 0 (r3,
-    // r5); `y`'s shifted by r6.
+    // r5): `t = s >> (down − 1)`, then `t >> 1` plus the bit shifted out (the carry); `y`'s
+    // shifted by r6.
     "ldrd r1, r2, [sp, #84]",
     "cbz r3, 21f",
     "sub r4, r3, #1",
-    "asr r7, r1, r4",
-    "asr r1, r1, r3",
-    "and r7, r7, #1",
-    "add r1, r1, r7",
+    "asr r1, r1, r4",
+    "asrs r1, r1, #1",
+    "adc r1, r1, #0",
     "21:",
     "cbz r5, 22f",
     "sub r4, r5, #1",
-    "asr r7, r2, r4",
-    "asr r2, r2, r5",
-    "and r7, r7, #1",
-    "add r2, r2, r7",
+    "asr r2, r2, r4",
+    "asrs r2, r2, #1",
+    "adc r2, r2, #0",
     "22:",
     "lsl r2, r2, r6",
     "strd r1, r2, [sp, #116]",
@@ -3037,15 +3079,15 @@ core::arch::global_asm!(
     "bl embedded_raster_textured_rows_v7m",
     "80:",
     "movs r0, #0",
-    "add sp, #372",
+    "add sp, #380",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #1",
-    "add sp, #372",
+    "add sp, #380",
     "pop {{r4-r11, pc}}",
     "93:",
     "movs r0, #3",
-    "add sp, #372",
+    "add sp, #380",
     "pop {{r4-r11, pc}}",
     face_scan_clips!("280"),
     ".size embedded_raster_textured_face_v7m, . - embedded_raster_textured_face_v7m",
