@@ -537,18 +537,22 @@ impl GouraudColor for BinaryColor {
 /// 4-byte aligned middle by it, 16 pixels for 4 instructions on the Cortex-M4 (against 10).
 pub(crate) fn fill_all<C: Copy>(pixels: &mut [C], color: C) {
     let head = (pixels.as_ptr() as usize >> 1) & 1;
-    let len = pixels.len();
-    let whole = len.saturating_sub(head) & !15;
-    let (start, rest) = pixels.split_at_mut(head.min(len));
-    let (middle, tail) = rest.split_at_mut(whole);
-    if let [a, b, ..] = middle {
-        (*a, *b) = (color, color);
+    let whole = pixels.len().saturating_sub(head) & !15;
+    // Checked splits (both always succeed): no panic path.
+    if let Some((start, rest)) = pixels.split_at_mut_checked(head) {
+        if let Some((middle, tail)) = rest.split_at_mut_checked(whole) {
+            if let [a, b, ..] = middle {
+                (*a, *b) = (color, color);
+            }
+            if !crate::arch::repeat_first_pair(middle) {
+                fill_row(middle, color);
+            }
+            fill_row(start, color);
+            fill_row(tail, color);
+            return;
+        }
     }
-    if !crate::arch::repeat_first_pair(middle) {
-        fill_row(middle, color);
-    }
-    fill_row(start, color);
-    fill_row(tail, color);
+    fill_row(pixels, color);
 }
 
 /// Sets every pixel of `row` to `color`, four stores per loop iteration: 1.5 instructions a
