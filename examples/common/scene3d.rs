@@ -325,6 +325,16 @@ impl core::fmt::Display for ScatterLine {
     }
 }
 
+/// Adds the counts of `more` to `total`'s.
+fn add_stats(total: &mut DrawStats, more: &DrawStats) {
+    total.drawn += more.drawn;
+    total.clipped += more.clipped;
+    total.rejected += more.rejected;
+    total.culled += more.culled;
+    total.degenerate += more.degenerate;
+    total.invalid += more.invalid;
+}
+
 /// The [`scatter`] frame of `mesh` (with `scratch`): its line. The mesh is drawn three times:
 /// through [`scatter_pipeline`], then through the same camera onto viewports over the screen's
 /// left and right edges (the counts summed).
@@ -342,12 +352,7 @@ pub fn render_scatter(
         let more = pipeline
             .draw_mesh_with(mesh, &MATERIAL, target, &mut *scratch)
             .unwrap_or_default();
-        stats.drawn += more.drawn;
-        stats.clipped += more.clipped;
-        stats.rejected += more.rejected;
-        stats.culled += more.culled;
-        stats.degenerate += more.degenerate;
-        stats.invalid += more.invalid;
+        add_stats(&mut stats, &more);
     }
     ScatterLine {
         stats,
@@ -479,11 +484,7 @@ pub fn render_depths(
         let s = pipeline
             .draw_mesh_with(mesh, &MATERIAL, target, scratch)
             .unwrap_or_default();
-        stats.drawn += s.drawn;
-        stats.culled += s.culled;
-        stats.clipped += s.clipped;
-        stats.rejected += s.rejected;
-        stats.degenerate += s.degenerate;
+        add_stats(&mut stats, &s);
         for v in scratch.iter().take(3 * DEPTHS_FACES) {
             core::hash::Hash::hash(v, &mut vertices);
         }

@@ -195,28 +195,18 @@ pub(crate) fn level_rows<C: Copy>(
 /// As [`fill_eights`]'; the word at `start` is readable.
 #[inline(always)]
 pub(crate) unsafe fn repeat_first_word(start: *mut u32, end: *mut u32) {
-    // SAFETY: reads the word at `start` and stores words only in `start..end` (the caller's
-    // promise); touches no stack.
+    let value: u32;
+    // SAFETY: reads the word at `start` (the caller's promise); touches no stack.
     unsafe {
         core::arch::asm!(
             "lw {value}, 0({p})",
-            "2:",
-            "sw {value}, 0({p})",
-            "sw {value}, 4({p})",
-            "sw {value}, 8({p})",
-            "sw {value}, 12({p})",
-            "sw {value}, 16({p})",
-            "sw {value}, 20({p})",
-            "sw {value}, 24({p})",
-            "sw {value}, 28({p})",
-            "addi {p}, {p}, 32",
-            "bltu {p}, {end}, 2b",
-            p = inout(reg) start => _,
-            end = in(reg) end,
-            value = out(reg) _,
-            options(nostack),
+            p = in(reg) start,
+            value = out(reg) value,
+            options(nostack, readonly, preserves_flags),
         );
     }
+    // SAFETY: as `fill_eights` asks (the caller's promise).
+    unsafe { fill_eights(start, end, value) };
 }
 
 /// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart:

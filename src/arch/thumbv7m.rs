@@ -3644,28 +3644,18 @@ pub(crate) fn scan_faces(scan: &mut FaceScan<'_>, out: &mut [u32; FACE_BATCH]) -
 /// As [`fill_eights`]'; the word at `start` is readable.
 #[inline(always)]
 pub(crate) unsafe fn repeat_first_word(start: *mut u32, end: *mut u32) {
-    // SAFETY: reads the word at `start` and stores words only in `start..end` (the caller's
-    // promise); touches no stack.
+    let value: u32;
+    // SAFETY: reads the word at `start` (the caller's promise); touches no stack.
     unsafe {
         core::arch::asm!(
-            "ldr r0, [{p}]",
-            "mov r1, r0",
-            "mov r2, r0",
-            "mov r3, r0",
-            "2:",
-            "stm {p}!, {{r0, r1, r2, r3}}",
-            "stm {p}!, {{r0, r1, r2, r3}}",
-            "cmp {p}, {end}",
-            "bne 2b",
-            p = inout(reg) start => _,
-            end = in(reg) end,
-            out("r0") _,
-            out("r1") _,
-            out("r2") _,
-            out("r3") _,
-            options(nostack),
+            "ldr {value}, [{p}]",
+            p = in(reg) start,
+            value = out(reg) value,
+            options(nostack, readonly, preserves_flags),
         );
     }
+    // SAFETY: as `fill_eights` asks (the caller's promise).
+    unsafe { fill_eights(start, end, value) };
 }
 
 /// Sets the words from `start` up to `end`, a whole number of eights (at least one) apart: two
