@@ -2687,6 +2687,22 @@ fn level_face_result<C: Copy>(
     }
 }
 
+/// Whether every pixel a face set-up may write — the clip `[x0, y0, x1, y1]`'s in rows `[first,
+/// last]`, rows counted from `first` (at or above the top one, so the wrapping difference is the
+/// true one) — is inside buffers of `len` pixels, `width` a row; `None` if nothing of the clip is
+/// in the rows.
+#[inline(always)]
+fn clip_fits(clip: [i32; 4], rows: [i32; 2], len: usize, width: usize) -> Option<bool> {
+    let ([x0, y0, x1, y1], [first, last]) = (clip, rows);
+    let (top, bottom) = (y0.max(first), y1.min(last));
+    if x0 > x1 || top > bottom {
+        return None;
+    }
+    let row = u64::from(bottom.wrapping_sub(first) as u32);
+    let last_pixel = row * (width as u64) + (x1 as u64);
+    Some(x0 >= 0 && (x1 as u32) < width as u32 && last_pixel < len as u64)
+}
+
 /// `face` with the buffers and the table set, if every pixel of its clip in its rows is inside
 /// both buffers (rows counted from the first of `rows`) and `C` is a 16-bit colour; else what
 /// [`level_face_result`] returns for it: 0 (nothing of the clip in the rows, and no set-up to
@@ -2700,20 +2716,12 @@ fn with_buffers<'v, C: Copy>(
     if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
         return Err(1);
     }
-    // The last pixel the face can write, in both buffers: rows counted from the first of
-    // `rows` (at or above the top one, so the wrapping difference is the true one).
-    let ([x0, y0, x1, y1], [first, last]) = (face.clip, face.rows);
-    let (top, bottom) = (y0.max(first), y1.min(last));
+    let fits = clip_fits(face.clip, face.rows, colors.len().min(depths.len()), width);
     // Nothing of the clip in the rows: done, unless the set-up is wanted for the rows below.
-    let empty = x0 > x1 || top > bottom;
-    if empty && face.setup.is_null() {
+    if fits.is_none() && face.setup.is_null() {
         return Err(0);
     }
-    let len = colors.len().min(depths.len()) as u64;
-    let row = u64::from(bottom.wrapping_sub(first) as u32);
-    let inside = empty
-        || (x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len);
-    if !inside || width > (u32::MAX / 2) as usize {
+    if fits == Some(false) || width > (u32::MAX / 2) as usize {
         return Err(1);
     }
     face.colors = colors.as_mut_ptr().cast();
@@ -3154,17 +3162,16 @@ fn textured_with_buffers<'w, C: Copy>(
     if !colour || last_texel >= face.texels_len || template.y_shift > 31 {
         return Err(TexturedDraw::Declined);
     }
-    // The last pixel the face can write, in both buffers, as in `with_buffers`.
-    let ([x0, y0, x1, y1], [first, last]) = (template.clip, template.rows);
-    let (top, bottom) = (y0.max(first), y1.min(last));
-    if x0 > x1 || top > bottom {
-        return Err(TexturedDraw::Done);
-    }
-    let len = colors.len().min(depths.len()) as u64;
-    let row = u64::from(bottom.wrapping_sub(first) as u32);
-    let inside = x0 >= 0 && (x1 as u32) < width as u32 && row * (width as u64) + (x1 as u64) < len;
-    if !inside || width > (u32::MAX / 2) as usize {
-        return Err(TexturedDraw::Declined);
+    match clip_fits(
+        template.clip,
+        template.rows,
+        colors.len().min(depths.len()),
+        width,
+    ) {
+        None => return Err(TexturedDraw::Done),
+        Some(false) => return Err(TexturedDraw::Declined),
+        Some(true) if width > (u32::MAX / 2) as usize => return Err(TexturedDraw::Declined),
+        Some(true) => {}
     }
     face.depths = depths.as_mut_ptr();
     face.color_offset = (colors.as_mut_ptr() as usize).wrapping_sub(face.depths as usize) as u32;

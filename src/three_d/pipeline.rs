@@ -490,6 +490,17 @@ impl Pipeline {
     }
 }
 
+/// The scratch entries of a face's vertices `idx`, or `None` if an index is past them. Each
+/// vertex by name (the array form, `at_face`'s, costs the frame instructions).
+#[inline(always)]
+fn face_vertices(scratch: &[ProjectedVertex], idx: [usize; 3]) -> Option<[&ProjectedVertex; 3]> {
+    Some([
+        scratch.get(idx[0])?,
+        scratch.get(idx[1])?,
+        scratch.get(idx[2])?,
+    ])
+}
+
 /// The first entry of `scratch` for each vertex of `mesh`, or the error if it is too short.
 pub(crate) fn fit_scratch<'s>(
     mesh: &Mesh<'_>,
@@ -1103,12 +1114,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
         let mut stats = DrawStats::default();
         for (k, face) in mesh.indices.iter().enumerate() {
             let idx = face.map(usize::from);
-            // Each vertex by name (the array form costs the frame instructions).
-            let (Some(a), Some(b), Some(c)) = (
-                scratch.get(idx[0]),
-                scratch.get(idx[1]),
-                scratch.get(idx[2]),
-            ) else {
+            let Some([a, b, c]) = face_vertices(scratch, idx) else {
                 stats.invalid += 1;
                 continue;
             };
@@ -1149,11 +1155,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                     continue;
                 };
                 let idx = face.map(usize::from);
-                let (Some(a), Some(b), Some(c)) = (
-                    scratch.get(idx[0]),
-                    scratch.get(idx[1]),
-                    scratch.get(idx[2]),
-                ) else {
+                let Some([a, b, c]) = face_vertices(scratch, idx) else {
                     // `SCANNED_INVALID`.
                     stats.invalid += 1;
                     continue;
