@@ -730,6 +730,77 @@ macro_rules! row_loop_state {
     };
 }
 
+/// The bilinear row loop's function body after its entry (r0 = the block, r1 = the variant,
+/// bit 4 set), each run clamped by `$clamp`.
+#[cfg(arm_dsp)]
+macro_rules! bilinear_rows_body {
+    ($clamp:expr) => {
+        concat!(
+            "push {{r4-r11, lr}}\n",
+            // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: `y`'s shift plus 9.
+            "sub sp, #28\n",
+            "str r0, [sp, #16]\n",
+            "ldr r2, [r0, #112]\n",
+            "add r2, r2, #9\n",
+            "str r2, [sp, #20]\n",
+            row_loop_state!(),
+            "cmp r1, #6\n",
+            "bhs 20f\n",
+            "cmp r1, #4\n",
+            "beq 11f\n",
+            textured_rows!(
+                "cmp r2, r1\nit gt\nmovgt r1, r2",
+                unlit_pixel!(bilinear_texel!("4f", "32")),
+                bilinear_offset!(),
+                "28",
+                $clamp
+            ),
+            "11:\n",
+            textured_rows!(
+                "cmp r2, r3\nit lt\nmovlt r3, r2",
+                unlit_pixel!(bilinear_texel!("4f", "32")),
+                bilinear_offset!(),
+                "28",
+                $clamp
+            ),
+            "20:\n",
+            "cmp r1, #6\n",
+            "beq 21f\n",
+            textured_rows!(
+                "cmp r2, r1\nit gt\nmovgt r1, r2",
+                lit_pixel!(bilinear_texel!("4f", "32")),
+                bilinear_offset!(),
+                "28",
+                $clamp
+            ),
+            "21:\n",
+            textured_rows!(
+                "cmp r2, r3\nit lt\nmovlt r3, r2",
+                lit_pixel!(bilinear_texel!("4f", "32")),
+                bilinear_offset!(),
+                "28",
+                $clamp
+            ),
+        )
+    };
+}
+
+/// The inside rows' way to the variants they do not draw themselves (bit 4 or 8 set): the
+/// bilinear rows without the clamp where the DSP extension is (they pass bit 8 on to the palette
+/// rows without it), else the palette rows without it (bit 4 is never set there).
+#[cfg(arm_dsp)]
+macro_rules! inside_rows_other {
+    () => {
+        "bhs.w embedded_raster_bilinear_rows_inside_v7em"
+    };
+}
+#[cfg(not(arm_dsp))]
+macro_rules! inside_rows_other {
+    () => {
+        "bhs.w embedded_raster_palette_rows_inside_v7m"
+    };
+}
+
 // The bilinear variants of the textured row loop (ARMv7E-M: `smuad`, `smlad` and `pkhbt` are
 // the DSP extension's): entered from `embedded_raster_textured_rows_v7m` with its arguments,
 // the variant's bit 4 set.
@@ -747,48 +818,29 @@ core::arch::global_asm!(
     "embedded_raster_bilinear_rows_v7em:",
     "cmp r1, #8",
     "bhs.w embedded_raster_palette_rows_v7m",
-    "push {{r4-r11, lr}}",
-    // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: `y`'s shift plus 9.
-    "sub sp, #28",
-    "str r0, [sp, #16]",
-    "ldr r2, [r0, #112]",
-    "add r2, r2, #9",
-    "str r2, [sp, #20]",
-    row_loop_state!(),
-    "cmp r1, #6",
-    "bhs 20f",
-    "cmp r1, #4",
-    "beq 11f",
-    textured_rows!(
-        "cmp r2, r1\nit gt\nmovgt r1, r2",
-        unlit_pixel!(bilinear_texel!("4f", "32")),
-        bilinear_offset!(),
-        "28"
-    ),
-    "11:",
-    textured_rows!(
-        "cmp r2, r3\nit lt\nmovlt r3, r2",
-        unlit_pixel!(bilinear_texel!("4f", "32")),
-        bilinear_offset!(),
-        "28"
-    ),
-    "20:",
-    "cmp r1, #6",
-    "beq 21f",
-    textured_rows!(
-        "cmp r2, r1\nit gt\nmovgt r1, r2",
-        lit_pixel!(bilinear_texel!("4f", "32")),
-        bilinear_offset!(),
-        "28"
-    ),
-    "21:",
-    textured_rows!(
-        "cmp r2, r3\nit lt\nmovlt r3, r2",
-        lit_pixel!(bilinear_texel!("4f", "32")),
-        bilinear_offset!(),
-        "28"
-    ),
+    bilinear_rows_body!(clamped_run!("r1", "r3", "r4", "76")),
     ".size embedded_raster_bilinear_rows_v7em, . - embedded_raster_bilinear_rows_v7em",
+    bilinear_offset = const BILINEAR_OFFSET,
+);
+
+// The same rows where no run needs the clamp to the columns (`face_scan`'s word): entered from
+// `embedded_raster_textured_rows_inside_v7m` with its arguments, the variant's bit 4 set.
+#[cfg(arm_dsp)]
+core::arch::global_asm!(
+    ".section .text.embedded_raster_bilinear_rows_inside_v7em,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    dsp_directive!(),
+    ".p2align 2",
+    ".global embedded_raster_bilinear_rows_inside_v7em",
+    ".hidden embedded_raster_bilinear_rows_inside_v7em",
+    ".type embedded_raster_bilinear_rows_inside_v7em,%function",
+    ".thumb_func",
+    "embedded_raster_bilinear_rows_inside_v7em:",
+    "cmp r1, #8",
+    "bhs.w embedded_raster_palette_rows_inside_v7m",
+    bilinear_rows_body!(""),
+    ".size embedded_raster_bilinear_rows_inside_v7em, . - embedded_raster_bilinear_rows_inside_v7em",
     bilinear_offset = const BILINEAR_OFFSET,
 );
 
@@ -932,6 +984,58 @@ macro_rules! palette_texel {
     };
 }
 
+/// The palette row loop's function body (r0 = the block, r1 = the variant, bit 8 set, r2 = the
+/// palette's 16 raw words), each run clamped by `$clamp`.
+macro_rules! palette_rows_body {
+    ($clamp:expr) => {
+        concat!(
+            "push {{r4-r11, lr}}\n",
+            // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: the palette.
+            "sub sp, #28\n",
+            "str r0, [sp, #16]\n",
+            "str r2, [sp, #20]\n",
+            row_loop_state!(),
+            "cmp r1, #10\n",
+            "bhs 20f\n",
+            "cmp r1, #8\n",
+            "beq 11f\n",
+            textured_rows!(
+                "cmp r2, r1\nit gt\nmovgt r1, r2",
+                unlit_pixel!(palette_texel!("4f")),
+                "",
+                "28",
+                $clamp
+            ),
+            "11:\n",
+            textured_rows!(
+                "cmp r2, r3\nit lt\nmovlt r3, r2",
+                unlit_pixel!(palette_texel!("4f")),
+                "",
+                "28",
+                $clamp
+            ),
+            "20:\n",
+            "cmp r1, #10\n",
+            "beq 21f\n",
+            textured_rows!(
+                "cmp r2, r1\nit gt\nmovgt r1, r2",
+                lit_pixel!(palette_texel!("4f")),
+                "",
+                "28",
+                $clamp
+            ),
+            "21:\n",
+            textured_rows!(
+                "cmp r2, r3\nit lt\nmovlt r3, r2",
+                lit_pixel!(palette_texel!("4f")),
+                "",
+                "28",
+                $clamp
+            ),
+        )
+    };
+}
+
 // The 4-bit palette variants of the textured row loop: entered from
 // `embedded_raster_textured_rows_v7m` with its arguments, the variant's bit 8 set and r2 the
 // palette's 16 raw words.
@@ -946,46 +1050,25 @@ core::arch::global_asm!(
     ".type embedded_raster_palette_rows_v7m,%function",
     ".thumb_func",
     "embedded_raster_palette_rows_v7m:",
-    "push {{r4-r11, lr}}",
-    // [sp]: the per-pixel steps; [sp, #16]: the block; [sp, #20]: the palette.
-    "sub sp, #28",
-    "str r0, [sp, #16]",
-    "str r2, [sp, #20]",
-    row_loop_state!(),
-    "cmp r1, #10",
-    "bhs 20f",
-    "cmp r1, #8",
-    "beq 11f",
-    textured_rows!(
-        "cmp r2, r1\nit gt\nmovgt r1, r2",
-        unlit_pixel!(palette_texel!("4f")),
-        "",
-        "28"
-    ),
-    "11:",
-    textured_rows!(
-        "cmp r2, r3\nit lt\nmovlt r3, r2",
-        unlit_pixel!(palette_texel!("4f")),
-        "",
-        "28"
-    ),
-    "20:",
-    "cmp r1, #10",
-    "beq 21f",
-    textured_rows!(
-        "cmp r2, r1\nit gt\nmovgt r1, r2",
-        lit_pixel!(palette_texel!("4f")),
-        "",
-        "28"
-    ),
-    "21:",
-    textured_rows!(
-        "cmp r2, r3\nit lt\nmovlt r3, r2",
-        lit_pixel!(palette_texel!("4f")),
-        "",
-        "28"
-    ),
+    palette_rows_body!(clamped_run!("r1", "r3", "r4", "76")),
     ".size embedded_raster_palette_rows_v7m, . - embedded_raster_palette_rows_v7m",
+);
+
+// The same rows where no run needs the clamp to the columns (`face_scan`'s word): entered from
+// the inside rows' entries with their arguments, the variant's bit 8 set.
+core::arch::global_asm!(
+    ".section .text.embedded_raster_palette_rows_inside_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    dsp_directive!(),
+    ".p2align 2",
+    ".global embedded_raster_palette_rows_inside_v7m",
+    ".hidden embedded_raster_palette_rows_inside_v7m",
+    ".type embedded_raster_palette_rows_inside_v7m,%function",
+    ".thumb_func",
+    "embedded_raster_palette_rows_inside_v7m:",
+    palette_rows_body!(""),
+    ".size embedded_raster_palette_rows_inside_v7m, . - embedded_raster_palette_rows_inside_v7m",
 );
 
 core::arch::global_asm!(
@@ -1025,8 +1108,8 @@ core::arch::global_asm!(
 );
 
 // The nearest variants (0-3) of the textured rows where no run needs the clamp to the columns
-// (the clip cut none off the region: `face_scan`'s word); the others go to
-// `embedded_raster_textured_rows_v7m`.
+// (the clip cut none off the region: `face_scan`'s word); the others go on by
+// `inside_rows_other`.
 core::arch::global_asm!(
     ".section .text.embedded_raster_textured_rows_inside_v7m,\"ax\",%progbits",
     ".syntax unified",
@@ -1039,7 +1122,7 @@ core::arch::global_asm!(
     ".thumb_func",
     "embedded_raster_textured_rows_inside_v7m:",
     "cmp r1, #4",
-    "bhs.w embedded_raster_textured_rows_v7m",
+    inside_rows_other!(),
     "push {{r4-r11, lr}}",
     "sub sp, #20",
     "str r0, [sp, #16]",
