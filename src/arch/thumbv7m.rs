@@ -91,32 +91,15 @@ macro_rules! dsp_directive {
 /// The clamp of a row's run to the region's columns, start ≥ 0 and end ≤ columns (the word at
 /// `$columns` of the block in r0), for runs `$start..$end` (`$t` scratch). A run that is not
 /// empty needs it only where the clip cut columns off the region (see [`face_scan`]).
+#[rustfmt::skip]
 macro_rules! clamped_run {
     ($start:literal, $end:literal, $t:literal, $columns:literal) => {
         concat!(
-            "bic ",
-            $start,
-            ", ",
-            $start,
-            ", ",
-            $start,
-            ", asr #31\n",
-            "ldr ",
-            $t,
-            ", [r0, #",
-            $columns,
-            "]\n",
-            "cmp ",
-            $end,
-            ", ",
-            $t,
-            "\n",
+            "bic ", $start, ", ", $start, ", ", $start, ", asr #31\n",
+            "ldr ", $t, ", [r0, #", $columns, "]\n",
+            "cmp ", $end, ", ", $t, "\n",
             "it gt\n",
-            "movgt ",
-            $end,
-            ", ",
-            $t,
-            "\n",
+            "movgt ", $end, ", ", $t, "\n",
         )
     };
 }
@@ -312,9 +295,10 @@ const _: () = assert!(core::mem::size_of::<TexturedBlock>() == 144);
 
 /// The rows of the textured loop. `$middle` folds the middle bound (r2) into the start (r1) or
 /// the end (r3); `$pixel` steps the planes to the pixel at r8 (the negative byte offset from the
-/// run's end; entered at its label 8 for the run's first pixel) and draws it; `$offset` moves a run's first coordinates (r5, r6: `y` before its
-/// shift) where the pixel wants them moved; `$frame` is the bytes of the stack frame below the
-/// saved registers. The block's pointer is at [sp, #16]; the per-pixel steps at [sp] (depth,
+/// run's end; entered at its label 8 for the run's first pixel) and draws it; `$offset` moves a
+/// run's first coordinates (r5, r6: `y` before its shift) where the pixel wants them moved;
+/// `$frame` is the bytes of the stack frame below the saved registers; `$clamp` clamps a run to
+/// the region's columns ([`clamped_run`] by default, none where the clip cut none off). The block's pointer is at [sp, #16]; the per-pixel steps at [sp] (depth,
 /// `x`, `y`, level); r11 = the texels, r12 = the column mask, lr = the row mask throughout.
 macro_rules! textured_rows {
     ($middle:literal, $pixel:expr) => {
@@ -514,7 +498,7 @@ macro_rules! scaled_texel {
 }
 
 /// The texel (r0) with each 5-6-5 channel `c` scaled to `(c·f + 2¹⁵) >> 16` for r1 = `f·2⁵`
-/// (`f` below 2²⁶), stored at the lit loop's pixel, by the DSP extension's rounded high
+/// (`f` below 2²⁰), stored at the lit loop's pixel, by the DSP extension's rounded high
 /// product: `smmulr` gives `(a·b + 2³¹) >> 32`, which for `a = c·2¹¹` and `b = f·2⁵` (or `c·2⁵`
 /// and `f·2¹¹`: each below 2³¹, the product exact in 64 bits) is `(c·f + 2¹⁵) >> 16`. Each
 /// result's bits past its field are dropped (by `bfi` and the halfword store; for the `f` of the
@@ -2183,43 +2167,13 @@ macro_rules! edge_bound {
 }
 
 /// One attribute's vertex values (the `u16` at `$at` of each vertex, the oriented vertices'
-/// addresses at sp + 136, 140, 144), its differences from vertex 0 stored at `$d` (d1, d2), its
-/// value term (`base·2¹⁶ + half`, the half at `$half` of the face) at `$base`, and its
-/// numerators `nx = d1·a1 + d2·a2`, `ny = d1·b1 + d2·b2` (the edges opposite oriented vertices 1
-/// and 2: r6-r9 = o1x, o1y, o2x, o2y) at `$n`, each numerator's magnitude (less one if
-/// negative: `n ^ (n >> 31)`) or-ed into lr for [`numerators_within`]. Clobbers r1-r3, r10-r12.
+/// addresses in r1-r3), its differences from vertex 0 stored at `$d` (d1, d2), its value term
+/// (`base·2¹⁶ + half`, the half at `$half` of the face) at `$base`, and its numerators `nx =
+/// d1·a1 + d2·a2`, `ny = d1·b1 + d2·b2` (the edges opposite oriented vertices 1 and 2: r6-r9 =
+/// o1x, o1y, o2x, o2y) at `$n`, each numerator's magnitude (less one if negative: `n ^ (n >>
+/// 31)`) or-ed into lr for [`numerators_within`]. Keeps r1-r3; clobbers r4, r5 and r10-r12.
 #[rustfmt::skip]
 macro_rules! attribute_numerators {
-    ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal, $p0:literal, $p1:literal) => {
-        concat!(
-            "ldr r1, [sp, #", $p0, "]\n",
-            "ldrd r2, r3, [sp, #", $p1, "]\n",
-            "ldrh r1, [r1, #", $at, "]\n",
-            "ldrh r2, [r2, #", $at, "]\n",
-            "ldrh r3, [r3, #", $at, "]\n",
-            "sub r2, r2, r1\n",
-            "sub r3, r3, r1\n",
-            "strd r2, r3, [sp, #", $d, "]\n",
-            "ldr r10, [r0, #", $half, "]\n",
-            "add r1, r10, r1, lsl #16\n",
-            "str r1, [sp, #", $base, "]\n",
-            "mul r10, r2, r9\n",
-            "mls r10, r3, r7, r10\n",
-            "mul r11, r3, r6\n",
-            "mls r11, r2, r8, r11\n",
-            "strd r10, r11, [sp, #", $n, "]\n",
-            "eor r12, r10, r10, asr #31\n",
-            "orr lr, lr, r12\n",
-            "eor r12, r11, r11, asr #31\n",
-            "orr lr, lr, r12\n",
-        )
-    };
-}
-
-/// [`attribute_numerators`] with the oriented vertices' addresses in r1-r3 (kept) and r4, r5
-/// free (clobbered, with r10-r12).
-#[rustfmt::skip]
-macro_rules! held_attribute_numerators {
     ($at:literal, $d:literal, $half:literal, $base:literal, $n:literal) => {
         concat!(
             "ldrh r4, [r1, #", $at, "]\n",
@@ -2602,10 +2556,11 @@ core::arch::global_asm!(
     // level's d1, d2; 112-124 = their nx, ny; 128, 132 = their value terms; 136-144 = the
     // oriented vertices' addresses; 148, 152, 156 = the region's first column, first and last
     // rows; 160 = the result once drawn; 164 = whether the clip left the region's columns whole
-    // (`face_scan`'s).
+    // (`face_scan`'s); 168, 172 = the area and the numerators' limit while the numerators are
+    // found; 176..180 unused (the frame's 8-byte alignment).
     "embedded_raster_level_face_v7m:",
     "push {{r4-r11, lr}}",
-    "sub sp, #168",
+    "sub sp, #180",
     face_scan!(
         "ldm r0, {{r1, r2, r3}}\n",
         "136",
@@ -2622,8 +2577,14 @@ core::arch::global_asm!(
         "164"
     ),
     "movs lr, #0",
-    attribute_numerators!("8", "96", "44", "128", "112", "136", "140"),
-    attribute_numerators!("12", "104", "48", "132", "120", "136", "140"),
+    // The two attributes' numerators with the oriented vertices' addresses held in r1-r3 (the
+    // area and the limit kept at 168 meanwhile).
+    "strd r4, r5, [sp, #168]",
+    "ldr r1, [sp, #136]",
+    "ldrd r2, r3, [sp, #140]",
+    attribute_numerators!("8", "96", "44", "128", "112"),
+    attribute_numerators!("12", "104", "48", "132", "120"),
+    "ldrd r4, r5, [sp, #168]",
     numerators_within!(),
     face_reciprocal!("84"),
     // The depth and level planes, then the rows; and, given a set-up to fill (a band's draw),
@@ -2713,15 +2674,15 @@ core::arch::global_asm!(
     "bl embedded_raster_level_rows_v7m",
     "81:",
     "ldr r0, [sp, #160]",
-    "add sp, #168",
+    "add sp, #180",
     "pop {{r4-r11, pc}}",
     "80:",
     "movs r0, #0",
-    "add sp, #168",
+    "add sp, #180",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #1",
-    "add sp, #168",
+    "add sp, #180",
     "pop {{r4-r11, pc}}",
     face_scan_clips!("164"),
     ".size embedded_raster_level_face_v7m, . - embedded_raster_level_face_v7m",
@@ -3063,10 +3024,10 @@ core::arch::global_asm!(
     "strd r4, r5, [sp, #372]",
     "ldr r1, [sp, #236]",
     "ldrd r2, r3, [sp, #240]",
-    held_attribute_numerators!("8", "156", "28", "220", "188"),
-    held_attribute_numerators!("24", "164", "32", "224", "196"),
-    held_attribute_numerators!("26", "172", "36", "228", "204"),
-    held_attribute_numerators!("10", "180", "40", "232", "212"),
+    attribute_numerators!("8", "156", "28", "220", "188"),
+    attribute_numerators!("24", "164", "32", "224", "196"),
+    attribute_numerators!("26", "172", "36", "228", "204"),
+    attribute_numerators!("10", "180", "40", "232", "212"),
     "ldrd r4, r5, [sp, #372]",
     numerators_within!(),
     face_reciprocal!("144"),
