@@ -94,6 +94,9 @@ M0_MESH_FRAME_LIMIT=9800000
 # vertex records, 4.54 M at stop 49, 4.77 M at stop 47; a margin of 10 %) so that it only comes
 # down.
 TEXTURED_FRAME_LIMIT=3750000
+# The same with bilinear texels (the issue's goal is 4.0 M, TGX takes 6.10 M; measured 3.930 M at
+# stop 53 with the light folded into the blend's one rounding, 4.154 M before; a margin of 9 %).
+BILINEAR_TEXTURED_FRAME_LIMIT=4300000
 # The same with a Blinn-Phong highlight (measured 7.09 M at stop 50, 7.05 M at stop 51, 6.88 M
 # at stop 52; a margin of 10 %).
 SPECULAR_TEXTURED_FRAME_LIMIT=7600000
@@ -156,10 +159,11 @@ declare -A PERSPECTIVE_TARGET=([cortex-m4]=27 [cortex-m0]=64)
 declare -A PERSPECTIVE_LIT_TARGET=([cortex-m4]=52 [cortex-m0]=191)
 declare -A GOURAUD_TARGET=([cortex-m4]=10 [cortex-m0]=17.4)
 # Bilinear texels on the Cortex-M4 (the DSP extension's dual products), affine 2D and
-# perspective-correct 3D: measured 60.07 and 57.91 (the issue's target for the latter is 28, out
-# of reach with exact integers: docs/benchmarks.md; TGX takes 174), margins of 10 %.
-declare -A BILINEAR_TARGET=([cortex-m4]=66)
-declare -A PERSPECTIVE_BILINEAR_TARGET=([cortex-m4]=64)
+# perspective-correct 3D: measured 57.07 and 56.05 (60.07 and 57.91 before stop 53's blend
+# rounded by one `smmulr`; the issue's target for the latter is 28, out of reach with exact
+# integers: docs/benchmarks.md; TGX takes 174), margins of 10 %.
+declare -A BILINEAR_TARGET=([cortex-m4]=63)
+declare -A PERSPECTIVE_BILINEAR_TARGET=([cortex-m4]=62)
 # Translucent triangles (fw_bench's large set, Rgb565): a solid colour at one opacity (the
 # alpha issue's targets are 6 and 12, out of reach: the blend loops' arithmetic alone is 5.5 and
 # 11.25 a pixel, the raster core's rows 1.01 and 4.00; measured 6.97 and 17.03 with the Thumb-2
@@ -570,7 +574,8 @@ for board in "${MESH_BOARDS[@]}"; do
     if [ "$machine" = mps2-an386 ]; then
         check_mesh_frames "$output" "on the Cortex-M4" "spot $SPOT_FRAME_LIMIT" "knot $MESH_FRAME_LIMIT" \
             "knot-wireframe $WIREFRAME_FRAME_LIMIT"
-        for limit in "nearest $TEXTURED_FRAME_LIMIT" "specular $SPECULAR_TEXTURED_FRAME_LIMIT" \
+        for limit in "nearest $TEXTURED_FRAME_LIMIT" "bilinear $BILINEAR_TEXTURED_FRAME_LIMIT" \
+            "specular $SPECULAR_TEXTURED_FRAME_LIMIT" \
             "quadratic-specular $QUADRATIC_TEXTURED_FRAME_LIMIT"; do
             read -r kind max <<<"$limit"
             frame=$(printf '%s\n' "$output" | grep -E "^\\| spot-textured-$kind \\|" | head -n 1 | cut -d'|' -f5 | tr -d ' ')

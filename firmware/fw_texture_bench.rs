@@ -235,7 +235,7 @@ fn random_levels(next: &mut impl FnMut() -> u32) -> [u8; 3] {
 
 /// Untimed: [`CHECK_TRIANGLES`] random perspective-correct textured triangles over and around
 /// the screen — `w` ratios up to 1:20 within a triangle, random depths, texel coordinates and
-/// light levels (often 0 or 255), unlit and lit, nearest, from the texels as textures of several power-of-two
+/// light levels (often 0 or 255), unlit and lit, nearest and bilinear, from the texels as textures of several power-of-two
 /// shapes (and one that is not) — drawn into the depth target (which the caller clears):
 /// the spans' chunks of every length, clipped at every edge, levels at the clamp. Out of line:
 /// its frame is not added to the firmware's `main` (the micro:bit's 4 KB of stack).
@@ -250,6 +250,12 @@ fn check_3d(fb: &mut DepthTarget<'_, Rgb565>) {
         let (tw, th) = shapes[(k % shapes.len() as u32) as usize];
         let Ok(texture) = Texture::new(Rgb565Texels(&TEXELS), tw, th) else {
             return;
+        };
+        // Half of each of the unlit and the lit ones bilinear (ARMv7E-M's span loop blends
+        // them, lit by the level before one rounding).
+        let texture = match k / 2 % 2 {
+            0 => texture,
+            _ => texture.with_filter(Filter::Bilinear),
         };
         let (base_u, base_v) = (next() as i32, next() as i32);
         let spread = 10 + next() % 20;

@@ -581,6 +581,9 @@ macro_rules! lit_pixel {
         lit_pixel!(textured_texel!("4f"))
     };
     ($texel:expr) => {
+        lit_pixel!($texel, lit_texel!())
+    };
+    ($texel:expr, $lit:expr) => {
         concat!(
             "ldm sp, {{r0-r3}}\n",
             "add r4, r0\n",
@@ -589,44 +592,47 @@ macro_rules! lit_pixel {
             "add r7, r3\n",
             "8:\n",
             $texel,
-            lit_texel!(),
+            $lit,
             "4:\n",
         )
     };
 }
 
 /// The bilinear texel of the pixel at r8 into r0 (ARMv7E-M), after the depth test and write
-/// (as [`textured_texel`]'s): r5 = `x − ½ + 2⁻⁸` (16.16), r6 = `y − ½ + 2⁻⁸` shifted by `y`'s
-/// shift, r12/lr the masks, r11 the texels; `[sp, #$ys]` (counted after the 12 bytes it pushes)
-/// holds `y`'s shift plus 9. The texels
-/// `(i, j)`, `(i + 1, j)`, `(i, j + 1)`, `(i + 1, j + 1)` around the point (each index masked),
-/// weighted by the 7-bit fractions `fx`, `fy` of the point's coordinates: each channel
-/// `(Σ t·w + 2¹³) >> 14` with `w` = `(128 − fx)·(128 − fy)`, `fx·(128 − fy)`, `(128 − fx)·fy`,
-/// `fx·fy` — the two texels of a row as the halves of one word, their weights as the halves of
-/// another, a row's products summed by one `smuad`/`smlad`. The portable blend
-/// (`texture::map::bilinear_by`) rounds the fractions of `x − ½` to 7 bits, `fx ≤ 128`; here
-/// `x − ½ + 2⁻⁸`'s fraction is cut to 7 bits, and where the portable `fx` is 128 the index here
-/// is one more with `fx` 0: the same texel weighted by the same 128, the same sum. Clobbers
-/// r1-r3 (r7, r9, r10 saved and restored).
+/// (as [`textured_texel`]'s), lit by the level `$f18` leaves in r4: see [`bilinear_blend`].
 #[cfg(arm_dsp)]
 macro_rules! bilinear_texel {
-    ($skip:literal, $ys:literal) => {
-        concat!(depth_test!($skip), bilinear_blend!($ys),)
+    ($skip:literal, $ys:literal, $f18:expr) => {
+        concat!(depth_test!($skip), bilinear_blend!($ys, $f18))
     };
 }
 
-/// [`bilinear_texel`]'s blend into r0, without the depth test: r5/r6 the point, r11 the
-/// texels, r12/lr the masks, `[sp, #$ys]` (after the 12 bytes it pushes) `y`'s shift plus 9.
-/// Clobbers r1-r3 (r7, r9, r10 saved and restored).
+/// The bilinear blend into r0, lit: r5 = `x − ½ + 2⁻⁸` (16.16), r6 = `y − ½ + 2⁻⁸` shifted by
+/// `y`'s shift, r12/lr the masks, r11 the texels; `[sp, #$ys]` (counted after the 16 bytes it
+/// pushes) holds `y`'s shift plus 9; `$f18` leaves the level in r4 as a fraction of 18 bits
+/// (below `2¹⁸·257/256`; 2¹⁸ unlit), reading r7 if it will (pushed, not yet changed).
+///
+/// The texels `(i, j)`, `(i + 1, j)`, `(i, j + 1)`, `(i + 1, j + 1)` around the point (each
+/// index masked; row `j + 1` as `(j − rows_mask) & rows_mask`, which is `j` plus a row modulo
+/// the texture), weighted by the 7-bit fractions `fx`, `fy` of the point's coordinates: each
+/// channel's sum `s = Σ t·w` with `w` = `(128 − fx)·(128 − fy)`, `fx·(128 − fy)`, `(128 −
+/// fx)·fy`, `fx·fy` — the two texels of a row as the halves of one word, their weights as the
+/// halves of another, a row's products summed by one `smuad`/`smlad` — then `(s·f + 2³¹) >>
+/// 32` by one `smmulr` (`s` below 2²⁰, `f` below 2¹⁹: exact), which is
+/// `texture::map::Blend::lit` (and, at `f` = 2¹⁸, the rounded blend `(s + 2¹³) >> 14`). The
+/// portable blend rounds the fractions of `x − ½` to 7 bits, `fx ≤ 128`; here `x − ½ + 2⁻⁸`'s
+/// fraction is cut to 7 bits, and where the portable `fx` is 128 the index here is one more
+/// with `fx` 0: the same texel weighted by the same 128, the same sum. No channel passes its
+/// field (`63·257/256 + ½ < 64`). Clobbers r1-r3 (r4, r7, r9, r10 saved and restored).
 #[cfg(arm_dsp)]
 macro_rules! bilinear_blend {
-    ($ys:literal) => {
+    ($ys:literal, $f18:expr) => {
         concat!(
-            "push {{r7, r9, r10}}\n",
+            "push {{r4, r7, r9, r10}}\n",
+            $f18,
             // The rows j (r1) and j + 1 (r2) in storage units, the columns i (r0), i + 1 (r3).
             "and r1, lr, r6, lsr #16\n",
-            "add r2, r1, r12\n",
-            "add r2, r2, #1\n",
+            "sub r2, r1, lr\n",
             "and r2, r2, lr\n",
             "and r0, r12, r5, lsr #16\n",
             "add r3, r5, #0x10000\n",
@@ -655,21 +661,19 @@ macro_rules! bilinear_blend {
             "mul r2, r0, r1\n",
             "rsb r1, r1, #128\n",
             "mul r1, r0, r1\n",
-            // Blue, green, red: each field of both rows' texel pairs, weighted and summed.
+            // Blue, green, red: each field of both rows' texel pairs, weighted, summed, lit.
             "and r3, r7, #0x001F001F\n",
             "and r10, r9, #0x001F001F\n",
             "smuad r0, r3, r1\n",
             "smlad r0, r10, r2, r0\n",
-            "add r0, r0, #8192\n",
-            "lsr r0, r0, #14\n",
+            "smmulr r0, r0, r4\n",
             "lsr r3, r7, #5\n",
             "and r3, r3, #0x003F003F\n",
             "lsr r10, r9, #5\n",
             "and r10, r10, #0x003F003F\n",
             "smuad r3, r3, r1\n",
             "smlad r3, r10, r2, r3\n",
-            "add r3, r3, #8192\n",
-            "lsr r3, r3, #14\n",
+            "smmulr r3, r3, r4\n",
             "orr r0, r0, r3, lsl #5\n",
             "lsr r3, r7, #11\n",
             "and r3, r3, #0x001F001F\n",
@@ -677,11 +681,27 @@ macro_rules! bilinear_blend {
             "and r10, r10, #0x001F001F\n",
             "smuad r3, r3, r1\n",
             "smlad r3, r10, r2, r3\n",
-            "add r3, r3, #8192\n",
-            "lsr r3, r3, #14\n",
+            "smmulr r3, r3, r4\n",
             "orr r0, r0, r3, lsl #11\n",
-            "pop {{r7, r9, r10}}\n",
+            "pop {{r4, r7, r9, r10}}\n",
         )
+    };
+}
+
+/// [`bilinear_blend`]'s level unlit: 2¹⁸.
+#[cfg(arm_dsp)]
+macro_rules! unlit_f18 {
+    () => {
+        "mov r4, #262144\n"
+    };
+}
+
+/// [`bilinear_blend`]'s level from the level plane (r7): `((l >> 12)·257) >> 10`, the 18-bit
+/// form of [`lit_texel`]'s `f`.
+#[cfg(arm_dsp)]
+macro_rules! plane_f18 {
+    () => {
+        "lsr r4, r7, #12\nadd r4, r4, r4, lsl #8\nlsr r4, r4, #10\n"
     };
 }
 
@@ -734,7 +754,7 @@ macro_rules! bilinear_rows_body {
             "beq 11f\n",
             textured_rows!(
                 "cmp r2, r1\nit gt\nmovgt r1, r2",
-                unlit_pixel!(bilinear_texel!("4f", "32")),
+                unlit_pixel!(bilinear_texel!("4f", "36", unlit_f18!())),
                 bilinear_offset!(),
                 "28",
                 $clamp
@@ -742,7 +762,7 @@ macro_rules! bilinear_rows_body {
             "11:\n",
             textured_rows!(
                 "cmp r2, r3\nit lt\nmovlt r3, r2",
-                unlit_pixel!(bilinear_texel!("4f", "32")),
+                unlit_pixel!(bilinear_texel!("4f", "36", unlit_f18!())),
                 bilinear_offset!(),
                 "28",
                 $clamp
@@ -752,7 +772,10 @@ macro_rules! bilinear_rows_body {
             "beq 21f\n",
             textured_rows!(
                 "cmp r2, r1\nit gt\nmovgt r1, r2",
-                lit_pixel!(bilinear_texel!("4f", "32")),
+                lit_pixel!(
+                    bilinear_texel!("4f", "36", plane_f18!()),
+                    "strh r0, [r10, r8]\n"
+                ),
                 bilinear_offset!(),
                 "28",
                 $clamp
@@ -760,7 +783,10 @@ macro_rules! bilinear_rows_body {
             "21:\n",
             textured_rows!(
                 "cmp r2, r3\nit lt\nmovlt r3, r2",
-                lit_pixel!(bilinear_texel!("4f", "32")),
+                lit_pixel!(
+                    bilinear_texel!("4f", "36", plane_f18!()),
+                    "strh r0, [r10, r8]\n"
+                ),
                 bilinear_offset!(),
                 "28",
                 $clamp
@@ -854,7 +880,7 @@ core::arch::global_asm!(
     "ldr r11, [r0, #24]",
     "ldrd r12, lr, [r0, #28]",
     "1:",
-    bilinear_blend!("12"),
+    bilinear_blend!("16", unlit_f18!()),
     "strh r0, [r9], #2",
     "add r5, r5, r4",
     "add r6, r6, r8",
@@ -1403,24 +1429,30 @@ macro_rules! perspective_bilinear {
             "cmp r3, #2\n",
             "beq 56f\n",
             "52:\n",
-            bilinear_texel!("34f", "56"),
-            scaled_texel!("r7"),
+            bilinear_texel!("34f", "60", "lsl r4, r7, #2\n"),
+            "strh r0, [r10, r8]\n",
             lit_step!(),
             "bne 52b\n",
             "b 9f\n",
             "56:\n",
-            bilinear_texel!("34f", "56"),
+            bilinear_texel!("34f", "60", unlit_f18!()),
             "strh r0, [r10, r8]\n",
             lit_step!(),
             "bne 56b\n",
             "b 9f\n",
             "57:\n",
-            bilinear_texel!("34f", "56"),
-            "bic r1, r7, r7, asr #31\n",
-            "cmp r1, #65536\n",
-            "it hi\n",
-            "movhi r1, #65536\n",
-            scaled_texel!("r1"),
+            bilinear_texel!(
+                "34f",
+                "60",
+                concat!(
+                    "bic r4, r7, r7, asr #31\n",
+                    "cmp r4, #65536\n",
+                    "it hi\n",
+                    "movhi r4, #65536\n",
+                    "lsl r4, r4, #2\n",
+                )
+            ),
+            "strh r0, [r10, r8]\n",
             lit_step!(),
             "bne 57b\n",
             "b 9f\n",

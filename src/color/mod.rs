@@ -532,6 +532,14 @@ impl GouraudColor for BinaryColor {
     }
 }
 
+/// `base`'s channels each scaled by `level` (16 fractional bits) and rounded to nearest: `(c·level
+/// + 2¹⁵) >> 16` (the light's scaling of a colour, and of a texel).
+#[inline(always)]
+pub(crate) fn scale_channels<C: GouraudColor>(base: [u8; 3], level: u32) -> C {
+    let s = |c: u8| ((u32::from(c) * level + (1 << 15)) >> 16) as u8;
+    C::from_channels([s(base[0]), s(base[1]), s(base[2])])
+}
+
 /// Sets every pixel of `pixels` (a whole buffer: a clear) to `color`: as [`fill_row`], and where
 /// `C` is a 16-bit colour and the target has a loop of eight words a pass (RV32, ARMv7-M) the
 /// 4-byte aligned middle by it, 16 pixels for 4 instructions on the Cortex-M4 (against 10).

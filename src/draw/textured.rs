@@ -12,7 +12,7 @@ use crate::fixed_point::{Coord, ToCoord};
 use crate::raster::band::RowWindow;
 use crate::raster::plane::Attributes;
 use crate::raster::{shade, Span, SpanShader};
-use crate::texture::span::{fill_affine, PlaneMap, SampledLoop, Sampler, RUN};
+use crate::texture::span::{fill_affine, PlaneMap, Sampled, SampledLoop, Sampler, RUN};
 use crate::texture::{TexelCoord, TexelSource, Texture, ToTexel};
 
 /// A vertex of a [`TexturedTriangle`]: sub-pixel position and texel coordinate.
@@ -343,11 +343,15 @@ impl<D: DrawTarget> SampledLoop<D::Color> for Contiguous<'_, D> {
     type Output = Result<(), D::Error>;
 
     #[inline(always)]
-    fn run(self, sample: impl Fn(i32, i32) -> D::Color, y_shift: u32) -> Self::Output {
+    fn run<T: Sampled<D::Color>>(
+        self,
+        sample: impl Fn(i32, i32) -> T,
+        y_shift: u32,
+    ) -> Self::Output {
         let (mut x, dx) = (self.at.0, self.step.0);
         let (mut y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
         let colors = (0..self.area.size.width).map(|_| {
-            let color = sample(x, y);
+            let color = sample(x, y).color();
             x = x.wrapping_add(dx);
             y = y.wrapping_add(dy);
             color

@@ -2,8 +2,11 @@
 //! texel coordinates.
 
 use super::address::{Axis, Wrap};
+use core::marker::PhantomData;
+
 use super::source::TexelSource;
 use crate::color::GouraudColor;
+use crate::raster::arith::mul_u32_wide;
 
 /// Largest width or height of a texture, in texels (2¹⁵: texel coordinates are 16.16 fixed
 /// point, so a texture's coordinates span a few periods of it either way).
@@ -17,7 +20,8 @@ pub enum Filter {
     Nearest,
     /// The four texels around the sample point, weighted by its distance to their centres
     /// (weights of one bit more than the target's widest channel, channel by channel in its
-    /// depth: within 1 LSB of the exact blend).
+    /// depth: within 1 LSB of the exact blend). Lit by one level (a 3D material's flat or
+    /// Gouraud light), the blend is scaled by the level before its one rounding.
     Bilinear,
 }
 
@@ -195,6 +199,15 @@ impl<S: TexelSource> Texture<S> {
         bilinear_by(x, y, |i, j| C::from(self.texel(i, j)))
     }
 
+    /// [`bilinear`](Self::bilinear)'s blend before its rounding.
+    #[inline(always)]
+    pub(crate) fn bilinear_sums<C>(&self, x: i32, y: i32) -> Blend<C>
+    where
+        C: GouraudColor + From<S::Color>,
+    {
+        bilinear_sums_by(x, y, |i, j| C::from(self.texel(i, j)))
+    }
+
     /// The texel at the 16.16 coordinate `(x, y)` by this texture's filter, as `C`.
     #[inline(always)]
     pub fn sample<C>(&self, x: i32, y: i32) -> C
@@ -212,6 +225,16 @@ impl<S: TexelSource> Texture<S> {
 /// (wrapped by the caller): [`Texture::bilinear`]'s arithmetic, for every addressing.
 #[inline(always)]
 pub(crate) fn bilinear_by<C: GouraudColor>(x: i32, y: i32, fetch: impl Fn(i32, i32) -> C) -> C {
+    bilinear_sums_by(x, y, fetch).color()
+}
+
+/// [`bilinear_by`]'s blend before its rounding.
+#[inline(always)]
+pub(crate) fn bilinear_sums_by<C: GouraudColor>(
+    x: i32,
+    y: i32,
+    fetch: impl Fn(i32, i32) -> C,
+) -> Blend<C> {
     // The texels around (x − ½, y − ½): ⌊x − ½⌋ is ⌊x⌋ − 1 in a texel's left half (with no
     // overflow at the ends of i32, where x − ½ would wrap).
     let below = |x: i32| (x >> 16) - i32::from((x as u32 & 0xffff) < 1 << 15);
@@ -232,12 +255,69 @@ pub(crate) fn bilinear_by<C: GouraudColor>(x: i32, y: i32, fetch: impl Fn(i32, i
             |a: u32, b: u32, f: u32| (a << k).wrapping_add(b.wrapping_sub(a).wrapping_mul(f));
         let top = lerp(t00[n], t10[n], fx);
         let bottom = lerp(t01[n], t11[n], fx);
-        (lerp(top, bottom, fy).wrapping_add(1 << (2 * k - 1)) >> (2 * k)) as u8
+        lerp(top, bottom, fy)
     };
-    if C::CHANNELS == 1 {
-        return C::from_channels([blend(0), 0, 0]);
+    let sums = if C::CHANNELS == 1 {
+        [blend(0), 0, 0]
+    } else {
+        [blend(0), blend(1), blend(2)]
+    };
+    Blend {
+        sums,
+        color: PhantomData,
     }
-    C::from_channels([blend(0), blend(1), blend(2)])
+}
+
+/// A bilinear blend before its rounding: each channel's four texels weighted by weights of
+/// `2k` bits in all (`k` = [`weight_bits`]), the sum below `2^(8 + 2k)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Blend<C> {
+    sums: [u32; 3],
+    color: PhantomData<C>,
+}
+
+impl<C: GouraudColor> Blend<C> {
+    /// The blend rounded to nearest: the bilinear texel.
+    #[inline(always)]
+    pub(crate) fn color(self) -> C {
+        let k = weight_bits::<C>();
+        let round = |s: u32| (s.wrapping_add(1 << (2 * k - 1)) >> (2 * k)) as u8;
+        let [a, b, c] = self.sums;
+        C::from_channels([round(a), round(b), round(c)])
+    }
+
+    /// The blend scaled by the light level `f` (18 fractional bits, below `2¹⁸·257/256`) and
+    /// rounded once: `(s·f + 2^(2k + 17)) >> (2k + 18)` each channel (at most its maximum; for
+    /// 5-6-5 colours `(s·f + 2³¹) >> 32`, one `smmulr` on ARMv7E-M). One rounding where the
+    /// rounded blend scaled and rounded again would take two.
+    #[inline(always)]
+    pub(crate) fn lit(self, f: u32) -> C {
+        let k = weight_bits::<C>();
+        let shift = 2 * k + 18;
+        let scaled = |s: u32| -> u32 {
+            if k <= 7 {
+                // Channels of at most 6 bits: `s < 2³ᵏ⁻¹`, and with `f = h·2¹⁰ + l` both
+                // `s·l + 2^(shift − 1)` and `s·h` plus the first's top bits stay below 2³²:
+                // the same integer in 32-bit products (no long multiply on Cortex-M0).
+                let low = (s * (f & 1023) + (1 << (shift - 1))) >> 10;
+                (s * (f >> 10) + low) >> (shift - 10)
+            } else {
+                // A level above 1 takes a channel of 128 or more past its maximum.
+                let v = (mul_u32_wide(s, f) + (1 << (shift - 1))) >> shift;
+                v as u32
+            }
+        };
+        let [a, b, c] = self.sums;
+        let [ma, mb, mc] = C::MAX;
+        let (ma, mb, mc) = (u32::from(ma), u32::from(mb), u32::from(mc));
+        // 5-6-5 channels stay within theirs (`63·257/256 + ½ < 64`); wider ones are clamped.
+        let clamp = |v: u32, max: u32| if k > 7 { v.min(max) } else { v } as u8;
+        C::from_channels([
+            clamp(scaled(a), ma),
+            clamp(scaled(b), mb),
+            clamp(scaled(c), mc),
+        ])
+    }
 }
 
 /// The bits of the bilinear weights for `C`: one more than its widest channel's. A weight then
@@ -269,7 +349,8 @@ mod tests {
 
     /// The blend is within 1 LSB of the exact bilinear value at the 16.16 coordinate (f64), for
     /// every channel depth, at the largest contrasts (neighbours 0 and the channel's maximum):
-    /// the weights' bits (`weight_bits`) keep their rounding below half an LSB.
+    /// the weights' bits (`weight_bits`) keep their rounding below half an LSB. Lit, within 1
+    /// LSB of the exact value times the level, and the blend itself at a full level.
     #[test]
     fn bilinear_blends_are_within_an_lsb_of_the_exact_value() {
         use embedded_graphics::pixelcolor::{BinaryColor, Gray4, Gray8, Rgb555, Rgb565, Rgb888};
@@ -313,7 +394,19 @@ mod tests {
                 } else {
                     (next() as i32, next() as i32)
                 };
-                let got = bilinear_by(x, y, |i, j| C::from_channels(texel(i, j))).channels();
+                let blend = bilinear_sums_by(x, y, |i, j| C::from_channels(texel(i, j)));
+                let got = blend.color().channels();
+                // Lit: at a level of 18 bits up to a little above 1 (the planes' most), the
+                // blend scaled before its one rounding; at exactly 1, the blend itself.
+                let f = match round % 8 {
+                    0 => 1 << 18,
+                    1 => (((1 << 20) - 1) * 257) >> 10,
+                    _ => next() % (1 << 18),
+                };
+                let lit = blend.lit(f).channels();
+                if f == 1 << 18 {
+                    assert_eq!(lit, got);
+                }
                 // The exact blend at (x − ½, y − ½).
                 let (fx, fy) = (f64::from(x) / 65536.0 - 0.5, f64::from(y) / 65536.0 - 0.5);
                 let (i, j) = (fx.floor(), fy.floor());
@@ -325,6 +418,9 @@ mod tests {
                     let bottom = t(i, j + 1) * (1.0 - ax) + t(i + 1, j + 1) * ax;
                     let exact = top * (1.0 - ay) + bottom * ay;
                     worst = worst.max((f64::from(got) - exact).abs());
+                    let exact_lit =
+                        (exact * f64::from(f) / f64::from(1 << 18)).min(f64::from(C::MAX[k]));
+                    worst = worst.max((f64::from(lit[k]) - exact_lit).abs());
                 }
             }
             worst
@@ -339,6 +435,52 @@ mod tests {
         ] {
             assert!(worst < 1.0, "{name}: {worst}");
         }
+    }
+
+    /// [`Blend::lit`]'s 32-bit products are the exact `(s·f + 2^(2k + 17)) >> (2k + 18)` for
+    /// channels of up to 6 bits, at the ends of its ranges (`s` up to the channel's maximum
+    /// times 2²ᵏ, `f` up to the planes' largest) and between.
+    #[test]
+    fn lit_blends_round_the_exact_product() {
+        use embedded_graphics::pixelcolor::{Gray4, Rgb555, Rgb565};
+
+        fn check<C: GouraudColor>() {
+            let k = weight_bits::<C>();
+            let max = C::MAX;
+            let f_max = (((1u32 << 20) - 1) * 257) >> 10;
+            let mut state = 0x1234_5678u32;
+            for round in 0..200_000u32 {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                let f = match round % 4 {
+                    0 => f_max - round % 7,
+                    1 => 1 << 18,
+                    _ => state % (f_max + 1),
+                };
+                let sums = [0, 1, 2].map(|n| {
+                    let top = u32::from(max[n]) << (2 * k);
+                    match (round / 4 + n as u32) % 3 {
+                        0 => top.saturating_sub((state >> 8) % 3),
+                        _ => (state >> (n * 5)) % (top + 1),
+                    }
+                });
+                let got = Blend::<C> {
+                    sums,
+                    color: PhantomData,
+                }
+                .lit(f)
+                .channels();
+                for n in 0..C::CHANNELS {
+                    let shift = 2 * k + 18;
+                    let exact = (u64::from(sums[n]) * u64::from(f) + (1 << (shift - 1))) >> shift;
+                    assert_eq!(u64::from(got[n]), exact, "{sums:?} {f}");
+                }
+            }
+        }
+        check::<Rgb565>();
+        check::<Rgb555>();
+        check::<Gray4>();
     }
 
     /// The errors' messages: what was needed and what was given (issue #32, item 2).

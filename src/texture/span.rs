@@ -9,10 +9,10 @@
 //! `RUN / 2` units of 2⁻¹⁶ texel.
 
 use super::address::Wrap;
-use super::map::{bilinear_by, Filter, Texture};
+use super::map::{bilinear_sums_by, Blend, Filter, Texture};
 use super::source::TexelSource;
 use crate::arch::{self, MaskedSpan565};
-use crate::color::GouraudColor;
+use crate::color::{scale_channels, GouraudColor};
 use crate::raster::arith::leading_zeros_32;
 
 /// Longest run of pixels whose texel coordinates are stepped from one start.
@@ -111,16 +111,51 @@ fn round_shift(v: u32, shift: u32) -> u32 {
     }
 }
 
+/// What a sampling function gives at a point: the texel (nearest filtering), or a blend not yet
+/// rounded (bilinear), so that a light scales the blend before its one rounding.
+pub(crate) trait Sampled<C>: Copy {
+    /// The texture's colour.
+    fn color(self) -> C;
+    /// The colour lit at a level given as a fraction of 16 bits (`f16`, below 2¹⁷) and of 18
+    /// (`f18`, below `2¹⁸·257/256`): a texel's channels `(c·f16 + 2¹⁵) >> 16`, a blend's
+    /// [`Blend::lit`] by `f18`.
+    fn lit(self, f16: u32, f18: u32) -> C;
+}
+
+impl<C: GouraudColor> Sampled<C> for C {
+    #[inline(always)]
+    fn color(self) -> C {
+        self
+    }
+
+    #[inline(always)]
+    fn lit(self, f16: u32, _: u32) -> C {
+        scale_channels(self.channels(), f16)
+    }
+}
+
+impl<C: GouraudColor> Sampled<C> for Blend<C> {
+    #[inline(always)]
+    fn color(self) -> C {
+        Blend::color(self)
+    }
+
+    #[inline(always)]
+    fn lit(self, _: u32, f18: u32) -> C {
+        Blend::lit(self, f18)
+    }
+}
+
 /// A loop over pixels that samples a texture: [`Sampler::run`] hands it the sampling function
 /// of the texture's filter and addressing, so that each kind gets a loop of its own.
 pub(crate) trait SampledLoop<C> {
     /// What the loop returns.
     type Output;
 
-    /// Runs the loop with `sample`, the texture's colour at a 16.16 texel coordinate `(x, y)`
-    /// given as `(x, y << y_shift)` (wrapping: the loop steps the shifted `y` by the shifted
-    /// step).
-    fn run(self, sample: impl Fn(i32, i32) -> C, y_shift: u32) -> Self::Output;
+    /// Runs the loop with `sample`, the texture's colour (or blend) at a 16.16 texel coordinate
+    /// `(x, y)` given as `(x, y << y_shift)` (wrapping: the loop steps the shifted `y` by the
+    /// shifted step).
+    fn run<T: Sampled<C>>(self, sample: impl Fn(i32, i32) -> T, y_shift: u32) -> Self::Output;
 
     /// Runs the loop with bilinear texels of raw Rgb565 `words` addressed by `masks` by the
     /// target's own loop, if it has one for this loop (ARMv7E-M's dual products), or gives the
@@ -210,7 +245,7 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
                     _ => body,
                 };
                 let sample = move |x, y| {
-                    bilinear_by(x, y, |i, j| {
+                    bilinear_sums_by(x, y, |i, j| {
                         // SAFETY: as above.
                         C::from(unsafe { texels.texel_unchecked(masks.texel_index(i, j)) })
                     })
@@ -218,7 +253,7 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
                 body.run(sample, 0)
             }
             Sampler::Nearest(texture) => body.run(|x, y| C::from(texture.nearest(x, y)), 0),
-            Sampler::Bilinear(texture) => body.run(|x, y| texture.bilinear(x, y), 0),
+            Sampler::Bilinear(texture) => body.run(|x, y| texture.bilinear_sums(x, y), 0),
         }
     }
 }
@@ -263,11 +298,11 @@ impl<C: GouraudColor> SampledLoop<C> for Affine<'_, C> {
 
     // Out of line: the walk's values stay out of the loop's registers (a call a span).
     #[inline(never)]
-    fn run(self, sample: impl Fn(i32, i32) -> C, y_shift: u32) {
+    fn run<T: Sampled<C>>(self, sample: impl Fn(i32, i32) -> T, y_shift: u32) {
         let (mut x, dx) = (self.at.0, self.step.0);
         let (mut y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
         for px in self.dst {
-            *px = sample(x, y);
+            *px = sample(x, y).color();
             x = x.wrapping_add(dx);
             y = y.wrapping_add(dy);
         }

@@ -73,7 +73,7 @@ use super::math::{
 };
 use super::vertex::ProjectedVertex;
 use crate::arch::{self, FaceSetup};
-use crate::color::{GouraudColor, SpanSteps};
+use crate::color::{scale_channels, GouraudColor, SpanSteps};
 use crate::draw::SpanColors;
 use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::{AllRows, RowWindow};
@@ -216,12 +216,6 @@ impl<C> Material<C> {
 pub fn shade<C: GouraudColor>(color: C, level: Scalar) -> C {
     let l = level.to_bits().clamp(0, 1 << 16) as u32;
     scale_channels::<C>(color.channels(), l)
-}
-
-#[inline(always)]
-pub(super) fn scale_channels<C: GouraudColor>(base: [u8; 3], level: u32) -> C {
-    let s = |c: u8| ((u32::from(c) * level + (1 << 15)) >> 16) as u8;
-    C::from_channels([s(base[0]), s(base[1]), s(base[2])])
 }
 
 /// The colour of a lit, highlighted surface: `base · level + specular · max` in every channel

@@ -95,18 +95,18 @@ use super::math::Vec3;
 use super::math::{zip3_with, Scalar};
 use super::mesh::TexCoord;
 use super::shading::{
-    highlighted_channels, pixel_terms, scale_channels, with_depth, QuadraticNormals, TargetClip,
-    DEPTH_SHIFT,
+    highlighted_channels, pixel_terms, with_depth, QuadraticNormals, TargetClip, DEPTH_SHIFT,
 };
 use super::vertex::{Inverse, ProjectedVertex};
 use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
+use crate::color::scale_channels;
 use crate::color::GouraudColor;
 use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
 use crate::raster::runs::SmallScan;
 use crate::raster::{Span, SpanShader};
-use crate::texture::span::{PlaneMap, SampledLoop, Sampler};
+use crate::texture::span::{PlaneMap, Sampled, SampledLoop, Sampler};
 use crate::texture::{TexelCoord, TexelSource, Texture};
 
 /// A vertex of a perspective-correct textured fill: its screen position and depth, its
@@ -1257,7 +1257,7 @@ impl<C: GouraudColor, L: SpanLight, W: Opacity> SampledLoop<C> for AffineSpan<'_
     type Output = ();
 
     #[inline(always)]
-    fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
+    fn run<T: Sampled<C>>(self, texel: impl Fn(i32, i32) -> T, y_shift: u32) {
         let (y, dy) = (self.at.1 << y_shift, self.step.1 << y_shift);
         let (z, dz) = self.depth;
         let (x, dx) = (self.at.0, self.step.0);
@@ -1293,7 +1293,7 @@ impl<C: GouraudColor, L: PlaneLight<N>, const N: usize> SampledLoop<C>
     /// Each row's run (as the walk gives them) and its pixels: what [`AffineFill::span`] draws
     /// for it.
     #[inline(always)]
-    fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
+    fn run<T: Sampled<C>>(self, texel: impl Fn(i32, i32) -> T, y_shift: u32) {
         let (step, texel_step) = self.steps;
         let planes = self.scan.planes();
         let mut row_values = planes.first();
@@ -1457,6 +1457,13 @@ trait SpanLight: Copy {
     fn chunk(&self, start: Self::End, end: Self::End, over: u32) -> (Self::Level, Self::Level);
     /// The texel lit at `level`.
     fn apply<C: GouraudColor>(&self, texel: C, level: Self::Level) -> C;
+    /// The sample (a texel, or a bilinear blend before its rounding) lit at `level`: the texel
+    /// [`apply`](Self::apply)'s, or a one-level light's scaling of the blend
+    /// ([`Sampled::lit`]).
+    #[inline(always)]
+    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: Self::Level) -> C {
+        self.apply(sample.color(), level)
+    }
     /// `level` a pixel on.
     fn step(level: Self::Level, by: Self::Level) -> Self::Level;
 
@@ -1559,13 +1566,25 @@ impl SpanLight for Constant {
         scale_channels::<C>(texel.channels(), self.0)
     }
 
+    /// A full level leaves the sample as it is (a blend rounded once, as unlit: scaled by
+    /// `2¹⁸ − 4` it could round a step lower), so that a full light is no light on every
+    /// target (where flash counts, no light is drawn as a full level).
+    #[inline(always)]
+    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, _: ()) -> C {
+        if self.plain() {
+            return sample.color();
+        }
+        sample.lit(self.0, self.0 << 2)
+    }
+
     #[inline(always)]
     fn step(_: (), _: ()) {}
 
-    /// The same level everywhere: at most 65 535, which the loop's clamp leaves as it is.
+    /// The same level everywhere: at most 65 535, which the loop's clamp leaves as it is; none
+    /// where it is full (as [`shade`](Self::shade) draws it).
     #[inline(always)]
     fn span_level(&self) -> Option<Option<[i32; 3]>> {
-        Some(Some([self.0 as i32, 0, 0]))
+        Some((!self.plain()).then_some([self.0 as i32, 0, 0]))
     }
 
     /// A full level: `(c·f + 2¹⁵) >> 16` is `c` for every 8-bit `c` at `f` = 2¹⁶ − 1 or 2¹⁶.
@@ -1586,6 +1605,12 @@ impl<const N: usize> PlaneLight<N> for Constant {
 #[inline(always)]
 fn plane_fraction(value: i32) -> u32 {
     ((value as u32 >> 12) * 257) >> 12
+}
+
+/// The same with 18 fractional bits (below `2¹⁸·257/256`), as a bilinear blend is lit.
+#[inline(always)]
+fn plane_fraction_18(value: i32) -> u32 {
+    ((value as u32 >> 12) * 257) >> 10
 }
 
 /// The screen-space fill's level plane (8.24 of the 0–255 scale, stepped as it is): attribute
@@ -1609,6 +1634,11 @@ impl SpanLight for PlaneLevel {
     #[inline(always)]
     fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
         scale_channels::<C>(texel.channels(), plane_fraction(level))
+    }
+
+    #[inline(always)]
+    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: i32) -> C {
+        sample.lit(plane_fraction(level), plane_fraction_18(level))
     }
 
     #[inline(always)]
@@ -1715,6 +1745,12 @@ impl SpanLight for Varying {
     #[inline(always)]
     fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
         scale_channels::<C>(texel.channels(), level.clamp(0, 1 << 16) as u32)
+    }
+
+    #[inline(always)]
+    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: i32) -> C {
+        let f = level.clamp(0, 1 << 16) as u32;
+        sample.lit(f, f << 2)
     }
 
     #[inline(always)]
@@ -2115,7 +2151,7 @@ impl<C: GouraudColor, L: SpanLight, W: Opacity> SampledLoop<C> for PerspectiveSp
 
     /// The span's pixels with `texel` giving the colour at a 16.16 texel coordinate.
     #[inline(always)]
-    fn run(self, texel: impl Fn(i32, i32) -> C, y_shift: u32) {
+    fn run<T: Sampled<C>>(self, texel: impl Fn(i32, i32) -> T, y_shift: u32) {
         let (mut colors, mut depths, light) = (self.colors, self.depths, self.light);
         let [dz, dq, dp1, dp2] = self.steps;
         let [mut z, q, p1, p2] = self.start;
@@ -2174,12 +2210,12 @@ impl<C: GouraudColor, L: SpanLight, W: Opacity> SampledLoop<C> for PerspectiveSp
 /// The pixels of one chunk of a perspective span: [`pixels`] out of line, so that the loop has
 /// the registers to itself (a call a chunk).
 #[inline(never)]
-fn chunk_pixels<C: GouraudColor, L: SpanLight>(
+fn chunk_pixels<C: GouraudColor, T: Sampled<C>, L: SpanLight>(
     colors: &mut [C],
     depths: &mut [u16],
     values: (u32, i32, i32, L::Level),
     steps: (u32, i32, i32, L::Level),
-    texel: &impl Fn(i32, i32) -> C,
+    texel: &impl Fn(i32, i32) -> T,
     light: L,
 ) -> u32 {
     pixels(colors, depths, values, steps, texel, light)
@@ -2189,19 +2225,19 @@ fn chunk_pixels<C: GouraudColor, L: SpanLight>(
 /// `(z, x, y, level)` at the first stepped by `steps`: the span loop of both textured fills.
 /// The depth plane's value after the last.
 #[inline(always)]
-fn pixels<C: GouraudColor, L: SpanLight>(
+fn pixels<C: GouraudColor, T: Sampled<C>, L: SpanLight>(
     colors: &mut [C],
     depths: &mut [u16],
     (mut z, mut x, mut y, mut level): (u32, i32, i32, L::Level),
     (dz, dx, dy, dl): (u32, i32, i32, L::Level),
-    texel: &impl Fn(i32, i32) -> C,
+    texel: &impl Fn(i32, i32) -> T,
     light: L,
 ) -> u32 {
     for (px, depth) in colors.iter_mut().zip(depths.iter_mut()) {
         let z16 = (z >> DEPTH_SHIFT) as u16;
         if z16 < *depth {
             *depth = z16;
-            *px = light.apply(texel(x, y), level);
+            *px = light.shade(texel(x, y), level);
         }
         z = z.wrapping_add(dz);
         x = x.wrapping_add(dx);
@@ -2214,18 +2250,18 @@ fn pixels<C: GouraudColor, L: SpanLight>(
 /// [`pixels`] of a translucent draw: each pixel nearer than the depth there blended over the
 /// colour there, the depth kept.
 #[inline(never)]
-fn blended_pixels<C: GouraudColor, L: SpanLight>(
+fn blended_pixels<C: GouraudColor, T: Sampled<C>, L: SpanLight>(
     colors: &mut [C],
     depths: &mut [u16],
     (mut z, mut x, mut y, mut level): (u32, i32, i32, L::Level),
     (dz, dx, dy, dl): (u32, i32, i32, L::Level),
-    texel: &impl Fn(i32, i32) -> C,
+    texel: &impl Fn(i32, i32) -> T,
     light: L,
     opacity: u8,
 ) -> u32 {
     for (px, depth) in colors.iter_mut().zip(depths.iter()) {
         if ((z >> DEPTH_SHIFT) as u16) < *depth {
-            *px = light.apply(texel(x, y), level).blend(*px, opacity);
+            *px = light.shade(texel(x, y), level).blend(*px, opacity);
         }
         z = z.wrapping_add(dz);
         x = x.wrapping_add(dx);
