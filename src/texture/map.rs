@@ -289,8 +289,10 @@ impl<C: GouraudColor> Blend<C> {
     /// The blend scaled by the light level `f` (18 fractional bits, below `2¹⁸·257/256`) and
     /// rounded once: `(s·f + 2^(2k + 17)) >> (2k + 18)` each channel (at most its maximum; for
     /// 5-6-5 colours `(s·f + 2³¹) >> 32`, one `smmulr` on ARMv7E-M). One rounding where the
-    /// rounded blend scaled and rounded again would take two.
-    #[inline(always)]
+    /// rounded blend scaled and rounded again would take two. (Out of line on ARMv6-M, where
+    /// each loop that lights a blend would hold a copy.)
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
     pub(crate) fn lit(self, f: u32) -> C {
         let k = weight_bits::<C>();
         let shift = 2 * k + 18;

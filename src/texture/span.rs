@@ -244,18 +244,37 @@ impl<'t, S: TexelSource> Sampler<'t, S> {
                     }
                     _ => body,
                 };
-                let sample = move |x, y| {
-                    bilinear_sums_by(x, y, |i, j| {
-                        // SAFETY: as above.
-                        C::from(unsafe { texels.texel_unchecked(masks.texel_index(i, j)) })
-                    })
-                };
-                body.run(sample, 0)
+                // SAFETY: `texels` holds exactly the texels `masks` address (above).
+                body.run(
+                    move |x, y| unsafe { masked_bilinear(x, y, masks, &texels) },
+                    0,
+                )
             }
             Sampler::Nearest(texture) => body.run(|x, y| C::from(texture.nearest(x, y)), 0),
             Sampler::Bilinear(texture) => body.run(|x, y| texture.bilinear_sums(x, y), 0),
         }
     }
+}
+
+/// The bilinear blend at `(x, y)` of `texels` addressed by `masks` (the masked sampler's). Out
+/// of line on ARMv6-M: the many loops that take it would each hold a copy (the micro:bit's
+/// flash).
+///
+/// # Safety
+///
+/// `texels` holds at least the texels of the texture `masks` address (every index they give).
+#[allow(unsafe_code)]
+#[cfg_attr(armv6m, inline(never))]
+#[cfg_attr(not(armv6m), inline(always))]
+unsafe fn masked_bilinear<C, S>(x: i32, y: i32, masks: PowerOfTwoRepeat, texels: &S) -> Blend<C>
+where
+    C: GouraudColor + From<S::Color>,
+    S: TexelSource,
+{
+    bilinear_sums_by(x, y, |i, j| {
+        // SAFETY: an index the masks give, inside `texels` (the caller's promise).
+        C::from(unsafe { texels.texel_unchecked(masks.texel_index(i, j)) })
+    })
 }
 
 /// Fills `dst` with the texture sampled at `(x, y) + i·(dx, dy)` (16.16 texels, wrapping) for
