@@ -1139,6 +1139,89 @@ impl<'a> FaceScan<'a> {
     }
 }
 
+/// A draw's light for [`light_levels`] (offsets are the assembly's): `three_d`'s `VertexLight`
+/// for normals already in the light's space and of unit length.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+// Read only where the assembly is.
+#[cfg_attr(not(armv7m), allow(dead_code))]
+pub(crate) struct LevelLight {
+    /// 0-8: the direction's raw components (14 fractional bits, within ±2¹⁴).
+    direction: [i32; 3],
+    /// 12: the ambient level (16 fractional bits, at most 2¹⁶); 16: 2¹⁶ less it.
+    ambient: u32,
+    diffuse: u32,
+}
+
+impl LevelLight {
+    /// The light of `direction` and `ambient`, if they are in those ranges.
+    #[inline(always)]
+    pub(crate) fn new(direction: [i32; 3], ambient: u32) -> Option<Self> {
+        let fits = direction.iter().all(|d| d.unsigned_abs() <= 1 << 14) && ambient <= 1 << 16;
+        fits.then(|| LevelLight {
+            direction,
+            ambient,
+            diffuse: (1 << 16) - ambient,
+        })
+    }
+}
+
+/// Which `u16` of a [`ProjectedPrefix`] vertex [`light_levels`] writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum LevelField {
+    /// The level at byte 12 (a Gouraud draw's).
+    Level,
+    /// The texel level at byte 10 (a textured draw's).
+    TexelLevel,
+}
+
+/// ARMv7-M: writes into each vertex of `out` (its `field`) the light level of the normal of
+/// `normals` at its index (as many as both have): `three_d`'s `VertexLight::level_of_unit`
+/// from the same integers — `d = n·l + 2¹³` in 64 bits, `min(d, 2³⁰ − 1) >> 14` or 0 where
+/// negative, the level `a + (((2¹⁶ − a)·d + 2¹⁵) >> 16)` (never past 2¹⁶ for `a ≤ 2¹⁶`, so
+/// the portable clamp there changes nothing) times 255 over 256. `false`, nothing written,
+/// elsewhere.
+#[allow(unsafe_code)]
+#[inline(always)]
+pub(crate) fn light_levels<N: ModelPosition, V: ProjectedPrefix>(
+    normals: &[N],
+    out: &mut [V],
+    field: LevelField,
+    light: &LevelLight,
+) -> bool {
+    const {
+        assert!(core::mem::size_of::<N>() == 12 && core::mem::align_of::<N>() >= 4);
+        assert!(core::mem::size_of::<V>() == 16 && core::mem::align_of::<V>() >= 4);
+    };
+    if !cfg!(armv7m) {
+        return false;
+    }
+    let count = normals.len().min(out.len());
+    if count == 0 {
+        return true;
+    }
+    let offset = match field {
+        LevelField::Level => 12,
+        LevelField::TexelLevel => 10,
+    };
+    // SAFETY: `count` normals of 12 bytes from `normals`'s start are inside it (`N` is 12
+    // bytes, asserted above, 4-byte aligned), and the `u16` at `offset` (10 or 12, 2-byte
+    // aligned) of each of the first `count` 16-byte vertices of `out` is inside it, any value
+    // a valid one there (`ProjectedPrefix`'s contract); the light's ambient level is at most 2¹⁶
+    // (`LevelLight::new`).
+    #[cfg(armv7m)]
+    unsafe {
+        thumbv7m::light_levels(
+            normals.as_ptr().cast(),
+            out.as_mut_ptr().cast::<u8>().add(offset),
+            count as u32,
+            light,
+        )
+    };
+    let _ = (offset, light);
+    true
+}
+
 /// [`project_positions`] where there is none: writes nothing and says so.
 #[cfg(not(armv7m))]
 #[inline(always)]

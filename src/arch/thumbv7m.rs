@@ -3443,6 +3443,79 @@ pub(crate) fn project_positions<P: ModelPosition, V: ProjectedPrefix>(
     true
 }
 
+// The light levels of a draw's vertices (`light_levels`): r0 = the normals (12 bytes each), r1 =
+// the level field of the first vertex (16 bytes apart), r2 = the count (at least 1), r3 = the
+// light (`LevelLight`: the direction's three raw components, the ambient level, 2¹⁶ less it).
+core::arch::global_asm!(
+    ".section .text.embedded_raster_light_levels_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_light_levels_v7m",
+    ".hidden embedded_raster_light_levels_v7m",
+    ".type embedded_raster_light_levels_v7m,%function",
+    ".thumb_func",
+    "embedded_raster_light_levels_v7m:",
+    "push {{r4-r11, lr}}",
+    "ldm r3, {{r3-r7}}",
+    "mov r8, #32768",
+    "1:",
+    // dot = n·l (64 bits, 30 fractional bits), rounded by 2¹³.
+    "ldm r0!, {{r9-r11}}",
+    "smull r12, lr, r9, r3",
+    "smlal r12, lr, r10, r4",
+    "smlal r12, lr, r11, r5",
+    "adds r12, r12, #8192",
+    "adc lr, lr, #0",
+    // The diffuse term: 2³⁰ − 1 where the sum is that or more (or negative), shifted down by
+    // 14, 0 where it is negative.
+    "lsr r9, r12, #30",
+    "orrs r9, r9, lr",
+    "it ne",
+    "mvnne r12, #0xC0000000",
+    "lsr r12, r12, #14",
+    "bic r12, r12, lr, asr #31",
+    // The level: the ambient plus `((2¹⁶ − ambient)·d + 2¹⁵) >> 16`, times 255, over 256.
+    "mla r12, r7, r12, r8",
+    "add r12, r6, r12, lsr #16",
+    "rsb r12, r12, r12, lsl #8",
+    "lsr r12, r12, #8",
+    "strh r12, [r1], #16",
+    "subs r2, #1",
+    "bne 1b",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_light_levels_v7m, . - embedded_raster_light_levels_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_light_levels_v7m(
+        normals: *const u8,
+        levels: *mut u8,
+        count: u32,
+        light: *const super::LevelLight,
+    );
+}
+
+/// [`super::light_levels`]'s assembly call: `count` (at least 1) normals from `normals`, levels
+/// from the field at `levels`.
+///
+/// # Safety
+///
+/// `normals` is valid for reads of `count` 12-byte normals (4-byte aligned) and `levels` for
+/// writes of a `u16` at every 16 bytes from it, `count` of them (2-byte aligned); `light`'s
+/// ambient level is at most 2¹⁶.
+pub(super) unsafe fn light_levels(
+    normals: *const u8,
+    levels: *mut u8,
+    count: u32,
+    light: &super::LevelLight,
+) {
+    // SAFETY: the caller's promise; the function reads the light's five words, keeps its stack
+    // frame its own and saves and restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_light_levels_v7m(normals, levels, count, light) }
+}
+
 /// A vertex's texel coordinates for the scan's textured faces: from the pair at index `$i` of
 /// the texture coordinates (r8), `u·width` and `(2¹⁶ − v)·height` (r2, r3), as the pipeline's
 /// saturating products where none saturates (one that would: to 17), stored at lr (which moves

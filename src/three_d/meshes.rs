@@ -306,6 +306,8 @@ mod host {
             if uvs {
                 mesh += &format!(".with_uvs(&{name}_UVS)");
             }
+            // The positions' extent found when compiling, not by every draw.
+            mesh += ".with_extent()";
             s += &format!("pub static {name}: Mesh<'static> = {mesh};\n\n");
             let vecs = |s: &mut String, what: &str, suffix: &str, v: &[Vec3]| {
                 *s += &format!("/// {what} of `{name}` (`I16F16` bits).\n");

@@ -82,7 +82,7 @@ use super::texturing::{
     FaceTexture, FrameTexture, NoTexture, Opacity, PixelLight, TexelLight, TexturedMaterial,
 };
 use super::vertex::{Inverse, ProjectedVertex, VertexLight, VertexSpecular, VertexStage};
-use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
+use crate::arch::{self, LevelField, TexturedDraw, SIZE_OVER_SPEED};
 use crate::color::GouraudColor;
 use crate::fixed_point::Coord;
 use crate::raster::arith::mul_i32_wide;
@@ -513,16 +513,6 @@ pub(crate) fn fit_scratch<'s>(
         .ok_or(ScratchTooSmall { needed, given })
 }
 
-/// The largest magnitudes of the raw `x`, `y` and `z` of `positions`: the half sizes of the
-/// box around the origin that holds them (whose corners the vertex stage tests against the view
-/// volume).
-fn bounds(positions: &[Vec3]) -> [u32; 3] {
-    positions.iter().fold([0; 3], |[bx, by, bz], p| {
-        let [x, y, z] = p.to_bits().map(i32::unsigned_abs);
-        [bx.max(x), by.max(y), bz.max(z)]
-    })
-}
-
 /// How a draw colours its faces. Copied as a whole (a band's draw copies it, its 256 colours
 /// included: a word copy, where a field-by-field clone copies the colours as halves).
 enum Fill<C> {
@@ -796,7 +786,7 @@ where
         clip: TargetClip<R>,
     ) -> Self {
         let light = VertexLight::new(&pipeline.light, &pipeline.normal_matrix);
-        let stage = pipeline.stage(bounds(mesh.vertices), None);
+        let stage = pipeline.stage(mesh.half_sizes(), None);
         // A highlight of strength 0 is none: the same frame as without it.
         let specular = material
             .specular
@@ -890,7 +880,7 @@ impl<'p, C: GouraudColor, R: RowWindow> Frame<'p, C, R> {
         // stage.
         let vertex_rig = rig.is_some() && vertex_light.is_some();
         let vertex_light = vertex_light.filter(|_| rig.is_none());
-        let stage = pipeline.stage(bounds(mesh.vertices), vertex_light);
+        let stage = pipeline.stage(mesh.half_sizes(), vertex_light);
         Frame {
             pipeline,
             band: clip.rows().band().map(|b| BandPlanes::new(&stage, &b)),
@@ -1054,8 +1044,7 @@ impl<'p, C: GouraudColor, R: RowWindow, T: FaceTexture<C>> Frame<'p, C, R, T> {
                     // Every vertex inside the view volume.
                     let count = vertices.len().min(scratch.len());
                     let out = &mut scratch[..count];
-                    self.light
-                        .light_all(normals, out, |v, level| *v = v.with_texel_level(level));
+                    self.light.light_all(normals, out, LevelField::TexelLevel);
                     return;
                 }
                 for ((out, p), n) in scratch.iter_mut().zip(vertices).zip(normals) {

@@ -21,7 +21,7 @@ use super::clip::{ClipVolume, W_MIN};
 use super::depth::{ScreenVertex, DEPTH_FAR};
 use super::light::{Highlight, Light, Specular};
 use super::math::{normalize_wide, sat32, Mat4, Vec3, SCALAR_BITS};
-use crate::arch::{self, NO_LONG_MULTIPLY};
+use crate::arch::{self, LevelField, LevelLight, NO_LONG_MULTIPLY};
 use crate::fixed_point::Coord;
 use crate::raster::arith::{
     leading_zeros_32, leading_zeros_64, mul_i32_wide, mul_u32_wide, reciprocal_63,
@@ -412,9 +412,18 @@ impl VertexLight {
         &self,
         normals: &[Vec3],
         out: &mut [ProjectedVertex],
-        set: impl Fn(&mut ProjectedVertex, u16),
+        field: LevelField,
     ) {
+        let set = |v: &mut ProjectedVertex, level: u16| match field {
+            LevelField::Level => v.level = level,
+            LevelField::TexelLevel => v.texel_level = level,
+        };
         if self.normal_matrix.is_none() {
+            // ARMv7-M: one assembly loop.
+            let light = LevelLight::new(self.direction, self.ambient);
+            if light.is_some_and(|l| arch::light_levels(normals, out, field, &l)) {
+                return;
+            }
             for (v, n) in out.iter_mut().zip(normals) {
                 set(v, self.level_of_unit(*n));
             }
@@ -741,7 +750,7 @@ impl VertexStage {
             let out = &mut out[..count];
             match self.light {
                 Some(light) if normals.len() >= out.len() => {
-                    light.light_all(normals, out, |v, level| v.level = level);
+                    light.light_all(normals, out, LevelField::Level);
                 }
                 _ => {
                     for (k, out) in out.iter_mut().enumerate() {

@@ -10,7 +10,8 @@ pub static COLORED_QUAD: Mesh<'static> = Mesh::new(
     &COLORED_QUAD_INDICES,
 )
 .with_colors(&COLORED_QUAD_COLORS)
-.with_uvs(&COLORED_QUAD_UVS);
+.with_uvs(&COLORED_QUAD_UVS)
+.with_extent();
 
 /// Vertex positions of `COLORED_QUAD` (`I16F16` bits).
 pub static COLORED_QUAD_VERTICES: [Vec3; 4] = [

@@ -3,7 +3,8 @@
 use embedded_raster::three_d::{Mesh, Vec3};
 
 /// `KNOT` with its normals and indices.
-pub static KNOT: Mesh<'static> = Mesh::new(&KNOT_VERTICES, &KNOT_NORMALS, &KNOT_INDICES);
+pub static KNOT: Mesh<'static> =
+    Mesh::new(&KNOT_VERTICES, &KNOT_NORMALS, &KNOT_INDICES).with_extent();
 
 /// Vertex positions of `KNOT` (`I16F16` bits).
 pub static KNOT_VERTICES: [Vec3; 3072] = [

@@ -3,7 +3,8 @@
 use embedded_raster::three_d::{Mesh, Vec3};
 
 /// `SPOT` with its normals and indices.
-pub static SPOT: Mesh<'static> = Mesh::new(&SPOT_VERTICES, &SPOT_NORMALS, &SPOT_INDICES);
+pub static SPOT: Mesh<'static> =
+    Mesh::new(&SPOT_VERTICES, &SPOT_NORMALS, &SPOT_INDICES).with_extent();
 
 /// Vertex positions of `SPOT` (`I16F16` bits).
 pub static SPOT_VERTICES: [Vec3; 2930] = [

@@ -8,7 +8,8 @@ pub static SPOT_TEXTURED: Mesh<'static> = Mesh::new(
     &SPOT_TEXTURED_NORMALS,
     &SPOT_TEXTURED_INDICES,
 )
-.with_uvs(&SPOT_TEXTURED_UVS);
+.with_uvs(&SPOT_TEXTURED_UVS)
+.with_extent();
 
 /// Vertex positions of `SPOT_TEXTURED` (`I16F16` bits).
 pub static SPOT_TEXTURED_VERTICES: [Vec3; 3225] = [

@@ -4,7 +4,7 @@ use crate::three_d::{Mesh, Vec3};
 
 /// `ICOSPHERE` with its normals and indices.
 pub static ICOSPHERE: Mesh<'static> =
-    Mesh::new(&ICOSPHERE_VERTICES, &ICOSPHERE_NORMALS, &ICOSPHERE_INDICES);
+    Mesh::new(&ICOSPHERE_VERTICES, &ICOSPHERE_NORMALS, &ICOSPHERE_INDICES).with_extent();
 
 /// Vertex positions of `ICOSPHERE` (`I16F16` bits).
 pub static ICOSPHERE_VERTICES: [Vec3; 42] = [

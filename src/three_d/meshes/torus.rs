@@ -3,7 +3,8 @@
 use crate::three_d::{Mesh, Vec3};
 
 /// `TORUS` with its normals and indices.
-pub static TORUS: Mesh<'static> = Mesh::new(&TORUS_VERTICES, &TORUS_NORMALS, &TORUS_INDICES);
+pub static TORUS: Mesh<'static> =
+    Mesh::new(&TORUS_VERTICES, &TORUS_NORMALS, &TORUS_INDICES).with_extent();
 
 /// Vertex positions of `TORUS` (`I16F16` bits).
 pub static TORUS_VERTICES: [Vec3; 96] = [
