@@ -1,8 +1,9 @@
 //! Profiling firmware: draws one triangle set many times with one renderer, for QEMU's
 //! execution log (`-d in_asm,exec,nochain`), which `.ci/qprof.py` turns into instructions per
 //! function. The renderer and set are chosen at build time with the `PROFILE` environment
-//! variable, `<solid|gouraud|aa|polygon|opacity>-<large|small|tiny>` (default `gouraud-tiny`; `aa`: solid
-//! anti-aliased):
+//! variable, `<solid|gouraud|aa|polygon|opacity|linear>-<large|small|tiny>` (default
+//! `gouraud-tiny`; `aa`: solid anti-aliased; `linear`: `fw_bench`'s three-stop linear gradient
+//! across the screen):
 //!
 //! ```text
 //! PROFILE=solid-small cargo build --release --target thumbv6m-none-eabi --example fw_profile
@@ -77,6 +78,17 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
                 if let Ok(polygon) = Polygon::<3>::from_points(&corners) {
                     polygon.filled(Rgb565::RED).draw_into(fb);
                 }
+            } else if PROFILE.starts_with("linear") {
+                use embedded_raster::paint::{LinearGradient, Stop, STOP_ONE};
+                use embedded_raster::PaintedTriangle;
+                let stops = [
+                    Stop::new(0, Rgb565::new(31, 8, 2)),
+                    Stop::new(STOP_ONE * 2 / 5, Rgb565::new(3, 60, 9)),
+                    Stop::new(STOP_ONE, Rgb565::new(1, 12, 30)),
+                ];
+                let at = |x: i32, y: i32| (Coord::from_bits(x * 256), Coord::from_bits(y * 256));
+                let g = LinearGradient::new(at(0, 0), at(w, h), stops);
+                PaintedTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), g).draw_into(fb);
             } else if PROFILE.starts_with("opacity") {
                 SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
                     .with_opacity(128)
