@@ -289,7 +289,15 @@ pub fn scatter<'a>(
             let v = 3 * k + j;
             vertices[v] = Vec3::from_bits(p[0], p[1], p[2]);
             let n = [(); 3].map(|_| next(16) - (1 << 15));
-            normals[v] = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
+            let n = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
+            // One normal in eight half as long again (a mesh's normals need not be unit): lit
+            // as it is by a rotation-free draw, its level reaches the clamp at full diffuse.
+            let [x, y, z] = n.to_bits();
+            normals[v] = if v % 8 == 5 {
+                Vec3::from_bits(x + x / 2, y + y / 2, z + z / 2)
+            } else {
+                n
+            };
         }
         *face = [0, 1, 2].map(|j| (3 * k + j) as u16);
         // One face in 64 with an index past the vertices (each corner in turn): never drawn,
@@ -410,7 +418,15 @@ pub fn depths<'a>(
             let v = 3 * k + j;
             vertices[v] = Vec3::from_bits(p[0], p[1], p[2]);
             let n = [(); 3].map(|_| next(16) - (1 << 15));
-            normals[v] = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
+            let n = Vec3::from_bits(n[0], n[1], n[2] | 1).normalize();
+            // One normal in eight half as long again (a mesh's normals need not be unit): lit
+            // as it is by a rotation-free draw, its level reaches the clamp at full diffuse.
+            let [x, y, z] = n.to_bits();
+            normals[v] = if v % 8 == 5 {
+                Vec3::from_bits(x + x / 2, y + y / 2, z + z / 2)
+            } else {
+                n
+            };
         }
         *face = [0, 1, 2].map(|j| (3 * k + j) as u16);
         // One face in 64 with an index past the vertices (each corner in turn): never drawn,
@@ -488,6 +504,17 @@ pub fn render_depths(
         for v in scratch.iter().take(3 * DEPTHS_FACES) {
             core::hash::Hash::hash(v, &mut vertices);
         }
+    }
+    // Once more without the scaling: a rotation-free model, whose vertex stage lights the
+    // normals as they are (the unit-normal levels, `arch::light_levels` on ARMv7-M).
+    let model = Mat4::translation(Vec3::new(Scalar::ZERO, Scalar::ZERO, -Scalar::from_num(2)));
+    let pipeline = Pipeline::new(model, camera, viewport, light());
+    let s = pipeline
+        .draw_mesh_with(mesh, &MATERIAL, target, scratch)
+        .unwrap_or_default();
+    add_stats(&mut stats, &s);
+    for v in scratch.iter().take(3 * DEPTHS_FACES) {
+        core::hash::Hash::hash(v, &mut vertices);
     }
     DepthsLine {
         stats,
