@@ -99,8 +99,7 @@ use super::shading::{
 };
 use super::vertex::{Inverse, ProjectedVertex};
 use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
-use crate::color::scale_channels;
-use crate::color::GouraudColor;
+use crate::color::{scale_channels, GouraudColor};
 use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
