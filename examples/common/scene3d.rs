@@ -476,8 +476,8 @@ impl core::hash::Hasher for FnvHasher {
 }
 
 /// The [`depths`] frame: the cluster `mesh` drawn (with `scratch`) at each of twelve distances
-/// from 0.5 to 1024, scaled by its distance, through a 60° camera whose depth range is 0.25 to
-/// 2048. Each cluster's box is inside the view volume, so its vertices take a core's own vertex
+/// from 0.5 to 1024, scaled by its distance, then once at distance 2 unscaled, through a 60°
+/// camera whose depth range is 0.25 to 2048. Each cluster's box is inside the view volume, so its vertices take a core's own vertex
 /// stage where it has one (`arch::project_positions`): the frame tests it against the host's
 /// over the range of `w`.
 pub fn render_depths(
@@ -491,11 +491,16 @@ pub fn render_depths(
     target.clear(BACKGROUND);
     let mut stats = DrawStats::default();
     let mut vertices = FnvHasher(0x811c_9dc5);
-    for (distance, [x, y]) in DEPTHS_CLUSTERS {
+    let scaled = DEPTHS_CLUSTERS.into_iter().map(|(distance, [x, y])| {
         let d = Scalar::from_num(distance);
         let slope = |c: i32| d * Scalar::from_num(c) / Scalar::from_num(100);
         let place = Mat4::translation(Vec3::new(slope(x), slope(y), -d));
-        let model = place * Mat4::scaling(d);
+        place * Mat4::scaling(d)
+    });
+    // Last, once more without the scaling: a rotation-free model, whose vertex stage lights the
+    // normals as they are (the unit-normal levels, `arch::light_levels` on ARMv7-M).
+    let unscaled = Mat4::translation(Vec3::new(Scalar::ZERO, Scalar::ZERO, -Scalar::from_num(2)));
+    for model in scaled.chain(core::iter::once(unscaled)) {
         let pipeline = Pipeline::new(model, camera, viewport, light());
         let s = pipeline
             .draw_mesh_with(mesh, &MATERIAL, target, scratch)
@@ -504,17 +509,6 @@ pub fn render_depths(
         for v in scratch.iter().take(3 * DEPTHS_FACES) {
             core::hash::Hash::hash(v, &mut vertices);
         }
-    }
-    // Once more without the scaling: a rotation-free model, whose vertex stage lights the
-    // normals as they are (the unit-normal levels, `arch::light_levels` on ARMv7-M).
-    let model = Mat4::translation(Vec3::new(Scalar::ZERO, Scalar::ZERO, -Scalar::from_num(2)));
-    let pipeline = Pipeline::new(model, camera, viewport, light());
-    let s = pipeline
-        .draw_mesh_with(mesh, &MATERIAL, target, scratch)
-        .unwrap_or_default();
-    add_stats(&mut stats, &s);
-    for v in scratch.iter().take(3 * DEPTHS_FACES) {
-        core::hash::Hash::hash(v, &mut vertices);
     }
     DepthsLine {
         stats,
