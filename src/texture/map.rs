@@ -1,9 +1,9 @@
 //! [`Texture`]: texel storage with its size, wrap modes and filter, sampled at 16.16 fixed-point
 //! texel coordinates.
 
-use super::address::{Axis, Wrap};
 use core::marker::PhantomData;
 
+use super::address::{Axis, Wrap};
 use super::source::TexelSource;
 use crate::color::GouraudColor;
 use crate::raster::arith::mul_u32_wide;
@@ -304,15 +304,14 @@ impl<C: GouraudColor> Blend<C> {
                 let low = (s * (f & 1023) + (1 << (shift - 1))) >> 10;
                 (s * (f >> 10) + low) >> (shift - 10)
             } else {
-                // A level above 1 takes a channel of 128 or more past its maximum.
-                let v = (mul_u32_wide(s, f) + (1 << (shift - 1))) >> shift;
-                v as u32
+                ((mul_u32_wide(s, f) + (1 << (shift - 1))) >> shift) as u32
             }
         };
         let [a, b, c] = self.sums;
         let [ma, mb, mc] = C::MAX;
         let (ma, mb, mc) = (u32::from(ma), u32::from(mb), u32::from(mc));
-        // 5-6-5 channels stay within theirs (`63·257/256 + ½ < 64`); wider ones are clamped.
+        // 5-6-5 channels stay within theirs (`63·257/256 + ½ < 64`); a level above 1 takes a
+        // channel of 128 or more past its maximum, so wider ones are clamped.
         let clamp = |v: u32, max: u32| if k > 7 { v.min(max) } else { v } as u8;
         C::from_channels([
             clamp(scaled(a), ma),

@@ -99,7 +99,7 @@ use super::shading::{
 };
 use super::vertex::{Inverse, ProjectedVertex};
 use crate::arch::{self, TexturedDraw, SIZE_OVER_SPEED};
-use crate::color::{scale_channels, GouraudColor};
+use crate::color::GouraudColor;
 use crate::raster::arith::mul_i32_wide;
 use crate::raster::band::RowWindow;
 use crate::raster::perspective::{self, step_over, Chunks, Corrected, Lambda};
@@ -1454,15 +1454,10 @@ trait SpanLight: Copy {
     /// The state at the first pixel of a chunk from the values `start` to `end` (its ends'
     /// [`end`](Self::end)s) over `over` pixels, and its step.
     fn chunk(&self, start: Self::End, end: Self::End, over: u32) -> (Self::Level, Self::Level);
-    /// The texel lit at `level`.
-    fn apply<C: GouraudColor>(&self, texel: C, level: Self::Level) -> C;
-    /// The sample (a texel, or a bilinear blend before its rounding) lit at `level`: the texel
-    /// [`apply`](Self::apply)'s, or a one-level light's scaling of the blend
-    /// ([`Sampled::lit`]).
-    #[inline(always)]
-    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: Self::Level) -> C {
-        self.apply(sample.color(), level)
-    }
+    /// The sample (a texel, or a bilinear blend before its rounding) lit at `level`: a
+    /// one-level light scales a blend before its one rounding ([`Sampled::lit`]), the others
+    /// light the rounded texel.
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: Self::Level) -> C;
     /// `level` a pixel on.
     fn step(level: Self::Level, by: Self::Level) -> Self::Level;
 
@@ -1516,8 +1511,8 @@ impl SpanLight for Unlit {
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, _: ()) -> C {
-        texel
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, _: ()) -> C {
+        sample.color()
     }
 
     #[inline(always)]
@@ -1560,16 +1555,11 @@ impl SpanLight for Constant {
         ((), ())
     }
 
-    #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, _: ()) -> C {
-        scale_channels::<C>(texel.channels(), self.0)
-    }
-
     /// A full level leaves the sample as it is (a blend rounded once, as unlit: scaled by
     /// `2¹⁸ − 4` it could round a step lower), so that a full light is no light on every
     /// target (where flash counts, no light is drawn as a full level).
     #[inline(always)]
-    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, _: ()) -> C {
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, _: ()) -> C {
         if self.plain() {
             return sample.color();
         }
@@ -1580,7 +1570,7 @@ impl SpanLight for Constant {
     fn step(_: (), _: ()) {}
 
     /// The same level everywhere: at most 65 535, which the loop's clamp leaves as it is; none
-    /// where it is full (as [`shade`](Self::shade) draws it).
+    /// where it is full (as [`apply`](Self::apply) draws it).
     #[inline(always)]
     fn span_level(&self) -> Option<Option<[i32; 3]>> {
         Some((!self.plain()).then_some([self.0 as i32, 0, 0]))
@@ -1631,12 +1621,7 @@ impl SpanLight for PlaneLevel {
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
-        scale_channels::<C>(texel.channels(), plane_fraction(level))
-    }
-
-    #[inline(always)]
-    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: i32) -> C {
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: i32) -> C {
         sample.lit(plane_fraction(level), plane_fraction_18(level))
     }
 
@@ -1675,8 +1660,8 @@ impl<const K: usize> SpanLight for PlaneChannels<K> {
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; K]) -> C {
-        lit_channels::<C, K>(texel.channels(), light.map(plane_fraction))
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, light: [i32; K]) -> C {
+        lit_channels::<C, K>(sample.color().channels(), light.map(plane_fraction))
     }
 
     #[inline(always)]
@@ -1742,12 +1727,7 @@ impl SpanLight for Varying {
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, level: i32) -> C {
-        scale_channels::<C>(texel.channels(), level.clamp(0, 1 << 16) as u32)
-    }
-
-    #[inline(always)]
-    fn shade<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: i32) -> C {
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, level: i32) -> C {
         let f = level.clamp(0, 1 << 16) as u32;
         sample.lit(f, f << 2)
     }
@@ -1802,8 +1782,9 @@ impl<const K: usize> SpanLight for CorrectedChannels<K> {
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, light: [i32; K]) -> C {
-        lit_channels::<C, K>(texel.channels(), light.map(|t| t.clamp(0, 1 << 16) as u32))
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, light: [i32; K]) -> C {
+        let light = light.map(|t| t.clamp(0, 1 << 16) as u32);
+        lit_channels::<C, K>(sample.color().channels(), light)
     }
 
     #[inline(always)]
@@ -1986,7 +1967,7 @@ impl SpanLight for PerPixel<'_> {
     }
 
     #[inline(always)]
-    fn apply<C: GouraudColor>(&self, texel: C, (n, _): Self::Level) -> C {
+    fn apply<C: GouraudColor, T: Sampled<C>>(&self, sample: T, (n, _): Self::Level) -> C {
         // 16 fractional bits, within ±2¹⁷ (the field stays near unit length).
         let q = n.map(|v| (v.wrapping_add(1 << 11) >> 12).clamp(-(1 << 17) + 1, (1 << 17) - 1));
         let light = self.0;
@@ -2002,7 +1983,7 @@ impl SpanLight for PerPixel<'_> {
             level = level.saturating_add(weigh(d)).min(1 << 16);
             specular = specular.saturating_add(weigh(sp)).min(1 << 16);
         }
-        highlighted_channels::<C>(texel.channels(), level, specular)
+        highlighted_channels::<C>(sample.color().channels(), level, specular)
     }
 
     #[inline(always)]
@@ -2236,7 +2217,7 @@ fn pixels<C: GouraudColor, T: Sampled<C>, L: SpanLight>(
         let z16 = (z >> DEPTH_SHIFT) as u16;
         if z16 < *depth {
             *depth = z16;
-            *px = light.shade(texel(x, y), level);
+            *px = light.apply(texel(x, y), level);
         }
         z = z.wrapping_add(dz);
         x = x.wrapping_add(dx);
@@ -2260,7 +2241,7 @@ fn blended_pixels<C: GouraudColor, T: Sampled<C>, L: SpanLight>(
 ) -> u32 {
     for (px, depth) in colors.iter_mut().zip(depths.iter()) {
         if ((z >> DEPTH_SHIFT) as u16) < *depth {
-            *px = light.shade(texel(x, y), level).blend(*px, opacity);
+            *px = light.apply(texel(x, y), level).blend(*px, opacity);
         }
         z = z.wrapping_add(dz);
         x = x.wrapping_add(dx);
