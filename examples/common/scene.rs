@@ -276,6 +276,58 @@ pub fn for_each_shape(width: u32, height: u32, mut f: impl FnMut(Shape)) {
             color(hash(k, 10, 6)),
         ));
     }
+
+    // 7. Small triangles (boxes up to 16 px), most across a border, at sub-pixel positions: thin
+    //    slivers, pixel-centre corners (fill-rule ties), sizes from a fraction of a pixel up,
+    //    and a few whose coordinates are near the ends of the range.
+    for k in 0..96 {
+        let r = |s: u32| hash(k, 12, s);
+        // Most across a border: the first or last 12 px of an axis, or 12 px beyond it.
+        let near = |n: i32, s: u32| {
+            let along = (r(s) % (24 * 256)) as i32 - 12 * 256;
+            match r(s + 20) % 3 {
+                0 => along,
+                1 => n + along,
+                _ => r(s + 40).checked_rem(n as u32).unwrap_or(0) as i32,
+            }
+        };
+        let (mut x, mut y) = (near(w, 1), near(h, 2));
+        if k % 8 == 7 {
+            (x, y) = (i32::MAX - 5000 - (r(1) % 4096) as i32, y);
+        } else if k % 8 == 6 {
+            (x, y) = (x, i32::MIN + 5000 + (r(2) % 4096) as i32);
+        }
+        let size = (((r(3) % 4095) as i32 + 1) >> (r(4) % 4)).max(1);
+        let corner = |s: u32| {
+            // (`checked_rem`: no division-by-zero panic path in the firmware that proves there
+            // is none.)
+            let within = |v: u32| v.checked_rem(size as u32).unwrap_or(0) as i32;
+            let (dx, dy) = (within(r(s)), within(r(s + 1)));
+            if k % 5 == 1 {
+                ((x + dx) & !255 | 128, (y + dy) & !255 | 128)
+            } else {
+                (x + dx, y + dy)
+            }
+        };
+        let (a, b) = (corner(5), corner(7));
+        let c = if k % 6 == 2 {
+            // Nearly on the line through the other two.
+            (
+                b.0 + (b.0 - a.0) / 2 + (r(9) % 3) as i32 - 1,
+                b.1 + (b.1 - a.1) / 2,
+            )
+        } else {
+            corner(9)
+        };
+        // Twice, so that each is drawn by both `draw` and `draw_into` (`render_opaque`
+        // alternates them), the same pixels.
+        for _ in 0..2 {
+            f(gouraud(
+                [a, b, c],
+                [color(r(11)), color(r(12)), color(r(13))],
+            ));
+        }
+    }
 }
 
 /// Solid triangles at an opacity, drawn over the finished opaque scene ([`render`]): one

@@ -96,6 +96,8 @@ struct DitherIntoSlice<'f, 'a, C> {
 impl<C: GouraudColor> SpanShader<3> for DitherIntoSlice<'_, '_, C> {
     type Steps = SpanSteps;
 
+    scan_small_with_walk_planes!();
+
     #[inline(always)]
     fn prepare(&mut self, step: [u32; 3]) -> SpanSteps {
         C::prepare_steps(step)

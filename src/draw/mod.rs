@@ -6,6 +6,23 @@
 //! an `ImageDrawable` (blit it to any `DrawTarget` with `Image`) and, with the `png` feature,
 //! saves itself as a PNG file.
 
+/// A 2D fill's span shader scans small triangles where a division is an instruction, with the
+/// compact walk's planes ([`SpanShader::walk_planes`](crate::raster::SpanShader)): the same
+/// spans and values as `draw`'s and the bands' walks of them.
+macro_rules! scan_small_with_walk_planes {
+    () => {
+        #[inline(always)]
+        fn scans_small(&self) -> bool {
+            crate::arch::MCU && crate::arch::HAS_DIVIDER
+        }
+
+        #[inline(always)]
+        fn walk_planes(&self) -> bool {
+            true
+        }
+    };
+}
+
 mod antialias;
 mod dithered;
 mod framebuffer;

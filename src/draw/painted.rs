@@ -66,6 +66,8 @@ struct PaintIntoSlice<'f, 'a, 'p, P: Paint> {
 impl<P: Paint> SpanShader<0> for PaintIntoSlice<'_, '_, '_, P> {
     type Steps = ();
 
+    scan_small_with_walk_planes!();
+
     #[inline(always)]
     fn prepare(&mut self, _: [u32; 0]) {}
 

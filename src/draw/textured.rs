@@ -257,6 +257,8 @@ where
 {
     type Steps = Steps;
 
+    scan_small_with_walk_planes!();
+
     #[inline(always)]
     fn prepare(&mut self, step: [u32; 2]) -> Steps {
         self.texels.prepare(step)

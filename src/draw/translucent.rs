@@ -253,6 +253,8 @@ impl<C: GouraudColor, S: SpanSource<C, N>, const N: usize> SpanShader<N>
 {
     type Steps = S::Steps;
 
+    scan_small_with_walk_planes!();
+
     #[inline(always)]
     fn prepare(&mut self, step: [u32; N]) -> S::Steps {
         self.source.prepare(step)

@@ -246,6 +246,8 @@ impl<C: GouraudColor> SpanShader<3> for IntoSlice<'_, '_, C> {
         C::prepare_steps(step)
     }
 
+    scan_small_with_walk_planes!();
+
     #[inline(always)]
     fn span(&mut self, steps: &SpanSteps, span: Span, start: [u32; 3]) {
         // The spans of the walk are clipped to the framebuffer.
@@ -287,6 +289,8 @@ struct ToTarget<'t, D: DrawTarget> {
 
 impl<C: GouraudColor, D: DrawTarget<Color = C>> SpanShader<3> for ToTarget<'_, D> {
     type Steps = SpanSteps;
+
+    scan_small_with_walk_planes!();
 
     #[inline(always)]
     fn prepare(&mut self, step: [u32; 3]) -> SpanSteps {
@@ -438,6 +442,8 @@ struct SolidIntoSlice<'f, 'a, C> {
 impl<C: PixelColor> SpanShader<0> for SolidIntoSlice<'_, '_, C> {
     type Steps = ();
 
+    scan_small_with_walk_planes!();
+
     #[inline(always)]
     fn prepare(&mut self, _: [u32; 0]) {}
 
@@ -478,6 +484,8 @@ struct SolidToTarget<'t, D: DrawTarget> {
 
 impl<D: DrawTarget> SpanShader<0> for SolidToTarget<'_, D> {
     type Steps = ();
+
+    scan_small_with_walk_planes!();
 
     #[inline(always)]
     fn prepare(&mut self, _: [u32; 0]) {}

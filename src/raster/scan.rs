@@ -14,13 +14,17 @@
 //!
 //! The planes are within the compact planes' error bound but are not their integers, so
 //! shaders opt in ([`SpanShader::scans_small`]): the 3D pipeline's depth-tested fills, whose
-//! triangles are mostly this small. Firmware drawing only 2D triangles does not link it.
+//! triangles are mostly this small and which scan them on every path. The 2D fills, whose
+//! other paths walk, scan on cores with a divider with the compact walk's planes instead
+//! ([`SpanShader::walk_planes`]: `Planes::compact` of the set-up the walk would make, the
+//! same integers). Firmware drawing only 2D triangles on Cortex-M0 does not link it.
 
 use embedded_graphics::primitives::Rectangle;
 
 use core::num::NonZeroU32;
 
 use super::arith::{leading_zeros_32, mul_i32_wide, reciprocal_63};
+use super::compact::CompactSetup;
 use super::plane::{Attributes, Planes};
 use super::runs::SMALL;
 use super::runs::{run_by_scan, Edge, ReciprocalRuns, RowBound, RowRuns, SmallScan};
@@ -28,6 +32,7 @@ use super::sink::SpanShader;
 use super::walk::{bounds, Band, Region, Span};
 use crate::arch::{SmallSetup, HAS_DIVIDER, MCU};
 use crate::fixed_point::{Coord, HALF_PIXEL, SUBPIXEL_BITS};
+use core::num::NonZeroU64;
 
 // The Thumb-2 set-up of a small lit face (`arch::thumbv7m`'s `level_face`) has these in its
 // instructions: the box's limit (4096 sub-pixels), the half pixel (0x80) and the sub-pixel bits
@@ -56,12 +61,14 @@ enum NotSmall {
 
 impl<const N: usize> SmallTriangle<N> {
     /// The triangle `v` with `attributes` over `clip`, if it is small (its vertices within
-    /// [`SMALL`] pixels of each other on both axes, less a sub-pixel) and not a sliver.
+    /// [`SMALL`] pixels of each other on both axes, less a sub-pixel) and, for its own planes,
+    /// not a sliver; with the compact walk's planes where `walk_planes` (any small triangle).
     #[inline(always)]
     fn new(
         v: [(Coord, Coord); 3],
         attributes: &Attributes<N>,
         clip: &Rectangle,
+        walk_planes: bool,
     ) -> Result<Self, NotSmall> {
         let p = v.map(|(x, y)| (x.to_bits(), y.to_bits()));
         let [p0, p1, p2] = p;
@@ -69,7 +76,11 @@ impl<const N: usize> SmallTriangle<N> {
         let [min_x, min_y, max_x, max_y] = bounds;
         // The wrapping differences are the true ones (below 2³²).
         let limit = SMALL << SUBPIXEL_BITS;
-        if max_x.wrapping_sub(min_x) as u32 >= limit || max_y.wrapping_sub(min_y) as u32 >= limit {
+        let (width, height) = (
+            max_x.wrapping_sub(min_x) as u32,
+            max_y.wrapping_sub(min_y) as u32,
+        );
+        if width >= limit || height >= limit {
             return Err(NotSmall::Other);
         }
         // Relative to vertex 0: below 2¹², so the doubled area is below 2²⁵.
@@ -98,8 +109,23 @@ impl<const N: usize> SmallTriangle<N> {
         let (e0, _) = Edge::new(o1, o2, first);
         let (e1, l1) = Edge::new(o2, (0, 0), first);
         let (e2, l2) = Edge::new((0, 0), o1, first);
-        let planes = small_planes(attributes, swap, area2.unsigned_abs(), (e1, l1), (e2, l2))
-            .ok_or(NotSmall::Other)?;
+        let planes = if walk_planes {
+            // The compact walk's set-up of the same triangle over the same clip: its vertex 0,
+            // orientation, edges and first pixel are these.
+            let setup = CompactSetup {
+                order: if swap { [0, 2, 1] } else { [0, 1, 2] },
+                a: [e1.a, e2.a],
+                b: [e1.b, e2.b],
+                area2: NonZeroU64::MIN.saturating_add(u64::from(area2.unsigned_abs()) - 1),
+                dx: first.0,
+                dy: first.1,
+                reach: ((width + height) >> SUBPIXEL_BITS) + 2,
+            };
+            Planes::compact(&setup, attributes)
+        } else {
+            small_planes(attributes, swap, area2.unsigned_abs(), (e1, l1), (e2, l2))
+                .ok_or(NotSmall::Other)?
+        };
         Ok(SmallTriangle {
             x0,
             y0,
@@ -192,7 +218,7 @@ pub(crate) fn shade<const N: usize, S: SpanShader<N>>(
     clip: &Rectangle,
     shader: &mut S,
 ) -> bool {
-    match SmallTriangle::new(v, attributes, clip) {
+    match SmallTriangle::new(v, attributes, clip, shader.walk_planes()) {
         Ok(triangle) => {
             triangle.draw(shader);
             true
@@ -217,7 +243,7 @@ pub(crate) fn shade_rows<const N: usize, S: SpanShader<N>>(
     shader: &mut S,
     keep: Option<&mut impl KeptWords>,
 ) -> Option<bool> {
-    match SmallTriangle::new(v, attributes, clip) {
+    match SmallTriangle::new(v, attributes, clip, shader.walk_planes()) {
         Ok(triangle) => {
             // The runs once, for the set-up kept and this band's rows.
             let runs = RowRuns::new(&triangle.edges, triangle.last + 1);
@@ -518,6 +544,7 @@ mod tests {
     use embedded_graphics::prelude::*;
 
     use super::*;
+    use crate::raster::compact::{Classified, CompactTriangle};
     use crate::raster::edge::TriangleSetup;
     use crate::raster::edge::{first_centre_from, last_centre_to};
     use crate::raster::plane::exact::check_channel_planes;
@@ -625,6 +652,30 @@ mod tests {
         assert!(partial > 50_000 && flat > 10_000, "{partial} {flat}");
     }
 
+    /// With the walk's planes (the 2D fills' scan), a scanned small triangle has the compact
+    /// walk's integers: the same set-up of the same triangle over the same clip, slivers too.
+    #[test]
+    fn scan_with_walk_planes_has_the_walks_integers() {
+        let mut same = 0;
+        let mut next = crate::random(0x5ca1_ab1e_0000_0003);
+        cases(0x5ca1_ab1e_0000_0004, 100_000, |v, clip| {
+            let channels = [(); 3].map(|_| [next() as u8, next() as u8, next() as u8]);
+            let attributes = Attributes::channels(channels);
+            let Classified::Compact(walked) = CompactTriangle::classify(v, &clip) else {
+                return;
+            };
+            let Ok(scanned) = SmallTriangle::new(v, &attributes, &clip, true) else {
+                return;
+            };
+            let planes = Planes::compact(&walked.setup, &attributes);
+            let parts = |p: &Planes<3>| (p.first(), p.step(), p.row_step());
+            assert_eq!(parts(&scanned.planes), parts(&planes), "{v:?} {clip:?}");
+            assert_eq!((scanned.x0, scanned.y0), (walked.x0, walked.y0));
+            same += 1;
+        });
+        assert!(same > 20_000, "{same}");
+    }
+
     /// Exactly the pixels of the per-pixel edge tests of the general set-up, once each, and
     /// attribute values within 2⁻¹⁰ LSB of the exact plane at every pixel of the region.
     #[test]
@@ -669,7 +720,7 @@ mod tests {
             // and stepped along it.
             let Some(setup) = setup else { return };
             let _ = setup;
-            let Ok(triangle) = SmallTriangle::new(v, &attributes, &clip) else {
+            let Ok(triangle) = SmallTriangle::new(v, &attributes, &clip, false) else {
                 return;
             };
             let region = (triangle.x0, triangle.y0, triangle.last, triangle.rows);

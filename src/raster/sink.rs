@@ -46,6 +46,15 @@ pub(crate) trait SpanShader<const N: usize> {
         false
     }
 
+    /// Whether a scanned small triangle takes the compact walk's planes (`Planes::compact`, the
+    /// integers a walk of it has: the 2D fills, whose other paths walk it) rather than the small
+    /// set-up's own (`false`, the default: the 3D fills, which scan small triangles on every
+    /// path, and ARMv7-M's assembly set-ups with them).
+    #[inline(always)]
+    fn walk_planes(&self) -> bool {
+        false
+    }
+
     /// All rows of a scanned small triangle at once (where a dedicated row loop is faster than a
     /// call a span): `true` if done, `false` (the default) to be handed its spans. Asked only
     /// where a division is an instruction.
