@@ -171,6 +171,31 @@ pub(crate) struct CompactSetup {
     pub(crate) reach: u32,
 }
 
+impl CompactSetup {
+    /// The set-up of a triangle whose oriented vertices are input vertices `order`, with edges
+    /// `(a, b)` opposite oriented vertices 1 and 2, doubled area `area2`, first pixel centre
+    /// `first` relative to vertex 0 and vertex box `extent` (sub-pixels): the compact walk's, and
+    /// the 2D fills' scan of a small triangle (`raster::scan`) takes the same.
+    #[inline(always)]
+    pub(crate) fn new(
+        order: [usize; 3],
+        (a, b): ([i32; 2], [i32; 2]),
+        area2: NonZeroU64,
+        first: (i32, i32),
+        extent: (u32, u32),
+    ) -> Self {
+        CompactSetup {
+            order,
+            a,
+            b,
+            area2,
+            dx: first.0,
+            dy: first.1,
+            reach: ((extent.0 + extent.1) >> SUBPIXEL_BITS) + 2,
+        }
+    }
+}
+
 /// A compact triangle oriented and placed over a clip rectangle: what its walks and colour
 /// planes start from.
 #[derive(Debug, Clone, Copy)]
@@ -267,15 +292,13 @@ impl CompactTriangle {
         };
         let (px, py) = (centre(x0, p[0].0), centre(y0, p[0].1));
         Classified::Compact(CompactTriangle {
-            setup: CompactSetup {
+            setup: CompactSetup::new(
                 order,
-                a: [coef[1].0, coef[2].0],
-                b: [coef[1].1, coef[2].1],
-                area2: area,
-                dx: px,
-                dy: py,
-                reach: ((extent.0 + extent.1) >> SUBPIXEL_BITS) + 2,
-            },
+                ([coef[1].0, coef[2].0], [coef[1].1, coef[2].1]),
+                area,
+                (px, py),
+                extent,
+            ),
             origin: p[0],
             o,
             coef,

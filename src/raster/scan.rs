@@ -111,16 +111,14 @@ impl<const N: usize> SmallTriangle<N> {
         let (e2, l2) = Edge::new((0, 0), o1, first);
         let planes = if walk_planes {
             // The compact walk's set-up of the same triangle over the same clip: its vertex 0,
-            // orientation, edges and first pixel are these.
-            let setup = CompactSetup {
-                order: if swap { [0, 2, 1] } else { [0, 1, 2] },
-                a: [e1.a, e2.a],
-                b: [e1.b, e2.b],
-                area2: NonZeroU64::MIN.saturating_add(u64::from(area2.unsigned_abs()) - 1),
-                dx: first.0,
-                dy: first.1,
-                reach: ((width + height) >> SUBPIXEL_BITS) + 2,
-            };
+            // orientation, edges and first pixel are these (the area is not zero: returned above).
+            let setup = CompactSetup::new(
+                if swap { [0, 2, 1] } else { [0, 1, 2] },
+                ([e1.a, e2.a], [e1.b, e2.b]),
+                NonZeroU64::MIN.saturating_add(u64::from(area2.unsigned_abs()) - 1),
+                first,
+                (width, height),
+            );
             Planes::compact(&setup, attributes)
         } else {
             small_planes(attributes, swap, area2.unsigned_abs(), (e1, l1), (e2, l2))
