@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Instruction profile of the rasterizer on an emulated Cortex-M or RISC-V (developer tool, not part of CI).
 #
-#   bash .ci/profile.sh <target> <solid|gouraud|aa|polygon|opacity|linear>-<large|small|tiny> [functions] [blocks]
+#   bash .ci/profile.sh <target> <solid|gouraud|aa|polygon|opacity|linear|radial>[-dithered]-<large|small|tiny> [functions] [blocks]
 #   bash .ci/profile.sh <target> mesh-<knot|torus>[-faces] [functions] [blocks]
 #   bash .ci/profile.sh thumbv6m-none-eabi gouraud-tiny 20 10
 #

@@ -1,9 +1,9 @@
 //! Profiling firmware: draws one triangle set many times with one renderer, for QEMU's
 //! execution log (`-d in_asm,exec,nochain`), which `.ci/qprof.py` turns into instructions per
 //! function. The renderer and set are chosen at build time with the `PROFILE` environment
-//! variable, `<solid|gouraud|aa|polygon|opacity|linear>-<large|small|tiny>` (default
-//! `gouraud-tiny`; `aa`: solid anti-aliased; `linear`: `fw_bench`'s three-stop linear gradient
-//! across the screen):
+//! variable, `<solid|gouraud|aa|polygon|opacity|linear|radial>[-dithered]-<large|small|tiny>`
+//! (default `gouraud-tiny`; `aa`: solid anti-aliased; `linear`, `radial`: `fw_bench`'s
+//! three-stop gradients; `-dithered`: the Gouraud or gradient fill ordered-dithered):
 //!
 //! ```text
 //! PROFILE=solid-small cargo build --release --target thumbv6m-none-eabi --example fw_profile
@@ -67,19 +67,24 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     let (set, reps) = triangles(w, h);
     let centre = |i: i32| Coord::from_bits(i * 256 + 128);
     let gouraud = PROFILE.starts_with("gouraud");
+    let dithered = PROFILE.contains("dithered");
     let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
     for _ in 0..reps {
         for t in &set {
             if gouraud {
                 let v = [0, 1, 2].map(|k| Vertex::new(centre(t[k].0), centre(t[k].1), colors[k]));
-                GouraudTriangle::new(v).draw_into(fb);
+                if dithered {
+                    GouraudTriangle::new(v).dithered().draw_into(fb);
+                } else {
+                    GouraudTriangle::new(v).draw_into(fb);
+                }
             } else if PROFILE.starts_with("polygon") {
                 let corners = t.map(|(x, y)| (centre(x), centre(y)));
                 if let Ok(polygon) = Polygon::<3>::from_points(&corners) {
                     polygon.filled(Rgb565::RED).draw_into(fb);
                 }
-            } else if PROFILE.starts_with("linear") {
-                use embedded_raster::paint::{LinearGradient, Stop, STOP_ONE};
+            } else if PROFILE.starts_with("linear") || PROFILE.starts_with("radial") {
+                use embedded_raster::paint::{LinearGradient, RadialGradient, Stop, STOP_ONE};
                 use embedded_raster::PaintedTriangle;
                 let stops = [
                     Stop::new(0, Rgb565::new(31, 8, 2)),
@@ -87,8 +92,21 @@ fn draw(fb: &mut SliceFramebuffer<'_, Rgb565>) {
                     Stop::new(STOP_ONE, Rgb565::new(1, 12, 30)),
                 ];
                 let at = |x: i32, y: i32| (Coord::from_bits(x * 256), Coord::from_bits(y * 256));
-                let g = LinearGradient::new(at(0, 0), at(w, h), stops);
-                PaintedTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), g).draw_into(fb);
+                let points = t.map(|(x, y)| (centre(x), centre(y)));
+                if PROFILE.starts_with("radial") {
+                    let centre = at(w * 2 / 5, h / 2);
+                    let mut g = RadialGradient::new(centre, Coord::from_bits(w * 256), stops);
+                    if dithered {
+                        g = g.dithered();
+                    }
+                    PaintedTriangle::new(points, g).draw_into(fb);
+                } else {
+                    let mut g = LinearGradient::new(at(0, 0), at(w, h), stops);
+                    if dithered {
+                        g = g.dithered();
+                    }
+                    PaintedTriangle::new(points, g).draw_into(fb);
+                }
             } else if PROFILE.starts_with("opacity") {
                 SolidTriangle::new(t.map(|(x, y)| (centre(x), centre(y))), Rgb565::RED)
                     .with_opacity(128)

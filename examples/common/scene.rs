@@ -383,6 +383,102 @@ pub fn render(fb: &mut SliceFramebuffer<'_, Rgb565>) {
     render_opaque(fb);
     render_translucent(fb);
     render_antialiased(fb);
+    render_dithered(fb);
+}
+
+/// Gouraud triangles ordered-dithered ([`render_dithered`]): one over most of the screen, one
+/// across the left and bottom borders, a sliver, a small one and one whose channels run from 0
+/// to their maximum (the lanes' margins), at sub-pixel positions, so that spans of every length
+/// start at every column of the Bayer matrix and both pixel parities.
+pub fn dithered_shapes(width: u32, height: u32) -> [GouraudTriangle<Rgb565>; 5] {
+    let w = (width.min(4096) as i32) * 256;
+    let h = (height.min(4096) as i32) * 256;
+    // (Constant indices: no bounds-check panic path in the firmware that proves there is none.)
+    let tri = |p: [(i32, i32); 3], c: [Rgb565; 3]| {
+        GouraudTriangle::new([
+            v(p[0].0, p[0].1, c[0]),
+            v(p[1].0, p[1].1, c[1]),
+            v(p[2].0, p[2].1, c[2]),
+        ])
+    };
+    [
+        tri(
+            [
+                (w / 20 + 7, h / 12),
+                (w - w / 15, h / 3 + 51),
+                (w / 4 + 3, h - h / 10),
+            ],
+            [
+                Rgb565::new(31, 5, 0),
+                Rgb565::new(3, 63, 12),
+                Rgb565::new(12, 0, 31),
+            ],
+        ),
+        tri(
+            [
+                (-w / 5, h / 2 + 19),
+                (w / 2 + 101, h - h / 6),
+                (w / 8, h + h / 4),
+            ],
+            [
+                Rgb565::new(0, 0, 0),
+                Rgb565::new(31, 63, 31),
+                Rgb565::new(16, 32, 16),
+            ],
+        ),
+        tri(
+            [
+                (w / 10 + 33, h / 2),
+                (w - w / 10, h / 2 + 200),
+                (w / 10, h / 2 + 420),
+            ],
+            [
+                Rgb565::new(7, 20, 30),
+                Rgb565::new(29, 41, 2),
+                Rgb565::new(15, 60, 9),
+            ],
+        ),
+        tri(
+            [
+                (w / 2 + 60, h / 5 + 90),
+                (w / 2 + 2100, h / 5 + 700),
+                (w / 2 + 500, h / 5 + 2600),
+            ],
+            [
+                Rgb565::new(31, 63, 31),
+                Rgb565::new(30, 62, 30),
+                Rgb565::new(31, 63, 0),
+            ],
+        ),
+        tri(
+            [
+                (w / 3 + 5, h / 20),
+                (w - 3, h / 20 + 77),
+                (w - w / 4, h / 2 + 9),
+            ],
+            [
+                Rgb565::new(0, 63, 0),
+                Rgb565::new(31, 0, 31),
+                Rgb565::new(0, 0, 0),
+            ],
+        ),
+    ]
+}
+
+/// Draws the [`dithered_shapes`] over `fb`, alternating `Drawable::draw` and `draw_into`.
+pub fn render_dithered(fb: &mut SliceFramebuffer<'_, Rgb565>) {
+    let size = fb.size();
+    for (k, t) in dithered_shapes(size.width, size.height)
+        .into_iter()
+        .enumerate()
+    {
+        let t = core::hint::black_box(t).dithered();
+        if k % 2 == 0 {
+            let _ = t.draw(fb);
+        } else {
+            t.draw_into(fb);
+        }
+    }
 }
 
 /// Anti-aliased triangles drawn last ([`render_antialiased`]), with their opacities: one crossing

@@ -34,6 +34,8 @@ pub(crate) use thumbv7m::bilinear_span_565;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::blend_solid_565;
 #[cfg(armv7m)]
+pub(crate) use thumbv7m::dithered_565;
+#[cfg(armv7m)]
 pub(crate) use thumbv7m::level_rows;
 #[cfg(armv7m)]
 pub(crate) use thumbv7m::perspective_span;
@@ -317,6 +319,33 @@ pub struct MaskedSpan565<'a> {
 #[cfg(not(any(armv6m, armv7m, rv32)))]
 #[inline(always)]
 pub(crate) fn blend_solid_565<C>(_pixels: &mut [C], _weights: &[u32; 4]) -> bool {
+    false
+}
+
+/// A span of a dithered 5-6-5 fill for the target's loop ([`dithered_565`]; `color::packed565`'s
+/// `dithered_565` defines its pixels): channels in raw order (top, middle, bottom). Each run of
+/// 32 pixels (the last one shorter) starts from the values there, rounded to their lanes.
+#[repr(C)]
+#[cfg_attr(not(any(armv7m, test)), allow(dead_code))]
+pub(crate) struct DitheredSpan565 {
+    /// 0: the channels at the span's first pixel (24 fractional bits, +½ included); 12: their
+    /// steps a pixel.
+    pub(crate) value: [u32; 3],
+    pub(crate) step: [u32; 3],
+    /// 24: the lanes' steps a pixel; 36: two of them in both halves of a word.
+    pub(crate) lane: [u32; 3],
+    pub(crate) double: [u32; 3],
+    /// 48, 52: the Bayer offsets of the span's pixels 0 and 1, and 2 and 3, as words of two
+    /// lanes with 11 fractional bits (`color`'s `bayer_pair`).
+    pub(crate) first: u32,
+    pub(crate) second: u32,
+}
+
+/// [`dithered_565`] where there is none (the portable loop draws the span): draws nothing and
+/// says so.
+#[cfg(not(armv7m))]
+#[inline(always)]
+pub(crate) fn dithered_565<C>(_pixels: &mut [C], _span: &DitheredSpan565) -> bool {
     false
 }
 

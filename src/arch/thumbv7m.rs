@@ -58,6 +58,8 @@
 //! (which blends such a triangle) has the host's checksum.
 #![allow(unsafe_code)]
 
+use super::DitheredSpan565;
+
 use core::mem::MaybeUninit;
 
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -1979,6 +1981,276 @@ pub(crate) fn premultiplied_565<C>(pixels: &mut [C], value: [u32; 4], step: [u32
     unsafe {
         embedded_raster_premultiplied_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), &planes)
     };
+}
+
+/// The two pixels of a word of dithered 5-6-5 lanes (`$t`, `$m`, `$b`: the top, middle and
+/// bottom lanes of both pixels) packed into r10: the top field as it is (bits 11-15 of each
+/// half), the middle one shifted down 5 (r11 = 0x07E007E0), the bottom one down 11 (r12 =
+/// 0x001F001F). Clobbers lr.
+macro_rules! dithered_pair {
+    ($t:literal, $m:literal, $b:literal) => {
+        concat!(
+            "and r10, ",
+            $t,
+            ", #0xF800F800\n",
+            "and lr, r11, ",
+            $m,
+            ", lsr #5\n",
+            "orr r10, r10, lr\n",
+            "and lr, r12, ",
+            $b,
+            ", lsr #11\n",
+            "orr r10, r10, lr\n",
+        )
+    };
+}
+
+/// One channel's words at a run's start: its value at the run's first pixel (`$v` of the block
+/// in lr) rounded to its lane (`$round`, `$shift`), the value moved on by a run (`$run` of the
+/// block), the word of the lanes of the run's pixels 0 and 1 plus the offsets `$first` into
+/// `$low`, the word of pixels 2 and 3 (the offsets `$second` have the lane step doubled in them)
+/// into `$high`. `$lane` of the block is the lane step. Clobbers r10.
+macro_rules! dithered_words {
+    ($low:literal, $high:literal, $v:literal, $run:literal, $lane:literal, $first:literal,
+     $second:literal, $round:literal, $shift:literal) => {
+        concat!(
+            "ldr ",
+            $low,
+            ", [lr, #",
+            $v,
+            "]\n",
+            "ldr r10, [lr, #",
+            $run,
+            "]\n",
+            "add r10, ",
+            $low,
+            ", r10\n",
+            "str r10, [lr, #",
+            $v,
+            "]\n",
+            "add ",
+            $low,
+            ", ",
+            $low,
+            ", #",
+            $round,
+            "\n",
+            "lsr ",
+            $low,
+            ", ",
+            $low,
+            ", #",
+            $shift,
+            "\n",
+            "ldr r10, [lr, #",
+            $lane,
+            "]\n",
+            "add r10, ",
+            $low,
+            ", r10\n",
+            "add ",
+            $low,
+            ", ",
+            $low,
+            ", r10, lsl #16\n",
+            "ldr r10, [lr, #",
+            $second,
+            "]\n",
+            "add ",
+            $high,
+            ", ",
+            $low,
+            ", r10\n",
+            "ldr r10, [lr, #",
+            $first,
+            "]\n",
+            "add ",
+            $low,
+            ", ",
+            $low,
+            ", r10\n",
+        )
+    };
+}
+
+/// [`embedded_raster_dithered_565_v7m`]'s test of one channel: its value (`$v` of the span,
+/// r2) at the first pixel and at the last (r12 pixels on by its step `$s`) both at least 31/64
+/// LSB and below its maximum plus 33/64 (`$range`: the interval's width); otherwise the span is
+/// declined (90). Clobbers r4-r7.
+macro_rules! dithered_inside {
+    ($v:literal, $s:literal, $range:literal) => {
+        concat!(
+            "ldr r4, [r2, #",
+            $v,
+            "]\n",
+            "ldr r5, [r2, #",
+            $s,
+            "]\n",
+            "sub r6, r4, #0x7C0000\n",
+            "cmp r6, ",
+            $range,
+            "\n",
+            "bhs 90f\n",
+            // The last value exactly (64 bits; the first is positive).
+            "smull r6, r7, r5, r12\n",
+            "adds r6, r6, r4\n",
+            "adc r7, r7, #0\n",
+            "subs r6, r6, #0x7C0000\n",
+            "sbc r7, r7, #0\n",
+            "cmp r7, #0\n",
+            "bne 90f\n",
+            "cmp r6, ",
+            $range,
+            "\n",
+            "bhs 90f\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_dithered_565_v7m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_dithered_565_v7m",
+    ".hidden embedded_raster_dithered_565_v7m",
+    ".type embedded_raster_dithered_565_v7m,%function",
+    ".thumb_func",
+    // r0 = pixels (2-byte aligned), r1 = pixel count (at least one), r2 = the span
+    // (`DitheredSpan565`). Returns 1 in r0 if drawn, 0 if declined (nothing written).
+    "embedded_raster_dithered_565_v7m:",
+    "push {{r4-r11, lr}}",
+    // [sp]: the bottom lanes' step over four pixels; [sp, #4]: the pixels after the current
+    // run; [sp, #8-16]: the values at the run's first pixel; [sp, #20-28]: their steps over a
+    // run; [sp, #32-40]: the lane steps; [sp, #44-52], [sp, #56-64]: the offsets of pixels 0-1
+    // and 2-3 of a run (the latter with two lane steps); [sp, #68-72]: the top and middle
+    // lanes' steps over four pixels.
+    "sub sp, #76",
+    // Every lane inside its 16 bits, or declined.
+    "sub r12, r1, #1",
+    "movw r11, #0",
+    "movt r11, #0x1F08",
+    "add r10, r11, #0x20000000",
+    dithered_inside!("0", "12", "r11"),
+    dithered_inside!("4", "16", "r10"),
+    dithered_inside!("8", "20", "r11"),
+    // The span's constants into the frame.
+    "ldm r2, {{r4-r9}}",
+    "lsl r7, r7, #5",
+    "lsl r8, r8, #5",
+    "lsl r9, r9, #5",
+    "add lr, sp, #8",
+    "stm lr, {{r4-r9}}",
+    "add lr, r2, #24",
+    "ldm lr, {{r4-r9}}",
+    "add lr, sp, #32",
+    "stm lr, {{r4-r6}}",
+    "ldrd r10, r11, [r2, #48]",
+    "asr r12, r10, #1",
+    "add r4, r11, r7",
+    "asr r5, r11, #1",
+    "add r5, r5, r8",
+    "add r6, r11, r9",
+    "str r10, [sp, #44]",
+    "str r12, [sp, #48]",
+    "str r10, [sp, #52]",
+    "add lr, sp, #56",
+    "stm lr, {{r4-r6}}",
+    "lsl r7, r7, #1",
+    "lsl r8, r8, #1",
+    "lsl r9, r9, #1",
+    "str r9, [sp]",
+    "strd r7, r8, [sp, #68]",
+    "movw r11, #0x07E0",
+    "movt r11, #0x07E0",
+    "mov r12, #0x001F001F",
+    // A run: at most 32 pixels from the exactly stepped values.
+    "1:",
+    "subs r3, r1, #32",
+    "it lo",
+    "movlo r3, #0",
+    "str r3, [sp, #4]",
+    "sub r1, r1, r3",
+    "mov lr, sp",
+    dithered_words!("r2", "r5", "8", "20", "32", "44", "56", "4096", "13"),
+    dithered_words!("r3", "r6", "12", "24", "36", "48", "60", "8192", "14"),
+    dithered_words!("r4", "r7", "16", "28", "40", "52", "64", "4096", "13"),
+    "ldrd r8, r9, [sp, #68]",
+    // Four pixels (two words) a pass while there are four.
+    "subs r1, #4",
+    "blo 5f",
+    "4:",
+    dithered_pair!("r2", "r3", "r4"),
+    "str r10, [r0], #4",
+    dithered_pair!("r5", "r6", "r7"),
+    "str r10, [r0], #4",
+    "ldr lr, [sp]",
+    "add r2, r8",
+    "add r5, r8",
+    "add r3, r9",
+    "add r6, r9",
+    "add r4, lr",
+    "add r7, lr",
+    "subs r1, #4",
+    "bhs 4b",
+    // Then up to three: a word and a pixel of the next, a word, or a pixel.
+    "5:",
+    "adds r1, #4",
+    "beq 8f",
+    dithered_pair!("r2", "r3", "r4"),
+    "cmp r1, #2",
+    "blo 6f",
+    "str r10, [r0], #4",
+    "beq 8f",
+    dithered_pair!("r5", "r6", "r7"),
+    "6:",
+    "strh r10, [r0], #2",
+    // The next run, if any.
+    "8:",
+    "ldr r1, [sp, #4]",
+    "cmp r1, #0",
+    "bne 1b",
+    "movs r0, #1",
+    "add sp, #76",
+    "pop {{r4-r11, pc}}",
+    "90:",
+    "movs r0, #0",
+    "add sp, #76",
+    "pop {{r4-r11, pc}}",
+    ".size embedded_raster_dithered_565_v7m, . - embedded_raster_dithered_565_v7m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    ///
+    /// # Safety
+    ///
+    /// `pixels` addresses `len` (at least one) 2-byte aligned `u16`s; `span` is valid for
+    /// reads.
+    fn embedded_raster_dithered_565_v7m(
+        pixels: *mut u16,
+        len: usize,
+        span: *const DitheredSpan565,
+    ) -> u32;
+}
+
+/// Draws the dithered 5-6-5 span `span` into `pixels`, as [`DitheredSpan565`] describes it,
+/// with runs of 32 pixels, if every lane stays inside its 16 bits (its values at the first and
+/// last pixel in `[31/64, max + 33/64)` LSB); `false` without writing anything otherwise, or
+/// if `C` is not a 16-bit colour.
+#[inline(always)]
+pub(crate) fn dithered_565<C>(pixels: &mut [C], span: &DitheredSpan565) -> bool {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
+        return false;
+    }
+    if pixels.is_empty() {
+        return true;
+    }
+    // SAFETY: `pixels` holds `pixels.len()` (at least one) 2-byte aligned 16-bit colours
+    // (checked above), which the function writes as `u16`s (two at a time as a word, which
+    // ARMv7-M stores at any address); it reads `span` and its own stack frame, and saves and
+    // restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_dithered_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), span) != 0 }
 }
 
 /// Whether the loops may draw `C` from `texels` with these masks and shifts: `C` a 2-byte colour

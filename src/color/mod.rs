@@ -28,13 +28,15 @@ use crate::arch::MaskedSpan565;
 pub use crate::arch::LANES;
 
 mod blend;
+mod dither;
 mod packed565;
 
 pub use blend::BlendSource;
 pub(crate) use blend::{
     blend_channels, blend_premultiplied, premultiplied_values, weight, TRANSPARENCY_HALF,
 };
-use packed565::{fill_565, masked_row_565, prepare_565, PACKED_RUN};
+pub(crate) use dither::DitheredColors;
+use packed565::{dithered_565, fill_565, masked_row_565, prepare_565, PACKED_RUN};
 
 /// Fractional bits of the stepped channel values handed to [`GouraudColor::fill_span`] and
 /// [`GouraudColor::from_stepped`]: channels have at most 8 integer bits, so a value fits a `u32`.
@@ -87,6 +89,34 @@ pub trait GouraudColor: PixelColor {
     #[inline]
     fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
         fill_by_state(dst, start, steps);
+    }
+
+    /// Fills `dst`, pixels `x ..` of row `y`, with the span from `start` by `steps` (as for
+    /// [`fill_prepared`](Self::fill_prepared)) ordered-dithered with a 4×4 Bayer matrix: each
+    /// channel the floor or the ceiling of its value (within 2⁻⁶ LSB), a flat colour between
+    /// two levels averaging to it over each 4×4 block. By default from the [`STEP_BITS`]
+    /// values channel by channel; the 5-6-5 formats override it with their packed lanes,
+    /// restarted every 32 pixels. Every dithered fill of this crate gives these colours.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use embedded_raster::{color::STEP_BITS, GouraudColor};
+    ///
+    /// // Red 10.25 (+½ included) on a whole 4×4 block: a quarter of the pixels 11, the rest 10.
+    /// let one = 1u32 << STEP_BITS;
+    /// let steps = Rgb565::prepare_steps([0; 3]);
+    /// let mut elevens = 0;
+    /// for y in 0..4 {
+    ///     let mut row = [Rgb565::BLACK; 4];
+    ///     Rgb565::fill_dithered(&mut row, 0, y, [10 * one + one / 4 + one / 2, one / 2, one / 2], &steps);
+    ///     elevens += row.iter().filter(|c| c.r() == 11).count();
+    ///     assert!(row.iter().all(|c| (10..=11).contains(&c.r()) && c.g() == 0 && c.b() == 0));
+    /// }
+    /// assert_eq!(elevens, 4);
+    /// ```
+    #[inline]
+    fn fill_dithered(dst: &mut [Self], x: i32, y: i32, start: [u32; 3], steps: &SpanSteps) {
+        dither::fill_dithered_by_channels(dst, x, y, start, steps);
     }
 
     /// Pixels of a span stepped from one start: every `SPAN_RUN` pixels the span loop restarts
@@ -443,6 +473,17 @@ macro_rules! rgb_color {
                 #[cfg_attr(armv7m, inline(never))]
                 fn fill_prepared(dst: &mut [Self], start: [u32; 3], steps: &SpanSteps) {
                     fill_565(dst, start, steps, $order)
+                }
+                #[cfg_attr(not(armv7m), inline(always))]
+                #[cfg_attr(armv7m, inline(never))]
+                fn fill_dithered(
+                    dst: &mut [Self],
+                    x: i32,
+                    y: i32,
+                    start: [u32; 3],
+                    steps: &SpanSteps,
+                ) {
+                    dithered_565(dst, (x, y), start, steps, $order)
                 }
                 const SPAN_RUN: Option<NonZeroU32> = NonZeroU32::new(PACKED_RUN as u32);
                 #[inline(always)]

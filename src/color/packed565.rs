@@ -10,6 +10,7 @@
 
 use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 
+use super::dither::{bayer_offset, bayer_pair, DITHER_RUN};
 use super::{SpanSteps, STEP_BITS};
 use crate::arch::{self, LANES};
 
@@ -104,6 +105,196 @@ pub(super) fn fill_565<C: From<RawU16>>(
     for run in dst.chunks_mut(PACKED_RUN) {
         run_565(run, lanes(value), steps);
         advance(&mut value);
+    }
+}
+
+/// Runs shorter than this take [`dithered_565`]'s definition pixel by pixel (a radial
+/// gradient's chords are a few pixels): the packed pairs' set-up costs more than they save.
+const SHORT_DITHERED: usize = 4;
+
+/// `[f(a₀, b₀), f(a₁, b₁), f(a₂, b₂)]`: constant indices, so no bounds check is left at any
+/// optimisation level (the firmware proves its drawing code panic-free at `s` and `z` too).
+#[inline(always)]
+fn zip3<A: Copy, B: Copy, R>(a: [A; 3], b: [B; 3], f: impl Fn(A, B) -> R) -> [R; 3] {
+    [f(a[0], b[0]), f(a[1], b[1]), f(a[2], b[2])]
+}
+
+/// The largest value of each lane's channel (raw order: top, middle, bottom).
+const LANE_MAX: [i32; 3] = [31, 63, 31];
+
+/// [`GouraudColor::fill_dithered`] for 5-6-5 layouts whose raw value holds channels `order`:
+/// pixel `i` of `dst` (pixel `x + i` of row `y`) is its lanes ([`fill_565`]'s, restarted every
+/// [`DITHER_RUN`] pixels, so within 2⁻⁶ LSB of the values) plus its Bayer offset, truncated to
+/// the channel's range.
+///
+/// Where the span's values stay within 1/64 LSB of the channels' ranges (every triangle's and
+/// gradient's covered pixels: its values are within 2⁻⁹ LSB of ones inside them), the dithered
+/// lanes stay inside their 16 bits, `[0, (max + 1)·2^f)`, and two pixels are packed and
+/// stepped as a word, the offsets folded into the steps ([`dithered_run_565`]); otherwise the
+/// same definition pixel by pixel with the clamp.
+///
+/// [`GouraudColor::fill_dithered`]: super::GouraudColor::fill_dithered
+#[inline(always)]
+pub(super) fn dithered_565<C: From<RawU16>>(
+    dst: &mut [C],
+    (x, y): (i32, i32),
+    start: [u32; 3],
+    steps: &SpanSteps,
+    order: [usize; 3],
+) {
+    let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
+    let (mut value, step) = (pick(start), pick(steps.step));
+    if dst.len() < SHORT_DITHERED {
+        // One run.
+        dithered_pixels_565(dst, value, steps, (x, y));
+        return;
+    }
+    // A run's pixels are a multiple of 4 (the Bayer matrix's width): every run has the same
+    // offsets.
+    const { assert!(DITHER_RUN % 4 == 0) };
+    // The ARMv7-M loop's runs are this long; it takes a whole span whose values at both ends
+    // are inside the ranges of `run_stays_inside` (exactly, in 64 bits).
+    const { assert!(DITHER_RUN == 32) };
+    let span = arch::DitheredSpan565 {
+        value,
+        step,
+        lane: steps.lane,
+        double: steps.double,
+        first: bayer_pair(x, y),
+        second: bayer_pair(x.wrapping_add(2), y),
+    };
+    if arch::dithered_565(dst, &span) {
+        return;
+    }
+    let offsets = (bayer_lanes(x, y), bayer_lanes(x.wrapping_add(2), y));
+    let mut at = x;
+    for run in dst.chunks_mut(DITHER_RUN) {
+        if run.len() >= SHORT_DITHERED && run_stays_inside(value, step, run.len()) {
+            dithered_run_565(run, lanes(value), steps, offsets);
+        } else {
+            dithered_pixels_565(run, value, steps, (at, y));
+        }
+        for (v, s) in value.iter_mut().zip(step) {
+            *v = v.wrapping_add(s.wrapping_mul(DITHER_RUN as u32));
+        }
+        at = at.wrapping_add(DITHER_RUN as i32);
+    }
+}
+
+/// Whether the values `value + i·step` (raw order, [`STEP_BITS`] fractional bits, +½ included)
+/// of a run's pixels (`i < len`, at most [`DITHER_RUN`]) all lie in `[31/64, max + 33/64)` LSB:
+/// checked at both ends (the values are linear in `i`). Then each pixel's lanes, within 2⁻⁶
+/// LSB of its values, plus its Bayer offset (within ±15/32) lie in `[0, max + 1)`. In 32-bit
+/// arithmetic (no long multiply): steps below 2²⁶ (4 LSB a pixel) so that the last pixel's
+/// value is exact modulo 2³² (an end beyond `i32` wraps to a value the unsigned test
+/// rejects); a run with a steeper step is not taken as inside (the clamped definition draws
+/// it: the same pixels).
+#[inline(always)]
+fn run_stays_inside(value: [u32; 3], step: [u32; 3], len: usize) -> bool {
+    let last = len.saturating_sub(1).min(DITHER_RUN) as i32;
+    let low: i32 = 31 << (F - 6);
+    let inside = zip3(zip3(value, step, |v, s| (v, s)), LANE_MAX, |(v, s), max| {
+        let range = (((i64::from(max) * 64 + 33) << (F - 6)) - i64::from(low)) as u32;
+        let (s, first) = (s as i32, v as i32);
+        let end = first.wrapping_add(s.wrapping_mul(last));
+        (s.wrapping_add(1 << 26) as u32) < 1 << 27
+            && (first.wrapping_sub(low) as u32) < range
+            && (end.wrapping_sub(low) as u32) < range
+    });
+    inside[0] && inside[1] && inside[2]
+}
+
+/// [`dithered_565`]'s definition pixel by pixel, with the clamp: the lanes of the values
+/// `value` (raw order) stepped by the lane steps, as signed integers, plus the Bayer offset,
+/// truncated and clamped to each channel's range.
+#[inline(never)]
+fn dithered_pixels_565<C: From<RawU16>>(
+    run: &mut [C],
+    value: [u32; 3],
+    steps: &SpanSteps,
+    (x, y): (i32, i32),
+) {
+    // Within a run of at most DITHER_RUN pixels the lanes stay below 2²⁴ in magnitude (a lane
+    // and its step are below 2¹⁹, from 32-bit values and steps).
+    let mut lane = zip3(value, LANE_FRACTION, |v, f| {
+        let k = F - f;
+        (v as i32).wrapping_add(1 << (k - 1)) >> k
+    });
+    let limits = zip3(LANE_FRACTION, LANE_MAX, |f, max| (f, ((max + 1) << f) - 1));
+    let mut at = x;
+    for px in run {
+        // The offset with 11 fractional bits; the middle lane's (10) is half of it.
+        let offset = bayer_offset(at, y, LANE_FRACTION[0]);
+        let field = zip3(lane, limits, |l, (f, top)| {
+            let v = l.wrapping_add(offset >> (LANE_FRACTION[0] - f));
+            (v.max(0).min(top) >> f) as u32
+        });
+        *px = raw_565(field[0] << 11 | field[1] << 5 | field[2]);
+        for (l, s) in lane.iter_mut().zip(steps.lane) {
+            *l = l.wrapping_add(s as i32);
+        }
+        at = at.wrapping_add(1);
+    }
+}
+
+/// The Bayer offsets of pixels `(x, y)` and `(x + 1, y)` ([`bayer_pair`]) for each lane (raw
+/// order): the top and bottom lanes have 11 fractional bits, the middle one 10 (half the
+/// offsets).
+#[inline(always)]
+fn bayer_lanes(x: i32, y: i32) -> [u32; 3] {
+    let pair = bayer_pair(x, y);
+    [pair, ((pair as i32) >> 1) as u32, pair]
+}
+
+/// A run of [`dithered_565`] (at most [`DITHER_RUN`] pixels) from its first pixel's lanes
+/// `lane` (raw order) and the Bayer offsets of its pixels 0-1 and 2-3 ([`bayer_lanes`]),
+/// where every dithered lane stays inside its 16 bits. Two
+/// streams of words: one holds pixels `4k` and `4k + 1`, the other `4k + 2` and `4k + 3`, each
+/// word their lanes plus their Bayer offsets ([`bayer_pair`]: the integer `o₁·2¹⁶ + o₀`, so a
+/// negative low offset borrows from the high lane as the sum needs). A stream's offsets are the
+/// same at every word, so both step by four pixels' lane steps alone.
+#[inline(always)]
+fn dithered_run_565<C: From<RawU16>>(
+    run: &mut [C],
+    lane: [u32; 3],
+    steps: &SpanSteps,
+    (first, second): ([u32; 3], [u32; 3]),
+) {
+    let word = zip3(lane, steps.lane, |l, s| {
+        (l.wrapping_add(s) << 16).wrapping_add(l)
+    });
+    let mut low = zip3(word, first, u32::wrapping_add);
+    let mut high = zip3(
+        zip3(word, steps.double, u32::wrapping_add),
+        second,
+        u32::wrapping_add,
+    );
+    let quad = steps.double.map(|d| d.wrapping_mul(2));
+    let mut rest = run;
+    while let [a, b, c, d, tail @ ..] = rest {
+        let (one, two) = (pack_565(low), pack_565(high));
+        *a = raw_565(one);
+        *b = raw_565(one >> 16);
+        *c = raw_565(two);
+        *d = raw_565(two >> 16);
+        low = zip3(low, quad, u32::wrapping_add);
+        high = zip3(high, quad, u32::wrapping_add);
+        rest = tail;
+    }
+    match rest {
+        [a, b, c] => {
+            let one = pack_565(low);
+            *a = raw_565(one);
+            *b = raw_565(one >> 16);
+            *c = raw_565(pack_565(high));
+        }
+        [a, b] => {
+            let one = pack_565(low);
+            *a = raw_565(one);
+            *b = raw_565(one >> 16);
+        }
+        [a] => *a = raw_565(pack_565(low)),
+        _ => {}
     }
 }
 
@@ -328,6 +519,100 @@ mod tests {
                     assert!(lo <= g && g <= hi, "pixel {i} channel {k}: {g} vs {plain}");
                 }
             }
+        }
+    }
+
+    /// The dithered 5-6-5 loop: its packed pairs are the per-pixel definition with the clamp
+    /// (`dithered_pixels_565`) wherever the span stays inside the channels' ranges, in both
+    /// channel orders, at every alignment of the Bayer columns and rows; and each channel is
+    /// the floor or the ceiling of the exact stepped value within 2⁻⁶ LSB (Bayer threshold
+    /// `(2b + 1)/32` computed here, independently). Values outside the ranges take the clamped
+    /// definition: inside the channels' ranges, no panic.
+    #[test]
+    fn dithered_565_is_its_definition() {
+        const BAYER: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+        let mut rng = crate::rng::Rng(0x9e37_79b9_7f4a_7c15_u64);
+        let one = f64::from(1u32 << STEP_BITS);
+        for case in 0..20_000 {
+            let n = 1 + rng.below(if case % 4 == 0 { 300 } else { 40 }) as usize;
+            let (x, y) = (rng.next() as i32, rng.next() as i32);
+            let mut start = [0u32; 3];
+            let mut step = [0u32; 3];
+            for k in 0..3 {
+                let max = f64::from(Rgb565::MAX[k]);
+                let mut end = || match rng.below(6) {
+                    0 => 0.0,
+                    1 => max,
+                    _ => rng.below(1 << 20) as f64 / f64::from(1 << 20) * max,
+                };
+                let (c0, c1) = (end(), end());
+                let s = if n > 1 {
+                    (c1 - c0) / (n - 1) as f64
+                } else {
+                    0.0
+                };
+                start[k] = ((c0 + 0.5) * one) as u32;
+                // Steps rounded towards the start's value: the last pixel stays in range.
+                step[k] = ((s * one).trunc() as i32) as u32;
+            }
+            let steps = Rgb565::prepare_steps(step);
+            let mut packed = [Rgb565::BLACK; 300];
+            let mut bgr = [Bgr565::BLACK; 300];
+            Rgb565::fill_dithered(&mut packed[..n], x, y, start, &steps);
+            Bgr565::fill_dithered(&mut bgr[..n], x, y, start, &Bgr565::prepare_steps(step));
+            let mut pixels = [Rgb565::BLACK; 300];
+            let mut value = start;
+            let mut at = x;
+            for run in pixels[..n].chunks_mut(DITHER_RUN) {
+                dithered_pixels_565(run, value, &steps, (at, y));
+                for (v, s) in value.iter_mut().zip(step) {
+                    *v = v.wrapping_add(s.wrapping_mul(DITHER_RUN as u32));
+                }
+                at = at.wrapping_add(DITHER_RUN as i32);
+            }
+            assert_eq!(
+                packed[..n],
+                pixels[..n],
+                "case {case}: {start:?} {step:?} at ({x}, {y})"
+            );
+            for (i, (px, b)) in packed[..n].iter().zip(&bgr[..n]).enumerate() {
+                let threshold = f64::from(
+                    2 * BAYER[(y & 3) as usize][(x.wrapping_add(i as i32) & 3) as usize] + 1,
+                ) / 32.0;
+                let (b, bc) = (b.channels(), [b.b(), b.g(), b.r()]);
+                assert_eq!(bc, [b[2], b[1], b[0]]);
+                for (k, got) in px.channels().into_iter().enumerate() {
+                    let exact =
+                        (f64::from(start[k]) + f64::from(step[k] as i32) * i as f64) / one - 0.5;
+                    let lo = (exact + threshold - 1.0 / 64.0).floor();
+                    let hi = (exact + threshold + 1.0 / 64.0).floor();
+                    let g = f64::from(got);
+                    assert!(
+                        lo <= g && g <= hi,
+                        "case {case} pixel {i} channel {k}: {g} vs {exact}"
+                    );
+                    assert_eq!(got, b[k], "case {case} pixel {i}: orders differ");
+                }
+            }
+        }
+        // Values anywhere (nearly never inside the ranges): the clamped definition, which the
+        // packed pairs equal where they are.
+        for _ in 0..5_000 {
+            let n = 1 + rng.below(80) as usize;
+            let start = [rng.next() as u32, rng.next() as u32, rng.next() as u32];
+            let step = [rng.next() as u32, rng.next() as u32, rng.next() as u32];
+            let steps = Rgb565::prepare_steps(step);
+            let mut packed = [Rgb565::BLACK; 80];
+            Rgb565::fill_dithered(&mut packed[..n], 3, 5, start, &steps);
+            let mut pixels = [Rgb565::BLACK; 80];
+            let mut value = start;
+            for (k, run) in pixels[..n].chunks_mut(DITHER_RUN).enumerate() {
+                dithered_pixels_565(run, value, &steps, (3 + (k * DITHER_RUN) as i32, 5));
+                for (v, s) in value.iter_mut().zip(step) {
+                    *v = v.wrapping_add(s.wrapping_mul(DITHER_RUN as u32));
+                }
+            }
+            assert_eq!(packed[..n], pixels[..n]);
         }
     }
 

@@ -5,15 +5,15 @@ use embedded_graphics::primitives::Rectangle;
 
 use super::framebuffer::SliceFramebuffer;
 use super::triangle::GouraudTriangle;
-use crate::color::{GouraudColor, SpanSteps};
-use crate::paint::{dithered_color, fill_dithered};
+use crate::color::{DitheredColors, GouraudColor, SpanSteps};
 use crate::raster::plane::Attributes;
 use crate::raster::walk::Span;
 use crate::raster::{shade, SpanShader};
 
 /// A [`GouraudTriangle`] drawn with ordered dithering (4×4 Bayer): each channel of each pixel is
-/// the floor or the ceiling of its interpolated value (where the plain triangle rounds to
-/// nearest), chosen by the pixel's position so that areas average the exact colour. On 5-6-5
+/// the floor or the ceiling of its interpolated value (on 5-6-5, of a value within 2⁻⁶ LSB of
+/// it: [`GouraudColor::fill_dithered`]; where the plain triangle rounds to nearest), chosen by
+/// the pixel's position so that areas average the exact colour. On 5-6-5
 /// formats it removes the visible bands of a slow shade. The same pixels as the plain triangle
 /// covers; [`draw_into`](Self::draw_into) and [`Drawable::draw`] give the same colours. Made by
 /// [`GouraudTriangle::dithered`].
@@ -110,7 +110,7 @@ impl<C: GouraudColor> SpanShader<3> for DitherIntoSlice<'_, '_, C> {
             .framebuffer
             .clipped_span_mut(span.y, span.x_start, span.x_end)
         {
-            fill_dithered(row, span.x_start, span.y, start, steps);
+            C::fill_dithered(row, span.x_start, span.y, start, steps);
         }
     }
 }
@@ -135,13 +135,8 @@ impl<C: GouraudColor, D: DrawTarget<Color = C>> SpanShader<3> for DitherToTarget
             return;
         }
         let area = Rectangle::new(Point::new(span.x_start, span.y), Size::new(span.len(), 1));
-        let step = steps.step();
-        let mut v = start;
-        let colors = (0..span.len()).map(|i| {
-            let c = dithered_color::<C>(v, span.x_start.wrapping_add(i as i32), span.y);
-            v = core::array::from_fn(|k| v[k].wrapping_add(step[k]));
-            c
-        });
+        let colors =
+            DitheredColors::<C>::new(start, steps, (span.x_start, span.y), span.len() as usize);
         self.result = self.target.fill_contiguous(&area, colors);
     }
 

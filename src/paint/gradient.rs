@@ -22,7 +22,8 @@
 //! Each pixel gets its channels rounded to nearest from within 1/32 LSB (linear) or 1/4 LSB
 //! (radial) of that exact value, so within 1 LSB of it (the floor or the ceiling), given the
 //! conditions of each gradient's documentation; dithered, the floor or the ceiling of a value
-//! that near the exact one. Which segment a pixel falls in is decided exactly, in integers: a pixel on a
+//! that near the exact one (on 5-6-5, within a further 2⁻⁶ LSB: the packed lanes of
+//! [`GouraudColor::fill_dithered`]). Which segment a pixel falls in is decided exactly, in integers: a pixel on a
 //! stop's line or circle gets the later segment's colour.
 //!
 //! # Drawing
@@ -38,7 +39,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use super::Paint;
-use crate::color::{fill_row, restart_value, GouraudColor, SpanSteps, STEP_BITS};
+use crate::color::{fill_row, restart_value, DitheredColors, GouraudColor, SpanSteps, STEP_BITS};
 use crate::fixed_point::{Coord, ToCoord};
 
 /// The position 1 of a [`Stop`]: positions are in 1/65536.
@@ -202,7 +203,7 @@ trait Out<C> {
     /// Pixels `from .. from + len` are `color`.
     fn solid(&mut self, from: usize, len: usize, color: C);
     /// Pixels `from .. from + len` are the span loop's colours from `start` by `steps`
-    /// ([`GouraudColor::fill_prepared`]), or dithered ([`fill_dithered`]) at pixel `at` on.
+    /// ([`GouraudColor::fill_prepared`]), or dithered ([`GouraudColor::fill_dithered`]) at pixel `at` on.
     fn span(
         &mut self,
         from: usize,
@@ -242,7 +243,7 @@ impl<C: GouraudColor> Out<C> for IntoRow<'_, C> {
     ) {
         if let Some(part) = self.0.get_mut(from..from + len) {
             if dithered {
-                fill_dithered(part, x, y, start, steps);
+                C::fill_dithered(part, x, y, start, steps);
             } else {
                 C::fill_prepared(part, start, steps);
             }
@@ -300,12 +301,7 @@ impl<C: GouraudColor, D: DrawTarget<Color = C>> Out<C> for ToTarget<'_, D> {
         }
         let area = self.area(from, len);
         self.result = if dithered {
-            let mut v = start;
-            let colors = (0..len).map(|i| {
-                let c = dithered_color::<C>(v, x.wrapping_add(i as i32), y);
-                v = core::array::from_fn(|k| v[k].wrapping_add(steps.step()[k]));
-                c
-            });
+            let colors = DitheredColors::<C>::new(start, steps, (x, y), len);
             self.target.fill_contiguous(&area, colors)
         } else {
             self.target
@@ -642,59 +638,6 @@ impl<C: GouraudColor, const N: usize> Paint for LinearGradient<C, N> {
     {
         draw_row_in_chunks(|at, out| self.paint_chunk(y, at, out), target, (x, y), len)
     }
-}
-
-// ---- dithering --------------------------------------------------------------------------------
-
-/// The 4×4 Bayer matrix's thresholds, `(2·b + 1) / 32` of an LSB ([`STEP_BITS`]) less the +½
-/// already in the span values: added to a value, truncation gives its floor or its ceiling.
-const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
-
-/// The Bayer offset of pixel `(x, y)` to add to a span value that has the +½ in it:
-/// `(2b + 1)/32 − ½` LSB.
-#[inline(always)]
-fn bayer_offset(x: i32, y: i32) -> i32 {
-    let b = BAYER
-        .get((y & 3) as usize)
-        .and_then(|r| r.get((x & 3) as usize))
-        .copied()
-        .unwrap_or(0);
-    ((i32::from(b) * 2 + 1) << (STEP_BITS - 5)) - (1 << (STEP_BITS - 1))
-}
-
-/// A span of stepped values ordered-dithered: pixel `i` has channel values `start + i·step`
-/// (the +½ included) and is `⌊v − ½ + (2b + 1)/32⌋` for its Bayer entry `b`: the floor or the
-/// ceiling of the exact value `v − ½`.
-#[inline]
-pub(crate) fn fill_dithered<C: GouraudColor>(
-    dst: &mut [C],
-    x: i32,
-    y: i32,
-    start: [u32; 3],
-    steps: &SpanSteps,
-) {
-    let step = steps.step();
-    let mut v = start;
-    let mut at = x;
-    for px in dst {
-        *px = dithered_color(v, at, y);
-        for (v, s) in v.iter_mut().zip(step) {
-            *v = v.wrapping_add(s);
-        }
-        at = at.wrapping_add(1);
-    }
-}
-
-/// The dithered colour of stepped values `v` (+½ included) at pixel `(x, y)`.
-#[inline(always)]
-pub(crate) fn dithered_color<C: GouraudColor>(v: [u32; 3], x: i32, y: i32) -> C {
-    let o = bayer_offset(x, y);
-    C::from_channels(core::array::from_fn(|k| {
-        let max = u32::from(C::MAX[k]);
-        // The offset may take a value at 0 below it, or one at the maximum above it.
-        let d = (i64::from(v[k]) + i64::from(o)).max(0) >> STEP_BITS;
-        (d as u32).min(max) as u8
-    }))
 }
 
 // ---- radial -----------------------------------------------------------------------------------

@@ -20,7 +20,6 @@ use crate::color::{fill_row, BlendSource, GouraudColor};
 
 pub mod gradient;
 
-pub(crate) use gradient::{dithered_color, fill_dithered};
 pub use gradient::{LinearGradient, RadialGradient, Stop, STOP_ONE};
 
 /// The colours of a shape's pixels, by position: a plain colour, or a gradient.

@@ -13,6 +13,7 @@
 mod scene;
 
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+use embedded_graphics::Drawable;
 use embedded_raster::{GouraudColor, SliceFramebuffer};
 use scene::Shape;
 
@@ -190,11 +191,13 @@ fn scene_matches_independent_reference_at_every_firmware_size() {
         }
         // Then the anti-aliased shapes, one at a time, each over the image before it.
         check_antialiased(width, height, &mut got);
+        // Then the dithered ones, likewise.
+        check_dithered(width, height, &mut got);
         let mut whole = vec![Rgb565::BLACK; (width * height) as usize];
         scene::render(&mut SliceFramebuffer::new(&mut whole, width, height).unwrap());
         assert_eq!(
             whole, got,
-            "render is render_opaque, render_translucent then render_antialiased"
+            "render is render_opaque, render_translucent, render_antialiased then render_dithered"
         );
         println!(
             "{}",
@@ -256,6 +259,59 @@ fn blended_near(got: Rgb565, color: Rgb565, under: Rgb565, area: f64, opacity: u
 
 /// Draws the scene's anti-aliased shapes over `image` one at a time, checking each against the
 /// pixel areas; leaves `image` as `render_antialiased` leaves it.
+/// The dithered shapes drawn one at a time as `render_dithered` draws them: the pixels the
+/// reference covers, and only those, are each channel's exact barycentric value plus the pixel's
+/// 4×4 Bayer threshold `(2b + 1)/32` (written out here), truncated, within 1/64 LSB of the
+/// lanes' stepping and 2⁻⁹ of the planes'.
+fn check_dithered(width: u32, height: u32, image: &mut [Rgb565]) {
+    const BAYER: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    const SLACK: f64 = 1.0 / 64.0 + 1.0 / 512.0;
+    let mut dithered = 0;
+    for (k, t) in scene::dithered_shapes(width, height)
+        .into_iter()
+        .enumerate()
+    {
+        let under = image.to_vec();
+        let mut fb = SliceFramebuffer::new(image, width, height).unwrap();
+        if k % 2 == 0 {
+            t.dithered().draw(&mut fb).unwrap();
+        } else {
+            t.dithered().draw_into(&mut fb);
+        }
+        let p = t.vertices.map(|v| (v.x.to_bits(), v.y.to_bits()));
+        for (idx, (g, u)) in image.iter().zip(&under).enumerate() {
+            let (i, j) = (idx as u32 % width, idx as u32 / width);
+            let Some(w) = reference_weights(p, i64::from(i), i64::from(j)) else {
+                assert_eq!(
+                    g, u,
+                    "{width}x{height}: pixel ({i}, {j}) outside dithered shape {k}"
+                );
+                continue;
+            };
+            dithered += 1;
+            let threshold = f64::from(2 * BAYER[(j & 3) as usize][(i & 3) as usize] + 1) / 32.0;
+            for (ch, &got) in channels(*g).iter().enumerate() {
+                let exact = (0..3)
+                    .map(|v| w[v] * channels(t.vertices[v].color)[ch])
+                    .sum::<f64>();
+                let (low, high) = (
+                    (exact + threshold - SLACK).floor(),
+                    (exact + threshold + SLACK).floor(),
+                );
+                assert!(
+                    low <= got && got <= high,
+                    "{width}x{height}: dithered shape {k} pixel ({i}, {j}) channel {ch}: {got} \
+                     for {exact} + {threshold}"
+                );
+            }
+        }
+    }
+    assert!(
+        dithered > (width * height) as usize / 3,
+        "{dithered} dithered pixels"
+    );
+}
+
 fn check_antialiased(width: u32, height: u32, image: &mut [Rgb565]) {
     let mut touched = 0;
     for (t, opacity) in scene::antialiased_shapes(width, height) {
