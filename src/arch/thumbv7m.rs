@@ -1,12 +1,21 @@
 //! ARMv7-M (Cortex-M3/M4/M7, and ARMv8-M Mainline: Cortex-M33 and after): the rows of a small depth-tested triangle with interpolated light
 //! levels (the 3D pipeline's Gouraud fill) in Thumb-2 assembly, and the span loops of the
-//! textured fills and of a constant colour blended at a constant opacity into 5-6-5 pixels.
+//! textured fills, of a constant colour blended at a constant opacity into 5-6-5 pixels and of
+//! dithered 5-6-5 spans.
 //!
 //! The blend loop ([`blend_solid_565`]): LLVM unrolls the portable pair loop but reloads its
 //! lanes from the stack. Here two pixels (a word) are 10 instructions on ARMv7E-M (11 on the
 //! Cortex-M3, without `uxtb16`), every constant in a register, eight pixels a pass with one
 //! `ldm` and one `stm`. It gives the portable loop's integers (every lane below 2¹⁶); CI checks
 //! the M3 and M4 scenes' translucent triangles against the host's checksums.
+//!
+//! The dithered 5-6-5 span ([`dithered_565`]): the portable pairs (`color::packed565`'s
+//! `dithered_run_565`) need fifteen registers, two word streams with their steps and the masks,
+//! and LLVM spilled them (35 instructions for four pixels and about 100 a run of 32). Here four
+//! pixels are 21 instructions, the bottom lanes' step reloaded from the frame, and the span's
+//! test (its values at both ends inside the channels' ranges, in 64 bits), its constants and
+//! each run's restart are in the same function. The integers of the portable loop; CI checks
+//! the scene's dithered triangles on every ARMv7-M board against the host's checksums.
 //!
 //! The DSP extension's code (`arm_dsp`: ARMv7E-M, and ARMv8-M Mainline with the `dsp` feature)
 //! is in blocks that name the extension to the assembler (`dsp_directive!`) where the target
@@ -2005,11 +2014,11 @@ macro_rules! dithered_pair {
     };
 }
 
-/// One channel's words at a run's start: its value at the run's first pixel (`$v` of the block
+/// One channel's words at a run's start: its value at the run's first pixel (`$v` of the frame
 /// in lr) rounded to its lane (`$round`, `$shift`), the value moved on by a run (`$run` of the
-/// block), the word of the lanes of the run's pixels 0 and 1 plus the offsets `$first` into
+/// frame), the word of the lanes of the run's pixels 0 and 1 plus the offsets `$first` into
 /// `$low`, the word of pixels 2 and 3 (the offsets `$second` have the lane step doubled in them)
-/// into `$high`. `$lane` of the block is the lane step. Clobbers r10.
+/// into `$high`. `$lane` of the frame is the lane step. Clobbers r10.
 macro_rules! dithered_words {
     ($low:literal, $high:literal, $v:literal, $run:literal, $lane:literal, $first:literal,
      $second:literal, $round:literal, $shift:literal) => {

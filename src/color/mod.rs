@@ -96,7 +96,9 @@ pub trait GouraudColor: PixelColor {
     /// channel the floor or the ceiling of its value (within 2⁻⁶ LSB), a flat colour between
     /// two levels averaging to it over each 4×4 block. By default from the [`STEP_BITS`]
     /// values channel by channel; the 5-6-5 formats override it with their packed lanes,
-    /// restarted every 32 pixels. Every dithered fill of this crate gives these colours.
+    /// restarted every 32 pixels. Every dithered fill of this crate gives these colours (`draw`
+    /// fills a span 32 pixels at a time from the values there: an override must give a span
+    /// filled in such pieces the colours it gives it whole).
     ///
     /// ```
     /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};

@@ -127,8 +127,8 @@ const LANE_MAX: [i32; 3] = [31, 63, 31];
 /// [`DITHER_RUN`] pixels, so within 2⁻⁶ LSB of the values) plus its Bayer offset, truncated to
 /// the channel's range.
 ///
-/// Where the span's values stay within 1/64 LSB of the channels' ranges (every triangle's and
-/// gradient's covered pixels: its values are within 2⁻⁹ LSB of ones inside them), the dithered
+/// Where the span's values stay within 1/64 LSB of the channels' ranges (a Gouraud triangle's
+/// covered pixels always: its values are within 2⁻⁹ LSB of ones inside them), the dithered
 /// lanes stay inside their 16 bits, `[0, (max + 1)·2^f)`, and two pixels are packed and
 /// stepped as a word, the offsets folded into the steps ([`dithered_run_565`]); otherwise the
 /// same definition pixel by pixel with the clamp.
