@@ -112,12 +112,17 @@ fn v(x: i32, y: i32, color: Rgb565) -> Vertex<Rgb565> {
     Vertex::new(c(x), c(y), color)
 }
 
-fn gouraud(p: [(i32, i32); 3], colors: [Rgb565; 3]) -> Shape {
-    Shape::Gouraud(GouraudTriangle::new([
+// (Constant indices: no bounds-check panic path in the firmware that proves there is none.)
+fn gouraud_triangle(p: [(i32, i32); 3], colors: [Rgb565; 3]) -> GouraudTriangle<Rgb565> {
+    GouraudTriangle::new([
         v(p[0].0, p[0].1, colors[0]),
         v(p[1].0, p[1].1, colors[1]),
         v(p[2].0, p[2].1, colors[2]),
-    ]))
+    ])
+}
+
+fn gouraud(p: [(i32, i32); 3], colors: [Rgb565; 3]) -> Shape {
+    Shape::Gouraud(gouraud_triangle(p, colors))
 }
 
 fn solid(p: [(i32, i32); 3], color: Rgb565) -> Shape {
@@ -393,14 +398,7 @@ pub fn render(fb: &mut SliceFramebuffer<'_, Rgb565>) {
 pub fn dithered_shapes(width: u32, height: u32) -> [GouraudTriangle<Rgb565>; 5] {
     let w = (width.min(4096) as i32) * 256;
     let h = (height.min(4096) as i32) * 256;
-    // (Constant indices: no bounds-check panic path in the firmware that proves there is none.)
-    let tri = |p: [(i32, i32); 3], c: [Rgb565; 3]| {
-        GouraudTriangle::new([
-            v(p[0].0, p[0].1, c[0]),
-            v(p[1].0, p[1].1, c[1]),
-            v(p[2].0, p[2].1, c[2]),
-        ])
-    };
+    let tri = gouraud_triangle;
     [
         tri(
             [

@@ -8,7 +8,7 @@
 //! hands out a dithered span's colours ([`DitheredColors`] for a `DrawTarget`) takes them from
 //! that one function.
 
-use super::{GouraudColor, SpanSteps, STEP_BITS};
+use super::{restart_value, GouraudColor, SpanSteps, STEP_BITS};
 
 /// The 4×4 Bayer matrix, rows by `y & 3`, columns by `x & 3`: pixel `(x, y)`'s threshold is
 /// `(2·b + 1) / 32` LSB.
@@ -18,6 +18,16 @@ const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 
 /// [`DitheredColors`] fills at a time (a multiple of every such restart).
 pub(super) const DITHER_RUN: usize = 32;
 
+/// The offset of Bayer entry `b` with `fraction` fractional bits (5 to 24), to add to a value
+/// that has the +½ rounding offset in it: `(2b + 1)/32 − ½` LSB, so that truncation gives the
+/// floor or the ceiling of the value without the +½.
+const fn threshold_offset(b: u8, fraction: u32) -> i32 {
+    ((b as i32 * 2 + 1) << (fraction - 5)) - (1 << (fraction - 1))
+}
+
+/// The fractional bits of [`bayer_pair`]'s offsets (the 5-6-5 top and bottom lanes').
+const PAIR_FRACTION: u32 = 11;
+
 /// [`bayer_pair`]'s table: rows by `y & 3`, columns by `x & 3`.
 const BAYER_PAIRS: [[u32; 4]; 4] = {
     let mut pairs = [[0; 4]; 4];
@@ -25,8 +35,8 @@ const BAYER_PAIRS: [[u32; 4]; 4] = {
     while y < 4 {
         let mut x = 0;
         while x < 4 {
-            let low = (BAYER[y][x] as i32 * 2 + 1) * 64 - 1024;
-            let high = (BAYER[y][(x + 1) % 4] as i32 * 2 + 1) * 64 - 1024;
+            let low = threshold_offset(BAYER[y][x], PAIR_FRACTION);
+            let high = threshold_offset(BAYER[y][(x + 1) % 4], PAIR_FRACTION);
             pairs[y][x] = (high * 65536 + low) as u32;
             x += 1;
         }
@@ -48,9 +58,8 @@ pub(super) fn bayer_pair(x: i32, y: i32) -> u32 {
         .unwrap_or(0)
 }
 
-/// The Bayer offset of pixel `(x, y)` with `fraction` fractional bits (5 to 24), to add to a
-/// value that has the +½ rounding offset in it: `(2b + 1)/32 − ½` LSB, so that truncation gives
-/// the floor or the ceiling of the value without the +½.
+/// The Bayer offset of pixel `(x, y)` with `fraction` fractional bits (5 to 24)
+/// ([`threshold_offset`]).
 #[inline(always)]
 pub(super) fn bayer_offset(x: i32, y: i32, fraction: u32) -> i32 {
     let b = BAYER
@@ -58,7 +67,7 @@ pub(super) fn bayer_offset(x: i32, y: i32, fraction: u32) -> i32 {
         .and_then(|r| r.get((x & 3) as usize))
         .copied()
         .unwrap_or(0);
-    ((i32::from(b) * 2 + 1) << (fraction - 5)) - (1 << (fraction - 1))
+    threshold_offset(b, fraction)
 }
 
 /// [`GouraudColor::fill_dithered`]'s default: pixel `i` of `dst` (pixel `x + i` of row `y`) has
@@ -136,10 +145,7 @@ impl<C: GouraudColor> Iterator for DitheredColors<C> {
             let n = self.left.min(DITHER_RUN);
             let chunk = self.chunk.get_mut(..n).filter(|c| !c.is_empty())?;
             C::fill_dithered(chunk, self.x, self.y, self.value, &self.steps);
-            let step = self.steps.step();
-            self.value = core::array::from_fn(|k| {
-                self.value[k].wrapping_add(step[k].wrapping_mul(n as u32))
-            });
+            self.value = restart_value(self.value, &self.steps, n as u32);
             self.x = self.x.wrapping_add(n as i32);
             self.left -= n;
             (self.at, self.filled) = (0, n);

@@ -366,11 +366,11 @@ impl SpanSteps {
     }
 }
 
-/// The channel values `run` pixels after `value` (`steps`' plain steps, wrapping): where the span
-/// loop restarts ([`GouraudColor::SPAN_RUN`]).
+/// The channel values `pixels` pixels after `value` (`steps`' plain steps, wrapping): where the
+/// span loop restarts ([`GouraudColor::SPAN_RUN`]), or a dithered span's next chunk.
 #[inline(always)]
-pub(crate) fn restart_value(value: [u32; 3], steps: &SpanSteps, run: NonZeroU32) -> [u32; 3] {
-    core::array::from_fn(|k| value[k].wrapping_add(steps.step[k].wrapping_mul(run.get())))
+pub(crate) fn restart_value(value: [u32; 3], steps: &SpanSteps, pixels: u32) -> [u32; 3] {
+    core::array::from_fn(|k| value[k].wrapping_add(steps.step[k].wrapping_mul(pixels)))
 }
 
 /// The colours of a span from its start `start`, one pixel at a time, as the format's
@@ -392,7 +392,7 @@ pub(crate) fn fill_by_state<C: GouraudColor>(dst: &mut [C], start: [u32; 3], ste
             let mut value = start;
             for part in dst.chunks_mut(run.get() as usize) {
                 run_of(part, value);
-                value = restart_value(value, steps, run);
+                value = restart_value(value, steps, run.get());
             }
         }
     }

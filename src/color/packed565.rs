@@ -83,11 +83,7 @@ pub(super) fn fill_565<C: From<RawU16>>(
         }
         return;
     }
-    let advance = |value: &mut [u32; 3]| {
-        for (v, s) in value.iter_mut().zip(step) {
-            *v = v.wrapping_add(s.wrapping_mul(PACKED_RUN as u32));
-        }
-    };
+    let advance = |value: &mut [u32; 3]| *value = advanced(*value, step, PACKED_RUN as u32);
     // ARMv6-M: the last run (the only one of most spans) outside the loop of runs, in assembly.
     #[cfg(armv6m)]
     {
@@ -174,11 +170,16 @@ pub(super) fn dithered_565<C: From<RawU16>>(
         } else {
             dithered_pixels_565(run, value, steps, (at, y));
         }
-        for (v, s) in value.iter_mut().zip(step) {
-            *v = v.wrapping_add(s.wrapping_mul(DITHER_RUN as u32));
-        }
+        value = advanced(value, step, DITHER_RUN as u32);
         at = at.wrapping_add(DITHER_RUN as i32);
     }
+}
+
+/// The values `value` (raw order) `pixels` pixels on by `step` a pixel, wrapping: where a run
+/// restarts.
+#[inline(always)]
+fn advanced(value: [u32; 3], step: [u32; 3], pixels: u32) -> [u32; 3] {
+    zip3(value, step, |v, s| v.wrapping_add(s.wrapping_mul(pixels)))
 }
 
 /// Whether the values `value + i·step` (raw order, [`STEP_BITS`] fractional bits, +½ included)

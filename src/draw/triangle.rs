@@ -692,7 +692,7 @@ impl<C: GouraudColor> Iterator for SpanColors<C> {
             // Only spans that reach a restart test for it: the others' loop is plain stepping,
             // which compilers vectorise.
             Some(run) if self.restarts && self.taken == run.get() => {
-                self.value = restart_value(self.value, &self.steps, run);
+                self.value = restart_value(self.value, &self.steps, run.get());
                 self.state = C::span_state(self.value);
                 self.taken = 0;
             }

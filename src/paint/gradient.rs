@@ -344,7 +344,7 @@ impl<C: GouraudColor> Iterator for StateColors<C> {
         self.taken = self.taken.wrapping_add(1);
         match C::SPAN_RUN {
             Some(run) if self.taken == run.get() => {
-                self.value = restart_value(self.value, &self.steps, run);
+                self.value = restart_value(self.value, &self.steps, run.get());
                 self.state = C::span_state(self.value);
                 self.taken = 0;
             }
