@@ -209,6 +209,8 @@ enum Renderer {
     SolidDrawInto,
     GouraudDraw,
     GouraudDrawInto,
+    /// `GouraudTriangle::dithered().draw_into`: ordered dithering to Rgb565.
+    GouraudDitheredDrawInto,
     /// `SolidTriangle::with_opacity(OPACITY).draw_into`: a constant colour blended.
     OpacityDrawInto,
     /// `GouraudTriangle::with_alpha(ALPHAS).draw_into`: an alpha per vertex.
@@ -229,11 +231,12 @@ enum Renderer {
     EgTriangle,
 }
 
-const RENDERERS: [Renderer; 14] = [
+const RENDERERS: [Renderer; 15] = [
     Renderer::SolidDraw,
     Renderer::SolidDrawInto,
     Renderer::GouraudDraw,
     Renderer::GouraudDrawInto,
+    Renderer::GouraudDitheredDrawInto,
     Renderer::OpacityDrawInto,
     Renderer::AlphaDrawInto,
     Renderer::AntiAliasedDrawInto,
@@ -280,6 +283,7 @@ impl Renderer {
             Renderer::SolidDrawInto => "SolidTriangle::draw_into",
             Renderer::GouraudDraw => "GouraudTriangle::draw",
             Renderer::GouraudDrawInto => "GouraudTriangle::draw_into",
+            Renderer::GouraudDitheredDrawInto => "GouraudTriangle::dithered draw_into",
             Renderer::OpacityDrawInto => "SolidTriangle::with_opacity draw_into",
             Renderer::AlphaDrawInto => "GouraudTriangle::with_alpha draw_into",
             Renderer::AntiAliasedDrawInto => "SolidTriangle::anti_aliased draw_into",
@@ -304,6 +308,7 @@ impl Renderer {
         let _ = match self {
             Renderer::SolidDraw | Renderer::SolidDrawInto => t.solid().draw(target),
             Renderer::GouraudDraw | Renderer::GouraudDrawInto => t.gouraud().draw(target),
+            Renderer::GouraudDitheredDrawInto => t.gouraud().dithered().draw(target),
             Renderer::OpacityDrawInto => t
                 .solid()
                 .with_opacity(OPACITY)
@@ -410,6 +415,11 @@ mod firmware {
             Renderer::GouraudDrawInto => {
                 for t in set.triangles() {
                     t.gouraud().draw_into(fb);
+                }
+            }
+            Renderer::GouraudDitheredDrawInto => {
+                for t in set.triangles() {
+                    t.gouraud().dithered().draw_into(fb);
                 }
             }
             Renderer::OpacityDrawInto => {

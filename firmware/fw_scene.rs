@@ -9,7 +9,10 @@
 //! cargo run --release --example fw_scene                                  # host: both sizes
 //! ```
 //!
-//! `.ci/firmware.sh` compares the firmware's line with the host's; `tests/all/firmware_checksum.rs`
+//! Then it draws random dithered spans over the scene (`scene::dithered_spans`: the targets'
+//! packed loops against the portable definition) and prints their checksum.
+//!
+//! `.ci/firmware.sh` compares the firmware's lines with the host's; `tests/all/firmware_checksum.rs`
 //! checks the host rendering of the same scene against an independent reference.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
@@ -62,6 +65,8 @@ mod firmware {
             checksum,
         };
         hprintln!("{}", line);
+        let spans = scene::dithered_spans(&mut fb);
+        hprintln!("spans {}x{} fnv1a={:#010x}", width, height, spans);
         crate::stack::report();
         board::exit(true)
     }
@@ -83,5 +88,7 @@ fn main() {
             checksum,
         };
         println!("{line}");
+        let spans = scene::dithered_spans(&mut fb);
+        println!("spans {width}x{height} fnv1a={spans:#010x}");
     }
 }

@@ -608,6 +608,83 @@ pub fn translucent(width: u32, height: u32) -> Translucent<GouraudTriangle<Rgb56
     .with_alpha([255, 128, 0])
 }
 
+/// How many random spans [`dithered_spans`] draws.
+pub const DITHERED_SPANS: u32 = 3000;
+
+/// Random ordered-dithered spans drawn straight through `GouraudColor::fill_dithered`: into the
+/// rows of `fb` (Rgb565) and into a row of Bgr565 (the other channel order), every Bayer phase,
+/// positions anywhere in `i32`. Their channels start and end near the limits a target's packed
+/// loop takes a span within (31/64 LSB and the maximum plus 33/64, give or take 1/64 to 1), across
+/// them, anywhere inside, or anywhere at all, with flat, steep and wrapping steps: the spans a
+/// packed loop must hand to the clamped definition and those it must draw itself. Returns the
+/// FNV-1a of the framebuffer's pixels after them and of each Bgr565 row: a board's must be the
+/// host's (the portable definition, which the crate's tests check against an independent one).
+pub fn dithered_spans(fb: &mut SliceFramebuffer<'_, Rgb565>) -> u32 {
+    use embedded_graphics::pixelcolor::Bgr565;
+    use embedded_raster::color::STEP_BITS;
+    use embedded_raster::GouraudColor;
+
+    let size = fb.size();
+    let (width, height) = (
+        size.width.clamp(1, 64) as usize,
+        size.height.max(1) as usize,
+    );
+    let one = 1i64 << STEP_BITS;
+    let mut sum = FNV_START;
+    let mut row = [Bgr565::new(0, 0, 0); 64];
+    for i in 0..DITHERED_SPANS {
+        let h = |k: u32| hash(i as i32, k as i32, 0x7f4a_7c15);
+        let len = 1 + (h(0) as usize % width);
+        // A channel's value near a limit, inside, or anything; `max` in its own depth.
+        let value = |k: u32, max: i64| -> i64 {
+            // Within 1, 1/4, 1/16 or 1/64 LSB of the limit.
+            let reach = one >> (2 * (h(k) % 4));
+            let near = i64::from(h(k) >> 1) % (2 * reach) - reach;
+            match h(k + 1) % 6 {
+                0 | 1 => one * 31 / 64 + near,
+                2 | 3 => (max * 64 + 33) * one / 64 + near,
+                4 => i64::from(h(k + 2)) % ((max + 1) * one),
+                _ => i64::from(h(k + 2) as i32),
+            }
+        };
+        let max = [31, 63, 31];
+        let mut start = [0u32; 3];
+        let mut step = [0u32; 3];
+        for c in 0..3 {
+            let first = value(8 * c as u32 + 1, max[c]);
+            start[c] = first as u32;
+            step[c] = match h(8 * c as u32 + 4) % 5 {
+                0 => 0,
+                1 => h(8 * c as u32 + 5),
+                // Towards a chosen end at the span's last pixel.
+                _ => {
+                    let last = value(8 * c as u32 + 5, max[c]);
+                    ((last - first) / (len as i64 - 1).max(1)) as u32
+                }
+            };
+        }
+        let (x, y) = (h(30) as i32 >> (h(31) % 32), h(32) as i32 >> (h(33) % 32));
+        if i % 4 == 3 {
+            let steps = Bgr565::prepare_steps(step);
+            Bgr565::fill_dithered(&mut row[..len], x, y, start, &steps);
+            sum = fnv(
+                sum,
+                row[..len].iter().map(|&p| RawU16::from(p).into_inner()),
+            );
+        } else {
+            let steps = Rgb565::prepare_steps(step);
+            let at = (i as usize % height) * size.width as usize;
+            if let Some(pixels) = fb.pixels_mut().get_mut(at..at + len) {
+                Rgb565::fill_dithered(pixels, x, y, start, &steps);
+            }
+        }
+    }
+    fnv(
+        sum,
+        fb.pixels().iter().map(|&p| RawU16::from(p).into_inner()),
+    )
+}
+
 /// 32-bit FNV-1a over the raw pixels, each as two little-endian bytes.
 pub fn checksum(pixels: &[Rgb565]) -> u32 {
     fnv(

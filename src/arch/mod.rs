@@ -327,15 +327,13 @@ pub(crate) fn blend_solid_565<C>(_pixels: &mut [C], _weights: &[u32; 4]) -> bool
 /// 32 pixels (the last one shorter) starts from the values there, rounded to their lanes.
 #[repr(C)]
 #[cfg_attr(not(any(armv7m, test)), allow(dead_code))]
-pub(crate) struct DitheredSpan565 {
-    /// 0: the channels at the span's first pixel (24 fractional bits, +½ included); 12: their
-    /// steps a pixel.
-    pub(crate) value: [u32; 3],
-    pub(crate) step: [u32; 3],
-    /// 24: the lanes' steps a pixel; 36: two of them in both halves of a word.
-    pub(crate) lane: [u32; 3],
-    pub(crate) double: [u32; 3],
-    /// 48, 52: the Bayer offsets of the span's pixels 0 and 1, and 2 and 3, as words of two
+pub(crate) struct DitheredSpan565<'a> {
+    /// 0: the channels at the span's first pixel (24 fractional bits, +½ included).
+    pub(crate) value: &'a [u32; 3],
+    /// 4: the lanes' steps a pixel, two of them in both halves of a word, and the channels'
+    /// steps a pixel (`color::SpanSteps`' layout, its steps in raw order).
+    pub(crate) steps: &'a [u32; 9],
+    /// 8, 12: the Bayer offsets of the span's pixels 0 and 1, and 2 and 3, as words of two
     /// lanes with 11 fractional bits (`color`'s `bayer_pair`).
     pub(crate) first: u32,
     pub(crate) second: u32,
@@ -345,7 +343,7 @@ pub(crate) struct DitheredSpan565 {
 /// says so.
 #[cfg(not(armv7m))]
 #[inline(always)]
-pub(crate) fn dithered_565<C>(_pixels: &mut [C], _span: &DitheredSpan565) -> bool {
+pub(crate) fn dithered_565<C>(_pixels: &mut [C], _span: &DitheredSpan565<'_>) -> bool {
     false
 }
 

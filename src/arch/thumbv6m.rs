@@ -1,6 +1,7 @@
-//! ARMv6-M (Cortex-M0/M0+): the 5-6-5 span loop, the masked nearest texel loop and its
-//! depth-tested form (the perspective-correct fill's unlit chunks), and the 5-6-5 blends of a
-//! constant colour at a constant opacity and of an alpha per vertex in Thumb-1 assembly.
+//! ARMv6-M (Cortex-M0/M0+): the 5-6-5 span loop and its dithered runs, the masked nearest texel
+//! loop and its depth-tested form (the perspective-correct fill's unlit chunks), and the 5-6-5
+//! blends of a constant colour at a constant opacity and of an alpha per vertex in Thumb-1
+//! assembly.
 //!
 //! LLVM keeps the loop's masks, steps and words in memory on Thumb-1 (26 instructions a pair of
 //! pixels, ~70 a span around them). Here the pair loop keeps everything in registers and stores
@@ -13,6 +14,15 @@
 //! wherever the lanes are in range, as they are at every covered pixel (the low half of each
 //! 16-bit lane is the same modulo 2¹⁶ however the pair words are formed); the host tests that
 //! loop, and CI checks that the Cortex-M0 firmware's scene has the host's checksum.
+//!
+//! The dithered run ([`dithered_run_565`]) is the same pair loop over two words a pass: the
+//! words of pixels `4k, 4k + 1` and `4k + 2, 4k + 3` differ by two lane steps plus the Bayer
+//! offsets' difference, and the next pass's first word is the second plus two lane steps less
+//! it, so one set of words steps by those two sets of steps (in high registers, one on the
+//! stack): 28 instructions for four pixels, where LLVM's loop took 64 (the two streams of
+//! `color::packed565::dithered_run_565` on the stack). The same words, so the same pixels;
+//! CI checks the Cortex-M0 scene's dithered triangles and its random dithered spans against
+//! the host's checksums.
 //!
 //! The masked nearest texel loop ([`masked_nearest_565`]): LLVM unrolls the portable loop
 //! (`texture::span`'s `Affine` with the masked nearest sampler) four times but keeps the masks,
@@ -62,6 +72,21 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
 
 use super::MaskedSpan565;
+
+/// The entry of a function that uses r4-r11: saves them and lr (the AAPCS's callee-saved
+/// registers; Thumb-1 pushes the high ones through low ones).
+macro_rules! save_registers {
+    () => {
+        "push {{r4-r7, lr}}\nmov r4, r8\nmov r5, r9\nmov r6, r10\nmov r7, r11\npush {{r4-r7}}"
+    };
+}
+
+/// The return of a function that began with `save_registers`: restores r4-r11, returns.
+macro_rules! restore_registers {
+    () => {
+        "pop {{r4-r7}}\nmov r8, r4\nmov r9, r5\nmov r10, r6\nmov r11, r7\npop {{r4-r7, pc}}"
+    };
+}
 
 /// r4 = two pixels from the channel words lr (top), r1 (middle), r2 (bottom) with the masks
 /// r3 = 0xF800F800, r6 = 0x07E007E0 and r7 = 0x001F001F: top & r3 | (middle >> 5) & r6 |
@@ -214,6 +239,170 @@ pub(crate) unsafe fn span_565(
     // `steps` (the caller's promises) and the three of `values`; it saves and restores every
     // register the AAPCS asks it to.
     unsafe { embedded_raster_565_span_v6m(pixels, len, values, steps) }
+}
+
+/// A run of the dithered 5-6-5 fill for [`dithered_run_565`] (`color::packed565`'s
+/// `dithered_run_565` defines its pixels): lanes in raw order (top, middle, bottom).
+#[repr(C)]
+pub(crate) struct DitheredRun565<'a> {
+    /// 0: the lanes at the run's first pixel (`color::packed565`'s 16-bit lanes).
+    pub(crate) lane: [u32; 3],
+    /// 12: the lanes' steps a pixel, then two of them in both halves of a word (the first six
+    /// words of `color::SpanSteps`).
+    pub(crate) steps: &'a [u32; 9],
+    /// 16, 20: the Bayer offsets of the run's pixels 0 and 1, and 2 and 3, as words of two
+    /// lanes with 11 fractional bits (`color`'s `bayer_pair`).
+    pub(crate) first: u32,
+    pub(crate) second: u32,
+}
+
+core::arch::global_asm!(
+    ".section .text.embedded_raster_dithered_run_565_v6m,\"ax\",%progbits",
+    ".syntax unified",
+    ".thumb",
+    ".p2align 2",
+    ".global embedded_raster_dithered_run_565_v6m",
+    ".hidden embedded_raster_dithered_run_565_v6m",
+    ".type embedded_raster_dithered_run_565_v6m,%function",
+    ".thumb_func",
+    // r0 = pixels (4-byte aligned), r1 = pixel count, r2 = the run (`DitheredRun565`).
+    "embedded_raster_dithered_run_565_v6m:",
+    save_registers!(),
+    // [sp]: the bottom lanes' step from the word of pixels 2-3 to that of the next pixels 0-1;
+    // [sp, #4]: the end of the passes of four pixels; [sp, #8]: the pixels after them.
+    "sub sp, #12",
+    "lsrs r4, r1, #2",
+    "lsls r4, r4, #3",
+    "adds r4, r0, r4",
+    "str r4, [sp, #4]",
+    "lsls r4, r1, #30",
+    "lsrs r4, r4, #30",
+    "str r4, [sp, #8]",
+    // The steps between the two words of a pass: from pixels 0-1 to 2-3 two lane steps plus
+    // the offsets' difference (r8-r10), from 2-3 to the next 0-1 two lane steps less it (r11,
+    // r12, [sp]); the middle lane's offsets are half the others'.
+    "ldr r3, [r2, #12]",
+    "ldr r4, [r2, #16]",
+    "ldr r5, [r2, #20]",
+    "subs r6, r5, r4",
+    "asrs r4, r4, #1",
+    "asrs r5, r5, #1",
+    "subs r7, r5, r4",
+    "ldr r4, [r3, #12]",
+    "adds r5, r4, r6",
+    "mov r8, r5",
+    "subs r5, r4, r6",
+    "mov r11, r5",
+    "ldr r4, [r3, #16]",
+    "adds r5, r4, r7",
+    "mov r9, r5",
+    "subs r5, r4, r7",
+    "mov r12, r5",
+    "ldr r4, [r3, #20]",
+    "adds r5, r4, r6",
+    "mov r10, r5",
+    "subs r5, r4, r6",
+    "str r5, [sp]",
+    // The words of pixels 0-1, `(lane + step) << 16 | lane` plus the offsets: top in lr,
+    // middle in r1, bottom in r2.
+    "ldr r6, [r2, #16]",
+    "asrs r7, r6, #1",
+    "ldr r4, [r2]",
+    "ldr r5, [r3]",
+    "adds r5, r5, r4",
+    "lsls r5, r5, #16",
+    "adds r4, r4, r5",
+    "adds r4, r4, r6",
+    "mov lr, r4",
+    "ldr r1, [r2, #4]",
+    "ldr r5, [r3, #4]",
+    "adds r5, r5, r1",
+    "lsls r5, r5, #16",
+    "adds r1, r1, r5",
+    "adds r1, r1, r7",
+    "ldr r4, [r2, #8]",
+    "ldr r5, [r3, #8]",
+    "adds r5, r5, r4",
+    "lsls r5, r5, #16",
+    "adds r4, r4, r5",
+    "adds r2, r4, r6",
+    "ldr r3, 4f",
+    "ldr r6, 5f",
+    "ldr r7, 6f",
+    "ldr r4, [sp, #4]",
+    "cmp r0, r4",
+    "bhs 3f",
+    // Four pixels a pass: two words.
+    "1:",
+    pack_565!(),
+    "stm r0!, {{r4}}",
+    "add lr, r8",
+    "add r1, r9",
+    "add r2, r10",
+    pack_565!(),
+    "stm r0!, {{r4}}",
+    "add lr, r11",
+    "add r1, r12",
+    "ldr r5, [sp]",
+    "adds r2, r2, r5",
+    "ldr r5, [sp, #4]",
+    "cmp r0, r5",
+    "blo 1b",
+    // Then up to three: a word and a pixel of the next, a word, or a pixel.
+    "3:",
+    "ldr r5, [sp, #8]",
+    "cmp r5, #0",
+    "beq 8f",
+    "cmp r5, #2",
+    "blo 7f",
+    pack_565!(),
+    "stm r0!, {{r4}}",
+    "ldr r5, [sp, #8]",
+    "cmp r5, #2",
+    "beq 8f",
+    "add lr, r8",
+    "add r1, r9",
+    "add r2, r10",
+    "7:",
+    pack_565!(),
+    "strh r4, [r0]",
+    "8:",
+    "add sp, #12",
+    restore_registers!(),
+    ".p2align 2",
+    "4: .word 0xF800F800",
+    "5: .word 0x07E007E0",
+    "6: .word 0x001F001F",
+    ".size embedded_raster_dithered_run_565_v6m, . - embedded_raster_dithered_run_565_v6m",
+);
+
+extern "C" {
+    /// The assembly function above.
+    fn embedded_raster_dithered_run_565_v6m(
+        pixels: *mut u16,
+        len: usize,
+        run: *const DitheredRun565<'_>,
+    );
+}
+
+/// Draws the dithered run `run` into `pixels` (their first at a 4-byte aligned address; `false`
+/// without drawing anything otherwise, or if `C` is not a 16-bit colour): pixel `i` the 5-6-5
+/// packing of its lanes (`run.lane` plus `i` lane steps) plus its Bayer offset, two pixels a
+/// word, as `color::packed565`'s `dithered_run_565` computes it where every dithered lane stays
+/// inside its 16 bits (the caller's check).
+#[inline(always)]
+pub(crate) fn dithered_run_565<C>(pixels: &mut [C], run: &DitheredRun565<'_>) -> bool {
+    let aligned = (pixels.as_ptr() as usize) % 4 == 0;
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 || !aligned {
+        return false;
+    }
+    // SAFETY: `pixels` holds `pixels.len()` 2-byte aligned 16-bit colours (checked above), the
+    // first at a 4-byte aligned address, which the function writes as `u16`s (two at a time as
+    // a word, at 4-byte aligned addresses only, as ARMv6-M requires); it reads `run`, the six
+    // words of `run.steps` it uses and its own stack frame, and saves and restores every
+    // register the AAPCS asks it to.
+    unsafe { embedded_raster_dithered_run_565_v6m(pixels.as_mut_ptr().cast(), pixels.len(), run) }
+    true
 }
 
 /// Whether the texels of `span` hold every index its masked loops form (`row | column ≤ rows |
@@ -405,12 +594,7 @@ core::arch::global_asm!(
     // r0 = pixels, r1 = depths (both 2-byte aligned), r2 = pixel count, r3 = the walk: dx, dy,
     // texels, z, dz, x, y, x_mask, rows.
     "embedded_raster_depth_masked_565_v6m:",
-    "push {{r4-r7, lr}}",
-    "mov r4, r8",
-    "mov r5, r9",
-    "mov r6, r10",
-    "mov r7, r11",
-    "push {{r4-r7}}",
+    save_registers!(),
     // lr = past the last pixel; nothing to draw for no pixels.
     "lsls r2, r2, #1",
     "beq 4f",
@@ -450,12 +634,7 @@ core::arch::global_asm!(
     "cmp r0, lr",
     "blo 3b",
     "4:",
-    "pop {{r4-r7}}",
-    "mov r8, r4",
-    "mov r9, r5",
-    "mov r10, r6",
-    "mov r11, r7",
-    "pop {{r4-r7, pc}}",
+    restore_registers!(),
     ".size embedded_raster_depth_masked_565_v6m, . - embedded_raster_depth_masked_565_v6m",
 );
 
@@ -671,12 +850,7 @@ core::arch::global_asm!(
     ".thumb_func",
     // r0 = the pixels, r1 = their number (at least one), r2 = the planes' values then steps.
     "embedded_raster_premultiplied_565_v6m:",
-    "push {{r4-r7, lr}}",
-    "mov r4, r8",
-    "mov r5, r9",
-    "mov r6, r10",
-    "mov r7, r11",
-    "push {{r4-r7}}",
+    save_registers!(),
     "ldm r2!, {{r3-r6}}",
     "mov r9, r4",
     "mov r10, r5",
@@ -728,12 +902,7 @@ core::arch::global_asm!(
     "add r7, r8",
     "adds r1, #2",
     "bne 1b",
-    "pop {{r4-r7}}",
-    "mov r8, r4",
-    "mov r9, r5",
-    "mov r10, r6",
-    "mov r11, r7",
-    "pop {{r4-r7, pc}}",
+    restore_registers!(),
     ".size embedded_raster_premultiplied_565_v6m, . - embedded_raster_premultiplied_565_v6m",
 );
 

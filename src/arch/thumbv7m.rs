@@ -15,7 +15,8 @@
 //! pixels are 21 instructions, the bottom lanes' step reloaded from the frame, and the span's
 //! test (its values at both ends inside the channels' ranges, in 64 bits), its constants and
 //! each run's restart are in the same function. The integers of the portable loop; CI checks
-//! the scene's dithered triangles on every ARMv7-M board against the host's checksums.
+//! the scene's dithered triangles and its random dithered spans (at and across the test's
+//! limits) on every ARMv7-M board against the host's checksums.
 //!
 //! The DSP extension's code (`arm_dsp`: ARMv7E-M, and ARMv8-M Mainline with the `dsp` feature)
 //! is in blocks that name the extension to the assembler (`dsp_directive!`) where the target
@@ -2082,35 +2083,23 @@ macro_rules! dithered_words {
     };
 }
 
-/// [`embedded_raster_dithered_565_v7m`]'s test of one channel: its value (`$v` of the span,
-/// r2) at the first pixel and at the last (r12 pixels on by its step `$s`) both at least 31/64
-/// LSB and below its maximum plus 33/64 (`$range`: the interval's width); otherwise the span is
-/// declined (90). Clobbers r4-r7.
+/// [`embedded_raster_dithered_565_v7m`]'s test of one channel: its value `$v` at the first
+/// pixel and at the last (r12 pixels on by its step `$s`) both at least 31/64 LSB and below its
+/// maximum plus 33/64 (`$range`: the interval's width); otherwise the span is declined (90). The
+/// last one exactly in 64 bits: the first one's offset (below the range, so non-negative) plus
+/// the step times r12 by one `smlal`, then one 64-bit unsigned compare (a negative end is a huge
+/// one). Clobbers r3 and lr.
+#[rustfmt::skip]
 macro_rules! dithered_inside {
     ($v:literal, $s:literal, $range:literal) => {
         concat!(
-            "ldr r4, [r2, #",
-            $v,
-            "]\n",
-            "ldr r5, [r2, #",
-            $s,
-            "]\n",
-            "sub r6, r4, #0x7C0000\n",
-            "cmp r6, ",
-            $range,
-            "\n",
+            "sub r3, ", $v, ", #0x7C0000\n",
+            "cmp r3, ", $range, "\n",
             "bhs 90f\n",
-            // The last value exactly (64 bits; the first is positive).
-            "smull r6, r7, r5, r12\n",
-            "adds r6, r6, r4\n",
-            "adc r7, r7, #0\n",
-            "subs r6, r6, #0x7C0000\n",
-            "sbc r7, r7, #0\n",
-            "cmp r7, #0\n",
-            "bne 90f\n",
-            "cmp r6, ",
-            $range,
-            "\n",
+            "mov lr, #0\n",
+            "smlal r3, lr, ", $s, ", r12\n",
+            "subs r3, r3, ", $range, "\n",
+            "sbcs lr, lr, #0\n",
             "bhs 90f\n",
         )
     };
@@ -2135,26 +2124,29 @@ core::arch::global_asm!(
     // and 2-3 of a run (the latter with two lane steps); [sp, #68-72]: the top and middle
     // lanes' steps over four pixels.
     "sub sp, #76",
-    // Every lane inside its 16 bits, or declined.
+    // Every lane inside its 16 bits, or declined: the values r4-r6, the steps r7-r9.
+    "ldrd r3, lr, [r2]",
+    "ldm r3, {{r4-r6}}",
+    "add lr, lr, #24",
+    "ldm lr, {{r7-r9}}",
     "sub r12, r1, #1",
     "movw r11, #0",
     "movt r11, #0x1F08",
     "add r10, r11, #0x20000000",
-    dithered_inside!("0", "12", "r11"),
-    dithered_inside!("4", "16", "r10"),
-    dithered_inside!("8", "20", "r11"),
+    dithered_inside!("r4", "r7", "r11"),
+    dithered_inside!("r5", "r8", "r10"),
+    dithered_inside!("r6", "r9", "r11"),
     // The span's constants into the frame.
-    "ldm r2, {{r4-r9}}",
     "lsl r7, r7, #5",
     "lsl r8, r8, #5",
     "lsl r9, r9, #5",
     "add lr, sp, #8",
     "stm lr, {{r4-r9}}",
-    "add lr, r2, #24",
+    "ldr lr, [r2, #4]",
     "ldm lr, {{r4-r9}}",
     "add lr, sp, #32",
     "stm lr, {{r4-r6}}",
-    "ldrd r10, r11, [r2, #48]",
+    "ldrd r10, r11, [r2, #8]",
     "asr r12, r10, #1",
     "add r4, r11, r7",
     "asr r5, r11, #1",
@@ -2239,7 +2231,7 @@ extern "C" {
     fn embedded_raster_dithered_565_v7m(
         pixels: *mut u16,
         len: usize,
-        span: *const DitheredSpan565,
+        span: *const DitheredSpan565<'_>,
     ) -> u32;
 }
 
@@ -2248,7 +2240,7 @@ extern "C" {
 /// last pixel in `[31/64, max + 33/64)` LSB); `false` without writing anything otherwise, or
 /// if `C` is not a 16-bit colour.
 #[inline(always)]
-pub(crate) fn dithered_565<C>(pixels: &mut [C], span: &DitheredSpan565) -> bool {
+pub(crate) fn dithered_565<C>(pixels: &mut [C], span: &DitheredSpan565<'_>) -> bool {
     if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 {
         return false;
     }
@@ -2257,7 +2249,8 @@ pub(crate) fn dithered_565<C>(pixels: &mut [C], span: &DitheredSpan565) -> bool 
     }
     // SAFETY: `pixels` holds `pixels.len()` (at least one) 2-byte aligned 16-bit colours
     // (checked above), which the function writes as `u16`s (two at a time as a word, which
-    // ARMv7-M stores at any address); it reads `span` and its own stack frame, and saves and
+    // ARMv7-M stores at any address); it reads `span`, the arrays it refers to and its own
+    // stack frame, and saves and
     // restores every register the AAPCS asks it to.
     unsafe { embedded_raster_dithered_565_v7m(pixels.as_mut_ptr().cast(), pixels.len(), span) != 0 }
 }

@@ -364,6 +364,17 @@ impl SpanSteps {
     pub fn step(&self) -> [u32; 3] {
         self.step
     }
+
+    /// The nine words as the assembly loops read them: `lane`, `double`, `step`.
+    #[cfg_attr(not(any(armv7m, armv6m)), allow(dead_code))]
+    #[inline(always)]
+    #[allow(unsafe_code)]
+    pub(crate) fn words(&self) -> &[u32; 9] {
+        const { assert!(core::mem::size_of::<SpanSteps>() == 36) };
+        // SAFETY: `SpanSteps` is `repr(C)`: three `[u32; 3]` one after the other, no padding
+        // (36 bytes, asserted), with the alignment of `u32`.
+        unsafe { &*core::ptr::from_ref(self).cast::<[u32; 9]>() }
+    }
 }
 
 /// The channel values `pixels` pixels after `value` (`steps`' plain steps, wrapping): where the

@@ -139,7 +139,49 @@ pub(super) fn dithered_565<C: From<RawU16>>(
     order: [usize; 3],
 ) {
     let pick = |v: [u32; 3]| order.map(|k| v.get(k).copied().unwrap_or(0));
-    let (mut value, step) = (pick(start), pick(steps.step));
+    // The ARMv7-M loop's runs are this long; it takes a whole span whose values at both ends
+    // are inside the ranges of `run_stays_inside` (exactly, in 64 bits).
+    const { assert!(DITHER_RUN == 32) };
+    if dst.len() >= SHORT_DITHERED {
+        // The values and steps where they are when the raw order is the channel order (Rgb565).
+        let (value, reordered);
+        let (value, words) = if matches!(order, [0, 1, 2]) {
+            (&start, steps.words())
+        } else {
+            value = pick(start);
+            let [l0, l1, l2] = steps.lane;
+            let [d0, d1, d2] = steps.double;
+            let [s0, s1, s2] = pick(steps.step);
+            reordered = [l0, l1, l2, d0, d1, d2, s0, s1, s2];
+            (&value, &reordered)
+        };
+        let span = arch::DitheredSpan565 {
+            value,
+            steps: words,
+            first: bayer_pair(x, y),
+            second: bayer_pair(x.wrapping_add(2), y),
+        };
+        if arch::dithered_565(dst, &span) {
+            return;
+        }
+    }
+    dithered_runs_565(dst, (x, y), pick(start), steps, pick(steps.step));
+}
+
+/// [`dithered_565`] run by run in Rust (where no assembly loop took the span): `value` and
+/// `step` in raw order.
+///
+/// Out of line on ARMv7-M, where it is the rare case (a span leaving the channels' ranges or
+/// under 4 pixels): the common one then calls the assembly loop with a small frame.
+#[cfg_attr(not(armv7m), inline(always))]
+#[cfg_attr(armv7m, inline(never))]
+fn dithered_runs_565<C: From<RawU16>>(
+    dst: &mut [C],
+    (x, y): (i32, i32),
+    mut value: [u32; 3],
+    steps: &SpanSteps,
+    step: [u32; 3],
+) {
     if dst.len() < SHORT_DITHERED {
         // One run.
         dithered_pixels_565(dst, value, steps, (x, y));
@@ -148,30 +190,57 @@ pub(super) fn dithered_565<C: From<RawU16>>(
     // A run's pixels are a multiple of 4 (the Bayer matrix's width): every run has the same
     // offsets.
     const { assert!(DITHER_RUN % 4 == 0) };
-    // The ARMv7-M loop's runs are this long; it takes a whole span whose values at both ends
-    // are inside the ranges of `run_stays_inside` (exactly, in 64 bits).
-    const { assert!(DITHER_RUN == 32) };
-    let span = arch::DitheredSpan565 {
-        value,
-        step,
-        lane: steps.lane,
-        double: steps.double,
-        first: bayer_pair(x, y),
-        second: bayer_pair(x.wrapping_add(2), y),
-    };
-    if arch::dithered_565(dst, &span) {
-        return;
-    }
     let offsets = (bayer_lanes(x, y), bayer_lanes(x.wrapping_add(2), y));
     let mut at = x;
     for run in dst.chunks_mut(DITHER_RUN) {
         if run.len() >= SHORT_DITHERED && run_stays_inside(value, step, run.len()) {
-            dithered_run_565(run, lanes(value), steps, offsets);
+            packed_dithered_run(run, lanes(value), steps, (at, y), offsets);
         } else {
             dithered_pixels_565(run, value, steps, (at, y));
         }
         value = advanced(value, step, DITHER_RUN as u32);
         at = at.wrapping_add(DITHER_RUN as i32);
+    }
+}
+
+/// A run of [`dithered_runs_565`] whose dithered lanes stay inside their 16 bits (pixel
+/// `(at, y)` its first), as [`dithered_run_565`] draws it: on ARMv6-M by its Thumb-1 loop
+/// ([`arch::thumbv6m`]; a run at an address of 2 mod 4 its first pixel alone first, as
+/// ARMv6-M stores words at 4-byte aligned addresses only).
+#[inline(always)]
+fn packed_dithered_run<C: From<RawU16>>(
+    run: &mut [C],
+    lane: [u32; 3],
+    steps: &SpanSteps,
+    (at, y): (i32, i32),
+    offsets: ([u32; 3], [u32; 3]),
+) {
+    #[cfg(armv6m)]
+    {
+        let (mut run, mut lane, mut at) = (run, lane, at);
+        if (run.as_ptr() as usize) % 4 != 0 {
+            if let [first, rest @ ..] = run {
+                *first = raw_565(pack_565(zip3(lane, offsets.0, u32::wrapping_add)));
+                lane = zip3(lane, steps.lane, u32::wrapping_add);
+                at = at.wrapping_add(1);
+                run = rest;
+            }
+        }
+        let thumb = arch::thumbv6m::DitheredRun565 {
+            lane,
+            steps: steps.words(),
+            first: bayer_pair(at, y),
+            second: bayer_pair(at.wrapping_add(2), y),
+        };
+        if !arch::thumbv6m::dithered_run_565(run, &thumb) {
+            let offsets = (bayer_lanes(at, y), bayer_lanes(at.wrapping_add(2), y));
+            dithered_run_565(run, lane, steps, offsets);
+        }
+    }
+    #[cfg(not(armv6m))]
+    {
+        let _ = (at, y);
+        dithered_run_565(run, lane, steps, offsets);
     }
 }
 
