@@ -385,24 +385,22 @@ extern "C" {
     );
 }
 
-/// Draws the dithered run `run` into `pixels` (their first at a 4-byte aligned address; `false`
-/// without drawing anything otherwise, or if `C` is not a 16-bit colour): pixel `i` the 5-6-5
-/// packing of its lanes (`run.lane` plus `i` lane steps) plus its Bayer offset, two pixels a
-/// word, as `color::packed565`'s `dithered_run_565` computes it where every dithered lane stays
-/// inside its 16 bits (the caller's check).
+/// Draws the dithered run `run` into the `len` pixels from `pixels`: pixel `i` the 5-6-5 packing
+/// of its lanes (`run.lane` plus `i` lane steps) plus its Bayer offset, two pixels a word, as
+/// `color::packed565`'s `dithered_run_565` computes it where every dithered lane stays inside
+/// its 16 bits (the caller's check).
+///
+/// # Safety
+///
+/// `pixels` must be valid for writes of `len` consecutive `u16`s, the first at a 4-byte aligned
+/// address.
 #[inline(always)]
-pub(crate) fn dithered_run_565<C>(pixels: &mut [C], run: &DitheredRun565<'_>) -> bool {
-    let aligned = (pixels.as_ptr() as usize) % 4 == 0;
-    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() != 2 || !aligned {
-        return false;
-    }
-    // SAFETY: `pixels` holds `pixels.len()` 2-byte aligned 16-bit colours (checked above), the
-    // first at a 4-byte aligned address, which the function writes as `u16`s (two at a time as
-    // a word, at 4-byte aligned addresses only, as ARMv6-M requires); it reads `run`, the six
-    // words of `run.steps` it uses and its own stack frame, and saves and restores every
-    // register the AAPCS asks it to.
-    unsafe { embedded_raster_dithered_run_565_v6m(pixels.as_mut_ptr().cast(), pixels.len(), run) }
-    true
+pub(crate) unsafe fn dithered_run_565(pixels: *mut u16, len: usize, run: &DitheredRun565<'_>) {
+    // SAFETY: the function writes the `len` `u16`s from `pixels` (two at a time as a word, at
+    // 4-byte aligned addresses only, as ARMv6-M requires: the caller's promises); it reads
+    // `run`, the six words of `run.steps` it uses and its own stack frame, and saves and
+    // restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_dithered_run_565_v6m(pixels, len, run) }
 }
 
 /// Whether the texels of `span` hold every index its masked loops form (`row | column ≤ rows |

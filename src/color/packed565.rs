@@ -204,9 +204,10 @@ fn dithered_runs_565<C: From<RawU16>>(
 }
 
 /// A run of [`dithered_runs_565`] whose dithered lanes stay inside their 16 bits (pixel
-/// `(at, y)` its first), as [`dithered_run_565`] draws it: on ARMv6-M by its Thumb-1 loop
-/// ([`arch::thumbv6m`]; a run at an address of 2 mod 4 its first pixel alone first, as
-/// ARMv6-M stores words at 4-byte aligned addresses only).
+/// `(at, y)` its first), as [`dithered_run_565`] draws it from its first pixel's lanes and the
+/// `offsets` of its pixels 0-1 and 2-3 ([`bayer_lanes`]): on ARMv6-M by its Thumb-1 loop
+/// ([`arch::thumbv6m`]; a run at an address of 2 mod 4 its first pixel alone first, as ARMv6-M
+/// stores words at 4-byte aligned addresses only).
 #[inline(always)]
 fn packed_dithered_run<C: From<RawU16>>(
     run: &mut [C],
@@ -216,32 +217,47 @@ fn packed_dithered_run<C: From<RawU16>>(
     offsets: ([u32; 3], [u32; 3]),
 ) {
     #[cfg(armv6m)]
-    {
-        let (mut run, mut lane, mut at) = (run, lane, at);
-        if (run.as_ptr() as usize) % 4 != 0 {
-            if let [first, rest @ ..] = run {
-                *first = raw_565(pack_565(zip3(lane, offsets.0, u32::wrapping_add)));
-                lane = zip3(lane, steps.lane, u32::wrapping_add);
-                at = at.wrapping_add(1);
-                run = rest;
-            }
-        }
-        let thumb = arch::thumbv6m::DitheredRun565 {
-            lane,
-            steps: steps.words(),
-            first: bayer_pair(at, y),
-            second: bayer_pair(at.wrapping_add(2), y),
-        };
-        if !arch::thumbv6m::dithered_run_565(run, &thumb) {
-            let offsets = (bayer_lanes(at, y), bayer_lanes(at.wrapping_add(2), y));
-            dithered_run_565(run, lane, steps, offsets);
-        }
-    }
+    dithered_run_thumb1(run, lane, steps, (at, y), offsets.0);
     #[cfg(not(armv6m))]
     {
         let _ = (at, y);
         dithered_run_565(run, lane, steps, offsets);
     }
+}
+
+/// [`packed_dithered_run`] on ARMv6-M: the Thumb-1 loop ([`arch::thumbv6m`]), its words stored at
+/// 4-byte aligned addresses only (a run at an address of 2 mod 4 has its first pixel drawn
+/// alone, from the lanes and the offsets `head` of pixels 0 and 1).
+#[cfg(armv6m)]
+#[inline(always)]
+#[allow(unsafe_code)]
+fn dithered_run_thumb1<C: From<RawU16>>(
+    run: &mut [C],
+    mut lane: [u32; 3],
+    steps: &SpanSteps,
+    (mut at, y): (i32, i32),
+    head: [u32; 3],
+) {
+    // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
+    const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
+    let mut run = run;
+    if (run.as_ptr() as usize) % 4 != 0 {
+        if let [first, rest @ ..] = run {
+            *first = raw_565(pack_565(zip3(lane, head, u32::wrapping_add)));
+            lane = zip3(lane, steps.lane, u32::wrapping_add);
+            at = at.wrapping_add(1);
+            run = rest;
+        }
+    }
+    let words = arch::thumbv6m::DitheredRun565 {
+        lane,
+        steps: steps.words(),
+        first: bayer_pair(at, y),
+        second: bayer_pair(at.wrapping_add(2), y),
+    };
+    // SAFETY: `run` is `run.len()` consecutive 16-bit pixels (asserted above), the first at a
+    // 4-byte aligned address (a first pixel at 2 mod 4 is drawn above).
+    unsafe { arch::thumbv6m::dithered_run_565(run.as_mut_ptr().cast(), run.len(), &words) };
 }
 
 /// The values `value` (raw order) `pixels` pixels on by `step` a pixel, wrapping: where a run
@@ -323,6 +339,7 @@ fn bayer_lanes(x: i32, y: i32) -> [u32; 3] {
 /// word their lanes plus their Bayer offsets ([`bayer_pair`]: the integer `o₁·2¹⁶ + o₀`, so a
 /// negative low offset borrows from the high lane as the sum needs). A stream's offsets are the
 /// same at every word, so both step by four pixels' lane steps alone.
+#[cfg_attr(armv6m, allow(dead_code))]
 #[inline(always)]
 fn dithered_run_565<C: From<RawU16>>(
     run: &mut [C],
