@@ -609,6 +609,20 @@ mod tests {
         }
     }
 
+    /// The words the assembly loops read from `SpanSteps` are its lane steps, double steps and
+    /// steps, in that order.
+    #[test]
+    fn span_steps_words_are_its_fields() {
+        for order in [[0, 1, 2], [2, 1, 0]] {
+            let steps = prepare_565([0x0123_4567, 0xFEDC_BA98, 0x0F0F_0F0F], order);
+            let mut want = [0; 9];
+            want[..3].copy_from_slice(&steps.lane);
+            want[3..6].copy_from_slice(&steps.double);
+            want[6..].copy_from_slice(&steps.step);
+            assert_eq!(steps.words(), &want);
+        }
+    }
+
     /// The dithered 5-6-5 loop: its packed pairs are the per-pixel definition with the clamp
     /// (`dithered_pixels_565`) wherever the span stays inside the channels' ranges, in both
     /// channel orders, at every alignment of the Bayer columns and rows; and each channel is
