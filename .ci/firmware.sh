@@ -186,17 +186,16 @@ declare -A ANTIALIAS_TARGET=([cortex-m4]=32.3 [cortex-m0]=88.6)
 # triangles measure 2.58 and 6.31); measured 2.81 and 6.50, margins of 10 % and 15 %.
 declare -A POLYGON_TARGET=([cortex-m4]=3.1 [cortex-m0]=7.5)
 # Gradient-filled triangles (fw_bench's large set, `PaintedTriangle` with three stops, Rgb565;
-# issue #30's targets are linear 4 on the M4 and 8 on the M0, radial 10 on the M4, dithering
-# +2: out of reach with the set-up each span of a gradient has, an exact classification of its
-# first pixel and a reciprocal for each run, in 64-bit arithmetic, over the bench's spans of 53
-# and 26 pixels (128×96, 64×48), and the radial chords' square roots; docs/benchmarks.md):
-# held where they are, measured 19.74 and 59.74 (linear), 21.52 and 72.39 (dithered: the
-# packed dithered lanes, +2.2 and +12.9 over the plain fill), 173.53 (radial, M4), margins of
-# 10 %. The dithered Gouraud fill (`GouraudTriangle::dithered`), measured 10.61 and 26.13
-# (+1.64 over the plain fill on the M4: #30's +2 reached; +10.6 on the M0), margins of 10 %.
+# issue #30's targets are linear 4 on the M4 and 8 on the M0, radial 10 on the M4: out of reach
+# with the set-up each span of a gradient has, an exact classification of its first pixel and a
+# reciprocal for each run, in 64-bit arithmetic, over the bench's spans of 53 and 26 pixels
+# (128×96, 64×48), and the radial chords' square roots; docs/benchmarks.md), held where they
+# are, measured 19.74 and 59.74 (linear), 173.53 (radial, M4), margins of 10 %. Dithering
+# (#30: +2 over the plain fill; reached on the M4), margins of 10 %: linear dithered 20.98 and
+# 72.39 (+1.68 and +12.9), `GouraudTriangle::dithered` 10.16 and 26.13 (+1.19 and +10.6).
 declare -A LINEAR_TARGET=([cortex-m4]=21.7 [cortex-m0]=65.7)
-declare -A LINEAR_DITHERED_TARGET=([cortex-m4]=23.7 [cortex-m0]=79.3)
-declare -A GOURAUD_DITHERED_TARGET=([cortex-m4]=11.7 [cortex-m0]=28.7)
+declare -A LINEAR_DITHERED_TARGET=([cortex-m4]=23.1 [cortex-m0]=79.3)
+declare -A GOURAUD_DITHERED_TARGET=([cortex-m4]=11.2 [cortex-m0]=28.7)
 declare -A RADIAL_TARGET=([cortex-m4]=191)
 # The other cores (issue #31), held where they are with margins of about 10 %:
 # * the Cortex-M7 board runs the Cortex-M4F build: the same instructions, the M4's limits;

@@ -2016,69 +2016,24 @@ macro_rules! dithered_pair {
 }
 
 /// One channel's words at a run's start: its value at the run's first pixel (`$v` of the frame
-/// in lr) rounded to its lane (`$round`, `$shift`), the value moved on by a run (`$run` of the
-/// frame), the word of the lanes of the run's pixels 0 and 1 plus the offsets `$first` into
-/// `$low`, the word of pixels 2 and 3 (the offsets `$second` have the lane step doubled in them)
-/// into `$high`. `$lane` of the frame is the lane step. Clobbers r10.
+/// in lr) rounded to its lane `l` (`$round`, `$shift`), the word of the lanes of the run's
+/// pixels 0 and 1 plus their offsets, `l·0x10001 + K₁`, into `$low` and the word of pixels 2
+/// and 3, that plus `K₂`, into `$high`: `K₁` (at
+/// `$k1` of the frame) is the lane step shifted up 16 plus the offsets of pixels 0-1, `K₂` (at
+/// `$k2`) two lane steps plus the offsets of pixels 2-3 less those of 0-1. Clobbers r10.
+#[rustfmt::skip]
 macro_rules! dithered_words {
-    ($low:literal, $high:literal, $v:literal, $run:literal, $lane:literal, $first:literal,
-     $second:literal, $round:literal, $shift:literal) => {
+    ($low:literal, $high:literal, $v:literal, $k1:literal, $k2:literal, $round:literal,
+     $shift:literal) => {
         concat!(
-            "ldr ",
-            $low,
-            ", [lr, #",
-            $v,
-            "]\n",
-            "ldr r10, [lr, #",
-            $run,
-            "]\n",
-            "add r10, ",
-            $low,
-            ", r10\n",
-            "str r10, [lr, #",
-            $v,
-            "]\n",
-            "add ",
-            $low,
-            ", ",
-            $low,
-            ", #",
-            $round,
-            "\n",
-            "lsr ",
-            $low,
-            ", ",
-            $low,
-            ", #",
-            $shift,
-            "\n",
-            "ldr r10, [lr, #",
-            $lane,
-            "]\n",
-            "add r10, ",
-            $low,
-            ", r10\n",
-            "add ",
-            $low,
-            ", ",
-            $low,
-            ", r10, lsl #16\n",
-            "ldr r10, [lr, #",
-            $second,
-            "]\n",
-            "add ",
-            $high,
-            ", ",
-            $low,
-            ", r10\n",
-            "ldr r10, [lr, #",
-            $first,
-            "]\n",
-            "add ",
-            $low,
-            ", ",
-            $low,
-            ", r10\n",
+            "ldr ", $low, ", [lr, #", $v, "]\n",
+            "add ", $low, ", ", $low, ", #", $round, "\n",
+            "lsr ", $low, ", ", $low, ", #", $shift, "\n",
+            "add ", $low, ", ", $low, ", ", $low, ", lsl #16\n",
+            "ldr r10, [lr, #", $k1, "]\n",
+            "add ", $low, ", ", $low, ", r10\n",
+            "ldr r10, [lr, #", $k2, "]\n",
+            "add ", $high, ", ", $low, ", r10\n",
         )
     };
 }
@@ -2120,10 +2075,9 @@ core::arch::global_asm!(
     "push {{r4-r11, lr}}",
     // [sp]: the bottom lanes' step over four pixels; [sp, #4]: the pixels after the current
     // run; [sp, #8-16]: the values at the run's first pixel; [sp, #20-28]: their steps over a
-    // run; [sp, #32-40]: the lane steps; [sp, #44-52], [sp, #56-64]: the offsets of pixels 0-1
-    // and 2-3 of a run (the latter with two lane steps); [sp, #68-72]: the top and middle
-    // lanes' steps over four pixels.
-    "sub sp, #76",
+    // run; [sp, #32-40], [sp, #44-52]: each channel's K₁ and K₂ (`dithered_words`); [sp,
+    // #56-60]: the top and middle lanes' steps over four pixels.
+    "sub sp, #64",
     // Every lane inside its 16 bits, or declined: the values r4-r6, the steps r7-r9.
     "ldrd r3, lr, [r2]",
     "ldm r3, {{r4-r6}}",
@@ -2142,26 +2096,30 @@ core::arch::global_asm!(
     "lsl r9, r9, #5",
     "add lr, sp, #8",
     "stm lr, {{r4-r9}}",
+    // K₁ from the lane steps (r4-r6) and the offsets of pixels 0-1 (r10, the middle lane's
+    // halved: r12), K₂ from the double steps (r7-r9) and the offsets' difference (r3, r11).
     "ldr lr, [r2, #4]",
     "ldm lr, {{r4-r9}}",
-    "add lr, sp, #32",
-    "stm lr, {{r4-r6}}",
     "ldrd r10, r11, [r2, #8]",
     "asr r12, r10, #1",
-    "add r4, r11, r7",
-    "asr r5, r11, #1",
-    "add r5, r5, r8",
-    "add r6, r11, r9",
-    "str r10, [sp, #44]",
-    "str r12, [sp, #48]",
-    "str r10, [sp, #52]",
-    "add lr, sp, #56",
+    "add r4, r10, r4, lsl #16",
+    "add r5, r12, r5, lsl #16",
+    "add r6, r10, r6, lsl #16",
+    "add lr, sp, #32",
+    "stm lr, {{r4-r6}}",
+    "sub r3, r11, r10",
+    "asr r11, r11, #1",
+    "sub r11, r11, r12",
+    "add r4, r7, r3",
+    "add r5, r8, r11",
+    "add r6, r9, r3",
+    "add lr, sp, #44",
     "stm lr, {{r4-r6}}",
     "lsl r7, r7, #1",
     "lsl r8, r8, #1",
     "lsl r9, r9, #1",
     "str r9, [sp]",
-    "strd r7, r8, [sp, #68]",
+    "strd r7, r8, [sp, #56]",
     "movw r11, #0x07E0",
     "movt r11, #0x07E0",
     "mov r12, #0x001F001F",
@@ -2173,10 +2131,10 @@ core::arch::global_asm!(
     "str r3, [sp, #4]",
     "sub r1, r1, r3",
     "mov lr, sp",
-    dithered_words!("r2", "r5", "8", "20", "32", "44", "56", "4096", "13"),
-    dithered_words!("r3", "r6", "12", "24", "36", "48", "60", "8192", "14"),
-    dithered_words!("r4", "r7", "16", "28", "40", "52", "64", "4096", "13"),
-    "ldrd r8, r9, [sp, #68]",
+    dithered_words!("r2", "r5", "8", "32", "44", "4096", "13"),
+    dithered_words!("r3", "r6", "12", "36", "48", "8192", "14"),
+    dithered_words!("r4", "r7", "16", "40", "52", "4096", "13"),
+    "ldrd r8, r9, [sp, #56]",
     // Four pixels (two words) a pass while there are four.
     "subs r1, #4",
     "blo 5f",
@@ -2206,17 +2164,24 @@ core::arch::global_asm!(
     dithered_pair!("r5", "r6", "r7"),
     "6:",
     "strh r10, [r0], #2",
-    // The next run, if any.
+    // The next run, if any, from the values moved on by a run.
     "8:",
     "ldr r1, [sp, #4]",
-    "cmp r1, #0",
-    "bne 1b",
+    "cbz r1, 9f",
+    "add lr, sp, #8",
+    "ldm lr, {{r2-r7}}",
+    "add r2, r5",
+    "add r3, r6",
+    "add r4, r7",
+    "stm lr, {{r2-r4}}",
+    "b 1b",
+    "9:",
     "movs r0, #1",
-    "add sp, #76",
+    "add sp, #64",
     "pop {{r4-r11, pc}}",
     "90:",
     "movs r0, #0",
-    "add sp, #76",
+    "add sp, #64",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_dithered_565_v7m, . - embedded_raster_dithered_565_v7m",
 );
