@@ -1532,16 +1532,18 @@ core::arch::global_asm!(
     "add r3, sp, #24",
     "stm r3, {{r4-r6}}",
     // The chunk's length 2^s, as `raster::perspective::chunk_shift` picks it from the room
-    // (r12): 16 if the room is at least its `NO_LIMIT` (−640), else from the smaller q (r7) at the
-    // chunk's first pixel and min(16, left − 1) on, the margin off (saturating, at least 2¹⁶),
-    // by its sixteenth-logarithm. s in r11 and [sp, #36].
-    "1:",
+    // (r12): 16 if the room is at least its `NO_LIMIT` (−640; then every chunk but the last has
+    // 16 pixels, so every chunk's offset is a multiple of 16 and the alignment test at 40 would
+    // not shorten it), else from the smaller q (r7) at the chunk's first pixel and min(16, left
+    // − 1) on, the margin off (saturating, at least 2¹⁶), by its sixteenth-logarithm. s in r11
+    // and [sp, #36]. Entered at 3 with the block in r0 and its pixels left in r3.
     "ldr r0, [sp, #16]",
     "ldr r3, [r0, #8]",
+    "3:",
     "ldr r12, [r0, #96]",
     "mov r11, #4",
     "cmn r12, #640",
-    "bge 40f",
+    "bge 41f",
     "ldr r5, [r0, #12]",
     "ldr r6, [r0, #24]",
     "subs r1, r3, #1",
@@ -1754,7 +1756,7 @@ core::arch::global_asm!(
     "str r4, [r0, #88]",
     "ldr r3, [r0, #8]",
     "cmp r3, #0",
-    "bne 1b",
+    "bne 3b",
     "add sp, #48",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_perspective_span_v7m, . - embedded_raster_perspective_span_v7m",
