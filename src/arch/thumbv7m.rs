@@ -2020,9 +2020,9 @@ macro_rules! dithered_pair {
 /// One channel's words at a run's start: its value at the run's first pixel (`$v` of the frame
 /// in lr) rounded to its lane `l` (`$round`, `$shift`), the word of the lanes of the run's
 /// pixels 0 and 1 plus their offsets, `l·0x10001 + K₁`, into `$low` and the word of pixels 2
-/// and 3, that plus `K₂`, into `$high`: `K₁` (at
-/// `$k1` of the frame) is the lane step shifted up 16 plus the offsets of pixels 0-1, `K₂` (at
-/// `$k2`) two lane steps plus the offsets of pixels 2-3 less those of 0-1. Clobbers r10.
+/// and 3, that plus `K₂`, into `$high`: `K₁` (at `$k1` of the frame) is the lane step shifted
+/// up 16 plus the offsets of pixels 0-1, `K₂` (at `$k2`) two lane steps plus the offsets of
+/// pixels 2-3 less those of 0-1. Clobbers r10.
 #[rustfmt::skip]
 macro_rules! dithered_words {
     ($low:literal, $high:literal, $v:literal, $k1:literal, $k2:literal, $round:literal,
