@@ -8,9 +8,9 @@
 #   * fw_nopanic and fw_nopanic_textures must link: their panic handler is an undefined symbol,
 #     so any panic path left in the drawing code after optimisation fails the build;
 #   * fw_scene and fw_nopanic run under QEMU and must exit with status 0 and print the same
-#     checksum as the host build of fw_scene (whose image tests/all/firmware_checksum.rs checks
-#     against an independent reference), and fw_nopanic_textures the same textured frames'
-#     checksums as its host build;
+#     checksum as the host build of fw_scene (the test profile's, overflow checks on; its image
+#     tests/all/firmware_checksum.rs checks against an independent reference), and
+#     fw_nopanic_textures the same textured frames' checksums as its host build;
 #   * fw_bench counts instructions with SysTick (RISC-V: minstret) under -icount; its tables go
 #     to target/firmware-bench.md, followed by the flash/RAM footprint of the M0, M4 and RV32IMC
 #     builds;
@@ -341,9 +341,12 @@ check_scene() {
     check_stack "$example" "$output" "$machine"
 }
 
-# The host builds of the firmware examples whose output the boards' must match, in one cargo
-# build: their release links (LTO, one codegen unit) run two at a time, not one after another.
-cargo build "${deny[@]}" --quiet --release --example fw_scene --example fw_texture_bench \
+# The host builds of the firmware examples whose output the boards' must match (the portable
+# definitions), in one cargo build: the test profile with every feature and the same flags, which
+# `cargo test` in .ci/run has just built (no second build; their release builds, with LTO, took
+# CI over a minute), with its overflow checks.
+HOST=(--profile test --all-features)
+cargo build "${deny[@]}" --quiet "${HOST[@]}" --example fw_scene --example fw_texture_bench \
     --example fw_nopanic_textures --example fw_mesh_bench --example fw_band --example fw_band_microbit
 
 # The size-optimised builds and the Cortex-M0 code linked for MPS2 (below) have target directories
@@ -374,14 +377,14 @@ stop_warm_up() {
 }
 trap stop_warm_up EXIT
 
-echo "--- host checksums (cargo run --release --example fw_scene)"
-EXPECTED=$(cargo run "${deny[@]}" --quiet --release --example fw_scene)
+echo "--- host checksums (cargo run --profile test --example fw_scene)"
+EXPECTED=$(cargo run "${deny[@]}" --quiet "${HOST[@]}" --example fw_scene)
 printf '%s\n' "$EXPECTED"
 [ "$(printf '%s\n' "$EXPECTED" | grep -c '^scene ')" -ge 2 ] || fail "no host checksums"
-TEXTURE_EXPECTED=$(cargo run "${deny[@]}" --quiet --release --example fw_texture_bench | grep '^texture ')
+TEXTURE_EXPECTED=$(cargo run "${deny[@]}" --quiet "${HOST[@]}" --example fw_texture_bench | grep '^texture ')
 [ "$(printf '%s\n' "$TEXTURE_EXPECTED" | grep -c '^texture ')" -ge 2 ] || fail "no host texture checksums"
-echo "--- host textured frames (cargo run --release --example fw_nopanic_textures)"
-TEXTURES=$(cargo run "${deny[@]}" --quiet --release --example fw_nopanic_textures)
+echo "--- host textured frames (cargo run --profile test --example fw_nopanic_textures)"
+TEXTURES=$(cargo run "${deny[@]}" --quiet "${HOST[@]}" --example fw_nopanic_textures)
 printf '%s\n' "$TEXTURES"
 [ "$(printf '%s\n' "$TEXTURES" | grep -c '^textures ')" -eq 4 ] || fail "no host textured frames"
 
@@ -550,7 +553,7 @@ done
 # with the MPS2 memory layout (EMBEDDED_RASTER_FIRMWARE_LAYOUT=mps2: build.rs's link flags):
 # ARMv7-M executes the ARMv6-M instruction stream unchanged.
 echo "--- 3D frame (fw_mesh_bench)"
-FRAMES=$(cargo run "${deny[@]}" --quiet --release --example fw_mesh_bench)
+FRAMES=$(cargo run "${deny[@]}" --quiet "${HOST[@]}" --example fw_mesh_bench)
 printf '%s\n' "$FRAMES"
 [ "$(printf '%s\n' "$FRAMES" | grep -c '^frame ')" -ge 4 ] || fail "no host frame lines"
 MESH_BOARDS=(
@@ -625,9 +628,9 @@ done
 # of the colours and depths the display stand-in received) must equal the host's for the frame
 # drawn whole; the host runs check the bands too.
 echo "--- band rendering (fw_band, fw_band_microbit)"
-BAND_LINE=$(cargo run "${deny[@]}" --quiet --release --example fw_band)
+BAND_LINE=$(cargo run "${deny[@]}" --quiet "${HOST[@]}" --example fw_band)
 [ "$(printf '%s\n' "$BAND_LINE" | grep -c '^bands ')" -eq 1 ] || fail "no host bands line"
-[ "$(cargo run "${deny[@]}" --quiet --release --example fw_band_microbit)" = "$BAND_LINE" ] ||
+[ "$(cargo run "${deny[@]}" --quiet "${HOST[@]}" --example fw_band_microbit)" = "$BAND_LINE" ] ||
     fail "the host's micro:bit bands line differs from the frame drawn whole"
 printf '%s\n' "$BAND_LINE"
 check_bands() {

@@ -493,7 +493,8 @@ pub fn render_depths(
     let mut vertices = FnvHasher(0x811c_9dc5);
     let scaled = DEPTHS_CLUSTERS.into_iter().map(|(distance, [x, y])| {
         let d = Scalar::from_num(distance);
-        let slope = |c: i32| d * Scalar::from_num(c) / Scalar::from_num(100);
+        // d/100 first: d·c itself overflows the scalar at the farthest cluster (1024 · 45).
+        let slope = |c: i32| d / Scalar::from_num(100) * Scalar::from_num(c);
         let place = Mat4::translation(Vec3::new(slope(x), slope(y), -d));
         place * Mat4::scaling(d)
     });
