@@ -1323,6 +1323,39 @@ macro_rules! lambdas {
     };
 }
 
+/// `$acc += ⌊$l·$d / 2¹⁶⌋` (the 64-bit product's bits 16-47), as [`corrected`] adds each term;
+/// `$d` and r11 clobbered.
+macro_rules! lambda_term {
+    ($acc:literal, $l:literal, $d:literal) => {
+        concat!(
+            "smull ",
+            $d,
+            ", r11, ",
+            $l,
+            ", ",
+            $d,
+            "\n",
+            "lsr ",
+            $d,
+            ", ",
+            $d,
+            ", #16\n",
+            "orr ",
+            $d,
+            ", ",
+            $d,
+            ", r11, lsl #16\n",
+            "add ",
+            $acc,
+            ", ",
+            $acc,
+            ", ",
+            $d,
+            "\n",
+        )
+    };
+}
+
 /// An attribute at the barycentrics (r1, r2) into `$dst`: `base + ⌊λ₁·d₁ / 2¹⁶⌋ + ⌊λ₂·d₂ /
 /// 2¹⁶⌋` (the 64-bit products' bits 16-47), from `(base, d₁, d₂)` at `$at` in the block (r0).
 /// Clobbers r10, r11.
@@ -1337,25 +1370,61 @@ macro_rules! corrected {
             "ldr r10, [r0, #",
             $d1,
             "]\n",
-            "smull r10, r11, r1, r10\n",
-            "lsr r10, r10, #16\n",
-            "orr r10, r10, r11, lsl #16\n",
-            "add ",
-            $dst,
-            ", ",
-            $dst,
-            ", r10\n",
+            lambda_term!($dst, "r1", "r10"),
             "ldr r10, [r0, #",
             $d2,
             "]\n",
-            "smull r10, r11, r2, r10\n",
-            "lsr r10, r10, #16\n",
-            "orr r10, r10, r11, lsl #16\n",
-            "add ",
-            $dst,
-            ", ",
-            $dst,
-            ", r10\n",
+            lambda_term!($dst, "r2", "r10"),
+        )
+    };
+}
+
+/// The unlit loop over a chunk's pixels, at label `$top` (`$skip` where the depth test fails):
+/// r1 = the offset of the pixel from r2 (depths) and r3 (colours), counting up to 0, r4/r5 =
+/// the depth and its step, r6/r7 = x and its step, r8/r9 = y (shifted) and its step, r10 = the
+/// texels, r11 = the column mask, r12 = the row mask. Clobbers r0 and lr.
+macro_rules! unlit_pixels {
+    ($top:literal, $skip:literal) => {
+        concat!(
+            $top,
+            ":\n",
+            "ldrh lr, [r2, r1]\n",
+            "cmp lr, r4, lsr #16\n",
+            "bls ",
+            $skip,
+            "f\n",
+            "lsr lr, r4, #16\n",
+            "strh lr, [r2, r1]\n",
+            "and lr, r11, r6, lsr #16\n",
+            "and r0, r12, r8, lsr #16\n",
+            "orr lr, lr, r0\n",
+            "ldrh lr, [r10, lr, lsl #1]\n",
+            "strh lr, [r3, r1]\n",
+            $skip,
+            ":\n",
+            "add r4, r5\n",
+            "add r6, r7\n",
+            "add r8, r9\n",
+            "adds r1, #2\n",
+            "bne ",
+            $top,
+            "b\n",
+        )
+    };
+}
+
+/// The unlit chunks' `x` and `y` at the chunk's end, from the barycentrics (r1, r2) as
+/// [`corrected`] finds them (its six words read at once): `x` to r4, `y` to r7. Clobbers r3,
+/// r5, r6, r9-r11.
+macro_rules! unlit_chunk_end {
+    () => {
+        concat!(
+            "add r3, r0, #36\n",
+            "ldm r3, {{r4-r7, r9, r10}}\n",
+            lambda_term!("r4", "r1", "r5"),
+            lambda_term!("r4", "r2", "r6"),
+            lambda_term!("r7", "r1", "r9"),
+            lambda_term!("r7", "r2", "r10"),
         )
     };
 }
@@ -1528,7 +1597,19 @@ core::arch::global_asm!(
     lambdas!(),
     corrected!("r4", "36", "40", "44"),
     corrected!("r5", "48", "52", "56"),
+    // Unlit nearest (flags 0) with a room of at least `NO_LIMIT` (−640): every chunk but the
+    // last is 16 pixels, drawn by the chunk loop at 70 (no level, no length to pick).
+    "ldr r3, [sp, #20]",
+    "cbnz r3, 71f",
+    "ldr r12, [r0, #96]",
+    "cmn r12, #640",
+    "blt 72f",
+    "strd r4, r5, [sp, #24]",
+    "ldr r3, [r0, #8]",
+    "b 70f",
+    "71:",
     corrected!("r6", "60", "64", "68"),
+    "72:",
     "add r3, sp, #24",
     "stm r3, {{r4-r6}}",
     // The chunk's length 2^s, as `raster::perspective::chunk_shift` picks it from the room
@@ -1686,23 +1767,7 @@ core::arch::global_asm!(
     "ldr r4, [r0, #88]",
     "add lr, r0, #72",
     "ldm lr, {{r10-r12}}",
-    "2:",
-    "ldrh lr, [r2, r1]",
-    "cmp lr, r4, lsr #16",
-    "bls 4f",
-    "lsr lr, r4, #16",
-    "strh lr, [r2, r1]",
-    "and lr, r11, r6, lsr #16",
-    "and r0, r12, r8, lsr #16",
-    "orr lr, lr, r0",
-    "ldrh lr, [r10, lr, lsl #1]",
-    "strh lr, [r3, r1]",
-    "4:",
-    "add r4, r5",
-    "add r6, r7",
-    "add r8, r9",
-    "adds r1, #2",
-    "bne 2b",
+    unlit_pixels!("2", "4"),
     "b 9f",
     // Lit: the steps to [sp]; the flags `ls` if the level is inside 0..=2¹⁶ at the chunk's
     // first and last pixels and steps by at most 2¹⁶ (then it is inside at every pixel between,
@@ -1750,6 +1815,80 @@ core::arch::global_asm!(
     "bne 37b",
     "b 9f",
     perspective_bilinear!(),
+    // The unlit chunks of 16 (entered with the block in r0 and its pixels left in r3): the
+    // code above with the length 16 (shift 4) and no level; the last chunk is the code's at 20.
+    "70:",
+    "subs r12, r3, #16",
+    "bls 75f",
+    "str r12, [r0, #8]",
+    "add r4, r0, #12",
+    "ldm r4, {{r5-r10}}",
+    "add r5, r5, r8, lsl #4",
+    "add r6, r6, r9, lsl #4",
+    "add r7, r7, r10, lsl #4",
+    "stm r4, {{r5-r7}}",
+    lambdas!(),
+    unlit_chunk_end!(),
+    // x and y at the chunk's first pixel to r6 and r8, their steps to r7 and r5.
+    "ldrd r6, r8, [sp, #24]",
+    "strd r4, r7, [sp, #24]",
+    "sub r4, r4, r6",
+    "sub r5, r7, r8",
+    "asr r7, r4, #4",
+    "asr r5, r5, #4",
+    "mov r12, #16",
+    "b 76f",
+    // The last chunk, `r3` pixels (at most 16): its end values at its last pixel, `over` = r12
+    // pixels on (one pixel: no steps, the code's at 7).
+    "75:",
+    "movs r1, #0",
+    "str r1, [r0, #8]",
+    "subs r12, r3, #1",
+    "beq 7b",
+    "add r4, r0, #12",
+    "ldm r4, {{r5-r10}}",
+    "mla r5, r8, r12, r5",
+    "mla r6, r9, r12, r6",
+    "mla r7, r10, r12, r7",
+    lambdas!(),
+    unlit_chunk_end!(),
+    "ldrd r6, r8, [sp, #24]",
+    "sub r4, r4, r6",
+    "sub r5, r7, r8",
+    "movw r3, #65535",
+    "add r3, r3, r12",
+    "udiv r3, r3, r12",
+    step_over!("r4"),
+    step_over!("r5"),
+    "mov r7, r4",
+    "add r12, r12, #1",
+    // r6/r7 = x and its step, r8 = y, r5 its step, r12 = the chunk's pixels: `y` and its step
+    // shifted to r8 and r9; the pointers past the chunk and the offset of its first pixel, as
+    // at 8.
+    "76:",
+    "ldr r3, [r0, #84]",
+    "lsl r8, r8, r3",
+    "lsl r9, r5, r3",
+    "ldr r2, [r0]",
+    "add r2, r2, r12, lsl #1",
+    "str r2, [r0]",
+    "ldr r3, [r0, #4]",
+    "add r3, r3, r2",
+    "rsb r1, r12, #0",
+    "lsl r1, r1, #1",
+    "ldrd r4, r5, [r0, #88]",
+    "add lr, r0, #72",
+    "ldm lr, {{r10-r12}}",
+    // The unlit loop at 2, its next chunk this one's.
+    unlit_pixels!("73", "74"),
+    // The next chunk, if any.
+    "ldr r0, [sp, #16]",
+    "str r4, [r0, #88]",
+    "ldr r3, [r0, #8]",
+    "cmp r3, #0",
+    "bne 70b",
+    "add sp, #48",
+    "pop {{r4-r11, pc}}",
     // The depth plane kept for the next chunk; the next chunk, if any.
     "9:",
     "ldr r0, [sp, #16]",
