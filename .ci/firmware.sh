@@ -152,13 +152,13 @@ declare -A TEXTURE_TARGET=([cortex-m4]=12 [cortex-m0]=22)
 # Perspective-correct nearest texturing, unlit and texture × Gouraud, on the Cortex-M4 (its
 # Thumb-2 span loop) and the M0 (the division-free reciprocal, the Thumb-1 chunk loop for unlit
 # texels): the issue's targets are 16 and 20, 28 and 36 (out of reach with a depth test and
-# 16-pixel chunks: docs/benchmarks.md); held where they are (measured 25.29 and 46.50, 58.07
-# and 173.66: margins of 7-12 %; the M0's were 82.16 and 188.03 before its chunk loop, the
+# 16-pixel chunks: docs/benchmarks.md); held where they are (measured 22.71 and 45.48, 57.84
+# and 172.21: margins of 10-14 %; the M0's were 82.16 and 188.03 before its chunk loop, the
 # chunks' lengths from thresholds found once a span and the slope's products from limbs). The lit
 # figures were 35.63 and 96.36 with chunks of 16 always: the bench's faces are steep (w 1:3
 # across 128 or 64 pixels), and the chunks that keep their levels within a quarter step of the
 # exact ones (colours within 1 LSB) are 8 and 4 pixels long there.
-declare -A PERSPECTIVE_TARGET=([cortex-m4]=27 [cortex-m0]=64)
+declare -A PERSPECTIVE_TARGET=([cortex-m4]=25 [cortex-m0]=64)
 declare -A PERSPECTIVE_LIT_TARGET=([cortex-m4]=52 [cortex-m0]=191)
 declare -A GOURAUD_TARGET=([cortex-m4]=10 [cortex-m0]=17.4)
 # Bilinear texels on the Cortex-M4 (the DSP extension's dual products), affine 2D and
@@ -192,10 +192,10 @@ declare -A POLYGON_TARGET=([cortex-m4]=3.1 [cortex-m0]=7.5)
 # (128×96, 64×48), and the radial chords' square roots; docs/benchmarks.md), held where they
 # are, measured 19.74 and 59.74 (linear), 173.53 (radial, M4), margins of 10 %. Dithering
 # (#30: +2 over the plain fill; reached on the M4), margins of 10 %: linear dithered 20.98 and
-# 72.39 (+1.68 and +12.9), `GouraudTriangle::dithered` 10.16 and 26.13 (+1.19 and +10.6).
+# 68.78 (+1.68 and +10.1), `GouraudTriangle::dithered` 10.16 and 23.45 (+1.19 and +7.9).
 declare -A LINEAR_TARGET=([cortex-m4]=21.7 [cortex-m0]=65.7)
-declare -A LINEAR_DITHERED_TARGET=([cortex-m4]=23.1 [cortex-m0]=79.3)
-declare -A GOURAUD_DITHERED_TARGET=([cortex-m4]=11.2 [cortex-m0]=28.7)
+declare -A LINEAR_DITHERED_TARGET=([cortex-m4]=23.1 [cortex-m0]=75.7)
+declare -A GOURAUD_DITHERED_TARGET=([cortex-m4]=11.2 [cortex-m0]=25.8)
 declare -A RADIAL_TARGET=([cortex-m4]=191)
 # The other cores (issue #31), held where they are with margins of about 10 %:
 # * the Cortex-M7 board runs the Cortex-M4F build: the same instructions, the M4's limits;
@@ -214,7 +214,7 @@ OPACITY_TARGET+=([cortex-m7]=7.7 [cortex-m33]=8.3 [rv32imc]=13.9 [rv32imac]=13.9
 ALPHA_TARGET+=([cortex-m7]=26.0 [cortex-m33]=26.0 [rv32imc]=41.3 [rv32imac]=41.3)
 ANTIALIAS_TARGET+=([cortex-m7]=32.3 [cortex-m33]=32.3 [rv32imc]=35.8 [rv32imac]=35.8)
 TEXTURE_TARGET+=([cortex-m7]=12 [cortex-m33]=12 [rv32imc]=18.5 [rv32imac]=18.5)
-PERSPECTIVE_TARGET+=([cortex-m7]=27 [cortex-m33]=27 [rv32imc]=35.5 [rv32imac]=35.5)
+PERSPECTIVE_TARGET+=([cortex-m7]=25 [cortex-m33]=25 [rv32imc]=35.5 [rv32imac]=35.5)
 PERSPECTIVE_LIT_TARGET+=([cortex-m7]=52 [cortex-m33]=52 [rv32imc]=72.7 [rv32imac]=72.7)
 # Their 3D frames: the Cortex-M33's and M7's are the M4's limits (spot 3.00 M and the knot
 # 3.72 M measured on the M33); RISC-V's spot 3.14 M and knot 3.85 M at stop 53 (3.21 M and

@@ -339,9 +339,10 @@ pub(crate) struct DitheredSpan565<'a> {
     pub(crate) second: u32,
 }
 
-/// [`dithered_565`] where there is none (the portable loop draws the span): draws nothing and
-/// says so.
-#[cfg(not(armv7m))]
+/// [`dithered_565`] where there is none (the portable loop draws the span; ARMv6-M's Thumb-1
+/// loop is `thumbv6m::dithered_span_565`, which stops at a run it does not draw): draws nothing
+/// and says so.
+#[cfg(not(any(armv7m, armv6m)))]
 #[inline(always)]
 pub(crate) fn dithered_565<C>(_pixels: &mut [C], _span: &DitheredSpan565<'_>) -> bool {
     false

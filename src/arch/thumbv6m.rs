@@ -15,14 +15,19 @@
 //! 16-bit lane is the same modulo 2¹⁶ however the pair words are formed); the host tests that
 //! loop, and CI checks that the Cortex-M0 firmware's scene has the host's checksum.
 //!
-//! The dithered run ([`dithered_run_565`]) is the same pair loop over two words a pass: the
+//! The dithered span ([`dithered_span_565`]) is the same pair loop over two words a pass: the
 //! words of pixels `4k, 4k + 1` and `4k + 2, 4k + 3` differ by two lane steps plus the Bayer
 //! offsets' difference, and the next pass's first word is the second plus two lane steps less
 //! it, so one set of words steps by those two sets of steps (in high registers, one on the
 //! stack): 28 instructions for four pixels, where LLVM's loop took 64 (the two streams of
-//! `color::packed565::dithered_run_565` on the stack). The same words, so the same pixels;
-//! CI checks the Cortex-M0 scene's dithered triangles and its random dithered spans against
-//! the host's checksums.
+//! `color::packed565::dithered_run_565` on the stack). Around it, every run of 32 pixels: the
+//! test of its values at both ends (`run_stays_inside`'s), its lanes from the values, a first
+//! pixel alone at an address of 2 mod 4, its words from the lanes and two constants a channel
+//! found once a span, the values moved on — the span's set-up once, not a run's in Rust and a
+//! call each. It stops before a run that fails the test and says where, for the clamped
+//! definition in Rust. The same words, so the same pixels; CI checks the Cortex-M0 scene's
+//! dithered triangles and its random dithered spans (values near and across the test's limits)
+//! against the host's checksums.
 //!
 //! The masked nearest texel loop ([`masked_nearest_565`]): LLVM unrolls the portable loop
 //! (`texture::span`'s `Affine` with the masked nearest sampler) four times but keeps the masks,
@@ -241,49 +246,121 @@ pub(crate) unsafe fn span_565(
     unsafe { embedded_raster_565_span_v6m(pixels, len, values, steps) }
 }
 
-/// A run of the dithered 5-6-5 fill for [`dithered_run_565`] (`color::packed565`'s
-/// `dithered_run_565` defines its pixels): lanes in raw order (top, middle, bottom).
+/// A span of the dithered 5-6-5 fill for [`dithered_span_565`] (`color::packed565`'s
+/// `dithered_565` defines its pixels): values and steps in raw order (top, middle, bottom).
 #[repr(C)]
-pub(crate) struct DitheredRun565<'a> {
-    /// 0: the lanes at the run's first pixel (`color::packed565`'s 16-bit lanes).
-    pub(crate) lane: [u32; 3],
-    /// 12: the lanes' steps a pixel, then two of them in both halves of a word (the first six
-    /// words of `color::SpanSteps`).
+pub(crate) struct DitheredSpan565<'a> {
+    /// 0: the channel values at the span's first pixel (24 fractional bits, +½ included); where
+    /// [`dithered_span_565`] stops early, those at the first pixel it did not draw.
+    pub(crate) value: [u32; 3],
+    /// 12: the lanes' steps a pixel, two of them in both halves of a word, and the channels'
+    /// steps a pixel (`color::SpanSteps`' layout, in raw order).
     pub(crate) steps: &'a [u32; 9],
-    /// 16, 20: the Bayer offsets of the run's pixels 0 and 1, and 2 and 3, as words of two
-    /// lanes with 11 fractional bits (`color`'s `bayer_pair`).
+    /// 16: the Bayer offsets of pixels 0 and 1, as a word of two lanes with 11 fractional bits
+    /// (`color`'s `bayer_pair`): a run at an address of 2 mod 4 draws its first pixel alone
+    /// with these.
+    pub(crate) head: u32,
+    /// 20, 24: those of the run's first two pixels at a 4-byte aligned address and of the two
+    /// after them (pixels 0-1 and 2-3, or 1-2 and 3-4 after a first pixel alone).
     pub(crate) first: u32,
     pub(crate) second: u32,
 }
 
+/// One channel's test of a run (r2 = its pixels less one): its values at the run's first and
+/// last pixels, less r6 (31/64 LSB), both below r7 (the range), else the run is not drawn (18);
+/// the step at `$step` in `SpanSteps` (r3), the value at `$value` on the stack.
+macro_rules! dithered_run_test {
+    ($step:literal, $value:literal) => {
+        concat!(
+            "ldr r4, [r3, #",
+            $step,
+            "]\n",
+            "muls r4, r2, r4\n",
+            "ldr r5, [sp, #",
+            $value,
+            "]\n",
+            "adds r4, r4, r5\n",
+            "subs r4, r4, r6\n",
+            "cmp r4, r7\n",
+            "bhs 18b\n",
+            "subs r5, r5, r6\n",
+            "cmp r5, r7\n",
+            "bhs 18b\n",
+        )
+    };
+}
+
+/// The value at `$value` on the stack moved on by 32 pixels of its step at `$step` in
+/// `SpanSteps` (r3).
+macro_rules! dithered_advance {
+    ($step:literal, $value:literal) => {
+        concat!(
+            "ldr r4, [r3, #",
+            $step,
+            "]\n",
+            "lsls r4, r4, #5\n",
+            "ldr r5, [sp, #",
+            $value,
+            "]\n",
+            "adds r5, r5, r4\n",
+            "str r5, [sp, #",
+            $value,
+            "]\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
-    ".section .text.embedded_raster_dithered_run_565_v6m,\"ax\",%progbits",
+    ".section .text.embedded_raster_dithered_span_565_v6m,\"ax\",%progbits",
     ".syntax unified",
     ".thumb",
     ".p2align 2",
-    ".global embedded_raster_dithered_run_565_v6m",
-    ".hidden embedded_raster_dithered_run_565_v6m",
-    ".type embedded_raster_dithered_run_565_v6m,%function",
+    ".global embedded_raster_dithered_span_565_v6m",
+    ".hidden embedded_raster_dithered_span_565_v6m",
+    ".type embedded_raster_dithered_span_565_v6m,%function",
     ".thumb_func",
-    // r0 = pixels (4-byte aligned), r1 = pixel count, r2 = the run (`DitheredRun565`).
-    "embedded_raster_dithered_run_565_v6m:",
+    // r0 = pixels (2-byte aligned), r1 = pixel count (at least one), r2 = the span
+    // (`DitheredSpan565`). Returns the pixels drawn in r0.
+    "embedded_raster_dithered_span_565_v6m:",
     save_registers!(),
     // [sp]: the bottom lanes' step from the word of pixels 2-3 to that of the next pixels 0-1;
-    // [sp, #4]: the end of the passes of four pixels; [sp, #8]: the pixels after them.
-    "sub sp, #12",
-    "lsrs r4, r1, #2",
-    "lsls r4, r4, #3",
-    "adds r4, r0, r4",
-    "str r4, [sp, #4]",
-    "lsls r4, r1, #30",
-    "lsrs r4, r4, #30",
-    "str r4, [sp, #8]",
+    // [sp, #4]: the end of the run's passes of four pixels; [sp, #8]: the pixels after them;
+    // [sp, #12-20]: the values at the run's first pixel; [sp, #24]: the pixels left after the
+    // run; [sp, #28]: the span; [sp, #32]: its first pixel; [sp, #36]: its steps; [sp, #40-48]:
+    // a run's constants a channel (its lane step << 16 plus the first pair's offsets, the middle
+    // lane's halved); [sp, #52]: the offsets of a first pixel alone.
+    "sub sp, #56",
+    "str r1, [sp, #24]",
+    "str r2, [sp, #28]",
+    "str r0, [sp, #32]",
+    "ldr r3, [r2, #12]",
+    "str r3, [sp, #36]",
+    "ldr r4, [r2]",
+    "str r4, [sp, #12]",
+    "ldr r4, [r2, #4]",
+    "str r4, [sp, #16]",
+    "ldr r4, [r2, #8]",
+    "str r4, [sp, #20]",
+    // Every channel's step below 2²⁶ in magnitude (4 LSB a pixel: a run's last value is then
+    // exact modulo 2³²), or nothing is drawn here.
+    "ldr r5, 84f",
+    "ldr r4, [r3, #24]",
+    "adds r4, r4, r5",
+    "lsrs r4, r4, #27",
+    "bne 18f",
+    "ldr r4, [r3, #28]",
+    "adds r4, r4, r5",
+    "lsrs r4, r4, #27",
+    "bne 18f",
+    "ldr r4, [r3, #32]",
+    "adds r4, r4, r5",
+    "lsrs r4, r4, #27",
+    "bne 18f",
     // The steps between the two words of a pass: from pixels 0-1 to 2-3 two lane steps plus
     // the offsets' difference (r8-r10), from 2-3 to the next 0-1 two lane steps less it (r11,
     // r12, [sp]); the middle lane's offsets are half the others'.
-    "ldr r3, [r2, #12]",
-    "ldr r4, [r2, #16]",
-    "ldr r5, [r2, #20]",
+    "ldr r4, [r2, #20]",
+    "ldr r5, [r2, #24]",
     "subs r6, r5, r4",
     "asrs r4, r4, #1",
     "asrs r5, r5, #1",
@@ -303,32 +380,130 @@ core::arch::global_asm!(
     "mov r10, r5",
     "subs r5, r4, r6",
     "str r5, [sp]",
-    // The words of pixels 0-1, `(lane + step) << 16 | lane` plus the offsets: top in lr,
-    // middle in r1, bottom in r2.
-    "ldr r6, [r2, #16]",
-    "asrs r7, r6, #1",
-    "ldr r4, [r2]",
+    // A run's words are its first lanes times 0x10001 plus these.
+    "ldr r4, [r2, #20]",
     "ldr r5, [r3]",
+    "lsls r5, r5, #16",
     "adds r5, r5, r4",
-    "lsls r5, r5, #16",
-    "adds r4, r4, r5",
-    "adds r4, r4, r6",
-    "mov lr, r4",
-    "ldr r1, [r2, #4]",
-    "ldr r5, [r3, #4]",
-    "adds r5, r5, r1",
-    "lsls r5, r5, #16",
-    "adds r1, r1, r5",
-    "adds r1, r1, r7",
-    "ldr r4, [r2, #8]",
+    "str r5, [sp, #40]",
     "ldr r5, [r3, #8]",
-    "adds r5, r5, r4",
     "lsls r5, r5, #16",
+    "adds r5, r5, r4",
+    "str r5, [sp, #48]",
+    "asrs r4, r4, #1",
+    "ldr r5, [r3, #4]",
+    "lsls r5, r5, #16",
+    "adds r5, r5, r4",
+    "str r5, [sp, #44]",
+    "ldr r4, [r2, #16]",
+    "str r4, [sp, #52]",
+    "b 10f",
+    // Stopped (every pixel drawn, or a run whose values leave the channels' ranges): the values
+    // at the first pixel not drawn back to the span, the pixels drawn to r0.
+    "18:",
+    "ldr r2, [sp, #28]",
+    "ldr r4, [sp, #12]",
+    "str r4, [r2]",
+    "ldr r4, [sp, #16]",
+    "str r4, [r2, #4]",
+    "ldr r4, [sp, #20]",
+    "str r4, [r2, #8]",
+    "ldr r4, [sp, #32]",
+    "subs r0, r0, r4",
+    "lsrs r0, r0, #1",
+    "add sp, #56",
+    restore_registers!(),
+    // A run of r1 = min(left, 32) pixels from r0, if its values at both ends are inside
+    // [31/64, max + 33/64) LSB (`color::packed565`'s `run_stays_inside`).
+    "10:",
+    "ldr r1, [sp, #24]",
+    "cmp r1, #32",
+    "bls 11f",
+    "movs r1, #32",
+    "11:",
+    "subs r2, r1, #1",
+    "ldr r3, [sp, #36]",
+    "ldr r6, 85f",
+    "ldr r7, 86f",
+    dithered_run_test!("24", "12"),
+    dithered_run_test!("32", "20"),
+    "ldr r7, 87f",
+    dithered_run_test!("28", "16"),
+    "ldr r4, [sp, #24]",
+    "subs r4, r4, r1",
+    "str r4, [sp, #24]",
+    "str r1, [sp, #8]",
+    // The lanes, `(value + 2^(k − 1)) >> k` (k = 13, 14, 13): top in lr, middle in r1, bottom
+    // in r2; the masks in r3, r6, r7.
+    "ldr r5, 88f",
+    "ldr r4, [sp, #12]",
     "adds r4, r4, r5",
-    "adds r2, r4, r6",
+    "lsrs r4, r4, #13",
+    "mov lr, r4",
+    "ldr r2, [sp, #20]",
+    "adds r2, r2, r5",
+    "lsrs r2, r2, #13",
+    "lsls r5, r5, #1",
+    "ldr r1, [sp, #16]",
+    "adds r1, r1, r5",
+    "lsrs r1, r1, #14",
     "ldr r3, 4f",
     "ldr r6, 5f",
     "ldr r7, 6f",
+    // At an address of 2 mod 4 the first pixel alone: its lanes plus the offsets of pixel 0
+    // (the middle lane's halved), packed; then the lanes one step on.
+    "lsls r4, r0, #30",
+    "bpl 13f",
+    "ldr r5, [sp, #52]",
+    "mov r4, lr",
+    "adds r4, r4, r5",
+    "ands r4, r3",
+    "adds r5, r5, r2",
+    "lsrs r5, r5, #11",
+    "ands r5, r7",
+    "orrs r4, r5",
+    "ldr r5, [sp, #52]",
+    "asrs r5, r5, #1",
+    "adds r5, r5, r1",
+    "lsrs r5, r5, #5",
+    "ands r5, r6",
+    "orrs r4, r5",
+    "strh r4, [r0]",
+    "adds r0, #2",
+    "ldr r4, [sp, #36]",
+    "ldr r5, [r4]",
+    "add lr, r5",
+    "ldr r5, [r4, #4]",
+    "adds r1, r1, r5",
+    "ldr r5, [r4, #8]",
+    "adds r2, r2, r5",
+    "ldr r4, [sp, #8]",
+    "subs r4, #1",
+    "str r4, [sp, #8]",
+    "13:",
+    // The passes' end and the pixels after them; the words of the first two pixels.
+    "ldr r4, [sp, #8]",
+    "lsls r5, r4, #30",
+    "lsrs r5, r5, #30",
+    "str r5, [sp, #8]",
+    "lsrs r4, r4, #2",
+    "lsls r4, r4, #3",
+    "adds r4, r0, r4",
+    "str r4, [sp, #4]",
+    "mov r4, lr",
+    "lsls r5, r4, #16",
+    "adds r4, r4, r5",
+    "ldr r5, [sp, #40]",
+    "adds r4, r4, r5",
+    "mov lr, r4",
+    "lsls r5, r1, #16",
+    "adds r1, r1, r5",
+    "ldr r5, [sp, #44]",
+    "adds r1, r1, r5",
+    "lsls r5, r2, #16",
+    "adds r2, r2, r5",
+    "ldr r5, [sp, #48]",
+    "adds r2, r2, r5",
     "ldr r4, [sp, #4]",
     "cmp r0, r4",
     "bhs 3f",
@@ -366,41 +541,65 @@ core::arch::global_asm!(
     "7:",
     pack_565!(),
     "strh r4, [r0]",
+    "adds r0, #2",
+    // The next run, if any: the values 32 pixels on.
     "8:",
-    "add sp, #12",
-    restore_registers!(),
+    "ldr r1, [sp, #24]",
+    "cmp r1, #0",
+    "bne 9f",
+    "b 18b",
+    "9:",
+    "ldr r3, [sp, #36]",
+    dithered_advance!("24", "12"),
+    dithered_advance!("28", "16"),
+    dithered_advance!("32", "20"),
+    "b 10b",
     ".p2align 2",
     "4: .word 0xF800F800",
     "5: .word 0x07E007E0",
     "6: .word 0x001F001F",
-    ".size embedded_raster_dithered_run_565_v6m, . - embedded_raster_dithered_run_565_v6m",
+    // 2²⁶; 31/64 LSB (`31 << 18`); the top and bottom channels' range above it
+    // (`(31·64 + 33 − 31) << 18`), the middle one's (`(63·64 + 33 − 31) << 18`); 2¹².
+    "84: .word 0x04000000",
+    "85: .word 0x007C0000",
+    "86: .word 0x1F080000",
+    "87: .word 0x3F080000",
+    "88: .word 0x00001000",
+    ".size embedded_raster_dithered_span_565_v6m, . - embedded_raster_dithered_span_565_v6m",
 );
 
 extern "C" {
     /// The assembly function above.
-    fn embedded_raster_dithered_run_565_v6m(
+    fn embedded_raster_dithered_span_565_v6m(
         pixels: *mut u16,
         len: usize,
-        run: *const DitheredRun565<'_>,
-    );
+        span: *mut DitheredSpan565<'_>,
+    ) -> usize;
 }
 
-/// Draws the dithered run `run` into the `len` pixels from `pixels`: pixel `i` the 5-6-5 packing
-/// of its lanes (`run.lane` plus `i` lane steps) plus its Bayer offset, two pixels a word, as
-/// `color::packed565`'s `dithered_run_565` computes it where every dithered lane stays inside
-/// its 16 bits (the caller's check).
+/// Draws the dithered span `span` into the `len` pixels from `pixels`, run by run (32 pixels
+/// from the first, its lanes restarted from the values each run): pixel `i` of a run the 5-6-5
+/// packing of its lanes plus its Bayer offset, two pixels a word, as `color::packed565`'s
+/// `dithered_run_565` computes it, while a run's values at both ends lie within 1/64 LSB of
+/// the channels' ranges (`run_stays_inside`'s test, so every dithered lane stays inside its 16
+/// bits). Returns the pixels drawn: all of them, or those before the first run that failed
+/// the test (none if a channel steps by 4 LSB a pixel or more), whose values it leaves in
+/// `span.value`.
 ///
 /// # Safety
 ///
-/// `pixels` must be valid for writes of `len` consecutive `u16`s, the first at a 4-byte aligned
-/// address.
+/// `pixels` must be valid for writes of `len` (at least one) consecutive `u16`s.
 #[inline(always)]
-pub(crate) unsafe fn dithered_run_565(pixels: *mut u16, len: usize, run: &DitheredRun565<'_>) {
-    // SAFETY: the function writes the `len` `u16`s from `pixels` (two at a time as a word, at
-    // 4-byte aligned addresses only, as ARMv6-M requires: the caller's promises); it reads
-    // `run`, the six words of `run.steps` it uses and its own stack frame, and saves and
-    // restores every register the AAPCS asks it to.
-    unsafe { embedded_raster_dithered_run_565_v6m(pixels, len, run) }
+pub(crate) unsafe fn dithered_span_565(
+    pixels: *mut u16,
+    len: usize,
+    span: &mut DitheredSpan565<'_>,
+) -> usize {
+    // SAFETY: the function writes the `len` `u16`s from `pixels` (two at a time as a word at
+    // 4-byte aligned addresses only, as ARMv6-M requires, one alone at 2 mod 4: the caller's
+    // promise), reads the nine words of `span.steps` and writes `span.value`, uses its own stack
+    // frame, and saves and restores every register the AAPCS asks it to.
+    unsafe { embedded_raster_dithered_span_565_v6m(pixels, len, span) }
 }
 
 /// Whether the texels of `span` hold every index its masked loops form (`row | column ≤ rows |

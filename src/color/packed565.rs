@@ -155,17 +155,76 @@ pub(super) fn dithered_565<C: From<RawU16>>(
             reordered = [l0, l1, l2, d0, d1, d2, s0, s1, s2];
             (&value, &reordered)
         };
-        let span = arch::DitheredSpan565 {
-            value,
-            steps: words,
-            first: bayer_pair(x, y),
-            second: bayer_pair(x.wrapping_add(2), y),
-        };
-        if arch::dithered_565(dst, &span) {
-            return;
+        #[cfg(armv6m)]
+        return dithered_span_thumb1(dst, (x, y), *value, words, steps);
+        #[cfg(not(armv6m))]
+        {
+            let span = arch::DitheredSpan565 {
+                value,
+                steps: words,
+                first: bayer_pair(x, y),
+                second: bayer_pair(x.wrapping_add(2), y),
+            };
+            if arch::dithered_565(dst, &span) {
+                return;
+            }
         }
     }
     dithered_runs_565(dst, (x, y), pick(start), steps, pick(steps.step));
+}
+
+/// [`dithered_565`] on ARMv6-M: the span's runs by the Thumb-1 loop ([`arch::thumbv6m`]'s
+/// `dithered_span_565`, [`run_stays_inside`]'s test of each run in it) up to the first run
+/// whose values leave the channels' ranges, that run by the clamped definition
+/// ([`dithered_pixels_565`]), and the rest by the loop again. `value` and `words` (the
+/// `SpanSteps` words) in raw order; a span at an address of 2 mod 4 has the first pixel of
+/// each run drawn alone (ARMv6-M stores words at 4-byte aligned addresses only; runs are 32
+/// pixels, so every run starts at the same address mod 4).
+#[cfg(armv6m)]
+#[inline(always)]
+#[allow(unsafe_code)]
+fn dithered_span_thumb1<C: From<RawU16>>(
+    dst: &mut [C],
+    (x, y): (i32, i32),
+    value: [u32; 3],
+    words: &[u32; 9],
+    steps: &SpanSteps,
+) {
+    // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
+    const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
+    let [.., s0, s1, s2] = *words;
+    let aligned = x.wrapping_add(i32::from((dst.as_ptr() as usize) % 4 != 0));
+    let mut span = arch::thumbv6m::DitheredSpan565 {
+        value,
+        steps: words,
+        head: bayer_pair(x, y),
+        first: bayer_pair(aligned, y),
+        second: bayer_pair(aligned.wrapping_add(2), y),
+    };
+    let (mut rest, mut at) = (dst, x);
+    loop {
+        // SAFETY: `rest` is `rest.len()` (at least one: the span has at least SHORT_DITHERED
+        // pixels, and the loop goes on only with some left) consecutive 16-bit pixels
+        // (asserted above).
+        let done = unsafe {
+            arch::thumbv6m::dithered_span_565(rest.as_mut_ptr().cast(), rest.len(), &mut span)
+        };
+        at = at.wrapping_add(done as i32);
+        // The run after those (if any) leaves the channels' ranges.
+        let Some((_, after)) = rest.split_at_mut_checked(done) else {
+            return;
+        };
+        let n = after.len().min(DITHER_RUN);
+        let Some((run @ [_, ..], tail)) = after.split_at_mut_checked(n) else {
+            return;
+        };
+        dithered_pixels_565(run, span.value, steps, (at, y));
+        span.value = advanced(span.value, [s0, s1, s2], DITHER_RUN as u32);
+        if tail.is_empty() {
+            return;
+        }
+        (rest, at) = (tail, at.wrapping_add(DITHER_RUN as i32));
+    }
 }
 
 /// [`dithered_565`] run by run in Rust (where no assembly loop took the span): `value` and
@@ -194,70 +253,13 @@ fn dithered_runs_565<C: From<RawU16>>(
     let mut at = x;
     for run in dst.chunks_mut(DITHER_RUN) {
         if run.len() >= SHORT_DITHERED && run_stays_inside(value, step, run.len()) {
-            packed_dithered_run(run, lanes(value), steps, (at, y), offsets);
+            dithered_run_565(run, lanes(value), steps, offsets);
         } else {
             dithered_pixels_565(run, value, steps, (at, y));
         }
         value = advanced(value, step, DITHER_RUN as u32);
         at = at.wrapping_add(DITHER_RUN as i32);
     }
-}
-
-/// A run of [`dithered_runs_565`] whose dithered lanes stay inside their 16 bits (pixel
-/// `(at, y)` its first), as [`dithered_run_565`] draws it from its first pixel's lanes and the
-/// `offsets` of its pixels 0-1 and 2-3 ([`bayer_lanes`]): on ARMv6-M by its Thumb-1 loop
-/// ([`arch::thumbv6m`]; a run at an address of 2 mod 4 its first pixel alone first, as ARMv6-M
-/// stores words at 4-byte aligned addresses only).
-#[inline(always)]
-fn packed_dithered_run<C: From<RawU16>>(
-    run: &mut [C],
-    lane: [u32; 3],
-    steps: &SpanSteps,
-    (at, y): (i32, i32),
-    offsets: ([u32; 3], [u32; 3]),
-) {
-    #[cfg(armv6m)]
-    dithered_run_thumb1(run, lane, steps, (at, y), offsets.0);
-    #[cfg(not(armv6m))]
-    {
-        let _ = (at, y);
-        dithered_run_565(run, lane, steps, offsets);
-    }
-}
-
-/// [`packed_dithered_run`] on ARMv6-M: the Thumb-1 loop ([`arch::thumbv6m`]), its words stored at
-/// 4-byte aligned addresses only (a run at an address of 2 mod 4 has its first pixel drawn
-/// alone, from the lanes and the offsets `head` of pixels 0 and 1).
-#[cfg(armv6m)]
-#[inline(always)]
-#[allow(unsafe_code)]
-fn dithered_run_thumb1<C: From<RawU16>>(
-    run: &mut [C],
-    mut lane: [u32; 3],
-    steps: &SpanSteps,
-    (mut at, y): (i32, i32),
-    head: [u32; 3],
-) {
-    // 5-6-5 colours are one `u16` (embedded-graphics' `Rgb565(u16)`, `Bgr565(u16)`).
-    const { assert!(core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() == 2) };
-    let mut run = run;
-    if (run.as_ptr() as usize) % 4 != 0 {
-        if let [first, rest @ ..] = run {
-            *first = raw_565(pack_565(zip3(lane, head, u32::wrapping_add)));
-            lane = zip3(lane, steps.lane, u32::wrapping_add);
-            at = at.wrapping_add(1);
-            run = rest;
-        }
-    }
-    let words = arch::thumbv6m::DitheredRun565 {
-        lane,
-        steps: steps.words(),
-        first: bayer_pair(at, y),
-        second: bayer_pair(at.wrapping_add(2), y),
-    };
-    // SAFETY: `run` is `run.len()` consecutive 16-bit pixels (asserted above), the first at a
-    // 4-byte aligned address (a first pixel at 2 mod 4 is drawn above).
-    unsafe { arch::thumbv6m::dithered_run_565(run.as_mut_ptr().cast(), run.len(), &words) };
 }
 
 /// The values `value` (raw order) `pixels` pixels on by `step` a pixel, wrapping: where a run
@@ -339,7 +341,6 @@ fn bayer_lanes(x: i32, y: i32) -> [u32; 3] {
 /// word their lanes plus their Bayer offsets ([`bayer_pair`]: the integer `o₁·2¹⁶ + o₀`, so a
 /// negative low offset borrows from the high lane as the sum needs). A stream's offsets are the
 /// same at every word, so both step by four pixels' lane steps alone.
-#[cfg_attr(armv6m, allow(dead_code))]
 #[inline(always)]
 fn dithered_run_565<C: From<RawU16>>(
     run: &mut [C],
