@@ -152,7 +152,7 @@ declare -A TEXTURE_TARGET=([cortex-m4]=12 [cortex-m0]=22)
 # Perspective-correct nearest texturing, unlit and texture × Gouraud, on the Cortex-M4 (its
 # Thumb-2 span loop) and the M0 (the division-free reciprocal, the Thumb-1 chunk loop for unlit
 # texels): the issue's targets are 16 and 20, 28 and 36 (out of reach with a depth test and
-# 16-pixel chunks: docs/benchmarks.md); held where they are (measured 22.71 and 45.48, 57.84
+# 16-pixel chunks: docs/benchmarks.md); held where they are (measured 22.74 and 45.55, 57.84
 # and 172.21: margins of 10-14 %; the M0's were 82.16 and 188.03 before its chunk loop, the
 # chunks' lengths from thresholds found once a span and the slope's products from limbs). The lit
 # figures were 35.63 and 96.36 with chunks of 16 always: the bench's faces are steep (w 1:3

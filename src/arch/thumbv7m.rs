@@ -1577,16 +1577,18 @@ core::arch::global_asm!(
     ".type embedded_raster_perspective_span_v7m,%function",
     ".thumb_func",
     // r0 = the block (at least one pixel left), r1 = its flags: 1 if lit, plus 2 if bilinear
-    // (ARMv7E-M; the levels at the chunks' ends are then found unlit too, unused).
+    // (ARMv7E-M). The levels at the chunks' ends are found only if lit (flag 1).
     "embedded_raster_perspective_span_v7m:",
     "push {{r4-r11, lr}}",
     // [sp]: the steps a pixel of the depth, x, y (shifted) and level; [sp, #16]: the block;
     // [sp, #20]: the flags; [sp, #24-32]: x, y and level at the chunk's first pixel; [sp, #36]:
     // the chunk's length's bits; [sp, #40]: the span's pixels; [sp, #44]: the bilinear loops'
-    // `y` shift plus 9.
-    "sub sp, #48",
+    // `y` shift plus 9; [sp, #48]: the lit flag alone.
+    "sub sp, #52",
     "str r0, [sp, #16]",
     "str r1, [sp, #20]",
+    "and r2, r1, #1",
+    "str r2, [sp, #48]",
     "ldr r1, [r0, #8]",
     "str r1, [sp, #40]",
     "ldr r1, [r0, #92]",
@@ -1608,6 +1610,8 @@ core::arch::global_asm!(
     "ldr r3, [r0, #8]",
     "b 70f",
     "71:",
+    "lsls r3, r3, #31",
+    "beq 72f",
     corrected!("r6", "60", "64", "68"),
     "72:",
     "add r3, sp, #24",
@@ -1685,7 +1689,7 @@ core::arch::global_asm!(
     lambdas!(),
     corrected!("r4", "36", "40", "44"),
     corrected!("r5", "48", "52", "56"),
-    "ldr r3, [sp, #20]",
+    "ldr r3, [sp, #48]",
     "cbz r3, 5f",
     corrected!("r6", "60", "64", "68"),
     "5:",
@@ -1717,7 +1721,7 @@ core::arch::global_asm!(
     lambdas!(),
     corrected!("r4", "36", "40", "44"),
     corrected!("r5", "48", "52", "56"),
-    "ldr r3, [sp, #20]",
+    "ldr r3, [sp, #48]",
     "cbz r3, 25f",
     corrected!("r6", "60", "64", "68"),
     "25:",
@@ -1887,7 +1891,7 @@ core::arch::global_asm!(
     "ldr r3, [r0, #8]",
     "cmp r3, #0",
     "bne 70b",
-    "add sp, #48",
+    "add sp, #52",
     "pop {{r4-r11, pc}}",
     // The depth plane kept for the next chunk; the next chunk, if any.
     "9:",
@@ -1896,7 +1900,7 @@ core::arch::global_asm!(
     "ldr r3, [r0, #8]",
     "cmp r3, #0",
     "bne 3b",
-    "add sp, #48",
+    "add sp, #52",
     "pop {{r4-r11, pc}}",
     ".size embedded_raster_perspective_span_v7m, . - embedded_raster_perspective_span_v7m",
 );
