@@ -1820,7 +1820,8 @@ core::arch::global_asm!(
     "b 9f",
     perspective_bilinear!(),
     // The unlit chunks of 16 (entered with the block in r0 and its pixels left in r3): the
-    // code above with the length 16 (shift 4) and no level; the last chunk is the code's at 20.
+    // code above with the length 16 (shift 4) and no level; the last chunk at 75 (two steps,
+    // not three), one of a single pixel at 7.
     "70:",
     "subs r12, r3, #16",
     "bls 75f",
