@@ -191,10 +191,10 @@ declare -A POLYGON_TARGET=([cortex-m4]=3.1 [cortex-m0]=7.5)
 # (128×96, 64×48), and the radial chords' square roots; docs/benchmarks.md), held where they
 # are, measured 19.74 and 59.74 (linear), 173.53 (radial, M4), margins of 10 %. Dithering
 # (#30: +2 over the plain fill; reached on the M4), margins of 10 %: linear dithered 20.98 and
-# 68.78 (+1.68 and +10.1), `GouraudTriangle::dithered` 10.16 and 23.45 (+1.19 and +7.9).
+# 68.42 (+1.68 and +9.8), `GouraudTriangle::dithered` 10.16 and 23.22 (+1.19 and +7.6).
 declare -A LINEAR_TARGET=([cortex-m4]=21.7 [cortex-m0]=65.7)
-declare -A LINEAR_DITHERED_TARGET=([cortex-m4]=23.1 [cortex-m0]=75.7)
-declare -A GOURAUD_DITHERED_TARGET=([cortex-m4]=11.2 [cortex-m0]=25.8)
+declare -A LINEAR_DITHERED_TARGET=([cortex-m4]=23.1 [cortex-m0]=75.3)
+declare -A GOURAUD_DITHERED_TARGET=([cortex-m4]=11.2 [cortex-m0]=25.6)
 declare -A RADIAL_TARGET=([cortex-m4]=191)
 # The other cores (issue #31), held where they are with margins of about 10 %:
 # * the Cortex-M7 board runs the Cortex-M4F build: the same instructions, the M4's limits;

@@ -398,8 +398,8 @@ core::arch::global_asm!(
     "ldr r4, [r2, #16]",
     "str r4, [sp, #52]",
     "b 10f",
-    // Stopped (every pixel drawn, or a run whose values leave the channels' ranges): the values
-    // at the first pixel not drawn back to the span, the pixels drawn to r0.
+    // Stopped at a run whose values leave the channels' ranges: the values at its first pixel
+    // back to the span; then (at 17 where every pixel is drawn) the pixels drawn to r0.
     "18:",
     "ldr r2, [sp, #28]",
     "ldr r4, [sp, #12]",
@@ -408,6 +408,7 @@ core::arch::global_asm!(
     "str r4, [r2, #4]",
     "ldr r4, [sp, #20]",
     "str r4, [r2, #8]",
+    "17:",
     "ldr r4, [sp, #32]",
     "subs r0, r0, r4",
     "lsrs r0, r0, #1",
@@ -547,7 +548,7 @@ core::arch::global_asm!(
     "ldr r1, [sp, #24]",
     "cmp r1, #0",
     "bne 9f",
-    "b 18b",
+    "b 17b",
     "9:",
     "ldr r3, [sp, #36]",
     dithered_advance!("24", "12"),
